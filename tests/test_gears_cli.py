@@ -1,0 +1,96 @@
+"""`wheelstep gears` end to end: files written, printable, deterministic; bad input refused."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from meshcheck import assert_printable_stl, read_3mf_strict
+
+
+@pytest.fixture(scope="module")
+def default_pair(tmp_path_factory):
+    out = tmp_path_factory.mktemp("gears")
+    from wheelstep_cli.cli import run
+
+    assert run(["gears", "--z", "48", "--out", str(out)]) == 0
+    return out
+
+
+def test_writes_printable_meshes_and_report(default_pair):
+    names = sorted(p.name for p in default_pair.iterdir())
+    assert names == ["gears.3mf", "gears.json", "pinion.stl", "wheel.stl"]
+    report = json.loads((default_pair / "gears.json").read_text())
+    for name in ("pinion", "wheel"):
+        mesh = assert_printable_stl(default_pair / f"{name}.stl")
+        part = report["parts"][name]
+        assert mesh.volume == pytest.approx(part["volume_mm3"], rel=1e-4)
+        assert np.allclose(mesh.bounds, part["bounding_box_mm"], atol=1e-3)
+        assert mesh.bounds[1, 2] - mesh.bounds[0, 2] == pytest.approx(10.0)
+    assert report["parameters"]["install_distance"] == 144
+    assert report["parameters"]["backlash"] == pytest.approx(0.5)
+    assert len(report["sectors"]) == 24
+    assert report["parts"]["pinion"]["teeth"] == 48 and report["parts"]["wheel"]["teeth"] == 96
+
+
+def test_3mf_reads_back_strict_with_two_named_objects(default_pair):
+    info = read_3mf_strict(default_pair / "gears.3mf")
+    assert info["warnings"] == []
+    assert set(info["objects"]) == {"pinion", "wheel"}
+    assert info["build_items"] == 2
+    report = json.loads((default_pair / "gears.json").read_text())
+    for name, volume in info["objects"].items():
+        assert volume == pytest.approx(report["parts"][name]["volume_mm3"], rel=1e-4)
+
+
+def test_bore_is_cut(default_pair, cli, tmp_path):
+    assert cli("gears", "--bore", "0", "--format", "stl", "--out", tmp_path).exit_code == 0
+    solid = assert_printable_stl(tmp_path / "pinion.stl")
+    bored = assert_printable_stl(default_pair / "pinion.stl")
+    removed = solid.volume - bored.volume
+    assert np.pi * 4.0**2 * 10.0 <= removed <= 1.005 * np.pi * 4.0**2 * 10.0
+    # the hole's polygon is circumscribed: an 8 mm shaft fits, with < 0.02 mm play at the corners
+    radius = np.hypot(bored.vertices[:, 0], bored.vertices[:, 1])
+    assert 4.0 < radius.min() < 4.02
+
+
+def test_same_inputs_give_identical_files(default_pair, tmp_path):
+    # a separate process, so nothing cached in this one can make them equal
+    subprocess.run([sys.executable, "-m", "wheelstep_cli", "gears", "--out", str(tmp_path)],
+                   check=True, capture_output=True)
+    for name in ("pinion.stl", "wheel.stl", "gears.3mf", "gears.json"):
+        assert (tmp_path / name).read_bytes() == (default_pair / name).read_bytes(), name
+
+
+def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_pair):
+    assert cli("gears", "--profile", "bntu-2024", "--out", tmp_path / "p").exit_code == 0
+    assert (tmp_path / "p" / "wheel.stl").read_bytes() == (default_pair / "wheel.stl").read_bytes()
+    assert cli("gears", "--profile", "bntu-2024", "--thickness", "6", "--format", "stl",
+               "--out", tmp_path / "q").exit_code == 0
+    mesh = assert_printable_stl(tmp_path / "q" / "pinion.stl")
+    assert mesh.bounds[1, 2] == pytest.approx(6.0)
+    assert not (tmp_path / "q" / "gears.3mf").exists()
+
+
+@pytest.mark.parametrize("args, param", [
+    (["--b", "110"], "b ="),                      # R_min = a - 4b + c < 0
+    (["--z", "47"], "z ="),                        # not whole sectors
+    (["--module", "4"], "module ="),               # pointed teeth
+    (["--bore", "100"], "bore ="),                 # bore larger than the root
+    (["--a", "-60"], "a ="),                       # negative length
+    (["--a", "sixty"], "'--a'"),                   # not a number
+    (["--thickness", "0"], "thickness ="),
+    (["--install-distance", "140"], "install-distance ="),
+    (["--turns", "3"], "turns ="),
+    (["--profile", "no-such-design"], "profile ="),
+])
+def test_bad_input_one_line_exit_2_nothing_written(cli, tmp_path, args, param):
+    out = tmp_path / "out"
+    result = cli("gears", *args, "--out", out)
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and param in lines[0], result.stderr
+    assert "Traceback" not in result.stderr
+    assert not out.exists()

@@ -1,0 +1,76 @@
+"""Sector-involute teeth (SPEC §5): reference points and closed outlines."""
+
+import json
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given, settings, strategies as st
+
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.gears.paper_teeth import (ToothForm, check_tooth_form, involute_polar_angle,
+                                             pinion_outline, wheel_outline)
+from wheelstep_cli.gears.pitch import CrankLaw, carrier_angle, pinion_radius, wheel_radius
+from wheelstep_cli.gears.sectors import sector_partition
+
+
+def test_reference_points(cli):
+    result = cli("teeth", "--json")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    p1 = data["pinion"][0]["points"]
+    assert [round(p["theta_deg"], 2) for p in p1] == [-88.76, -88.64, -88.43, -88.16, -87.84]
+    assert [round(p["theta_s_deg"], 2) for p in p1] == [-85.44, -85.55, -85.77, -86.04, -86.36]
+    assert [round(p["r_mm"], 2) for p in p1] == [59.30, 60.30, 61.30, 62.30, 63.30]
+    w1 = data["wheel"][0]["points"]
+    assert [round(p["phi_deg"], 2) for p in w1] == [-43.80, -43.87, -44.01, -44.18, -44.39]
+    assert [round(p["phi_s_deg"], 2) for p in w1] == [-41.87, -41.80, -41.66, -41.49, -41.28]
+    assert len(data["pinion"]) == 24 and len(data["wheel"]) == 24
+
+
+def test_involute_polar_angle_matches_definition():
+    alpha = np.radians(20.0)
+    assert involute_polar_angle(np.cos(alpha), 1.0) == pytest.approx(np.tan(alpha) - alpha)
+    assert involute_polar_angle(10.0, 10.0) == 0.0
+
+
+def count_teeth(outline: np.ndarray, pitch_radius, module: float) -> int:
+    """Teeth = runs of outline points more than m/2 outside the exact pitch curve."""
+    radius = np.hypot(outline[:, 0], outline[:, 1])
+    angle = np.arctan2(outline[:, 1], outline[:, 0])
+    outer = radius > pitch_radius(angle) + module / 2
+    return int(np.count_nonzero(outer & ~np.roll(outer, 1)))
+
+
+@pytest.mark.parametrize("z, n, wheel_teeth", [(48, 2, 96), (24, 4, 96), (40, 2, 80)])
+def test_outlines_are_simple_and_have_the_tooth_count(z, n, wheel_teeth):
+    law = CrankLaw(60, 100, 360, 143.5, n)
+    part = sector_partition(law, z * n // 4)
+    form = ToothForm(2.0 * 48 / max(z, wheel_teeth / 2) if n == 2 else 2.0, 0.5)
+    check_tooth_form(part, form)
+    pinion_pitch = lambda theta: pinion_radius(law, carrier_angle(law, theta))
+    wheel_pitch = lambda phi: wheel_radius(law, phi)
+    for outline, pitch, teeth in ((pinion_outline(part, form), pinion_pitch, z),
+                                  (wheel_outline(part, form), wheel_pitch, wheel_teeth)):
+        ring = shapely.LinearRing(outline)
+        assert ring.is_simple
+        assert shapely.Polygon(outline).area > 0
+        assert count_teeth(outline, pitch, form.module) == teeth
+
+
+def test_pointed_teeth_are_refused():
+    part = sector_partition(CrankLaw(60, 100, 360, 143.5, 2), 24)
+    with pytest.raises(DesignError) as err:
+        check_tooth_form(part, ToothForm(3.0, 0.75))
+    assert err.value.param == "module"
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.floats(0, 104), st.sampled_from([32, 40, 48, 56]))
+def test_outline_simple_over_designs(b, z):
+    law = CrankLaw(60, b, 360, 143.5, 2)
+    part = sector_partition(law, z // 2)
+    form = ToothForm(0.3 * part.arc, 0.075 * part.arc)
+    check_tooth_form(part, form)
+    assert shapely.LinearRing(pinion_outline(part, form)).is_simple
+    assert shapely.LinearRing(wheel_outline(part, form)).is_simple

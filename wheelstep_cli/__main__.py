@@ -1,0 +1,3 @@
+from wheelstep_cli.cli import main
+
+main()

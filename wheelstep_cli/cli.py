@@ -1,0 +1,65 @@
+"""The ``wheelstep`` command line: a Typer app whose commands live in ``commands/``.
+
+Errors a user can fix (bad values, impossible designs) are reported as one line
+on stderr with exit code 2 and nothing written; see :func:`run`.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import typer
+
+try:  # typer >= 0.2x ships its own copy of click
+    from typer._click import exceptions as click_errors
+except ImportError:  # pragma: no cover - older typer uses click itself
+    from click import exceptions as click_errors
+
+from wheelstep_cli.errors import DesignError
+
+app = typer.Typer(
+    name="wheelstep",
+    help="Design parts of wheel-step movers: non-circular gear pairs, support shoes, "
+         "linkages; written as printable meshes.",
+    add_completion=False,
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    rich_markup_mode=None,
+)
+
+
+def _register_commands() -> None:
+    from wheelstep_cli.commands import register_all
+
+    register_all(app)
+
+
+_register_commands()
+
+
+def run(argv: list[str] | None = None) -> int:
+    """Run the CLI on ``argv`` and return the exit code (0 ok, 1 failed check, 2 bad input)."""
+    try:
+        result = app(args=argv, prog_name="wheelstep", standalone_mode=False)
+    except DesignError as err:
+        typer.echo(f"wheelstep: error: {err}", err=True)
+        return 2
+    except click_errors.NoArgsIsHelpError as err:
+        typer.echo(err.format_message(), err=True)
+        return 2
+    except click_errors.UsageError as err:
+        where = f" ({err.ctx.command_path})" if err.ctx is not None else ""
+        typer.echo(f"wheelstep: error{where}: {err.format_message()}", err=True)
+        return 2
+    except click_errors.ClickException as err:
+        typer.echo(f"wheelstep: error: {err.format_message()}", err=True)
+        return err.exit_code
+    except typer.Abort:
+        typer.echo("wheelstep: aborted", err=True)
+        return 130
+    return result if isinstance(result, int) else 0
+
+
+def main() -> None:
+    """Console-script entry point."""
+    sys.exit(run())

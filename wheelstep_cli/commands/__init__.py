@@ -1,0 +1,12 @@
+"""Thin Typer commands: parse, call the math, write, report. One module per command group."""
+
+from __future__ import annotations
+
+import typer
+
+
+def register_all(app: typer.Typer) -> None:
+    """Attach every command module's commands to ``app``."""
+    from wheelstep_cli.commands import gears
+
+    gears.register(app)

@@ -1,0 +1,151 @@
+"""Commands for the non-circular gear pair: ``pitch``, ``teeth``, ``gears``."""
+
+from __future__ import annotations
+
+from enum import Enum
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+Opt = typer.Option
+
+
+class Format(str, Enum):
+    stl = "stl"
+    threemf = "3mf"
+    both = "both"
+
+
+def _spec(profile, **cli):
+    """Resolve a GearPairSpec: command line over profile over built-in defaults."""
+    from wheelstep_cli.io.profiles import load_profile, merge_options, profile_section
+    from wheelstep_cli.parts.gear_pair import SPEC_KEYS, GearPairSpec
+
+    layers = []
+    if profile:
+        path, data = load_profile(profile)
+        layers.append(profile_section(path, data, "gears", SPEC_KEYS))
+        mechanism = profile_section(path, data, "mechanism", ("a", "b", "c", "r_min"))
+        if "c" not in mechanism and "r_min" in mechanism:
+            a, b = cli.get("a") or mechanism.get("a", 60.0), cli.get("b") or mechanism.get("b", 100.0)
+            mechanism["c"] = mechanism["r_min"] - a + 4 * b
+        mechanism.pop("r_min", None)
+        layers.append(mechanism)
+    return GearPairSpec(**merge_options(cli, *layers))
+
+
+# Shared option declarations (defaults None so a profile can fill what is not given).
+A = Opt(None, "--a", help="Hub axis to crank axes, mm [60].")
+B = Opt(None, "--b", help="Crank length, mm [100].")
+C = Opt(None, "--c", help="Shoe strut length, mm [360].")
+Z = Opt(None, "--z", help="Pinion tooth count; the wheel gets z*n/2 [48].")
+TURNS = Opt(None, "--turns", "-n", help="Pinion turns per carrier turn, 2 or 4 [2].")
+CENTER = Opt(None, "--center-distance", help="Design centre distance L_p, mm [143.5].")
+INSTALL = Opt(None, "--install-distance", help="Installed centre distance, mm [144].")
+MODULE = Opt(None, "--module", "-m", help="Module (tooth height unit), mm [2].")
+BACKLASH = Opt(None, "--backlash", help="Normal backlash j_n, mm [0.25 x module].")
+PROFILE = Opt(None, "--profile", help="Design preset: a name in profiles/ or a YAML path.")
+JSON = Opt(False, "--json", help="Print JSON instead of a table.")
+
+
+def pitch(
+    a: Optional[float] = A, b: Optional[float] = B, c: Optional[float] = C,
+    z: Optional[int] = Z, turns: Optional[int] = TURNS,
+    center_distance: Optional[float] = CENTER, profile: Optional[str] = PROFILE,
+    json: bool = JSON,
+) -> None:
+    """Print the equal-arc sector partition of one carrier quarter (SPEC §4)."""
+    from wheelstep_cli.gears.sectors import sector_partition, sectors_per_quarter
+    from wheelstep_cli.io.jsonio import json_text
+    from wheelstep_cli.parts.gear_pair import partition_rows
+
+    spec = _spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
+    law = spec.law()
+    part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns))
+    rows = partition_rows(part)
+    if json:
+        typer.echo(json_text({"u": law.u, "arc_mm": part.arc, "sectors": rows}), nl=False)
+        return
+    typer.echo(f"u = {law.u:.5f}   common arc l = {part.arc:.4f} mm   "
+               f"{part.count} sectors per carrier quarter")
+    typer.echo(f"{'i':>3} {'phi_i':>8} {'dphi_i':>7} {'r_Hi':>8} {'theta_i':>8} {'dtheta_i':>8} {'r_i':>7}")
+    for row in rows:
+        typer.echo(f"{row['i']:>3} {row['phi_deg']:8.2f} {row['dphi_deg']:7.2f} {row['r_wheel_mm']:8.2f} "
+                   f"{row['theta_deg']:8.2f} {row['dtheta_deg']:8.2f} {row['r_pinion_mm']:7.2f}")
+    typer.echo("(degrees and mm)")
+
+
+def teeth(
+    a: Optional[float] = A, b: Optional[float] = B, c: Optional[float] = C,
+    z: Optional[int] = Z, turns: Optional[int] = TURNS,
+    center_distance: Optional[float] = CENTER, module: Optional[float] = MODULE,
+    backlash: Optional[float] = BACKLASH, profile: Optional[str] = PROFILE,
+    json: bool = JSON,
+) -> None:
+    """Print the sector-involute tooth points of both gears (SPEC §5)."""
+    import numpy as np
+
+    from wheelstep_cli.gears.paper_teeth import check_tooth_form, pinion_flanks, wheel_flanks
+    from wheelstep_cli.gears.sectors import sector_partition, sectors_per_quarter
+    from wheelstep_cli.io.jsonio import json_text
+
+    spec = _spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
+                 module=module, backlash=backlash)
+    law = spec.law()
+    part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns))
+    form = spec.tooth_form()
+    check_tooth_form(part, form)
+    tables = {"pinion": (pinion_flanks(part, form), "theta"), "wheel": (wheel_flanks(part, form), "phi")}
+    result = {}
+    for gear, (flanks, angle) in tables.items():
+        result[gear] = [
+            {"i": i + 1, "points": [
+                {"j": j + 1, f"{angle}_deg": np.degrees(flanks.left[i, j]),
+                 f"{angle}_s_deg": np.degrees(flanks.right[i, j]), "r_mm": flanks.radius[i, j]}
+                for j in range(flanks.left.shape[1])]}
+            for i in range(flanks.left.shape[0])
+        ]
+    if json:
+        typer.echo(json_text(result), nl=False)
+        return
+    for gear, (flanks, angle) in tables.items():
+        typer.echo(f"{gear}: flank 1 {angle}_ij / flank 2 {angle}_sij (deg) at r_ij (mm), j = 1..5")
+        for sector in result[gear]:
+            cells = "  ".join(f"{p[f'{angle}_deg']:8.2f}/{p[f'{angle}_s_deg']:8.2f}@{p['r_mm']:.2f}"
+                              for p in sector["points"])
+            typer.echo(f"{sector['i']:>3}  {cells}")
+
+
+def gears(
+    a: Optional[float] = A, b: Optional[float] = B, c: Optional[float] = C,
+    z: Optional[int] = Z, turns: Optional[int] = TURNS,
+    center_distance: Optional[float] = CENTER, install_distance: Optional[float] = INSTALL,
+    module: Optional[float] = MODULE, backlash: Optional[float] = BACKLASH,
+    thickness: Optional[float] = Opt(None, "--thickness", help="Face width, mm [10]."),
+    bore: Optional[float] = Opt(None, "--bore", help="Shaft bore diameter, mm; 0 for none [8]."),
+    fmt: Format = Opt(Format.both, "--format", help="Mesh files to write."),
+    out: Path = Opt(Path("wheelstep-out"), "--out", "-o", help="Output folder."),
+    profile: Optional[str] = PROFILE,
+) -> None:
+    """Write the non-circular gear pair as printable STL/3MF meshes and gears.json."""
+    from wheelstep_cli.io.atomic import write_files_atomic
+    from wheelstep_cli.parts.gear_pair import build_gear_pair, gear_pair_files
+
+    spec = _spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
+                 install_distance=install_distance, module=module, backlash=backlash,
+                 thickness=thickness, bore=bore)
+    pair = build_gear_pair(spec)
+    written = write_files_atomic(gear_pair_files(pair, out, fmt.value))
+    for part in (pair.pinion, pair.wheel):
+        check = pair.checks[part.name]
+        size = part.bounds[1] - part.bounds[0]
+        typer.echo(f"{part.name}: {check.triangles} triangles, {check.volume / 1000:.2f} cm3, "
+                   f"{size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} mm, printable")
+    typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+def register(app: typer.Typer) -> None:
+    app.command("pitch")(pitch)
+    app.command("teeth")(teeth)
+    app.command("gears")(gears)

@@ -1,0 +1,1 @@
+"""Pure numpy math of non-circular gears: pitch curves, sectors, teeth, meshing. No files, no CLI."""

@@ -1,0 +1,179 @@
+"""Sector-involute teeth of the source paper (SPEC §5) and the closed gear outlines.
+
+Each sector is treated as a circular gear of its own pitch radius r_i with base
+radius r_i - m (so its pressure angle varies from sector to sector). The pinion
+has a tooth centred in each sector, the carrier wheel a space. Angles in
+radians, lengths in mm; outlines are counter-clockwise polar (angle, radius).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.gears.sectors import SectorPartition
+
+#: Points per involute flank in the written outline (the tables keep the paper's five).
+FLANK_POINTS = 12
+#: Points on each tip land and root land.
+LAND_POINTS = 4
+#: Smallest tip land (mm) before a tooth counts as pointed.
+MIN_TIP_LAND = 0.1
+
+
+@dataclass(frozen=True)
+class ToothForm:
+    """Tooth heights and backlash: module m (mm) and normal backlash j_n (mm)."""
+
+    module: float = 2.0
+    backlash: float = 0.5
+
+    def __post_init__(self) -> None:
+        require(np.isfinite(self.module) and self.module > 0, "module", self.module, "must be > 0 mm")
+        require(np.isfinite(self.backlash) and self.backlash >= 0, "backlash", self.backlash,
+                "must be >= 0 mm")
+
+
+@dataclass(frozen=True)
+class FlankTable:
+    """Flank angles (rad) of one gear, shape (sectors, points), at radii (mm) of the same shape.
+
+    ``left`` is flank 1 (lower angle), ``right`` flank 2; for the pinion they bound
+    a tooth, for the wheel a space.
+    """
+
+    left: np.ndarray
+    right: np.ndarray
+    radius: np.ndarray
+    root_radius: np.ndarray
+    tip_radius: np.ndarray
+    period: float
+
+
+def involute_polar_angle(base_radius, radius):
+    """inv(alpha) = tan(alpha) - alpha with cos(alpha) = r_b / r (rad); 0 below the base."""
+    cos_a = np.clip(np.asarray(base_radius) / np.asarray(radius), -1.0, 1.0)
+    alpha = np.arccos(cos_a)
+    return np.tan(alpha) - alpha
+
+
+def _profile_radii(pitch_radius: np.ndarray, module: float, points: int) -> np.ndarray:
+    """Radii from base (r - m) to tip (r + m), shape (sectors, points)."""
+    steps = np.linspace(-1.0, 1.0, points)
+    return pitch_radius[:, None] + module * steps[None, :]
+
+
+def pinion_flanks(part: SectorPartition, form: ToothForm, points: int = 5) -> FlankTable:
+    """Pinion tooth flanks (SPEC §5): theta_ij (flank 1) and theta_sij (flank 2)."""
+    m = form.module
+    r = part.r_pinion
+    base = r - m
+    radius = _profile_radii(r, m, points)
+    inv = involute_polar_angle(base[:, None], radius)
+    inv_pitch = involute_polar_angle(base, r)[:, None]
+    correction = (form.backlash / (4.0 * base))[:, None]
+    theta, dtheta = part.theta[:, None], part.dtheta[:, None]
+    left = theta + dtheta / 4.0 + correction - inv_pitch + inv
+    right = theta + 3.0 * dtheta / 4.0 - correction + inv_pitch - inv
+    return FlankTable(left, right, radius, r - 1.25 * m, r + m, part.law.turns * np.pi / 2.0)
+
+
+def wheel_flanks(part: SectorPartition, form: ToothForm, points: int = 5) -> FlankTable:
+    """Carrier-wheel space flanks (SPEC §5): phi_ij (flank 1) and phi_sij (flank 2)."""
+    m = form.module
+    r = part.r_wheel
+    base = r - m
+    radius = _profile_radii(r, m, points)
+    inv = involute_polar_angle(base[:, None], radius)
+    inv_pitch = involute_polar_angle(base, r)[:, None]
+    correction = (form.backlash / (4.0 * base))[:, None]
+    phi, dphi = part.phi[:, None], part.dphi[:, None]
+    left = phi + dphi / 4.0 - correction + inv_pitch - inv
+    right = phi + 3.0 * dphi / 4.0 + correction - inv_pitch + inv
+    return FlankTable(left, right, radius, r - 1.25 * m, r + m, np.pi / 2.0)
+
+
+def check_tooth_form(part: SectorPartition, form: ToothForm) -> None:
+    """Reject modules the sectors cannot carry: negative radii, pointed or overlapping teeth."""
+    m = form.module
+    smallest = float(min(part.r_pinion.min(), part.r_wheel.min()))
+    require(smallest - 1.25 * m > 0, "module", m,
+            f"must be < {smallest / 1.25:.3f} mm (root radius of the smallest sector must be > 0)")
+    pinion = pinion_flanks(part, form)
+    wheel = wheel_flanks(part, form)
+    # Pinion tooth tip land and wheel tooth tip land (between sectors, continued periodically).
+    pinion_tip = (pinion.right[:, -1] - pinion.left[:, -1]) * pinion.tip_radius
+    wheel_next_left = np.append(wheel.left[1:, -1], wheel.left[0, -1] + np.pi / 2.0)
+    wheel_tip = (wheel_next_left - wheel.right[:, -1]) * wheel.tip_radius
+    # Pinion space bottom and wheel space bottom (at the root radius, flanks run radially).
+    pinion_next_left = np.append(pinion.left[1:, 0], pinion.left[0, 0] + pinion.period)
+    pinion_gap = (pinion_next_left - pinion.right[:, 0]) * pinion.root_radius
+    wheel_gap = (wheel.right[:, 0] - wheel.left[:, 0]) * wheel.root_radius
+    worst = min(pinion_tip.min(), wheel_tip.min())
+    if worst < MIN_TIP_LAND:
+        pitch = part.arc
+        raise DesignError("module", m, f"too large for the tooth pitch {pitch:.3f} mm: teeth come "
+                          f"to a point (tip land {worst:.3f} mm < {MIN_TIP_LAND} mm); "
+                          "use a smaller module or more teeth")
+    if min(pinion_gap.min(), wheel_gap.min()) <= 0:
+        raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: "
+                          "tooth spaces close at the root")
+
+
+def pinion_outline(part: SectorPartition, form: ToothForm) -> np.ndarray:
+    """Closed counter-clockwise pinion outline (K, 2) in mm over the whole turn."""
+    flanks = pinion_flanks(part, form, FLANK_POINTS)
+    angle, radius = _teeth_polar(flanks, tooth_between_flanks=True)
+    return _repeat_polar(angle, radius, flanks.period, round(2.0 * np.pi / flanks.period))
+
+
+def wheel_outline(part: SectorPartition, form: ToothForm) -> np.ndarray:
+    """Closed counter-clockwise carrier-wheel outline (K, 2) in mm over the whole turn."""
+    flanks = wheel_flanks(part, form, FLANK_POINTS)
+    angle, radius = _teeth_polar(flanks, tooth_between_flanks=False)
+    return _repeat_polar(angle, radius, flanks.period, 4)
+
+
+def _teeth_polar(f: FlankTable, tooth_between_flanks: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Polar outline (angle rad, radius mm) of one period, counter-clockwise.
+
+    Per sector: flank 1, the land between the flanks, flank 2, and the land to the
+    next sector's flank 1. With a tooth between the flanks (pinion) the inner land
+    is the tip and the land to the next sector the root; with a space (wheel) the
+    other way round. Each flank continues radially from its base to the root circle;
+    a land joining sectors of different radii blends them linearly.
+    """
+    root = f.root_radius[:, None]
+    tip = f.tip_radius[:, None]
+    flank1_angle = np.concatenate([f.left[:, :1], f.left], axis=1)          # root -> tip
+    flank1_radius = np.concatenate([root, f.radius], axis=1)
+    flank2_angle = np.concatenate([f.right[:, ::-1], f.right[:, :1]], axis=1)  # tip -> root
+    flank2_radius = np.concatenate([f.radius[:, ::-1], root], axis=1)
+    if tooth_between_flanks:
+        inner_level, outer_level = tip, root
+    else:
+        flank1_angle, flank1_radius = flank1_angle[:, ::-1], flank1_radius[:, ::-1]
+        flank2_angle, flank2_radius = flank2_angle[:, ::-1], flank2_radius[:, ::-1]
+        inner_level, outer_level = root, tip
+
+    t = np.linspace(0.0, 1.0, LAND_POINTS + 2)[1:-1][None, :]
+    inner_angle = flank1_angle[:, -1:] + (flank2_angle[:, :1] - flank1_angle[:, -1:]) * t
+    inner_radius = np.broadcast_to(inner_level, inner_angle.shape)
+    next_start = np.roll(flank1_angle[:, :1], -1, axis=0)
+    next_start[-1] += f.period
+    outer_angle = flank2_angle[:, -1:] + (next_start - flank2_angle[:, -1:]) * t
+    outer_radius = outer_level + (np.roll(outer_level, -1, axis=0) - outer_level) * t
+
+    angle = np.concatenate([flank1_angle, inner_angle, flank2_angle, outer_angle], axis=1)
+    radius = np.concatenate([flank1_radius, inner_radius, flank2_radius, outer_radius], axis=1)
+    return angle.reshape(-1), radius.reshape(-1)
+
+
+def _repeat_polar(angle: np.ndarray, radius: np.ndarray, period: float, copies: int) -> np.ndarray:
+    """Repeat one period of a polar outline ``copies`` times and convert to x, y (mm)."""
+    shifts = period * np.arange(copies)
+    all_angle = (angle[None, :] + shifts[:, None]).reshape(-1)
+    all_radius = np.tile(radius, copies)
+    return np.column_stack([all_radius * np.cos(all_angle), all_radius * np.sin(all_angle)])

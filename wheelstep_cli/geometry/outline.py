@@ -1,0 +1,53 @@
+"""Checks on closed 2D outlines before they go to manifold3d.
+
+manifold3d can abort the process on malformed input and silently empties a
+clockwise polygon, so every outline is checked here first.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from wheelstep_cli.errors import DesignError
+
+
+def signed_area(outline: np.ndarray) -> float:
+    """Shoelace area in mm^2 of a closed polygon (N, 2); positive when counter-clockwise."""
+    x, y = outline[:, 0], outline[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def drop_repeated_points(outline: np.ndarray, tol: float = 1e-9) -> np.ndarray:
+    """Remove consecutive duplicates (and a closing point equal to the first)."""
+    outline = np.asarray(outline, dtype=float)
+    step = np.linalg.norm(np.diff(outline, axis=0, append=outline[:1]), axis=1)
+    return outline[step > tol]
+
+
+def check_outline(outline: np.ndarray, what: str) -> np.ndarray:
+    """Validate a part outline and return it counter-clockwise without repeated points.
+
+    Raises :class:`DesignError` (naming ``what``) for non-finite values, too few
+    points, zero area or self-intersections.
+    """
+    outline = np.asarray(outline, dtype=float)
+    if outline.ndim != 2 or outline.shape[1] != 2 or not np.isfinite(outline).all():
+        raise DesignError(what, "outline", "has non-finite points")
+    outline = drop_repeated_points(outline)
+    if len(outline) < 3:
+        raise DesignError(what, "outline", "needs at least 3 distinct points")
+    area = signed_area(outline)
+    if abs(area) < 1e-9:
+        raise DesignError(what, "outline", "has zero area")
+    if area < 0:
+        outline = outline[::-1].copy()
+    ring = shapely.LinearRing(outline)
+    if not ring.is_simple:
+        raise DesignError(what, "outline", "crosses itself (teeth overlap or a curve loops)")
+    return outline
+
+
+def min_radius(outline: np.ndarray) -> float:
+    """Smallest distance in mm from the origin to the outline (vertices and edges)."""
+    return float(shapely.Polygon(outline).exterior.distance(shapely.Point(0.0, 0.0)))

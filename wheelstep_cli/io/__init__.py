@@ -1,0 +1,1 @@
+"""File writers and readers; every write is atomic."""

@@ -1,0 +1,1 @@
+"""Pure numpy math of the mover: shoe, stairs, linkages, trajectories. No files, no CLI."""
