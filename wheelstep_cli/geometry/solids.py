@@ -144,3 +144,86 @@ def require_printable(part: Part) -> MeshReport:
             f"winding={report.winding_consistent}, volume={report.volume:.1f} mm3, "
             f"expected {report.expected_volume:.1f} mm3)")
     return report
+
+
+def inset_bottom(part: Part, height: float, inset: float) -> Part:
+    """Elephant-foot compensation: the part's lowest ``height`` mm shrunk inwards by ``inset`` mm.
+
+    The first layers of a print squash outwards on the bed; drawing them smaller by
+    about the squash keeps bed-side edges (and bores) true. The part must be a prism
+    over its lowest ``height`` (as every extruded plate is); this is checked. The
+    expected volume drops by ``height`` times the area lost in the offset, computed
+    independently with shapely, so the later volume check stays exact.
+    """
+    import manifold3d as m3d
+    import shapely
+
+    if not (np.isfinite(height) and height >= 0):
+        raise DesignError("elephant_foot_height", height, "must be >= 0 mm")
+    if not (np.isfinite(inset) and inset >= 0):
+        raise DesignError("elephant_foot_inset", inset, "must be >= 0 mm")
+    if height == 0 or inset == 0:
+        return part
+    z0, z1 = float(part.bounds[0, 2]), float(part.bounds[1, 2])
+    if not height < z1 - z0:
+        raise DesignError("elephant_foot_height", height,
+                          f"must be < the {part.name}'s height {z1 - z0:g} mm")
+    solid = _manifold_of(part)
+    section = solid.slice(z0 + height / 2.0)
+    below = solid.trim_by_plane((0.0, 0.0, -1.0), -(z0 + height))
+    prism_error = abs(below.volume() - section.area() * height)
+    if prism_error > 1e-6 * max(1.0, below.volume()):
+        raise DesignError(part.name, "elephant foot",
+                          f"needs a part that is a prism over its lowest {height:g} mm")
+    foot_section = section.offset(-inset, m3d.JoinType.Miter, 2.0)
+    if foot_section.is_empty():
+        raise DesignError("elephant_foot_inset", inset, f"removes the whole bottom of the {part.name}")
+    foot = m3d.Manifold.extrude(foot_section, height).translate((0.0, 0.0, z0))
+    above = solid.trim_by_plane((0.0, 0.0, 1.0), z0 + height)
+    result = above + foot
+    if result.status() != m3d.Error.NoError:
+        raise DesignError(part.name, "elephant foot", f"manifold3d reports {result.status().name}")
+    mesh = result.to_mesh()
+    shape = shapely.MultiPolygon([shapely.Polygon(ring[0], ring[1:])
+                                  for ring in _rings_by_shell(section.to_polygons())])
+    lost = shape.area - shape.buffer(-inset, join_style="mitre", mitre_limit=2.0).area
+    return Part(part.name, np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3],
+                np.asarray(mesh.tri_verts, dtype=np.int64), part.expected_volume - height * lost)
+
+
+def footprint(part: Part) -> list[list[np.ndarray]]:
+    """The part seen from above: a list of polygons, each [outer ring CCW, hole rings CW...] (mm).
+
+    Slivers below 0.001 mm^2 (left by the projection where faces were split) are dropped.
+    """
+    rings = _manifold_of(part).project().to_polygons()
+    return _rings_by_shell([r for r in rings if abs(signed_area(np.asarray(r))) >= 1e-3])
+
+
+def _manifold_of(part: Part):
+    import manifold3d as m3d
+
+    mesh = m3d.Mesh(vert_properties=np.ascontiguousarray(part.vertices, dtype=np.float32),
+                    tri_verts=np.ascontiguousarray(part.faces, dtype=np.uint32))
+    solid = m3d.Manifold(mesh)
+    if solid.status() != m3d.Error.NoError:
+        raise DesignError(part.name, "mesh", f"is not a closed manifold ({solid.status().name})")
+    return solid
+
+
+def _rings_by_shell(rings) -> list[list[np.ndarray]]:
+    """Group manifold3d contours (outer CCW, holes CW) into [outer, holes...] lists."""
+    import shapely
+
+    rings = [np.asarray(r, dtype=np.float64) for r in rings if len(r) >= 3]
+    shells = [r for r in rings if signed_area(r) > 0]
+    holes = [r for r in rings if signed_area(r) < 0]
+    groups = [[s] for s in shells]
+    polys = [shapely.Polygon(s) for s in shells]
+    for hole in holes:
+        probe = shapely.Point(hole[0])
+        # the smallest shell containing the hole owns it
+        owners = [i for i, p in enumerate(polys) if p.covers(probe)]
+        if owners:
+            groups[min(owners, key=lambda i: polys[i].area)].append(hole)
+    return groups
