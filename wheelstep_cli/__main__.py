@@ -1,3 +1,5 @@
 from wheelstep_cli.cli import main
 
-main()
+# guarded: spawned worker processes (wheelstep batch --jobs N) import this module again
+if __name__ == "__main__":
+    main()
