@@ -219,14 +219,17 @@ def profile_dxf_bytes(profile: np.ndarray) -> bytes:
     """DXF (R2010, mm) holding the sole as one open LWPOLYLINE on layer SOLE; deterministic."""
     import ezdxf
 
-    doc = ezdxf.new("R2010", units=ezdxf.units.MM)
-    doc.layers.add("SOLE")
-    doc.modelspace().add_lwpolyline(np.asarray(profile, dtype=float).tolist(), format="xy",
-                                    dxfattribs={"layer": "SOLE"})
-    stream = io.StringIO()
     fixed = ezdxf.options.write_fixed_meta_data_for_testing
-    ezdxf.options.write_fixed_meta_data_for_testing = True  # fixed dates and GUIDs: same bytes each run
+    ezdxf.options.write_fixed_meta_data_for_testing = True  # fixed dates, GUIDs, ezdxf marker
     try:
+        doc = ezdxf.new("R2010", units=ezdxf.units.MM)
+        doc.layers.add("SOLE")
+        doc.modelspace().add_lwpolyline(np.asarray(profile, dtype=float).tolist(), format="xy",
+                                        dxfattribs={"layer": "SOLE"})
+        # ezdxf registers CLASS entries from a set (hash-seed order): register them sorted first
+        for dxftype in sorted(doc.entitydb.dxf_types_in_use()):
+            doc.classes.add_class(dxftype)
+        stream = io.StringIO()
         doc.write(stream)
     finally:
         ezdxf.options.write_fixed_meta_data_for_testing = fixed
