@@ -7,7 +7,8 @@ import typer
 
 def register_all(app: typer.Typer) -> None:
     """Attach every command module's commands to ``app``."""
-    from wheelstep_cli.commands import batch, gears
+    from wheelstep_cli.commands import batch, gears, shoe
 
     gears.register(app)
+    shoe.register(app)
     batch.register(app)
