@@ -407,7 +407,8 @@ def render_plate(plate: Plate) -> tuple[int, bytes, bytes]:
     for item in plate.items:
         polygons = item.footprint()
         lo = np.min([r.min(axis=0) for p in polygons for r in p], axis=0)
-        shapes.append((item.label, [[r - lo + (item.x, item.y) for r in p] for p in polygons]))
+        label = item.label.replace(" ", "\n", 1)  # entry name over part name
+        shapes.append((label, [[r - lo + (item.x, item.y) for r in p] for p in polygons]))
     png = plate_png(printer.bed, printer.margin, shapes,
                     f"{plate.stem}: {printer.name} ({printer.bed[0]:g} x {printer.bed[1]:g} mm), "
                     f"{len(plate.items)} parts")

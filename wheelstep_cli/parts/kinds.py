@@ -92,6 +92,14 @@ def _shoe_parts(shoe) -> list:
     return list(shoe.parts)
 
 
+def _shoe_precheck(spec) -> None:
+    """The instant checks of build_shoe: mechanism sizing and positive part sizes."""
+    spec.design()
+    for name in ("width", "strut_diameter", "socket_depth", "rim"):
+        value = getattr(spec, name)
+        require(value > 0, name, value, "must be > 0 mm")
+
+
 KINDS: dict[str, PartKind] = {
     "gear-pair": PartKind(
         name="gear-pair", module="wheelstep_cli.parts.gear_pair", spec_class="GearPairSpec",
@@ -100,5 +108,6 @@ KINDS: dict[str, PartKind] = {
         clearance=_gear_pair_clearance, precheck=_gear_pair_precheck),
     "shoe": PartKind(
         name="shoe", module="wheelstep_cli.parts.shoe", spec_class="ShoeSpec",
-        build="build_shoe", report="shoe_report", section="shoe", parts=_shoe_parts),
+        build="build_shoe", report="shoe_report", section="shoe", parts=_shoe_parts,
+        hole_fields=("strut_diameter",), precheck=_shoe_precheck),
 }
