@@ -70,8 +70,13 @@ def load_batch(path: Path, label: str | None = None) -> BatchPlan:
     """Read and check a batch file and every profile it names; raise InvalidInput listing all issues."""
     from wheelstep_cli.io.profiles import find_profile
 
+    from wheelstep_cli.io.located_yaml import YamlSyntaxError
+
     label = label or str(path)
-    doc = read_located_yaml(path, label)
+    try:
+        doc = read_located_yaml(path, label)
+    except YamlSyntaxError as err:
+        raise InvalidInput([Issue(err.where, "", err.limit)]) from None
     issues: list[Issue] = []
     top = check_mapping(doc, (), doc.data, TOP_KEYS, issues, required=("parts",))
     defaults = check_mapping(doc, ("defaults",), top.get("defaults"), DEFAULT_KEYS, issues)
@@ -140,7 +145,12 @@ def _check_entry(doc, index, raw, defaults, printers, designs, names, issues, fi
         issues.append(Issue(doc.where(origin("quantity")), dotted(origin("quantity")),
                             f"= {quantity}: must be between 1 and {MAX_QUANTITY}"))
 
-    printer = _printer(doc, origin("printer"), values.get("printer"), printers, issues, find_profile)
+    printer = None
+    if values.get("printer") is None:
+        issues.append(Issue(doc.where(path), dotted(path), "needs a printer: a printer profile, one of "
+                            + ", ".join(_profile_names(printer=True))))
+    else:
+        printer = _printer(doc, origin("printer"), values["printer"], printers, issues, find_profile)
     design_name = values.get("design", "bntu-2024")
     design = _design(doc, origin("design"), design_name, designs, issues, find_profile)
 
@@ -169,10 +179,6 @@ def _check_entry(doc, index, raw, defaults, printers, designs, names, issues, fi
 
 
 def _printer(doc, path, name, cache, issues, find_profile) -> Printer | None:
-    if name is None:
-        issues.append(Issue(doc.where(path[:-1]), dotted(path[:-1]),
-                            "needs a printer (a printer profile in profiles/)"))
-        return None
     if not isinstance(name, str):
         issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: must be a profile name"))
         return None
@@ -188,11 +194,13 @@ def _printer(doc, path, name, cache, issues, find_profile) -> Printer | None:
         except InvalidInput as err:
             issues.extend(err.issues)
         except DesignError as err:
-            issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: {err.limit}"
-                                if err.param == "profile" else str(err)))
+            if err.param == "yaml":
+                issues.append(Issue(str(err.value), "", err.limit))
+            else:
+                issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: {err.limit}"))
     if cache[name] is None:
         if not any(i.where == doc.where(path) for i in issues):
-            issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: profile has errors"))
+            issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: the printer profile has errors (above)"))
         return None
     return cache[name]
 
@@ -216,7 +224,7 @@ def _design(doc, path, name, cache, issues, find_profile):
             if err.param == "profile":
                 issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: {err.limit}"))
             elif err.param == "yaml":
-                issues.append(Issue(str(err.value), "yaml", err.limit))
+                issues.append(Issue(str(err.value), "", err.limit))
             else:
                 issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: {err.limit}"))
     if cache[name] is None:

@@ -61,7 +61,12 @@ def is_printer_profile(data: Any) -> bool:
 
 def printer_from_profile(name: str, path: Path, label: str) -> Printer:
     """Read and check a printer profile; every problem is reported with ``label:line``."""
-    doc = read_located_yaml(path, label)
+    from wheelstep_cli.io.located_yaml import YamlSyntaxError
+
+    try:
+        doc = read_located_yaml(path, label)
+    except YamlSyntaxError as err:
+        raise InvalidInput([Issue(err.where, "", err.limit)]) from None
     issues: list[Issue] = []
     printer = _parse_printer(name, doc, issues)
     if issues:

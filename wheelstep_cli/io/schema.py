@@ -21,7 +21,10 @@ class Issue:
     message: str
 
     def __str__(self) -> str:
-        return f"{self.where}: {self.what}: {self.message}"
+        if not self.what:
+            return f"{self.where}: {self.message}"
+        sep = " " if self.message.startswith("= ") else ": "
+        return f"{self.where}: {self.what}{sep}{self.message}"
 
 
 class InvalidInput(DesignError):

@@ -1,0 +1,395 @@
+"""`wheelstep batch`: the example builds into strict 3MF plates; failures are isolated and
+located; output is deterministic; invalid files are refused with file:line before building."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from meshcheck import read_3mf_strict
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "examples" / "shop-floor.yaml"
+
+
+def write(path: Path, text: str) -> Path:
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def line_of(path: Path, needle: str) -> int:
+    """1-based line of the first line containing ``needle`` (independent of the tool)."""
+    for number, line in enumerate(path.read_text().splitlines(), start=1):
+        if needle in line:
+            return number
+    raise AssertionError(needle)
+
+
+def object_metadata(path: Path) -> dict[str, dict[str, str]]:
+    """Object name -> its metadata, read straight from the 3MF XML."""
+    import xml.etree.ElementTree as ET
+
+    ns = {"m": "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"}
+    with zipfile.ZipFile(path) as zf:
+        root = ET.fromstring(zf.read("3D/3dmodel.model"))
+    return {obj.get("name"): {m.get("name"): m.text for m in obj.iter(f"{{{ns['m']}}}metadata")}
+            for obj in root.iter(f"{{{ns['m']}}}object")}
+
+
+def placed_meshes(path: Path) -> dict[str, np.ndarray]:
+    """Object name -> its vertices placed on the bed (build item transform applied), via lib3mf."""
+    import lib3mf
+
+    model = lib3mf.get_wrapper().CreateModel()
+    reader = model.QueryReader("3mf")
+    reader.SetStrictModeActive(True)
+    reader.ReadFromFile(str(path))
+    placed = {}
+    items = model.GetBuildItems()
+    while items.MoveNext():
+        item = items.GetCurrent()
+        obj = item.GetObjectResource()
+        mesh = model.GetMeshObjectByID(obj.GetResourceID())
+        vertices = np.array([v.Coordinates[0:3] for v in mesh.GetVertices()])
+        fields = np.array([list(row) for row in item.GetObjectTransform().Fields])  # 4 x 3
+        placed[mesh.GetName()] = vertices @ fields[:3] + fields[3]
+    return placed
+
+
+@pytest.fixture(scope="module")
+def example(tmp_path_factory):
+    out = tmp_path_factory.mktemp("example")
+    from wheelstep_cli.cli import run
+
+    assert run(["batch", str(EXAMPLE), "--out", str(out), "--jobs", "1"]) == 0
+    return out
+
+
+def test_example_builds_every_part_times_quantity_on_strict_3mf_plates(example):
+    import yaml
+
+    batch = yaml.safe_load(EXAMPLE.read_text())
+    parts_per_kind = {"gear-pair": 2, "shoe": 1}
+    expected = sum(parts_per_kind[e["kind"]] * e.get("quantity", 1) for e in batch["parts"])
+    plates = sorted(example.glob("plate-*.3mf"))
+    assert plates and [p.name for p in plates] == [f"plate-{i}.3mf" for i in range(1, len(plates) + 1)]
+    names = []
+    for plate in plates:
+        info = read_3mf_strict(plate)
+        assert info["warnings"] == [], plate
+        assert info["unit"] is not None and info["build_items"] == len(info["objects"])
+        assert all(v > 0 for v in info["objects"].values())
+        names += list(info["objects"])
+        assert (example / plate.with_suffix(".png").name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert len(names) == expected and len(set(names)) == expected
+    for entry in batch["parts"]:
+        assert sum(n.startswith(entry["name"] + " ") for n in names) == \
+            parts_per_kind[entry["kind"]] * entry.get("quantity", 1)
+
+
+def test_plates_fit_their_bed_without_overlap(example):
+    """Independent check of the packing: every mesh inside its bed, footprints disjoint."""
+    import shapely
+
+    manifest = json.loads((example / "manifest.json").read_text())
+    beds = {"fdm-0.4-pla": (256, 256), "fdm-0.4-petg": (256, 256)}
+    for plate in manifest["plates"]:
+        bed = beds[plate["printer_profile"]]
+        boxes = []
+        for vertices in placed_meshes(example / plate["file"]).values():
+            lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+            assert lo[0] >= 0 and lo[1] >= 0 and hi[0] <= bed[0] and hi[1] <= bed[1]
+            assert lo[2] == pytest.approx(0.0, abs=1e-6)
+            boxes.append(shapely.box(lo[0], lo[1], hi[0], hi[1]))
+        for i in range(len(boxes)):
+            for j in range(i + 1, len(boxes)):
+                assert boxes[i].intersection(boxes[j]).area == pytest.approx(0.0, abs=1e-6)
+
+
+def test_manifest_hashes_inputs_and_every_output(example):
+    manifest = json.loads((example / "manifest.json").read_text())
+    files = sorted(p.relative_to(example).as_posix() for p in example.rglob("*") if p.is_file())
+    assert sorted(manifest["outputs"]) == [f for f in files if f != "manifest.json"]
+    for name, digest in manifest["outputs"].items():
+        assert hashlib.sha256((example / name).read_bytes()).hexdigest() == digest
+    assert manifest["inputs"]["batch"] == {
+        "file": "shop-floor.yaml", "sha256": hashlib.sha256(EXAMPLE.read_bytes()).hexdigest()}
+    assert set(manifest["inputs"]["printer_profiles"]) == {"fdm-0.4-pla", "fdm-0.4-petg"}
+    assert set(manifest["inputs"]["design_profiles"]) == {"bntu-2024", "desk-demo"}
+    assert manifest["checks"]["meshes_printable"] is True
+    assert manifest["versions"]["manifold3d"] and manifest["versions"]["numpy"]
+    text = (example / "manifest.json").read_text()
+    assert str(example) not in text and "/tmp" not in text
+    assert not re.search(r"\d{4}-\d{2}-\d{2}[T ]\d{2}:\d{2}", text)  # no timestamps
+
+
+def test_printer_compensation_is_in_the_geometry_and_metadata(example):
+    """PETG: bores +0.25 mm, backlash +0.2 mm; written into the parts and the 3MF metadata."""
+    report = json.loads((example / "reports" / "bntu-gears.json").read_text())
+    assert report["parameters"]["bore"] == 8
+    assert report["printed_parameters"]["bore"] == pytest.approx(8.25)
+    assert report["printed_parameters"]["backlash"] == pytest.approx(0.5 + 0.2)
+    shoes = json.loads((example / "reports" / "bntu-shoes.json").read_text())
+    assert shoes["printed_parameters"]["strut_diameter"] == pytest.approx(12.25)
+    manifest = json.loads((example / "manifest.json").read_text())
+    plate = next(p for p in manifest["plates"] if "bntu-gears pinion" in p["parts"])
+    meta = object_metadata(example / plate["file"])["bntu-gears pinion"]
+    assert meta["wheelstep:design.bore"] == "8.25"
+    assert meta["wheelstep:design.z"] == "48"
+    assert meta["wheelstep:printer_profile"] == "fdm-0.4-petg"
+    sheet = (example / "print-sheet.md").read_text()
+    for needle in ("bntu-gears", "demo-shoes", "| 8 |", "plate-1.png", "fill_density", "g/cm3"):
+        assert needle in sheet
+
+
+def test_elephant_foot_inset_in_the_written_mesh(example):
+    """The lowest 0.2 mm of a PLA part is 0.2 mm smaller on every side than the rest."""
+    manifest = json.loads((example / "manifest.json").read_text())
+    plate = next(p for p in manifest["plates"] if "demo-shoes shoe #1" in p["parts"])
+    vertices = placed_meshes(example / plate["file"])["demo-shoes shoe #1"]
+    z = vertices[:, 2]
+    bottom = vertices[np.isclose(z, 0.0, atol=1e-4)]
+    upper = vertices[z > 0.25]
+    assert bottom[:, 0].min() == pytest.approx(upper[:, 0].min() + 0.2, abs=2e-3)
+    assert bottom[:, 0].max() == pytest.approx(upper[:, 0].max() - 0.2, abs=2e-3)
+
+
+GOOD_BAD_GOOD = """\
+# two good parts and two that cannot be built
+defaults:
+  design: desk-demo
+  printer: fdm-0.4-pla
+parts:
+  - name: good-1
+    kind: shoe
+    overrides: {width: 12}
+  - name: pointed
+    kind: gear-pair
+    overrides:
+      thickness: 2
+      module: 3          # teeth come to a point: fails while building
+  - name: too-big
+    kind: gear-pair
+    design: bntu-2024
+    printer: resin-0.05-standard
+    overrides: {thickness: 2}
+  - name: good-2
+    kind: shoe
+    quantity: 2
+    overrides: {width: 11}
+"""
+
+
+def test_bad_parts_fail_alone_named_with_their_line(cli, tmp_path):
+    batch = write(tmp_path / "mixed.yaml", GOOD_BAD_GOOD)
+    out = tmp_path / "out"
+    result = cli("batch", batch, "--out", out, "--jobs", "1")
+    assert result.exit_code == 1
+    assert f"pointed ({batch}:{line_of(batch, 'module: 3')}): module = 3" in result.stderr
+    assert f"too-big ({batch}:{line_of(batch, 'name: too-big')})" in result.stderr
+    assert "does not fit the bed of printer 'resin-0.05-standard' (218 x 123 mm" in result.stderr
+    assert "part 'wheel'" in result.stderr
+    names = []
+    for plate in sorted(out.glob("plate-*.3mf")):
+        assert read_3mf_strict(plate)["warnings"] == []
+        names += list(read_3mf_strict(plate)["objects"])
+    assert sorted(names) == ["good-1 shoe", "good-2 shoe #1", "good-2 shoe #2"]
+    assert sorted(p.name for p in (out / "reports").iterdir()) == ["good-1.json", "good-2.json"]
+    assert not [p for p in out.rglob("*") if p.name.endswith(".part") or p.name.startswith(".")]
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert {f["name"]: f["where"] for f in manifest["failed"]} == {
+        "pointed": f"mixed.yaml:{line_of(batch, 'module: 3')}",
+        "too-big": f"mixed.yaml:{line_of(batch, 'name: too-big')}"}
+    assert "## Not built" in (out / "print-sheet.md").read_text()
+
+
+SMALL = """\
+parts:
+  - name: pair
+    kind: gear-pair
+    design: desk-demo
+    printer: fdm-0.4-pla
+    overrides: {thickness: 2}
+  - name: shoes
+    kind: shoe
+    design: desk-demo
+    printer: resin-0.05-standard
+    quantity: 3
+    overrides: {width: 12}
+"""
+
+
+def test_same_batch_twice_identical_bytes_serial_and_parallel(cli, tmp_path):
+    """In-process --jobs 1 and a separate process with --jobs 2 (spawned workers) agree byte for byte."""
+    batch = write(tmp_path / "small.yaml", SMALL)
+    assert cli("batch", batch, "--out", tmp_path / "a", "--jobs", "1").exit_code == 0
+    subprocess.run([sys.executable, "-m", "wheelstep_cli", "batch", str(batch), "--out",
+                    str(tmp_path / "b"), "--jobs", "2"], check=True, capture_output=True, cwd=ROOT)
+    files_a = sorted(p.relative_to(tmp_path / "a") for p in (tmp_path / "a").rglob("*") if p.is_file())
+    files_b = sorted(p.relative_to(tmp_path / "b") for p in (tmp_path / "b").rglob("*") if p.is_file())
+    assert files_a == files_b and len(files_a) >= 7
+    for name in files_a:
+        assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes(), name
+
+
+def test_rerun_into_the_same_folder_removes_stale_plates(cli, tmp_path):
+    batch = write(tmp_path / "small.yaml", SMALL)
+    out = tmp_path / "out"
+    assert cli("batch", batch, "--out", out, "--jobs", "1").exit_code == 0
+    assert (out / "plate-2.3mf").exists()
+    write(batch, SMALL.replace("printer: resin-0.05-standard", "printer: fdm-0.4-pla"))
+    (out / "notes.txt").write_text("mine")
+    assert cli("batch", batch, "--out", out, "--jobs", "1").exit_code == 0
+    assert not (out / "plate-2.3mf").exists() and not (out / "plate-2.png").exists()
+    assert (out / "notes.txt").read_text() == "mine"  # not ours: left alone
+
+
+VALID_ENTRY = """\
+parts:
+  - name: pair
+    kind: gear-pair
+    design: desk-demo
+    printer: fdm-0.4-pla
+"""
+
+
+@pytest.mark.parametrize("text, needle, expect", [
+    (VALID_ENTRY + "    colour: red\n", "colour", "parts[0].colour: unknown key; allowed: name, kind"),
+    (VALID_ENTRY + "    quantity: two\n", "quantity", "parts[0].quantity = 'two': must be a whole number"),
+    (VALID_ENTRY + "    quantity: 0\n", "quantity", "must be between 1 and 200"),
+    (VALID_ENTRY + "    overrides:\n      zz: 3\n", "zz", "overrides.zz: unknown key; allowed: a, b, c, z"),
+    (VALID_ENTRY + "    overrides:\n      z: 24.5\n", "z: 24.5", "overrides.z = 24.5: must be a whole number"),
+    (VALID_ENTRY + "    overrides:\n      module: fine\n", "module", "must be a number"),
+    (VALID_ENTRY + "    overrides:\n      b: 110\n", "b: 110", "b = 110: must be <"),
+    (VALID_ENTRY + "    overrides:\n      z: 23\n", "z: 23", "z = 23: must make z*n/4 whole sectors"),
+    (VALID_ENTRY.replace("kind: gear-pair", "kind: gears"), "kind", "unknown kind; allowed: gear-pair, shoe"),
+    (VALID_ENTRY.replace("printer: fdm-0.4-pla", "printer: fdm-0.6-abs"), "printer",
+     "not found; known profiles:"),
+    (VALID_ENTRY.replace("printer: fdm-0.4-pla", "printer: desk-demo"), "printer",
+     "is a design profile, not a printer profile; printer profiles: fdm-0.4-petg, fdm-0.4-pla"),
+    (VALID_ENTRY.replace("design: desk-demo", "design: fdm-0.4-pla"), "design", "is not a design profile"),
+    (VALID_ENTRY + "  - name: 'pair'\n    kind: shoe\n    printer: fdm-0.4-pla\n", "'pair'",
+     "= 'pair': already used at"),
+    (VALID_ENTRY + "    quantity: 1\n    quantity: 2\n", "quantity: 2", "duplicate key 'quantity'"),
+    (VALID_ENTRY + "    quantity: 1: 2\n", "quantity: 1: 2", "is not valid YAML"),
+])
+def test_invalid_batch_reports_file_line_exit_2_nothing_written(cli, tmp_path, text, needle, expect):
+    batch = write(tmp_path / "bad.yaml", text)
+    out = tmp_path / "out"
+    result = cli("batch", batch, "--out", out)
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1, result.stderr
+    assert lines[0].startswith(f"wheelstep: error: {batch}:{line_of(batch, needle)}: "), lines[0]
+    assert expect in lines[0]
+    assert not out.exists()
+
+
+def test_all_problems_reported_together(cli, tmp_path):
+    batch = write(tmp_path / "bad.yaml", VALID_ENTRY + "    quantity: -1\n  - kind: shoe\n    colour: 1\n")
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert [re.match(r"wheelstep: error: (.*?:\d+): ", ln).group(1) for ln in lines] == [
+        f"{batch}:{line_of(batch, 'quantity: -1')}", f"{batch}:{line_of(batch, 'colour')}",
+        f"{batch}:{line_of(batch, '- kind: shoe')}"]
+    assert "needs a printer" in lines[2]
+
+
+def test_bad_printer_profile_is_located_in_the_profile(cli, tmp_path):
+    profile = write(tmp_path / "wobbly.yaml", "printer:\n  technology: fdm\n  bed: [200, 200]\n"
+                    "  tooth_clearance: -0.1\nmaterial:\n  density: 1.2\n")
+    batch = write(tmp_path / "b.yaml", VALID_ENTRY.replace("fdm-0.4-pla", str(profile)))
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    assert f"{profile}:4: printer.tooth_clearance = -0.1: must be >= 0" in result.stderr
+
+
+def test_demo_gears_are_printable_with_a_0_4_mm_nozzle():
+    """Half-scale preset: builds for every printer, and its tooth tips stay >= 2 extrusion widths
+    (0.8 mm) wide even with the largest FDM clearance (PETG)."""
+    from wheelstep_cli.batch import load_batch
+    from wheelstep_cli.gears.paper_teeth import pinion_flanks, wheel_flanks
+    from wheelstep_cli.gears.sectors import sector_partition, sectors_per_quarter
+    from wheelstep_cli.parts.gear_pair import GearPairSpec, build_gear_pair
+
+    plan_text = "parts:\n  - kind: gear-pair\n    design: desk-demo\n    printer: fdm-0.4-petg\n"
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = write(Path(folder) / "d.yaml", plan_text)
+        spec = load_batch(path).entries[0].printed
+    assert isinstance(spec, GearPairSpec) and spec.backlash == pytest.approx(0.375 + 0.2)
+    pair = build_gear_pair(spec)
+    part = sector_partition(spec.law(), sectors_per_quarter(spec.z, spec.turns))
+    form = spec.tooth_form()
+    p = pinion_flanks(part, form)
+    pinion_tip = (p.right[:, -1] - p.left[:, -1]) * p.radius[:, -1]
+    w = wheel_flanks(part, form)  # wheel teeth lie between sector i's flank 2 and sector i+1's flank 1
+    wheel_tip = (w.left[1:, -1] - w.right[:-1, -1]) * w.radius[:-1, -1]
+    assert pinion_tip.min() >= 0.8 and wheel_tip.min() >= 0.8
+    size = pair.wheel.bounds[1] - pair.wheel.bounds[0]
+    assert size[0] < 110 and size[1] < 110  # desk-top: a 218 x 123 mm resin plate takes it
+
+
+def test_inset_bottom_volume_exact_on_a_plate_with_a_hole():
+    """20 x 20 mm plate, 3 mm thick, 6 mm bore: the foot loses exactly the offset ring."""
+    from wheelstep_cli.geometry.solids import bore_segments, check_part, extrude_plate, inset_bottom
+
+    square = np.array([[-10, -10], [10, -10], [10, 10], [-10, 10]], dtype=float)
+    plate = extrude_plate("plate", square, 3.0, bore=6.0)
+    footed = inset_bottom(plate, 0.2, 0.3)
+    n = bore_segments(6.0)
+    apothem = 3.0  # the bore polygon is circumscribed: its flats touch the 3 mm circle
+    hole = n * apothem**2 * np.tan(np.pi / n)
+    hole_inset = n * (apothem + 0.3) ** 2 * np.tan(np.pi / n)
+    exact = (400 - hole) * 2.8 + ((20 - 0.6) ** 2 - hole_inset) * 0.2
+    report = check_part(footed)
+    assert report.watertight and report.winding_consistent
+    assert report.volume == pytest.approx(exact, rel=1e-6)
+    assert footed.expected_volume == pytest.approx(exact, rel=1e-6)
+    bottom = footed.vertices[np.isclose(footed.vertices[:, 2], 0.0)]
+    assert np.abs(bottom[:, :2]).max() == pytest.approx(9.7, abs=1e-5)
+
+
+def test_packing_keeps_boxes_apart_and_on_the_bed():
+    from hypothesis import given, settings, strategies as st
+
+    from wheelstep_cli.geometry.packing import DoesNotFit, pack_boxes
+
+    @settings(max_examples=60, deadline=None)
+    @given(st.lists(st.tuples(st.floats(1, 120), st.floats(1, 120)), min_size=1, max_size=25),
+           st.floats(0, 8))
+    def check(sizes, margin):
+        bed = (200.0, 150.0)
+        try:
+            spots = pack_boxes(sizes, bed, margin)
+        except DoesNotFit as err:
+            w, h = sizes[err.key]
+            assert min(w, h) > 150 - 2 * margin or max(w, h) > 200 - 2 * margin
+            return
+        assert spots == pack_boxes(sizes, bed, margin)  # deterministic
+        rects = []
+        for spot, (w, h) in zip(spots, sizes):
+            if spot.rotated:
+                w, h = h, w
+            assert spot.x >= margin - 1e-9 and spot.y >= margin - 1e-9
+            assert spot.x + w <= bed[0] - margin + 1e-6 and spot.y + h <= bed[1] - margin + 1e-6
+            rects.append((spot.bed, spot.x, spot.y, w, h))
+        for i, a in enumerate(rects):
+            for b in rects[i + 1:]:
+                if a[0] == b[0]:
+                    apart_x = a[1] + a[3] + margin <= b[1] + 1e-6 or b[1] + b[3] + margin <= a[1] + 1e-6
+                    apart_y = a[2] + a[4] + margin <= b[2] + 1e-6 or b[2] + b[4] + margin <= a[2] + 1e-6
+                    assert apart_x or apart_y
+        assert len({s.bed for s in spots}) == max(s.bed for s in spots) + 1
+
+    check()
