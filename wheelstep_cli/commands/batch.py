@@ -24,6 +24,8 @@ def batch(
 
     if jobs < 0:
         raise DesignError("jobs", jobs, "must be >= 0 (0: one per CPU core)")
+    if out.exists() and not out.is_dir():
+        raise DesignError("out", str(out), "is a file; give a folder")
     try:
         plan = load_batch(file, str(file))
     except InvalidInput as err:
@@ -32,11 +34,14 @@ def batch(
         raise typer.Exit(2)
     workers = jobs or os.cpu_count() or 1
     workers = max(1, min(workers, len(plan.entries)))
-    with _progress() as progress:
-        outcome = run_batch(plan, out, workers, progress)
+    try:
+        with _progress() as progress:
+            outcome = run_batch(plan, out, workers, progress)
+    except OSError as err:
+        raise DesignError("out", str(out), f"cannot be written ({err.strerror or err})") from None
     parts = sum(len(p.items) for p in outcome.plates)
     typer.echo(f"built {len(outcome.built)} of {len(plan.entries)} entries: {parts} parts on "
-               f"{len(outcome.plates)} plates in {out}")
+               f"{len(outcome.plates)} plate{'' if len(outcome.plates) == 1 else 's'} in {out}")
     for plate in outcome.plates:
         typer.echo(f"  {plate.stem}.3mf ({plate.printer.name}): {len(plate.items)} parts")
     if outcome.failed:
