@@ -2,7 +2,8 @@
 
 First-fit decreasing, bottom-left: boxes are taken tallest first; each goes on the
 first bed where it fits, at the lowest (then leftmost) spot on that bed's skyline
-(the upper edge of what is already placed), else on a new bed. A box that fits the bed only turned by 90 degrees is turned.
+(the upper edge of what is already placed), else on a new bed. A box is turned by
+90 degrees when only that fits, or when turned its top ends lower on the skyline.
 All in mm; ``margin`` is kept between boxes and to the bed edges.
 """
 
@@ -58,24 +59,32 @@ def pack_boxes(sizes: list[tuple[float, float]], bed: tuple[float, float],
         upright = fits_bed(size, bed, margin)
         if upright is None:
             raise DoesNotFit(key, size, (room_x, room_y))
+        turnable = upright and size[1] <= room_x and size[0] <= room_y
         w, h = size if upright else size[::-1]
-        boxes.append((key, w, h, not upright))
+        boxes.append((key, w, h, not upright, turnable))
     # tallest first, then widest, then input order: deterministic
-    boxes.sort(key=lambda b: (-round(b[2], 6), -round(b[1], 6), b[0]))
+    boxes.sort(key=lambda b: (-round(max(b[1], b[2]), 6), -round(min(b[1], b[2]), 6), b[0]))
     # boxes are inflated by one margin; the usable region grows by one margin to match
     width, depth = room_x + margin, room_y + margin
     beds: list[_Bed] = []
     placed: list[Placement] = []
-    for key, w, h, rotated in boxes:
+    for key, w, h, rotated, turnable in boxes:
         for index, bed in enumerate(beds + [_Bed([[0.0, width, 0.0]])]):
-            spot = _lowest_spot(bed.skyline, w + margin, h + margin, width, depth)
-            if spot is not None:
+            options = [(w, h, rotated)] + ([(h, w, not rotated)] if turnable else [])
+            best = None
+            for bw, bh, turned in options:  # the orientation whose top ends lowest, then leftmost
+                spot = _lowest_spot(bed.skyline, bw + margin, bh + margin, width, depth)
+                if spot is not None:
+                    rank = (round(spot[1] + bh, 6), round(spot[0], 6), turned != rotated)
+                    if best is None or rank < best[0]:
+                        best = (rank, spot, bw, bh, turned)
+            if best is not None:
                 break
         if index == len(beds):
             beds.append(bed)
-        x, y = spot
-        _raise_skyline(bed.skyline, x, w + margin, y + h + margin)
-        placed.append(Placement(key, index, margin + x, margin + y, rotated))
+        _, (x, y), bw, bh, turned = best
+        _raise_skyline(bed.skyline, x, bw + margin, y + bh + margin)
+        placed.append(Placement(key, index, margin + x, margin + y, turned))
     return sorted(placed, key=lambda p: p.key)
 
 
