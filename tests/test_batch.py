@@ -270,6 +270,10 @@ parts:
     (VALID_ENTRY + "    overrides:\n      module: fine\n", "module", "must be a number"),
     (VALID_ENTRY + "    overrides:\n      b: 110\n", "b: 110", "b = 110: must be <"),
     (VALID_ENTRY + "    overrides:\n      z: 23\n", "z: 23", "z = 23: must make z*n/4 whole sectors"),
+    (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      width: -3\n", "width",
+     "parts[0].overrides.width = -3: must be > 0 mm"),
+    (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      b: 60\n", "- name: pair",
+     "parts[0]: c = 180: must be > 4b - a = 210 mm"),
     (VALID_ENTRY.replace("kind: gear-pair", "kind: gears"), "kind", "unknown kind; allowed: gear-pair, shoe"),
     (VALID_ENTRY.replace("printer: fdm-0.4-pla", "printer: fdm-0.6-abs"), "printer",
      "not found; known profiles:"),
@@ -311,6 +315,17 @@ def test_bad_printer_profile_is_located_in_the_profile(cli, tmp_path):
     result = cli("batch", batch, "--out", tmp_path / "out")
     assert result.exit_code == 2
     assert f"{profile}:4: printer.tooth_clearance = -0.1: must be >= 0" in result.stderr
+
+
+def test_bad_design_profile_is_located_in_the_profile(cli, tmp_path):
+    design = write(tmp_path / "mine.yaml", "mechanism: {a: 30, b: 50, r_min: 10}\ngears:\n  z: 24\n"
+                   "  teeth: 3\n")
+    batch = write(tmp_path / "b.yaml", VALID_ENTRY.replace("desk-demo", str(design)))
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    assert f"{design}:4: gears.teeth: unknown key; allowed: a, b, c, z" in result.stderr or \
+        f"{design}:4: gears.teeth = 3" in result.stderr  # a later gear generator may add `teeth`
+    assert not (tmp_path / "out").exists()
 
 
 def test_demo_gears_are_printable_with_a_0_4_mm_nozzle():

@@ -272,10 +272,12 @@ def _resolve_spec(doc, path, kind, design_name, layers, overrides, override_wher
         kind.precheck(printed)
     except DesignError as err:
         param = err.param.replace("-", "_")
-        at = override_where.get(param, where)
-        source = "" if param in override_where else f" (design {design_name})"
-        issues.append(Issue(at, dotted(path + ("overrides", param)) if param in override_where
-                            else dotted(path), f"{err}{source}"))
+        if param in override_where:
+            issues.append(Issue(override_where[param], dotted(path + ("overrides", param)),
+                                f"= {show(err.value)}: {err.limit}"))
+        else:
+            given = f", with overrides {', '.join(overrides)}" if overrides else ""
+            issues.append(Issue(where, dotted(path), f"{err} (from design {design_name}{given})"))
         return None, None
     return spec, printed
 
