@@ -319,12 +319,11 @@ def test_bad_printer_profile_is_located_in_the_profile(cli, tmp_path):
 
 def test_bad_design_profile_is_located_in_the_profile(cli, tmp_path):
     design = write(tmp_path / "mine.yaml", "mechanism: {a: 30, b: 50, r_min: 10}\ngears:\n  z: 24\n"
-                   "  teeth: 3\n")
+                   "  colour: red\n")
     batch = write(tmp_path / "b.yaml", VALID_ENTRY.replace("desk-demo", str(design)))
     result = cli("batch", batch, "--out", tmp_path / "out")
     assert result.exit_code == 2
-    assert f"{design}:4: gears.teeth: unknown key; allowed: a, b, c, z" in result.stderr or \
-        f"{design}:4: gears.teeth = 3" in result.stderr  # a later gear generator may add `teeth`
+    assert f"{design}:4: gears.colour: unknown key; allowed: a, b, c, z" in result.stderr
     assert not (tmp_path / "out").exists()
 
 
