@@ -407,3 +407,16 @@ def test_packing_keeps_boxes_apart_and_on_the_bed():
         assert len({s.bed for s in spots}) == max(s.bed for s in spots) + 1
 
     check()
+
+
+def test_relative_profile_next_to_the_batch_and_r_min_gives_c(tmp_path, monkeypatch):
+    from wheelstep_cli.batch import load_batch
+
+    folder = tmp_path / "jobs"
+    folder.mkdir()
+    write(folder / "mine.yaml", "mechanism: {a: 30, b: 50, r_min: 10}\ngears: {z: 24}\n")
+    batch = write(folder / "b.yaml", VALID_ENTRY.replace("desk-demo", "mine.yaml"))
+    monkeypatch.chdir(tmp_path)  # not the batch file's folder
+    entry = load_batch(batch).entries[0]
+    assert (entry.spec.a, entry.spec.b, entry.spec.c, entry.spec.z) == (30, 50, 10 - 30 + 4 * 50, 24)
+    assert entry.printed.bore == pytest.approx(entry.spec.bore + 0.2)  # PLA hole compensation

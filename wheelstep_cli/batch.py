@@ -68,9 +68,15 @@ class BatchPlan:
 
 def load_batch(path: Path, label: str | None = None) -> BatchPlan:
     """Read and check a batch file and every profile it names; raise InvalidInput listing all issues."""
-    from wheelstep_cli.io.profiles import find_profile
-
     from wheelstep_cli.io.located_yaml import YamlSyntaxError
+    from wheelstep_cli.io.profiles import find_profile as find_named_profile
+
+    def find_profile(name: str) -> Path:  # a profile given as a relative .yaml path: next to the batch file
+        given = Path(name)
+        nearby = Path(path).parent / given
+        if given.suffix in (".yaml", ".yml") and not given.is_absolute() and nearby.is_file():
+            return nearby
+        return find_named_profile(name)
 
     label = label or str(path)
     try:
@@ -645,7 +651,7 @@ def _manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
         },
         "entries": [
             {"name": e.name, "kind": e.kind, "design_profile": e.design, "printer_profile": e.printer.name,
-             "quantity": e.quantity, "line": int(e.where.rsplit(":", 1)[1]),
+             "quantity": e.quantity, "overrides": e.overrides, "line": int(e.where.rsplit(":", 1)[1]),
              "status": "built" if e in built else "failed",
              **({"parts": {p.name: {"volume_mm3": p.volume, "triangles": p.triangles, "checks": p.checks}
                            for p in results[e.index].parts}} if e in built else {})}
