@@ -39,7 +39,8 @@ def plate_png(bed: tuple[float, float], margin: float, shapes: list[tuple[str, l
         path = MplPath(np.asarray(verts), codes)
         ax.add_patch(PathPatch(path, facecolor=colours(number % 10), edgecolor="black", lw=0.4,
                                alpha=0.85))
-        centre = np.asarray(polygons[0][0]).mean(axis=0)
+        outer = np.asarray(polygons[0][0])
+        centre = (outer.min(axis=0) + outer.max(axis=0)) / 2.0
         ax.text(centre[0], centre[1], label, ha="center", va="center", fontsize=7,
                 bbox={"facecolor": "white", "alpha": 0.8, "lw": 0, "pad": 1})
     ax.set_xlim(-5, bed[0] + 5)
