@@ -41,7 +41,10 @@ class ShoeDesign:
         require(bool(np.isfinite(r_min)) and r_min > 0, "rmin", r_min,
                 "must be > 0 mm (the sole would have a cusp or loop)")
         _check_lengths(a=a, b=b)
-        return cls(float(a), float(b), float(r_min - a + 4.0 * b))
+        c = r_min - a + 4.0 * b
+        require(c > 0, "rmin", r_min,
+                f"must be > a - 4b = {a - 4.0 * b:g} mm (strut length c = R_min - a + 4b must be > 0)")
+        return cls(float(a), float(b), float(c))
 
     @property
     def r_min(self) -> float:

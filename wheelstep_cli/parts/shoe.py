@@ -59,6 +59,17 @@ class ShoeSpec:
     socket_depth: float = 25.0
     rim: float = 15.0             # body height above the sole's ends
 
+    def __post_init__(self) -> None:
+        # profiles and batch files give ints or strings: store floats, so equal designs give equal files
+        for name, value in asdict(self).items():
+            if value is None:
+                continue
+            try:
+                number = float(value)
+            except (TypeError, ValueError):
+                raise DesignError(name.replace("_", "-"), value, "must be a number (mm)") from None
+            object.__setattr__(self, name, number)
+
     def design(self) -> ShoeDesign:
         """The mechanism sizing; raises DesignError for an invalid or inconsistent one."""
         if self.c is None:
@@ -187,15 +198,20 @@ def sizing(design: ShoeDesign) -> dict:
     }
 
 
+def resolved_parameters(shoe: Shoe) -> dict[str, float]:
+    """The spec with the strut resolved (both c and r_min given), all as floats in mm."""
+    values = asdict(shoe.spec)
+    values["c"], values["r_min"] = shoe.design.c, shoe.design.r_min
+    return {k: float(v) for k, v in values.items()}
+
+
 def shoe_report(shoe: Shoe) -> dict:
     """Inputs, sizing, the sole (shoe frame) and the part with its checks, as plain data."""
-    spec = asdict(shoe.spec)
-    spec["c"], spec["r_min"] = shoe.design.c, shoe.design.r_min
     part = shoe.part
     check = shoe.checks[part.name]
     return {
         "tool": "wheelstep shoe",
-        "parameters": spec,
+        "parameters": resolved_parameters(shoe),
         **sizing(shoe.design),
         "profile_frame": "shoe frame: origin at the strut pivot, Y along the strut towards the ground",
         "profile": shoe.profile,
@@ -244,7 +260,7 @@ def shoe_files(shoe: Shoe, out: Path, fmt: str = "both") -> dict[Path, bytes]:
     if fmt in ("stl", "both"):
         files[out / "shoe.stl"] = stl_bytes(part.vertices, part.faces, "wheelstep shoe")
     if fmt in ("3mf", "both"):
-        meta = {k: f"{v:g}" for k, v in asdict(shoe.spec).items() if v is not None}
+        meta = {k: f"{v:g}" for k, v in resolved_parameters(shoe).items()}
         lo = part.bounds[0]
         shift = (PLATE_GAP - lo[0], PLATE_GAP - lo[1], -lo[2])
         files[out / "shoe.3mf"] = threemf_bytes(
