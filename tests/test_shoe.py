@@ -96,7 +96,11 @@ def test_reference_sizing_table(cli):
     assert result.exit_code == 0, result.stderr
     text = result.stdout
     for piece in ("c = 360.0", "R_min = 20.0", "Y01 = a - b + c = 320.0", "X_I = 600.0",
-                  "X_II = 202.7", "X01 = 802.7", "25.25 %"):
+                  "X_II = 202.7", "X01 = 802.7", "25.25 %",
+                  # sole rows phi, X, Y, rho, alpha, R: lowest point on the strut axis at Y = c, R = R_min;
+                  # phi = 30 deg: Y2 = 60 - 200 (1 + 3/4) + 360 = 70, X = 70 sin 30 = 35, R = 420 - 250 = 170
+                  "0.0     0.00   360.00   360.00      0.00   20.00",
+                  "30.0    35.00   347.03   348.79      5.76  170.00"):
         assert piece in text, piece
 
 

@@ -88,6 +88,10 @@ def shoe(
     typer.echo(f"hub height  Y01 = a - b + c = {d.hub_height:.1f} mm (constant)")
     typer.echo(f"per cycle   X_I = {d.x_walk:.1f} (walking)   X_II = {d.x_roll:.1f} (rolling)   "
                f"X01 = {d.x_cycle:.1f} mm   rolling share {100 * d.roll_share:.2f} %")
+    typer.echo(f"sole (shoe frame: origin at the strut pivot, Y along the strut)\n"
+               f"{'phi deg':>8} {'X':>8} {'Y':>8} {'rho':>8} {'alpha deg':>9} {'R':>7}  (mm)")
+    for row in sole_table(d):
+        typer.echo("{:8.1f} {:8.2f} {:8.2f} {:8.2f} {:9.2f} {:7.2f}".format(*row))
     part = report["part"]
     check = built.checks["shoe"]
     size = built.part.bounds[1] - built.part.bounds[0]
@@ -96,6 +100,19 @@ def shoe(
                f"{part['socket_floor_mm']:.1f} mm, printable")
     if written:
         typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+def sole_table(design, count: int = 7):
+    """Rows (phi deg, X, Y, rho, alpha deg, R) at ``count`` hub angles over the contact, mm."""
+    import numpy as np
+
+    from wheelstep_cli.mechanism.shoe import contact_angles, sole_curvature_radius, sole_polar, sole_profile
+
+    phi = contact_angles(count)
+    xy = sole_profile(design, phi)
+    rho, alpha = sole_polar(design, phi)
+    return np.column_stack([np.degrees(phi), xy, rho, np.degrees(alpha),
+                            sole_curvature_radius(design, phi)])
 
 
 def kinematics(

@@ -110,7 +110,10 @@ def sole_profile(design: ShoeDesign, phi) -> np.ndarray:
 
 
 def sole_polar(design: ShoeDesign, phi) -> tuple[np.ndarray, np.ndarray]:
-    """Polar form of the sole: radius rho (mm) from the pivot, angle alpha (rad) from the Y axis."""
+    """Polar form of the sole: radius rho (mm) from the pivot, angle alpha (rad) from the Y axis.
+
+    alpha = atan(X / Y) as in SPEC §2, computed with atan2 so it stays right where Y < 0.
+    """
     xy = sole_profile(design, phi)
     return np.hypot(xy[..., 0], xy[..., 1]), np.arctan2(xy[..., 0], xy[..., 1])
 
