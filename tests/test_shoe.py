@@ -175,6 +175,11 @@ def test_written_profile_has_the_spec_curvature_and_the_part_is_printable(design
         numeric = numerical_curvature_radius(sampled, phi)
         assert np.allclose(numeric, formula, rtol=2e-3, atol=1.5 * rounding_error_bound(phi, eps))
     assert numerical_curvature_radius(points, phi).min() == pytest.approx(r_min, rel=2e-3)
+    import trimesh
+
+    mesh = trimesh.load(io.BytesIO(written["shoe.stl"]), file_type="stl", force="mesh")
+    assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0
+    assert mesh.volume == pytest.approx(report["part"]["volume_mm3"], rel=1e-4)
     # the part's sole is the written profile (part frame y = c - Y): every point is a mesh vertex
     # on the face z = 0, and no vertex lies below the sole
     from scipy.spatial import cKDTree
@@ -307,3 +312,26 @@ def test_bad_input_one_line_exit_2_nothing_written(cli, tmp_path, args, param):
     assert len(lines) == 1 and param in lines[0], result.stderr
     assert "Traceback" not in result.stderr
     assert not out.exists()
+
+
+def test_deepest_socket_keeps_two_mm_of_plastic_to_the_sole(cli, tmp_path):
+    import re
+
+    import shapely
+
+    refused = cli("shoe", "--socket-depth", "90", "--dry-run")
+    assert refused.exit_code == 2
+    limit = float(re.search(r"must be <= ([0-9.]+) mm", refused.stderr).group(1))
+    assert cli("shoe", "--socket-depth", limit + 0.02, "--dry-run").exit_code == 2
+    ok = cli("shoe", "--socket-depth", limit - 0.01, "--format", "stl", "--out", tmp_path)
+    assert ok.exit_code == 0, ok.stderr
+    mesh = assert_printable_stl(tmp_path / "shoe.stl")
+    top = mesh.bounds[1, 1]
+    report = json.loads((tmp_path / "shoe.json").read_text())
+    csv = read_csv((tmp_path / "shoe-profile.csv").read_bytes())
+    sole = shapely.LineString(np.column_stack([csv[:, 0], report["c_mm"] - csv[:, 1]]))
+    socket = shapely.box(-6.0, top - (limit - 0.01), 6.0, top)
+    assert 2.0 <= sole.distance(socket) < 2.02
+    # the hole really reaches that deep: just above its bottom the section still has it
+    loops = mesh.section(plane_normal=[0, 1, 0], plane_origin=[0, top - limit + 0.1, 0]).discrete
+    assert len(loops) == 2
