@@ -1,0 +1,283 @@
+"""The support shoe as a printable part: design -> side outline -> solid with socket -> files.
+
+The shoe's side outline (the sole curve of SPEC §2 below, a flat top above) lies in the
+XY plane and is extruded along Z by the width across the track, so the sole curve is
+printed in the plane of the layers (accurate). Part frame, mm: x along the track with
+the strut axis at x = 0, y up from the sole's lowest point (y = c - Y of the shoe
+frame), z across the track (0..width). The strut socket is a round hole along +y,
+open at the top face, centred at x = 0, z = width/2.
+"""
+
+from __future__ import annotations
+
+import io
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.geometry.outline import check_outline, signed_area
+from wheelstep_cli.geometry.solids import MeshReport, Part, bore_segments, circle, require_printable
+from wheelstep_cli.io.jsonio import csv_bytes, json_bytes
+from wheelstep_cli.io.stl import stl_bytes
+from wheelstep_cli.io.threemf import PlateObject, threemf_bytes
+from wheelstep_cli.mechanism.shoe import (
+    ShoeDesign,
+    contact_angles,
+    sole_curvature_radius,
+    sole_profile,
+)
+
+#: Hub angles sampled along the sole (JSON, CSV, DXF and the mesh all use these).
+PROFILE_POINTS = 401
+#: Least plastic around and under the strut socket, mm.
+MIN_WALL = 2.0
+#: The socket cutter sticks out of the top face by this much, so no skin is left, mm.
+CUT_OVERSHOOT = 1.0
+#: Source design's strut length when neither c nor R_min is given: R_min = 20 mm.
+DEFAULT_R_MIN = 20.0
+FORMATS = ("stl", "3mf", "both")
+PLATE_GAP = 5.0
+
+
+@dataclass(frozen=True)
+class ShoeSpec:
+    """Everything that defines a printed shoe. Lengths in mm.
+
+    Mechanism defaults are the source design (a = 60, b = 100, R_min = 20 -> c = 360).
+    Give the strut as ``c`` or as the sole's smallest curvature radius ``r_min``
+    (both: they must agree). Part defaults suit a plastic prototype at full scale.
+    """
+
+    a: float = 60.0
+    b: float = 100.0
+    c: float | None = None
+    r_min: float | None = None
+    width: float = 40.0           # across the track
+    strut_diameter: float = 12.0  # socket bore (circumscribed polygon, the strut fits)
+    socket_depth: float = 25.0
+    rim: float = 15.0             # body height above the sole's ends
+
+    def __post_init__(self) -> None:
+        # profiles and batch files give ints or strings: store floats, so equal designs give equal files
+        for name, value in asdict(self).items():
+            if value is None:
+                continue
+            try:
+                number = float(value)
+            except (TypeError, ValueError):
+                raise DesignError(name.replace("_", "-"), value, "must be a number (mm)") from None
+            object.__setattr__(self, name, number)
+
+    def design(self) -> ShoeDesign:
+        """The mechanism sizing; raises DesignError for an invalid or inconsistent one."""
+        if self.c is None:
+            r_min = DEFAULT_R_MIN if self.r_min is None else self.r_min
+            return ShoeDesign.from_r_min(self.a, self.b, r_min)
+        design = ShoeDesign(self.a, self.b, self.c)
+        if self.r_min is not None and not np.isclose(design.r_min, self.r_min, rtol=0, atol=1e-6):
+            raise DesignError("rmin", self.r_min,
+                              f"contradicts c = {self.c:g} mm (a - 4b + c = {design.r_min:g} mm); "
+                              "give only one of rmin and c")
+        return design
+
+
+#: Option names a shoe profile section or batch entry may set.
+SPEC_KEYS = tuple(ShoeSpec.__dataclass_fields__)
+
+
+@dataclass(frozen=True)
+class Shoe:
+    """A built shoe: sizing, the sole (shoe frame), the side outline and the checked part."""
+
+    spec: ShoeSpec
+    design: ShoeDesign
+    phi: np.ndarray
+    profile: np.ndarray   # (N, 2) sole in the shoe frame, mm
+    outline: np.ndarray   # closed side outline in the part frame, mm (CCW)
+    body_height: float    # y of the top face, mm
+    socket_floor: float   # least plastic between the socket and the sole, mm
+    parts: list[Part]
+    checks: dict[str, MeshReport] = field(default_factory=dict)
+
+    @property
+    def part(self) -> Part:
+        return self.parts[0]
+
+
+def _check_sizes(spec: ShoeSpec) -> None:
+    for name in ("width", "strut_diameter", "socket_depth", "rim"):
+        value = getattr(spec, name)
+        require(bool(np.isfinite(value)) and value > 0, name.replace("_", "-"), value, "must be > 0 mm")
+
+
+def side_outline(sole_part: np.ndarray, top: float) -> np.ndarray:
+    """Closed side outline: the sole (part frame, x increasing) then up to a flat top at y = ``top``."""
+    corners = np.array([[sole_part[-1, 0], top], [sole_part[0, 0], top]])
+    return np.vstack([sole_part, corners])
+
+
+def socket_wall(sole_part: np.ndarray, radius: float, top: float, depth: float) -> float:
+    """Least plastic between the socket (side view: x in [-radius, radius], y from top - depth
+    to top) and the sole, mm; 0 when they meet. Measured square to the sole, not only below."""
+    import shapely
+
+    socket = shapely.box(-radius, top - depth, radius, top)
+    return float(shapely.LineString(sole_part).distance(socket))
+
+
+def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
+    """Check the socket fits in the body; return the wall between it and the sole (mm)."""
+    d = spec.strut_diameter
+    length = sole_part[-1, 0] - sole_part[0, 0]
+    limit = min(spec.width, length) - 2.0 * MIN_WALL
+    if d > limit:
+        across = "width" if spec.width <= length else f"sole length {length:.1f} mm"
+        raise DesignError("strut-diameter", d,
+                          f"must be <= {limit:.2f} mm (socket wider than the body: {across} "
+                          f"less {MIN_WALL:g} mm wall each side)")
+    floor = socket_wall(sole_part, d / 2.0, top, spec.socket_depth)
+    if floor < MIN_WALL:
+        # deepest socket that keeps the wall (the wall shrinks as the socket deepens): bisection
+        lo, hi = 0.0, spec.socket_depth
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if socket_wall(sole_part, d / 2.0, top, mid) >= MIN_WALL else (lo, mid)
+        raise DesignError("socket-depth", spec.socket_depth,
+                          f"must be <= {lo:.2f} mm (socket deeper than the body: keep "
+                          f"{MIN_WALL:g} mm of plastic between it and the sole)")
+    return floor
+
+
+def socket_cutter(spec: ShoeSpec, top: float):
+    """The socket as a manifold3d prism along +y and its volume inside the body (mm^3)."""
+    import manifold3d as m3d
+
+    segments = bore_segments(spec.strut_diameter)
+    # circumscribed polygon: its flats touch the nominal circle, so the strut fits
+    ring = circle(spec.strut_diameter / 2.0 / np.cos(np.pi / segments), segments)
+    section = m3d.CrossSection([np.ascontiguousarray(ring)], m3d.FillRule.Positive)
+    prism = m3d.Manifold.extrude(section, spec.socket_depth + CUT_OVERSHOOT)
+    # rotate -90 deg about x: the prism's +z axis becomes +y
+    cutter = prism.rotate([-90.0, 0.0, 0.0]).translate([0.0, top - spec.socket_depth, spec.width / 2.0])
+    return cutter, signed_area(ring) * spec.socket_depth
+
+
+def shoe_solid(spec: ShoeSpec, outline: np.ndarray, top: float) -> Part:
+    """Extrude the checked side outline by the width and cut the strut socket (manifold3d)."""
+    import manifold3d as m3d
+
+    body_section = m3d.CrossSection([np.ascontiguousarray(outline)], m3d.FillRule.Positive)
+    body = m3d.Manifold.extrude(body_section, spec.width)
+    cutter, socket_volume = socket_cutter(spec, top)
+    solid = body - cutter
+    if solid.status() != m3d.Error.NoError:
+        raise DesignError("shoe", "solid", f"manifold3d reports {solid.status().name}")
+    mesh = solid.to_mesh()
+    vertices = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
+    faces = np.asarray(mesh.tri_verts, dtype=np.int64)
+    if len(faces) == 0:
+        raise DesignError("shoe", "solid", "came out empty")
+    expected = signed_area(outline) * spec.width - socket_volume
+    return Part("shoe", vertices, faces, float(expected))
+
+
+def build_shoe(spec: ShoeSpec) -> Shoe:
+    """Size the mechanism, build and check the shoe; raises DesignError for impossible designs."""
+    design = spec.design()
+    _check_sizes(spec)
+    phi = contact_angles(PROFILE_POINTS)
+    profile = sole_profile(design, phi)
+    sole_part = np.column_stack([profile[:, 0], design.c - profile[:, 1]])
+    top = float(sole_part[[0, -1], 1].max() + spec.rim)
+    floor = check_socket(spec, sole_part, top)
+    outline = check_outline(side_outline(sole_part, top), "shoe")
+    part = shoe_solid(spec, outline, top)
+    checks = {part.name: require_printable(part)}
+    return Shoe(spec, design, phi, profile, outline, top, floor, [part], checks)
+
+
+def sizing(design: ShoeDesign) -> dict:
+    """Link sizing and hub motion per shoe cycle (SPEC §2), mm and per cent."""
+    return {
+        "a_mm": design.a, "b_mm": design.b, "c_mm": design.c, "r_min_mm": design.r_min,
+        "hub_height_mm": design.hub_height, "x_walk_mm": design.x_walk,
+        "x_roll_mm": design.x_roll, "x_cycle_mm": design.x_cycle,
+        "roll_share_pct": 100.0 * design.roll_share,
+        "r_max_mm": float(sole_curvature_radius(design, np.pi / 4.0)),
+    }
+
+
+def resolved_parameters(shoe: Shoe) -> dict[str, float]:
+    """The spec with the strut resolved (both c and r_min given), all as floats in mm."""
+    values = asdict(shoe.spec)
+    values["c"], values["r_min"] = shoe.design.c, shoe.design.r_min
+    return {k: float(v) for k, v in values.items()}
+
+
+def shoe_report(shoe: Shoe) -> dict:
+    """Inputs, sizing, the sole (shoe frame) and the part with its checks, as plain data."""
+    part = shoe.part
+    check = shoe.checks[part.name]
+    return {
+        "tool": "wheelstep shoe",
+        "parameters": resolved_parameters(shoe),
+        **sizing(shoe.design),
+        "profile_frame": "shoe frame: origin at the strut pivot, Y along the strut towards the ground",
+        "profile": shoe.profile,
+        "part": {
+            "frame": "x along the track (strut axis at x = 0), y up from the sole's lowest point "
+                     "(y = c - Y), z across the track; socket along +y from the top face",
+            "sole_length_mm": float(shoe.profile[-1, 0] - shoe.profile[0, 0]),
+            "body_height_mm": shoe.body_height,
+            "socket_floor_mm": shoe.socket_floor,
+            "volume_mm3": check.volume,
+            "bounding_box_mm": part.bounds,
+            "triangles": check.triangles,
+            "checks": {"manifold": True, "watertight": check.watertight,
+                       "winding_consistent": check.winding_consistent,
+                       "volume_matches_outline": check.volume_error < 1e-3},
+        },
+    }
+
+
+def profile_dxf_bytes(profile: np.ndarray) -> bytes:
+    """DXF (R2010, mm) holding the sole as one open LWPOLYLINE on layer SOLE; deterministic."""
+    import ezdxf
+
+    fixed = ezdxf.options.write_fixed_meta_data_for_testing
+    ezdxf.options.write_fixed_meta_data_for_testing = True  # fixed dates, GUIDs, ezdxf marker
+    try:
+        doc = ezdxf.new("R2010", units=ezdxf.units.MM)
+        doc.layers.add("SOLE")
+        doc.modelspace().add_lwpolyline(np.asarray(profile, dtype=float).tolist(), format="xy",
+                                        dxfattribs={"layer": "SOLE"})
+        # ezdxf registers CLASS entries from a set (hash-seed order): register them sorted first
+        for dxftype in sorted(doc.entitydb.dxf_types_in_use()):
+            doc.classes.add_class(dxftype)
+        stream = io.StringIO()
+        doc.write(stream)
+    finally:
+        ezdxf.options.write_fixed_meta_data_for_testing = fixed
+    return doc.encode(stream.getvalue())
+
+
+def shoe_files(shoe: Shoe, out: Path, fmt: str = "both") -> dict[Path, bytes]:
+    """File name -> contents: shoe.stl / shoe.3mf, shoe.json, shoe-profile.csv and .dxf."""
+    require(fmt in FORMATS, "format", fmt, f"must be one of {', '.join(FORMATS)}")
+    part = shoe.part
+    files: dict[Path, bytes] = {}
+    if fmt in ("stl", "both"):
+        files[out / "shoe.stl"] = stl_bytes(part.vertices, part.faces, "wheelstep shoe")
+    if fmt in ("3mf", "both"):
+        meta = {k: f"{v:g}" for k, v in resolved_parameters(shoe).items()}
+        lo = part.bounds[0]
+        shift = (PLATE_GAP - lo[0], PLATE_GAP - lo[1], -lo[2])
+        files[out / "shoe.3mf"] = threemf_bytes(
+            [PlateObject(part.name, part.vertices, part.faces, shift, meta)],
+            {"Title": "wheelstep support shoe", "Application": "wheelstep"})
+    files[out / "shoe.json"] = json_bytes(shoe_report(shoe))
+    files[out / "shoe-profile.csv"] = csv_bytes(["x_mm", "y_mm"], shoe.profile)
+    files[out / "shoe-profile.dxf"] = profile_dxf_bytes(shoe.profile)
+    return files
