@@ -7,7 +7,8 @@ import typer
 
 def register_all(app: typer.Typer) -> None:
     """Attach every command module's commands to ``app``."""
-    from wheelstep_cli.commands import gears, stairs
+    from wheelstep_cli.commands import gears, linkage, stairs
 
     gears.register(app)
     stairs.register(app)
+    linkage.register(app)
