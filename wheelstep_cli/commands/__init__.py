@@ -7,8 +7,9 @@ import typer
 
 def register_all(app: typer.Typer) -> None:
     """Attach every command module's commands to ``app``."""
-    from wheelstep_cli.commands import gears, linkage, stairs
+    from wheelstep_cli.commands import gears, linkage, stairs, trajectory
 
     gears.register(app)
     stairs.register(app)
     linkage.register(app)
+    trajectory.register(app)

@@ -147,3 +147,35 @@ def linkage_gif(linkage, solution, gait, frames: int = 48) -> bytes:
         os.unlink(tmp)
         plt.close(fig)
     return data
+
+
+def trajectory_png(path, points: np.ndarray, pieces: np.ndarray, title: str) -> bytes:
+    """The composed foot path, its pieces, centres and tangent points (equal aspect)."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(9, 7))
+    names = ("support AD", f"arc r2 = {path.r2:g} (D-C)", f"arc r3 = {path.r3:.2f} (C-B)",
+             f"arc r1 = {path.r1:g} (B-A)")
+    for i, name in enumerate(names):
+        sel = pieces == i
+        ax.plot(points[sel, 0], points[sel, 1], ".-", ms=1.5, lw=1.8, color=f"C{i}", label=name)
+    for label in ("A", "D", "B", "C"):
+        p = getattr(path, label)
+        ax.plot(*p, "ko", ms=5)
+        ax.annotate(label, p, textcoords="offset points", xytext=(5, -12 if label in "AD" else 6))
+    for label in ("O1", "O2", "O3"):
+        p = getattr(path, label)
+        ax.plot(*p, "+", color="0.4", ms=9)
+        ax.annotate(label, p, textcoords="offset points", xytext=(5, 5), color="0.4")
+    for o, t in ((path.O3, path.B), (path.O3, path.C)):
+        ax.plot([o[0], t[0]], [o[1], t[1]], ":", color="0.6", lw=0.8)
+    top_y = path.y0 + path.h_max
+    ax.axhline(path.y0, color="0.5", lw=0.8, ls="--")
+    ax.axhline(top_y, color="C3", lw=0.8, ls="--", label=f"h_max = {path.h_max:.2f} mm")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    fig.tight_layout()
+    return _png(fig)
