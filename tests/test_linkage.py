@@ -127,7 +127,7 @@ def test_gait_of_chebyshev_lambda():
 def test_cli_json_plot_gif_csv(cli, tmp_path):
     out = {k: tmp_path / f"leg.{k}" for k in ("png", "gif", "csv")}
     res = cli("linkage", "--preset", "jansen", "--samples", "360", "--json",
-              "--plot", out["png"], "--gif", out["gif"], "--csv", out["csv"])
+              "--plot", out["png"], "--gif", out["gif"], "--gif-frames", "6", "--csv", out["csv"])
     assert res.exit_code == 0, res.stderr
     data = json.loads(res.stdout)
     assert data["loop_residual_mm"] < 1e-9
@@ -135,6 +135,9 @@ def test_cli_json_plot_gif_csv(cli, tmp_path):
     assert data["branches"] == {"U": -1, "W": 1, "R": 1, "K": -1, "F": -1}
     assert out["png"].read_bytes()[:4] == b"\x89PNG" and out["gif"].read_bytes()[:6] == b"GIF89a"
     assert len(out["csv"].read_text().splitlines()) == 361
+    from PIL import Image
+
+    assert Image.open(out["gif"]).n_frames == 6
 
 
 def test_cli_chebyshev_scaled(cli):

@@ -80,6 +80,7 @@ def linkage(
     csv: Optional[Path] = Opt(None, "--csv", help="Write the foot path at every sample (CSV)."),
     plot: Optional[Path] = Opt(None, "--plot", help="Write the path and speed plot (PNG)."),
     gif: Optional[Path] = Opt(None, "--gif", help="Write an animation of one crank turn (GIF)."),
+    gif_frames: int = Opt(48, "--gif-frames", help="Frames of the GIF animation."),
     json: bool = Opt(False, "--json", help="Print JSON instead of tables."),
 ) -> None:
     """Foot path, stride, lift, duty factor, foot and body speed of a walking linkage (SPEC §7)."""
@@ -90,6 +91,7 @@ def linkage(
 
     require(36 <= samples <= 100000, "samples", samples, "must be in [36, 100000]")
     require(scale > 0, "scale", scale, "must be > 0")
+    require(2 <= gif_frames <= 720, "gif-frames", gif_frames, "must be in [2, 720]")
     require(0 < step <= 180, "step", step, "must be in (0, 180] deg")
     custom = any(v is not None for v in (l1, l2, l3, l4, beta, o1))
     if custom:
@@ -139,7 +141,7 @@ def linkage(
     if gif is not None:
         from wheelstep_cli.io.mechanism_plots import linkage_gif
 
-        files[gif] = linkage_gif(leg, sol, gait)
+        files[gif] = linkage_gif(leg, sol, gait, min(gif_frames, samples))
     if files:
         from wheelstep_cli.io.atomic import write_files_atomic
 
