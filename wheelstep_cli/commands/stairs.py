@@ -28,7 +28,7 @@ def _number_list(text: str, param: str) -> list[float]:
         raise DesignError(param, text, "must be numbers 'a,b,c' or 'start:stop:step'") from None
 
 
-def _rows(kin, landing_deg: float):
+def _rows(kin):
     import numpy as np
 
     from wheelstep_cli.mechanism.stairs import KINEMATICS_COLUMNS
@@ -135,7 +135,9 @@ def stairs(
               "run_mm": run, "rise_mm": rise, "landing_angle_deg": landing_angle,
               "descent_landing_angle_deg": float(np.degrees(beta)),
               "advance_per_cycle_mm": float(adv), "rise_per_cycle_mm": float(ris),
-              "climb": _rows(climb, landing_angle), "descent": _rows(descent, float(np.degrees(beta)))}
+              "units": {"phi": "deg", "X01": "mm", "Y01": "mm", "dX01": "mm/rad", "dY01": "mm/rad",
+                        "d2X01": "mm/rad^2", "d2Y01": "mm/rad^2"},
+              "climb": _rows(climb), "descent": _rows(descent)}
     check = None
     if checking:
         check = st.check_climb(design, run, rise, tol)
@@ -157,7 +159,8 @@ def stairs(
         title = (f"{what} a = {design.a:.1f}, b = {design.b:.1f}, Y1 = {design.y1:.1f}, Y2 = {design.y2:.1f} mm; "
                  f"stair {run:g} x {rise:g} mm, landing {landing_angle:g} deg")
         files[plot] = stairs_png(climb, descent, st.hub_path(design, alpha, adv, ris, 3),
-                                 st.hub_path(design, beta, *st.cycle_motion(design, beta), 3), title)
+                                 st.hub_path(design, beta, *st.cycle_motion(design, beta), 3), title,
+                                 (float(adv), float(ris)))
     if files:
         from wheelstep_cli.io.atomic import write_files_atomic
 

@@ -28,8 +28,10 @@ def _png(fig) -> bytes:
 
 
 def stairs_png(climb: np.ndarray, descent: np.ndarray, climb_path: np.ndarray,
-               descent_path: np.ndarray, title: str) -> bytes:
-    """Climb/descent kinematics (rows of phi[rad], X01, dX01, d2X01, Y01, dY01, d2Y01) and hub paths."""
+               descent_path: np.ndarray, title: str, cycle: tuple = (None, None)) -> bytes:
+    """Climb/descent kinematics (rows of phi[rad], X01, dX01, d2X01, Y01, dY01, d2Y01) and hub paths.
+
+    ``cycle`` = (advance, rise) per cycle in mm, shown in the hub-path titles."""
     plt = _plt()
     fig, axes = plt.subplots(2, 2, figsize=(11, 8.5))
     for col, (name, kin) in enumerate((("climb", climb), ("descent", descent))):
@@ -51,7 +53,8 @@ def stairs_png(climb: np.ndarray, descent: np.ndarray, climb_path: np.ndarray,
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_xlabel("hub x (mm)")
         ax.set_ylabel("hub y above the first tread (mm)")
-        ax.set_title(f"hub path, {name}, successive steps")
+        per = "" if cycle[0] is None else f": {cycle[0]:.1f} mm on, {cycle[1]:.1f} mm {'up' if name == 'climb' else 'down'} per cycle"
+        ax.set_title(f"hub path, {name}, 3 cycles{per}", fontsize=10)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     fig.suptitle(title)

@@ -282,20 +282,17 @@ def gait(linkage: Linkage, solution: Solution, rpm: float, ground_tol: float | N
 
 
 def _run_around(mask: np.ndarray, k: int) -> np.ndarray:
-    """The contiguous (cyclic) run of True in ``mask`` that contains index ``k``."""
-    n = mask.size
+    """The contiguous (cyclic) run of True in ``mask`` that contains index ``k`` (mask[k] True)."""
     if mask.all():
         return mask.copy()
-    out = np.zeros(n, dtype=bool)
-    i = k
-    while mask[i % n] and not out[i % n]:
-        out[i % n] = True
-        i += 1
-    i = k - 1
-    while mask[i % n] and not out[i % n]:
-        out[i % n] = True
-        i -= 1
-    return out
+    m = np.roll(mask, -k)                       # the run now starts at index 0 ...
+    ahead = int(np.argmin(m))                   # ... and ends before the first False
+    behind = int(np.argmin(m[::-1]))            # ... or wraps round from the end
+    run = np.zeros_like(m)
+    run[:ahead] = True
+    if behind:
+        run[-behind:] = True
+    return np.roll(run, k)
 
 
 # ---------------------------------------------------------------- presets
