@@ -116,12 +116,17 @@ class Linkage:
 
 @dataclass(frozen=True)
 class Solution:
-    """Joint positions over crank angles: ``joints[name]`` is (N, 2) mm; residual in mm."""
+    """Joint positions over crank angles: ``joints[name]`` is (N, 2) mm; residual in mm.
+
+    ``rates[name]`` is the joint's velocity per unit crank angle, d(joint)/d(theta) in
+    mm/rad (exact velocity analysis, see :func:`solve`).
+    """
 
     theta: np.ndarray
     joints: dict
     residual: float
     branches: dict
+    rates: dict
 
 
 def _circle_intersections(p, rp, q, rq):
@@ -176,7 +181,46 @@ def solve(linkage: Linkage, theta) -> Solution:
             for centre, r in ((s.p, s.rp), (s.q, s.rq)):
                 gap = joints[s.name] - joints[centre]
                 residual = max(residual, float(np.max(np.abs(np.hypot(gap[:, 0], gap[:, 1]) - r))))
-    return Solution(theta=theta, joints=joints, residual=residual, branches=branches)
+    return Solution(theta=theta, joints=joints, residual=residual, branches=branches,
+                    rates=joint_rates(linkage, theta, joints))
+
+
+def _rot(v, angle):
+    c, s = np.cos(angle), np.sin(angle)
+    return np.column_stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]])
+
+
+def joint_rates(linkage: Linkage, theta: np.ndarray, joints: dict) -> dict:
+    """d(joint)/d(theta), mm/rad, by differentiating each step's constraints (vectorised).
+
+    Crank: the tangent of its circle. Attached point: the link's direction turns with
+    its end points. Dyad joint P on circles about p and q: the two length constraints
+    give (P - p).(P' - p') = 0 and (P - q).(P' - q') = 0, a 2 x 2 system per angle
+    (regular away from dead points, which :func:`solve` has already excluded).
+    """
+    rates: dict = {}
+    for s in linkage.steps:
+        if isinstance(s, Fixed):
+            rates[s.name] = np.zeros((theta.size, 2))
+        elif isinstance(s, Crank):
+            ang = theta + s.phase
+            rates[s.name] = rates[s.center] + s.length * np.column_stack([-np.sin(ang), np.cos(ang)])
+        elif isinstance(s, Attached):
+            d = joints[s.q] - joints[s.p]
+            dd = rates[s.q] - rates[s.p]
+            dist = np.hypot(d[:, 0], d[:, 1])[:, None]
+            u = d / dist
+            du = (dd - u * (u * dd).sum(axis=1, keepdims=True)) / dist
+            rates[s.name] = rates[s.p] + s.length * _rot(du, s.angle)
+        else:
+            a = joints[s.name] - joints[s.p]
+            b = joints[s.name] - joints[s.q]
+            ra = (a * rates[s.p]).sum(axis=1)
+            rb = (b * rates[s.q]).sum(axis=1)
+            det = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+            rates[s.name] = np.column_stack([(ra * b[:, 1] - rb * a[:, 1]) / det,
+                                             (a[:, 0] * rb - b[:, 0] * ra) / det])
+    return rates
 
 
 def _solve_dyad(s: Dyad, joints: dict, theta: np.ndarray) -> np.ndarray:
@@ -255,16 +299,15 @@ class Gait:
 def gait(linkage: Linkage, solution: Solution, rpm: float, ground_tol: float | None = None) -> Gait:
     """Stride, lift, duty factor, foot and body speeds of the linkage's foot over one cycle.
 
-    Velocities are periodic central differences in crank angle times the crank speed
-    (error ~ (2 pi / samples)^2 / 6 relative). ``ground_tol`` defaults to 1 % of the lift.
+    Velocities are the exact joint rates of :func:`solve` times the crank speed.
+    ``ground_tol`` defaults to 1 % of the lift.
     """
     theta = solution.theta
     if not _is_full_cycle(theta) or theta.size < 8:
         raise DesignError("samples", theta.size, "gait analysis needs one full crank turn of >= 8 samples")
     foot = solution.joints[linkage.foot]
     omega = rpm * 2 * np.pi / 60.0
-    dth = theta[1] - theta[0]
-    velocity = (np.roll(foot, -1, axis=0) - np.roll(foot, 1, axis=0)) / (2 * dth) * omega
+    velocity = solution.rates[linkage.foot] * omega
     speed = np.hypot(velocity[:, 0], velocity[:, 1])
     depth = linkage.ground * foot[:, 1]          # grows toward the ground
     ground_level = float(depth.max())
