@@ -358,20 +358,21 @@ def four_bar_paper() -> Linkage:
 
 def six_bar_source() -> Linkage:
     """SPEC §7's six-bar topology with numbers chosen here (SPEC gives none): see description."""
-    beta1, beta2, gamma = np.radians(90.0), np.radians(-22.8), np.radians(180.0)
+    beta1, beta2, gamma = np.radians(48.0), np.radians(26.8), np.radians(153.6)
     return Linkage(
         name="six-bar",
         description="six-bar leg with SPEC §7's topology (crank B-O-N, links BM and NA, bent rocker "
-                    "O1-M-D, bent support arm D-A-H). SPEC gives no numbers for it: these are chosen "
-                    "here (a closed full-turn loop at the four-bar's scale, not optimised): OB = ON = 150 "
-                    "with N lagging B by 90 deg, BM 500, O1 = (-700, 300), O1M 461, MD 224 at -22.8 deg "
-                    "from M->O1, NA 461, DA 450, AH 400 straight on from D->A (mm)",
-        steps=(Fixed("O", 0.0, 0.0), Fixed("O1", -700.0, 300.0),
+                    "O1-M-D, bent support arm D-A-H). SPEC gives no numbers for it: these were chosen "
+                    "here by a small search for a closed full-turn loop with a flat low stretch, at the "
+                    "four-bar's scale (illustrative, not the source machine): OB = ON = 150 with N "
+                    "lagging B by 48 deg, BM 641, O1 = (-627, 488), O1M 340, MD 135 at 26.8 deg from "
+                    "M->O1, NA 511, DA 467, AH 420 at 153.6 deg from A->D (mm)",
+        steps=(Fixed("O", 0.0, 0.0), Fixed("O1", -627.0, 488.0),
                Crank("B", "O", 150.0), Crank("N", "O", 150.0, phase=-beta1),
-               Dyad("M", "B", 500.0, "O1", 461.0, branch=1),
-               Attached("D", "M", "O1", 224.0, beta2),
-               Dyad("A", "N", 461.0, "D", 450.0, branch=1),
-               Attached("H", "A", "D", 400.0, gamma)),
+               Dyad("M", "B", 641.0, "O1", 340.0, branch=1),
+               Attached("D", "M", "O1", 135.0, beta2),
+               Dyad("A", "N", 511.0, "D", 467.0, branch=1),
+               Attached("H", "A", "D", 420.0, gamma)),
         foot="H", ground=-1, rpm=27.0,
         links=(("O", "B"), ("O", "N"), ("B", "M"), ("O1", "M"), ("M", "D"), ("N", "A"), ("D", "A"), ("A", "H")),
     )
