@@ -7,7 +7,10 @@ import typer
 
 def register_all(app: typer.Typer) -> None:
     """Attach every command module's commands to ``app``."""
-    from wheelstep_cli.commands import gears, shoe
+    from wheelstep_cli.commands import gears, linkage, shoe, stairs, trajectory
 
     gears.register(app)
     shoe.register(app)
+    stairs.register(app)
+    linkage.register(app)
+    trajectory.register(app)
