@@ -94,3 +94,12 @@ def test_bad_input_one_line_exit_2_nothing_written(cli, tmp_path, args, param):
     assert len(lines) == 1 and param in lines[0], result.stderr
     assert "Traceback" not in result.stderr
     assert not out.exists()
+
+
+def test_unwritable_output_is_one_line(cli, tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    result = cli("gears", "--out", blocker / "sub")
+    assert result.exit_code == 1
+    assert len(result.stderr.strip().splitlines()) == 1 and "cannot write" in result.stderr
+    assert blocker.read_text() == "not a folder"

@@ -28,6 +28,20 @@ app = typer.Typer(
 )
 
 
+def _version(value: bool) -> None:
+    if value:
+        from wheelstep_cli import __version__
+
+        typer.echo(f"wheelstep {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                       help="Print the version and exit.")) -> None:
+    """Design parts of wheel-step movers: non-circular gear pairs, support shoes, linkages."""
+
+
 def _register_commands() -> None:
     from wheelstep_cli.commands import register_all
 
@@ -54,6 +68,10 @@ def run(argv: list[str] | None = None) -> int:
     except click_errors.ClickException as err:
         typer.echo(f"wheelstep: error: {err.format_message()}", err=True)
         return err.exit_code
+    except OSError as err:
+        target = f" {err.filename}" if getattr(err, "filename", None) else ""
+        typer.echo(f"wheelstep: error: cannot write{target}: {err.strerror or err}", err=True)
+        return 1
     except typer.Abort:
         typer.echo("wheelstep: aborted", err=True)
         return 130

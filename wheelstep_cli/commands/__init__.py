@@ -7,8 +7,11 @@ import typer
 
 def register_all(app: typer.Typer) -> None:
     """Attach every command module's commands to ``app``."""
-    from wheelstep_cli.commands import batch, gears, shoe
+    from wheelstep_cli.commands import batch, gears, linkage, shoe, stairs, trajectory
 
     gears.register(app)
     shoe.register(app)
+    stairs.register(app)
+    linkage.register(app)
+    trajectory.register(app)
     batch.register(app)

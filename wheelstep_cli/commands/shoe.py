@@ -2,19 +2,14 @@
 
 from __future__ import annotations
 
-from enum import Enum
 from pathlib import Path
 from typing import Optional
 
 import typer
 
+from wheelstep_cli.commands.gears import Format
+
 Opt = typer.Option
-
-
-class Format(str, Enum):
-    stl = "stl"
-    threemf = "3mf"
-    both = "both"
 
 
 def _spec(profile, **cli):
@@ -67,6 +62,11 @@ def shoe(
     the sole curve is in the XY plane, the width along Z, the strut socket a hole along +Y.
     Writes shoe.stl / shoe.3mf, shoe.json, shoe-profile.csv and shoe-profile.dxf (the sole
     in the shoe frame: origin at the strut pivot, Y along the strut).
+
+    Part defaults suit a full-scale plastic prototype (FDM): 40 mm wide, 12 mm strut in a
+    25 mm deep socket (a polygon whose flats touch the nominal circle, so the strut fits;
+    ream or drill for a press fit), a flat top 15 mm above the sole's ends; at least 2 mm
+    of plastic is kept around and under the socket.
     """
     from wheelstep_cli.io.atomic import write_files_atomic
     from wheelstep_cli.io.jsonio import json_text
@@ -88,6 +88,10 @@ def shoe(
     typer.echo(f"hub height  Y01 = a - b + c = {d.hub_height:.1f} mm (constant)")
     typer.echo(f"per cycle   X_I = {d.x_walk:.1f} (walking)   X_II = {d.x_roll:.1f} (rolling)   "
                f"X01 = {d.x_cycle:.1f} mm   rolling share {100 * d.roll_share:.2f} %")
+    typer.echo(f"sole (shoe frame: origin at the strut pivot, Y along the strut)\n"
+               f"{'phi deg':>8} {'X':>8} {'Y':>8} {'rho':>8} {'alpha deg':>9} {'R':>7}  (mm)")
+    for row in sole_table(d):
+        typer.echo("{:8.1f} {:8.2f} {:8.2f} {:8.2f} {:9.2f} {:7.2f}".format(*row))
     part = report["part"]
     check = built.checks["shoe"]
     size = built.part.bounds[1] - built.part.bounds[0]
@@ -98,13 +102,28 @@ def shoe(
         typer.echo("wrote " + ", ".join(str(p) for p in written))
 
 
+def sole_table(design, count: int = 7):
+    """Rows (phi deg, X, Y, rho, alpha deg, R) at ``count`` hub angles over the contact, mm."""
+    import numpy as np
+
+    from wheelstep_cli.mechanism.shoe import contact_angles, sole_curvature_radius, sole_polar, sole_profile
+
+    phi = contact_angles(count)
+    xy = sole_profile(design, phi)
+    rho, alpha = sole_polar(design, phi)
+    return np.column_stack([np.degrees(phi), xy, rho, np.degrees(alpha),
+                            sole_curvature_radius(design, phi)])
+
+
 def kinematics(
     a: Optional[float] = A, b: Optional[float] = B, c: Optional[float] = C,
     r_min: Optional[float] = RMIN,
-    turns: int = Opt(2, "--turns", "-n", help="Pinion turns per carrier turn, 2 or 4 [2]."),
-    motor_rpm: float = Opt(60.0, "--motor-rpm", help="Constant pinion (motor side) speed, rpm [60]."),
-    points: int = Opt(361, "--points", help="Samples over one shoe cycle [361]."),
-    rows: int = Opt(9, "--rows", help="Table rows printed [9]."),
+    turns: Optional[int] = Opt(None, "--turns", "-n",
+                               help="Pinion turns per carrier turn, 2 or 4 [profile's gears.turns, else 2]."),
+    motor_rpm: float = Opt(60.0, "--motor-rpm", show_default=False,
+                           help="Constant pinion (motor side) speed, rpm [60]."),
+    points: int = Opt(361, "--points", show_default=False, help="Samples over one shoe cycle [361]."),
+    rows: int = Opt(9, "--rows", show_default=False, help="Table rows printed [9]."),
     plot: Optional[Path] = Opt(None, "--plot", help="Write both speed curves and the sole to this PNG."),
     profile: Optional[str] = PROFILE,
     json: bool = JSON,
@@ -121,6 +140,8 @@ def kinematics(
     require(points >= 3, "points", points, "must be >= 3")
     require(rows >= 2, "rows", rows, "must be >= 2")
     design = _spec(profile, a=a, b=b, c=c, r_min=r_min).design()
+    if turns is None:
+        turns = _profile_turns(profile) if profile else 2
     kin = hub_kinematics(design, motor_rpm * 2.0 * np.pi / 60.0, turns, points)
     result = {
         "a_mm": design.a, "b_mm": design.b, "c_mm": design.c, "r_min_mm": design.r_min,
@@ -155,6 +176,20 @@ def kinematics(
                f"with non-circular gears {100 * kin.ripple_geared:.1f} %")
     if plot is not None:
         typer.echo(f"wrote {plot}")
+
+
+def _profile_turns(profile: str) -> int:
+    """Pinion turns per carrier turn from a profile's ``gears:`` section (2 if not set)."""
+    from wheelstep_cli.io.profiles import load_profile
+
+    _, data = load_profile(profile)
+    gears = data.get("gears") or {}
+    turns = gears.get("turns", 2) if isinstance(gears, dict) else 2
+    if not isinstance(turns, int):
+        from wheelstep_cli.errors import DesignError
+
+        raise DesignError("turns", turns, f"in profile {profile} must be 2 or 4")
+    return turns
 
 
 def kinematics_png(design, kin) -> bytes:

@@ -41,7 +41,10 @@ class ShoeDesign:
         require(bool(np.isfinite(r_min)) and r_min > 0, "rmin", r_min,
                 "must be > 0 mm (the sole would have a cusp or loop)")
         _check_lengths(a=a, b=b)
-        return cls(float(a), float(b), float(r_min - a + 4.0 * b))
+        c = r_min - a + 4.0 * b
+        require(c > 0, "rmin", r_min,
+                f"must be > a - 4b = {a - 4.0 * b:g} mm (strut length c = R_min - a + 4b must be > 0)")
+        return cls(float(a), float(b), float(c))
 
     @property
     def r_min(self) -> float:
@@ -107,7 +110,10 @@ def sole_profile(design: ShoeDesign, phi) -> np.ndarray:
 
 
 def sole_polar(design: ShoeDesign, phi) -> tuple[np.ndarray, np.ndarray]:
-    """Polar form of the sole: radius rho (mm) from the pivot, angle alpha (rad) from the Y axis."""
+    """Polar form of the sole: radius rho (mm) from the pivot, angle alpha (rad) from the Y axis.
+
+    alpha = atan(X / Y) as in SPEC §2, computed with atan2 so it stays right where Y < 0.
+    """
     xy = sole_profile(design, phi)
     return np.hypot(xy[..., 0], xy[..., 1]), np.arctan2(xy[..., 0], xy[..., 1])
 

@@ -59,6 +59,17 @@ class ShoeSpec:
     socket_depth: float = 25.0
     rim: float = 15.0             # body height above the sole's ends
 
+    def __post_init__(self) -> None:
+        # profiles and batch files give ints or strings: store floats, so equal designs give equal files
+        for name, value in asdict(self).items():
+            if value is None:
+                continue
+            try:
+                number = float(value)
+            except (TypeError, ValueError):
+                raise DesignError(name.replace("_", "-"), value, "must be a number (mm)") from None
+            object.__setattr__(self, name, number)
+
     def design(self) -> ShoeDesign:
         """The mechanism sizing; raises DesignError for an invalid or inconsistent one."""
         if self.c is None:
@@ -86,7 +97,7 @@ class Shoe:
     profile: np.ndarray   # (N, 2) sole in the shoe frame, mm
     outline: np.ndarray   # closed side outline in the part frame, mm (CCW)
     body_height: float    # y of the top face, mm
-    socket_floor: float   # plastic between the socket bottom and the sole, mm
+    socket_floor: float   # least plastic between the socket and the sole, mm
     parts: list[Part]
     checks: dict[str, MeshReport] = field(default_factory=dict)
 
@@ -107,8 +118,17 @@ def side_outline(sole_part: np.ndarray, top: float) -> np.ndarray:
     return np.vstack([sole_part, corners])
 
 
+def socket_wall(sole_part: np.ndarray, radius: float, top: float, depth: float) -> float:
+    """Least plastic between the socket (side view: x in [-radius, radius], y from top - depth
+    to top) and the sole, mm; 0 when they meet. Measured square to the sole, not only below."""
+    import shapely
+
+    socket = shapely.box(-radius, top - depth, radius, top)
+    return float(shapely.LineString(sole_part).distance(socket))
+
+
 def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
-    """Check the socket fits in the body; return the floor thickness under it (mm)."""
+    """Check the socket fits in the body; return the wall between it and the sole (mm)."""
     d = spec.strut_diameter
     length = sole_part[-1, 0] - sole_part[0, 0]
     limit = min(spec.width, length) - 2.0 * MIN_WALL
@@ -117,14 +137,16 @@ def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
         raise DesignError("strut-diameter", d,
                           f"must be <= {limit:.2f} mm (socket wider than the body: {across} "
                           f"less {MIN_WALL:g} mm wall each side)")
-    # the sole rises away from x = 0, so under the socket it is highest at its edge
-    sole_under = float(np.interp(d / 2.0, sole_part[:, 0], sole_part[:, 1]))
-    floor = top - spec.socket_depth - sole_under
+    floor = socket_wall(sole_part, d / 2.0, top, spec.socket_depth)
     if floor < MIN_WALL:
+        # deepest socket that keeps the wall (the wall shrinks as the socket deepens): bisection
+        lo, hi = 0.0, spec.socket_depth
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if socket_wall(sole_part, d / 2.0, top, mid) >= MIN_WALL else (lo, mid)
         raise DesignError("socket-depth", spec.socket_depth,
-                          f"must be <= {top - sole_under - MIN_WALL:.2f} mm (socket deeper than the "
-                          f"body: {top - sole_under:.2f} mm above the sole at the socket edge, "
-                          f"keep {MIN_WALL:g} mm floor)")
+                          f"must be <= {lo:.2f} mm (socket deeper than the body: keep "
+                          f"{MIN_WALL:g} mm of plastic between it and the sole)")
     return floor
 
 
@@ -187,15 +209,20 @@ def sizing(design: ShoeDesign) -> dict:
     }
 
 
+def resolved_parameters(shoe: Shoe) -> dict[str, float]:
+    """The spec with the strut resolved (both c and r_min given), all as floats in mm."""
+    values = asdict(shoe.spec)
+    values["c"], values["r_min"] = shoe.design.c, shoe.design.r_min
+    return {k: float(v) for k, v in values.items()}
+
+
 def shoe_report(shoe: Shoe) -> dict:
     """Inputs, sizing, the sole (shoe frame) and the part with its checks, as plain data."""
-    spec = asdict(shoe.spec)
-    spec["c"], spec["r_min"] = shoe.design.c, shoe.design.r_min
     part = shoe.part
     check = shoe.checks[part.name]
     return {
         "tool": "wheelstep shoe",
-        "parameters": spec,
+        "parameters": resolved_parameters(shoe),
         **sizing(shoe.design),
         "profile_frame": "shoe frame: origin at the strut pivot, Y along the strut towards the ground",
         "profile": shoe.profile,
@@ -244,7 +271,7 @@ def shoe_files(shoe: Shoe, out: Path, fmt: str = "both") -> dict[Path, bytes]:
     if fmt in ("stl", "both"):
         files[out / "shoe.stl"] = stl_bytes(part.vertices, part.faces, "wheelstep shoe")
     if fmt in ("3mf", "both"):
-        meta = {k: f"{v:g}" for k, v in asdict(shoe.spec).items() if v is not None}
+        meta = {k: f"{v:g}" for k, v in resolved_parameters(shoe).items()}
         lo = part.bounds[0]
         shift = (PLATE_GAP - lo[0], PLATE_GAP - lo[1], -lo[2])
         files[out / "shoe.3mf"] = threemf_bytes(

@@ -1,0 +1,47 @@
+"""DXF of a path made of straight segments and circular arcs (ezdxf, deterministic bytes)."""
+
+from __future__ import annotations
+
+import io
+
+import numpy as np
+
+
+def path_dxf_bytes(pieces, polyline: bool = False, layer: str = "FOOT_PATH") -> bytes:
+    """DXF R12 in mm of ``pieces`` (objects with ``start``/``end`` points or ``center``,
+    ``radius``, ``start``, ``sweep`` counter-clockwise arcs), as LINE and ARC entities or as
+    one closed 2D POLYLINE with bulges. R12 (no CLASSES section, whose order ezdxf takes from
+    a set) and fixed metadata, so the same path gives the same bytes."""
+    import ezdxf
+
+    fixed = ezdxf.options.write_fixed_meta_data_for_testing
+    ezdxf.options.write_fixed_meta_data_for_testing = True
+    try:
+        doc = ezdxf.new("R12", setup=False)
+        doc.layers.add(layer)
+        msp = doc.modelspace()
+        attribs = {"layer": layer}
+        if polyline:
+            verts = []
+            for p in pieces:
+                if hasattr(p, "radius"):
+                    a = p.start
+                    x, y = p.center + p.radius * np.array([np.cos(a), np.sin(a)])
+                    verts.append((float(x), float(y), float(np.tan(p.sweep / 4))))
+                else:
+                    verts.append((float(p.start[0]), float(p.start[1]), 0.0))
+            msp.add_polyline2d(verts, format="xyb", close=True, dxfattribs=attribs)
+        else:
+            for p in pieces:
+                if hasattr(p, "radius"):
+                    msp.add_arc(tuple(float(v) for v in p.center), float(p.radius),
+                                float(np.degrees(p.start)), float(np.degrees(p.start + p.sweep)),
+                                dxfattribs=attribs)
+                else:
+                    msp.add_line(tuple(float(v) for v in p.start), tuple(float(v) for v in p.end),
+                                 dxfattribs=attribs)
+        buf = io.StringIO()
+        doc.write(buf)
+    finally:
+        ezdxf.options.write_fixed_meta_data_for_testing = fixed
+    return buf.getvalue().encode("utf-8")
