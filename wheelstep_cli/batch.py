@@ -404,9 +404,8 @@ class Plate:
         return f"plate-{self.number}"
 
 
-def render_plate(plate: Plate) -> tuple[int, bytes, bytes]:
-    """(plate number, 3MF bytes, PNG bytes) of a packed plate (worker-process entry point)."""
-    from wheelstep_cli.io.plate_png import plate_png
+def plate_threemf(plate: Plate) -> tuple[int, bytes]:
+    """(plate number, 3MF bytes) of a packed plate (worker-process entry point)."""
     from wheelstep_cli.io.threemf import PlateObject, threemf_bytes
 
     objects = []
@@ -416,19 +415,25 @@ def render_plate(plate: Plate) -> tuple[int, bytes, bytes]:
         objects.append(PlateObject(item.label, vertices, item.part.faces,
                                    (item.x - lo[0], item.y - lo[1], -lo[2]), item.metadata))
     printer = plate.printer
-    threemf = threemf_bytes(objects, {
+    return plate.number, threemf_bytes(objects, {
         "Title": f"wheelstep {plate.stem} ({printer.name})", "Application": "wheelstep batch",
         "printer": printer.name, "material": printer.material})
+
+
+def plate_picture(plate: Plate) -> bytes:
+    """Top-view PNG of a packed plate: the bed with the parts' footprints."""
+    from wheelstep_cli.io.plate_png import plate_png
+
     shapes = []
     for item in plate.items:
         polygons = item.footprint()
         lo = np.min([r.min(axis=0) for p in polygons for r in p], axis=0)
         label = item.label.replace(" ", "\n", 1)  # entry name over part name
         shapes.append((label, [[r - lo + (item.x, item.y) for r in p] for p in polygons]))
-    png = plate_png(printer.bed, printer.margin, shapes,
-                    f"{plate.stem}: {printer.name} ({printer.bed[0]:g} x {printer.bed[1]:g} mm), "
-                    f"{len(plate.items)} parts")
-    return plate.number, threemf, png
+    printer = plate.printer
+    return plate_png(printer.bed, printer.margin, shapes,
+                     f"{plate.stem}: {printer.name} ({printer.bed[0]:g} x {printer.bed[1]:g} mm), "
+                     f"{len(plate.items)} parts")
 
 
 def _metadata(entry: Entry, part: str, copy: int) -> dict[str, str]:
@@ -511,8 +516,15 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
         for result in _map(pool, build_entry, plan.entries, step):
             results[result.index] = result
         plates, dropped = plan_plates(plan.entries, results)
-        step = advance("writing plates", len(plates))
-        rendered = {number: (threemf, png) for number, threemf, png in _map(pool, render_plate, plates, step)}
+        step = advance("writing plates", 2 * len(plates))
+        # 3MF files in the workers; meanwhile this (otherwise idle) process draws the pictures,
+        # so matplotlib is imported once, as with --jobs 1
+        threemfs = _map(pool, plate_threemf, plates, step, lazy=True)
+        pictures = {}
+        for plate in plates:
+            pictures[plate.number] = plate_picture(plate)
+            step()
+        rendered = {number: (data, pictures[number]) for number, data in threemfs}
 
     failed, built = [], []
     for entry in plan.entries:
@@ -560,17 +572,28 @@ def _executor(jobs: int):
     return ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn"))
 
 
-def _map(pool, function, items, step):
-    """Results of ``function`` over ``items`` (any order), calling ``step()`` after each."""
+def _map(pool, function, items, step, lazy: bool = False):
+    """Results of ``function`` over ``items`` (any order), calling ``step()`` after each.
+
+    With a pool the work is submitted at once; ``lazy`` (serial only) defers it until the
+    results are read, so that the caller can do other work first either way.
+    """
     if pool is None:
-        for item in items:
-            result = function(item)
-            step()
-            yield result
-        return
+        results = (_call_and_step(function, item, step) for item in items)
+        return results if lazy else list(results)
+    futures = {pool.submit(function, item): item for item in items}
+    return _collect(futures, step)
+
+
+def _call_and_step(function, item, step):
+    result = function(item)
+    step()
+    return result
+
+
+def _collect(futures, step):
     from concurrent.futures import as_completed
 
-    futures = {pool.submit(function, item): item for item in items}
     for future in as_completed(futures):
         try:
             result = future.result()
