@@ -37,11 +37,17 @@ def batch_text() -> str:
     return "parts:\n" + "\n".join(entries) + "\n"
 
 
-def run(batch: Path, out: Path, jobs: int) -> float:
+def run(batch: Path, out: Path, jobs: int) -> tuple[float, float]:
+    """(wall-clock seconds, CPU seconds of the process and its workers) of one batch run."""
+    import resource
+
+    cpu = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     subprocess.run([sys.executable, "-m", "wheelstep_cli", "batch", str(batch), "--out", str(out),
                     "--jobs", str(jobs)], cwd=ROOT, check=True, capture_output=True)
-    return time.perf_counter() - start
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime - cpu.ru_utime) + (after.ru_stime - cpu.ru_stime)
 
 
 def main() -> None:
@@ -60,12 +66,13 @@ def main() -> None:
         load_after = os.getloadavg()
         same = all((folder / "out-1" / p.relative_to(folder / "out-2")).read_bytes() == p.read_bytes()
                    for p in (folder / "out-2").rglob("*") if p.is_file())
-    best1, best2 = min(times[1]), min(times[2])
+    best1, best2 = min(t for t, _ in times[1]), min(t for t, _ in times[2])
     print(f"cores: {os.cpu_count()}   load average before: {load_before[0]:.2f} {load_before[1]:.2f} "
           f"{load_before[2]:.2f}   after: {load_after[0]:.2f} {load_after[1]:.2f} {load_after[2]:.2f}")
     print("20 entries (32 parts), wall-clock seconds per run:")
-    print(f"  --jobs 1: {' '.join(f'{t:.2f}' for t in times[1])}   best {best1:.2f}")
-    print(f"  --jobs 2: {' '.join(f'{t:.2f}' for t in times[2])}   best {best2:.2f}")
+    for jobs, best in ((1, best1), (2, best2)):
+        runs = "  ".join(f"{t:.2f} (cpu {c:.2f})" for t, c in times[jobs])
+        print(f"  --jobs {jobs}: {runs}   best {best:.2f}")
     print(f"speed-up (best/best): {best1 / best2:.2f}x   (target >= 1.6x)   outputs identical: {same}")
 
 

@@ -457,3 +457,22 @@ def test_relative_profile_next_to_the_batch_and_r_min_gives_c(tmp_path, monkeypa
     entry = load_batch(batch).entries[0]
     assert (entry.spec.a, entry.spec.b, entry.spec.c, entry.spec.z) == (30, 50, 10 - 30 + 4 * 50, 24)
     assert entry.printed.bore == pytest.approx(entry.spec.bore + 0.2)  # PLA hole compensation
+
+
+def test_profiles_given_as_absolute_paths_leave_no_folder_in_the_outputs(cli, tmp_path):
+    folder = tmp_path / "my-profiles"
+    folder.mkdir()
+    printer = write(folder / "shop-printer.yaml", (ROOT / "profiles" / "fdm-0.4-pla.yaml").read_text())
+    design = write(folder / "shop-design.yaml", (ROOT / "profiles" / "desk-demo.yaml").read_text())
+    batch = write(tmp_path / "b.yaml", f"parts:\n  - kind: shoe\n    design: {design}\n"
+                  f"    printer: {printer}\n    overrides: {{width: 12}}\n")
+    out = tmp_path / "out"
+    assert cli("batch", batch, "--out", out, "--jobs", "1").exit_code == 0
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert manifest["entries"][0]["design_profile"] == "shop-design.yaml"
+    assert manifest["entries"][0]["printer_profile"] == "shop-printer.yaml"
+    for file in out.rglob("*"):
+        if file.suffix in (".json", ".md"):
+            assert str(tmp_path) not in file.read_text(), file
+    with zipfile.ZipFile(out / "plate-1.3mf") as zf:
+        assert str(tmp_path).encode() not in zf.read("3D/3dmodel.model")

@@ -51,6 +51,11 @@ class Entry:
     where: str           # batch-file:line of the entry
     override_where: dict[str, str] = field(default_factory=dict)
 
+    @property
+    def design_label(self) -> str:
+        """The design preset's name for reports (a file path is shown by its file name only)."""
+        return profile_label(self.design)
+
     def locate(self, param: str) -> str:
         """file:line of the override named by an error's ``param``, else of the entry."""
         return self.override_where.get(param.replace("-", "_"), self.where)
@@ -103,7 +108,7 @@ def load_batch(path: Path, label: str | None = None) -> BatchPlan:
     used = {}
     for entry in entries:
         located, sha = designs[entry.design]
-        used[entry.design] = (Path(located.file).name, sha)
+        used[entry.design_label] = (Path(located.file).name, sha)
     return BatchPlan(Path(path), label, hashlib.sha256(Path(path).read_bytes()).hexdigest(),
                      str(top.get("description", "")), entries, used)
 
@@ -196,7 +201,7 @@ def _printer(doc, path, name, cache, issues, find_profile) -> Printer | None:
             if not is_printer_profile(located.data):
                 raise DesignError("printer", name, "is a design profile, not a printer profile; "
                                   "printer profiles: " + ", ".join(_profile_names(printer=True)))
-            cache[name] = printer_from_profile(name, file, _label(file))
+            cache[name] = printer_from_profile(profile_label(name), file, _label(file))
         except InvalidInput as err:
             issues.extend(err.issues)
         except DesignError as err:
@@ -286,6 +291,13 @@ def _resolve_spec(doc, path, kind, design_name, layers, overrides, override_wher
             issues.append(Issue(where, dotted(path), f"{err} (from design {design_name}{given})"))
         return None, None
     return spec, printed
+
+
+def profile_label(name: str) -> str:
+    """A profile's name as recorded in outputs: bare names as they are, paths by file name only
+    (so no folder, e.g. a temporary one, ends up in the manifest or the 3MF metadata)."""
+    given = Path(name)
+    return given.name if given.suffix in (".yaml", ".yml") or len(given.parts) > 1 else name
 
 
 def _label(file: Path) -> str:
@@ -439,7 +451,7 @@ def plate_picture(plate: Plate) -> bytes:
 def _metadata(entry: Entry, part: str, copy: int) -> dict[str, str]:
     """3MF metadata of one placed part: where it comes from and its design parameters."""
     meta = {"entry": entry.name, "kind": entry.kind, "part": part, "copy": f"{copy} of {entry.quantity}",
-            "design_profile": entry.design, "printer_profile": entry.printer.name}
+            "design_profile": entry.design_label, "printer_profile": entry.printer.name}
     for name, value in dataclasses.asdict(entry.printed).items():
         if value is not None:
             meta[f"design.{name}"] = f"{value:g}" if isinstance(value, float) else str(value)
@@ -471,12 +483,13 @@ def plan_plates(entries: list[Entry], results: dict[int, EntryResult]) -> tuple[
                     f"{printer.margin:g} mm margins)")
                 break
     plates: list[Plate] = []
-    order = list(dict.fromkeys(e.printer.name for e in entries))
-    for printer_name in order:
+    order = list(dict.fromkeys((e.printer.name, e.printer.sha256) for e in entries))
+    for printer_key in order:
         items: list[tuple[Entry, BuiltPart, int]] = []
         for entry in entries:
             result = results[entry.index]
-            if entry.printer.name != printer_name or result.error or entry.index in dropped:
+            if (entry.printer.name, entry.printer.sha256) != printer_key or result.error \
+                    or entry.index in dropped:
                 continue
             for copy in range(1, entry.quantity + 1):
                 items.extend((entry, part, copy) for part in result.parts)
@@ -631,7 +644,7 @@ def _entry_report_bytes(entry: Entry, result: EntryResult) -> bytes:
     from wheelstep_cli.io.jsonio import json_bytes
 
     return json_bytes({
-        "entry": entry.name, "kind": entry.kind, "design_profile": entry.design,
+        "entry": entry.name, "kind": entry.kind, "design_profile": entry.design_label,
         "printer_profile": entry.printer.name, "quantity": entry.quantity,
         "parameters": dataclasses.asdict(entry.spec),
         "printed_parameters": dataclasses.asdict(entry.printed),
@@ -673,7 +686,7 @@ def _manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
             "printer_profiles": dict(sorted(printers.items())),
         },
         "entries": [
-            {"name": e.name, "kind": e.kind, "design_profile": e.design, "printer_profile": e.printer.name,
+            {"name": e.name, "kind": e.kind, "design_profile": e.design_label, "printer_profile": e.printer.name,
              "quantity": e.quantity, "overrides": e.overrides, "line": int(e.where.rsplit(":", 1)[1]),
              "status": "built" if e in built else "failed",
              **({"parts": {p.name: {"volume_mm3": p.volume, "triangles": p.triangles, "checks": p.checks}

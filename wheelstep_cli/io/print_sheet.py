@@ -76,7 +76,7 @@ def print_sheet_bytes(plan, plates, built, results, failed) -> bytes:
             totals[entry.printer.name, "solid"] += solid * entry.quantity
             totals[entry.printer.name, "mass"] += mass * entry.quantity
             ok = "printable" if all(part.checks.values()) else "FAILED"
-            lines.append(f"| {entry.name} | {part.name} | {entry.design} | {entry.printer.name} | "
+            lines.append(f"| {entry.name} | {part.name} | {entry.design_label} | {entry.printer.name} | "
                          f"{entry.quantity} | {part.volume / 1000:.2f} | {solid:.1f} | {mass:.1f} | "
                          f"{size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} | {ok} |")
     lines.append("")
