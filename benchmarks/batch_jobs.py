@@ -71,9 +71,11 @@ def main() -> None:
           f"{load_before[2]:.2f}   after: {load_after[0]:.2f} {load_after[1]:.2f} {load_after[2]:.2f}")
     print("20 entries (32 parts), wall-clock seconds per run:")
     for jobs, best in ((1, best1), (2, best2)):
-        runs = "  ".join(f"{t:.2f} (cpu {c:.2f})" for t, c in times[jobs])
+        runs = "  ".join(f"{t:.2f} (cpu {c:.2f}, {c / t:.2f} cores)" for t, c in times[jobs])
         print(f"  --jobs {jobs}: {runs}   best {best:.2f}")
     print(f"speed-up (best/best): {best1 / best2:.2f}x   (target >= 1.6x)   outputs identical: {same}")
+    print("cores = cpu/wall: how much of the machine a run got; with other work on the cores "
+          "--jobs 2 cannot get its 2")
 
 
 if __name__ == "__main__":
