@@ -31,7 +31,15 @@ def test_writes_printable_meshes_and_report(default_pair):
         assert mesh.bounds[1, 2] - mesh.bounds[0, 2] == pytest.approx(10.0)
     assert report["parameters"]["install_distance"] == 144
     assert report["parameters"]["backlash"] == pytest.approx(0.5)
-    assert len(report["sectors"]) == 24
+    assert report["parameters"]["teeth"] == "generated"       # the default since issue 6
+    assert report["generated"]["pinion_teeth"] == 48 and report["generated"]["wheel_teeth"] == 96
+    assert report["parts"]["pinion"]["teeth"] == 48 and report["parts"]["wheel"]["teeth"] == 96
+
+
+def test_paper_method_still_writes_its_sector_table(cli, tmp_path):
+    assert cli("gears", "--teeth", "paper", "--format", "stl", "--out", tmp_path).exit_code == 0
+    report = json.loads((tmp_path / "gears.json").read_text())
+    assert len(report["sectors"]) == 24 and "generated" not in report
     assert report["parts"]["pinion"]["teeth"] == 48 and report["parts"]["wheel"]["teeth"] == 96
 
 
@@ -77,7 +85,7 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_pa
 @pytest.mark.parametrize("args, param", [
     (["--b", "110"], "b ="),                      # R_min = a - 4b + c < 0
     (["--z", "47"], "z ="),                        # not whole sectors
-    (["--module", "4"], "module ="),               # pointed teeth
+    (["--teeth", "paper", "--module", "4"], "module ="),   # pointed teeth
     (["--bore", "100"], "bore ="),                 # bore larger than the root
     (["--a", "-60"], "a ="),                       # negative length
     (["--a", "sixty"], "'--a'"),                   # not a number

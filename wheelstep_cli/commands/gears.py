@@ -11,6 +11,16 @@ import typer
 Opt = typer.Option
 
 
+class Teeth(str, Enum):
+    generated = "generated"
+    paper = "paper"
+
+
+class Corner(str, Enum):
+    space = "space"
+    tooth = "tooth"
+
+
 class Format(str, Enum):
     stl = "stl"
     threemf = "3mf"
@@ -127,14 +137,36 @@ def gears(
     fmt: Format = Opt(Format.both, "--format", help="Mesh files to write."),
     out: Path = Opt(Path("wheelstep-out"), "--out", "-o", help="Output folder."),
     profile: Optional[str] = PROFILE,
+    teeth: Optional[Teeth] = Opt(None, "--teeth",
+                                 help="generated: conjugate teeth (SPEC §9, default); "
+                                      "paper: the source's sector involutes (SPEC §5)."),
+    pressure_angle: Optional[float] = Opt(None, "--pressure-angle",
+                                          help="Rack pressure angle, deg (generated) [20]."),
+    addendum: Optional[float] = Opt(None, "--addendum", help="Addendum, x module (generated) [1.0]."),
+    dedendum: Optional[float] = Opt(None, "--dedendum", help="Dedendum, x module (generated) [1.25]."),
+    fillet: Optional[float] = Opt(None, "--fillet", help="Rack tip fillet radius, x module (generated) [0.25]."),
+    blend: Optional[float] = Opt(None, "--blend",
+                                 help="Half-width (carrier deg) of the ratio blend at each handover (generated) [0]."),
+    corner: Optional[Corner] = Opt(None, "--corner",
+                                   help="Centre a pinion space or tooth on each pitch-curve corner (generated) [space]."),
+    law_csv: Optional[Path] = Opt(None, "--law-csv",
+                                  help="CSV of driving angle, driven angle (deg) over one period: "
+                                       "generate this law instead of the crank law (generated)."),
 ) -> None:
-    """Write the non-circular gear pair as printable STL/3MF meshes and gears.json."""
+    """Write the non-circular gear pair as printable STL/3MF meshes and gears.json.
+
+    Generated teeth (default) roll at the installed distance; the module follows from
+    the pitch-curve perimeter and --z (--module applies to --teeth paper only).
+    """
     from wheelstep_cli.io.atomic import write_files_atomic
     from wheelstep_cli.parts.gear_pair import build_gear_pair, gear_pair_files
 
     spec = _spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                  install_distance=install_distance, module=module, backlash=backlash,
-                 thickness=thickness, bore=bore)
+                 thickness=thickness, bore=bore, teeth=teeth.value if teeth else None,
+                 pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
+                 fillet=fillet, blend=blend, corner=corner.value if corner else None,
+                 law_csv=str(law_csv) if law_csv else None)
     pair = build_gear_pair(spec)
     written = write_files_atomic(gear_pair_files(pair, out, fmt.value))
     for part in (pair.pinion, pair.wheel):
@@ -142,6 +174,11 @@ def gears(
         size = part.bounds[1] - part.bounds[0]
         typer.echo(f"{part.name}: {check.triangles} triangles, {check.volume / 1000:.2f} cm3, "
                    f"{size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} mm, printable")
+    if pair.generated is not None:
+        gen = pair.generated
+        typer.echo(f"generated teeth: z = {gen.pinion_teeth}/{gen.wheel_teeth}, pitch {gen.pitch:.4f} mm, "
+                   f"module {gen.module:.4f} mm, rolling at {gen.law.center_distance:g} mm, "
+                   f"backlash j_n = {gen.cutter.backlash:g} mm")
     typer.echo("wrote " + ", ".join(str(p) for p in written))
 
 

@@ -1,0 +1,412 @@
+"""Generated (conjugate) teeth for a non-circular pair (SPEC §9).
+
+The pinion is cut by a straight-sided rack (pressure angle alpha, tip fillet)
+whose pitch line rolls without slip on the pinion's pitch curve; at a pitch-curve
+corner the rack pivots about the corner point. The wheel is then cut by that
+pinion moving along the exact law ("rotate and carve"): its outline is the blank
+minus the union of the pinion's poses in the wheel frame, so the pair is conjugate
+by construction, including the concave notch at each shoe handover.
+
+Backlash: the pinion's teeth are thinned by j_n/2 (the rack tooth is thickened),
+and the wheel is carved by the pinion dilated by j_n/2 along its normals, so the
+total normal backlash at the design centre distance is j_n and both gears' teeth
+are thinned by j_n/2. Opening the centre distance adds about 2 dL sin(alpha).
+
+Angles in radians, lengths in mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.gears.envelope import (PolarGrid, miter_offset, offset_polyline, outline_from_radii,
+                                         polyline_envelope)
+from wheelstep_cli.gears.law import PitchCurves, PitchLaw, pitch_curves
+
+#: Smallest tip land (mm) before a tooth counts as pointed (same floor as the paper method).
+MIN_TIP_LAND = 0.1
+#: Most tooth height (x module) that may be topped off a pointed tooth before the design is refused.
+MAX_TOPPING = 0.35
+CORNER_MODES = ("space", "tooth")
+
+
+@dataclass(frozen=True)
+class RackCutter:
+    """Basic rack: pressure angle (rad); addendum, dedendum, tip fillet radius as multiples of m.
+
+    ``addendum`` is the gears' tooth height above the pitch curve, ``dedendum`` the
+    depth below it (the cutter's tooth height), ``fillet`` the cutter's tip radius.
+    ``backlash`` is the total normal backlash j_n (mm) of the pair.
+    """
+
+    pressure_angle: float = np.radians(20.0)
+    addendum: float = 1.0
+    dedendum: float = 1.25
+    fillet: float = 0.25
+    backlash: float = 0.5
+
+    def __post_init__(self) -> None:
+        require(np.radians(5.0) <= self.pressure_angle <= np.radians(35.0), "pressure-angle",
+                float(np.degrees(self.pressure_angle)), "must be 5..35 deg")
+        require(0.3 <= self.addendum <= 2.0, "addendum", self.addendum, "must be 0.3..2 x module")
+        require(self.addendum < self.dedendum <= 2.5, "dedendum", self.dedendum,
+                f"must be > addendum ({self.addendum:g}) and <= 2.5 x module (tip clearance)")
+        require(0.0 <= self.fillet <= 0.45, "fillet", self.fillet, "must be 0..0.45 x module")
+        require(np.isfinite(self.backlash) and self.backlash >= 0, "backlash", self.backlash,
+                "must be >= 0 mm")
+
+
+@dataclass(frozen=True)
+class GeneratedPair:
+    """Generated outlines and what was found about them.
+
+    ``pinion_outline`` / ``wheel_outline``: closed CCW (N, 2) arrays in mm (own frames,
+    pitch point for carrier angle phi at pinion body angle +theta(phi), wheel -phi).
+    """
+
+    law: PitchLaw
+    curves: PitchCurves
+    cutter: RackCutter
+    pinion_teeth: int
+    wheel_teeth: int
+    module: float
+    pitch: float
+    corner: str
+    pinion_outline: np.ndarray
+    wheel_outline: np.ndarray
+    pinion_radii: np.ndarray
+    wheel_radii: np.ndarray
+    pinion_grid: PolarGrid
+    wheel_grid: PolarGrid
+    undercut_limit: float
+    min_curvature_radius: float
+    pinion_tip_land: float
+    wheel_tip_land: float
+    topping: dict
+
+
+def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
+                 flank_points: int = 60) -> np.ndarray:
+    """Cutter polyline (K, 2) in rack coordinates (x along the pitch line, y outward, mm).
+
+    ``teeth`` cutter teeth centred at x = (j - (teeth-1)/2) p; each cuts one space
+    of the gear, reaching y = -dedendum m with tip fillets; between teeth the
+    polyline runs at a height the gear blank never reaches.
+    """
+    a = cutter.pressure_angle
+    tan_a, cos_a, sin_a = np.tan(a), np.cos(a), np.sin(a)
+    h_f = cutter.dedendum * module
+    rho = cutter.fillet * module
+    # cutter tooth half thickness at the pitch line: p/4 plus the pinion's thinning j_n/4 (normal)
+    half = pitch / 4.0 + cutter.backlash / (4.0 * cos_a)
+    top = min(cutter.addendum * module + 0.15 * module, (pitch / 2.0 - half) / tan_a - 1e-3)
+    require(top > cutter.addendum * module, "pressure-angle", float(np.degrees(a)),
+            "too large for this addendum: the cutter teeth meet below the gears' tips")
+    yc = -h_f + rho
+    xc = half + (yc * sin_a - rho) / cos_a                 # right fillet centre
+    require(xc >= 0.0, "fillet", cutter.fillet, "too large: the cutter tip has no flat land")
+    # right half of one cutter tooth, from the tip centre out to the top
+    tip = np.column_stack([np.linspace(0.0, xc, 4, endpoint=False), np.full(4, -h_f)])
+    arc_t = np.linspace(-np.pi / 2.0, -a, 10)
+    fillet = np.column_stack([xc + rho * np.cos(arc_t), yc + rho * np.sin(arc_t)])
+    y = np.linspace(yc - rho * sin_a, top, flank_points)[1:]
+    flank = np.column_stack([half + y * tan_a, y])
+    right = np.vstack([tip, fillet, flank, [[pitch / 2.0, top]]])
+    tooth = np.vstack([right[::-1] * [-1.0, 1.0], right[1:]])   # left top -> tip -> right top
+    shifts = (np.arange(teeth) - (teeth - 1) / 2.0) * pitch
+    rack = (tooth[None, :, :] + np.column_stack([shifts, np.zeros(teeth)])[:, None, :])
+    rack = rack[:, :-1].reshape(-1, 2)
+    return np.vstack([rack, tooth[-1:] + [shifts[-1], 0.0]])
+
+
+def _curve_frames(points: np.ndarray, arc: np.ndarray, s: np.ndarray, outward_sign: float):
+    """Point, unit tangent and outward unit normal at arc positions s on a sampled curve."""
+    x = np.interp(s, arc, points[:, 0])
+    y = np.interp(s, arc, points[:, 1])
+    seg = np.diff(points, axis=0)
+    seg /= np.hypot(seg[:, 0], seg[:, 1])[:, None]
+    idx = np.clip(np.searchsorted(arc, s, side="right") - 1, 0, len(seg) - 1)
+    tangent = seg[idx]
+    normal = outward_sign * np.column_stack([tangent[:, 1], -tangent[:, 0]])
+    return np.column_stack([x, y]), tangent, normal
+
+
+def _outward_sign(points: np.ndarray) -> float:
+    """+1 when the right-hand normal of the polyline points away from the origin."""
+    seg = np.diff(points, axis=0)
+    right = np.column_stack([seg[:, 1], -seg[:, 0]])
+    return 1.0 if np.sum(right * points[:-1]) > 0 else -1.0
+
+
+def cut_by_rolling_rack(curve: np.ndarray, arc: np.ndarray, grid: PolarGrid, rack: np.ndarray,
+                        rack_center: float, pitch: float, poses: int,
+                        corner_poses: int, period_angle: float, reach: float = np.inf) -> np.ndarray:
+    """Nearest rack crossing per ray as the rack's pitch line rolls on ``curve`` (one period).
+
+    The rack's tooth centres sit at arc positions ``rack_center + k p``. At the
+    period ends (a corner, when the tangent there jumps) the rack pivots about the
+    corner point through ``corner_poses`` intermediate orientations.
+    """
+    sign = _outward_sign(curve)
+    total = arc[-1]
+    s = (np.arange(poses) + 0.5) * total / poses
+    origin, tangent, normal = _curve_frames(curve, arc, s, sign)
+    shift = np.mod(rack_center - s + pitch / 2.0, pitch) - pitch / 2.0
+    # rack points at arc offset x - s from the contact point: x = rack_x + shift
+    rx = rack[None, :, 0] + shift[:, None]
+    ry = rack[None, :, 1]
+    world = origin[:, None, :] + rx[..., None] * tangent[:, None, :] + ry[..., None] * normal[:, None, :]
+    radii = polyline_envelope(grid, world, reach=reach)
+    # the tangent arriving at the start corner: the period's end tangent, rotated back one period
+    c, sn = np.cos(-period_angle), np.sin(-period_angle)
+    t_end = curve[-1] - curve[-2]
+    t_in = np.array([c * t_end[0] - sn * t_end[1], sn * t_end[0] + c * t_end[1]])
+    t_out = curve[1] - curve[0]
+    turn = np.arctan2(t_in[0] * t_out[1] - t_in[1] * t_out[0], np.dot(t_in, t_out))
+    if corner_poses > 0 and abs(turn) > 1e-6:
+        start = np.arctan2(t_in[1], t_in[0])
+        angles = start + turn * np.linspace(0.0, 1.0, corner_poses)
+        tangent = np.column_stack([np.cos(angles), np.sin(angles)])
+        normal = sign * np.column_stack([tangent[:, 1], -tangent[:, 0]])
+        shift = np.mod(rack_center - 0.0 + pitch / 2.0, pitch) - pitch / 2.0
+        rx = np.broadcast_to(rack[None, :, 0] + shift, (corner_poses, len(rack)))
+        ry = np.broadcast_to(rack[None, :, 1], rx.shape)
+        world = curve[0] + rx[..., None] * tangent[:, None, :] + ry[..., None] * normal[:, None, :]
+        polyline_envelope(grid, world, out=radii, reach=reach)
+    return radii
+
+
+def blank_radii(curve: np.ndarray, grid: PolarGrid, height: float, fan: bool = True) -> np.ndarray:
+    """Farthest crossing per ray of the pitch curve offset outward by ``height`` mm.
+
+    ``curve`` spans one period (grid.period rad of body angle); it is closed over the
+    whole turn first so the corners between periods get their offset fans.
+    """
+    copies = int(round(2.0 * np.pi / grid.period))
+    angles = grid.period * np.arange(copies) * np.sign(_polar_sweep(curve))
+    c, s = np.cos(angles), np.sin(angles)
+    body = curve[:-1]
+    full = np.concatenate([np.column_stack([ci * body[:, 0] - si * body[:, 1],
+                                            si * body[:, 0] + ci * body[:, 1]]) for ci, si in zip(c, s)])
+    if _outward_sign(full) < 0:
+        full = full[::-1]
+    offset = offset_polyline(full, height, closed=True, fan=fan)
+    return polyline_envelope(grid, offset[None], nearest=False)
+
+
+def _polar_sweep(curve: np.ndarray) -> float:
+    """Signed body angle (rad) a curve sweeps from its first to its last point."""
+    return float(np.sum(np.diff(np.unwrap(np.arctan2(curve[:, 1], curve[:, 0])))))
+
+
+def carve_by_pinion(law: PitchLaw, pinion_grid: PolarGrid, pinion_radii: np.ndarray,
+                    pinion_copies: int, wheel_grid: PolarGrid, distance: float, clearance: float,
+                    poses: int, window: float, reach: float = np.inf, play: float = 0.0) -> np.ndarray:
+    """Nearest crossing per wheel ray of the pinion moving along the law (one law period).
+
+    Poses sample the driven angle uniformly (plus the law's corners); at each, the
+    pinion's outline (dilated by ``clearance`` mm along its normals) within ``window``
+    rad of its pitch point is placed in the wheel frame (pinion rotated by -theta at
+    the origin, wheel by pi + phi about (distance, 0)). With ``play`` > 0 (rad of wheel
+    angle) every pose is repeated with the wheel turned by -play, 0 and +play (an
+    angular instead of a normal backlash; measured worse, kept for the benchmarks).
+    """
+    outline = outline_from_radii(pinion_grid, pinion_radii, pinion_copies)
+    # outline is CCW: its right-hand normal points outward
+    dilated = miter_offset(outline, clearance) if clearance > 0 else outline
+    n_rays = len(outline)
+    half = int(np.ceil(window / pinion_grid.width))
+    phi = law.phi[0] + law.phi_period * (np.arange(poses) + 0.5) / poses
+    if law.corners:
+        phi = np.sort(np.append(phi, np.asarray(law.corners)))
+    theta = law.pinion_angle(phi)
+    centre = np.round((theta - pinion_grid.start) / pinion_grid.width - 0.5).astype(np.int64)
+    idx = np.mod(centre[:, None] + np.arange(-half, half + 1)[None, :], n_rays)
+    pts = dilated[idx]                                       # (poses, K, 2) pinion body frame
+    c, s = np.cos(-theta), np.sin(-theta)
+    wx = c[:, None] * pts[..., 0] - s[:, None] * pts[..., 1] - distance
+    wy = s[:, None] * pts[..., 0] + c[:, None] * pts[..., 1]
+    radii = None
+    for shift in ((-play, 0.0, play) if play > 0 else (0.0,)):
+        ang = -(np.pi + phi + shift)
+        c, s = np.cos(ang), np.sin(ang)
+        body = np.stack([c[:, None] * wx - s[:, None] * wy, s[:, None] * wx + c[:, None] * wy], axis=-1)
+        radii = polyline_envelope(wheel_grid, body, reach=reach, out=radii)
+    return radii
+
+
+def tip_lands(grid: PolarGrid, radii: np.ndarray, tip: np.ndarray) -> np.ndarray:
+    """Widths (mm) of the uncut tip lands over one period (runs of rays left at the blank)."""
+    uncut = radii >= tip - 1e-9
+    if uncut.all():
+        return np.array([grid.period * float(np.mean(tip))])
+    # rotate so the array starts at a cut ray, then measure runs of uncut rays
+    first = int(np.argmin(uncut))
+    u = np.roll(uncut, -first).astype(np.int8)
+    t = np.roll(tip, -first)
+    edges = np.diff(np.concatenate(([0], u, [0])))
+    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    widths = np.array([grid.width * t[a:b].sum() for a, b in zip(starts, ends)])
+    return widths
+
+
+def top_pointed_teeth(grid: PolarGrid, radii: np.ndarray, pitch_radii: np.ndarray,
+                      blank: np.ndarray, floor: float) -> tuple[np.ndarray, int, float]:
+    """Top every tooth whose tip land is below ``floor`` mm down to where it is ``floor`` wide.
+
+    Teeth are the runs of rays whose outline lies above the pitch curve. Returns the
+    new radii, how many teeth were topped and the largest height removed (mm).
+    """
+    above = radii > pitch_radii
+    if above.all() or not above.any():
+        return radii, 0, 0.0
+    first = int(np.argmin(above))
+    order = np.roll(np.arange(len(radii)), -first)
+    a = above[order].astype(np.int8)
+    edges = np.diff(np.concatenate(([0], a, [0])))
+    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    out = radii.copy()
+    topped, worst = 0, 0.0
+    for lo, hi in zip(starts, ends):                       # one iteration per tooth
+        rays = order[lo:hi]
+        uncut = radii[rays] >= blank[rays] - 1e-9
+        if grid.width * float(np.sum(blank[rays][uncut])) >= floor:
+            continue
+        r = np.sort(radii[rays])[::-1]
+        land = np.arange(1, len(r) + 1) * grid.width * r    # land width if cut at r[k]
+        k = int(np.argmax(land >= floor)) if np.any(land >= floor) else len(r) - 1
+        out[rays] = np.minimum(out[rays], r[k])
+        topped += 1
+        worst = max(worst, float(r[0] - r[k]))
+    return out, topped, worst
+
+
+def curvature_radius(points: np.ndarray) -> np.ndarray:
+    """Signed radius of curvature (mm) along a sampled curve; > 0 where convex (seen from outside)."""
+    d1 = np.gradient(points, axis=0)
+    d2 = np.gradient(d1, axis=0)
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    speed = np.hypot(d1[:, 0], d1[:, 1])
+    orient = 1.0 if np.sum(points[:-1, 0] * points[1:, 1] - points[1:, 0] * points[:-1, 1]) > 0 else -1.0
+    with np.errstate(divide="ignore"):
+        return orient * speed**3 / cross
+
+
+def undercut_limit(cutter: RackCutter, module: float) -> float:
+    """Smallest convex pitch-curve radius of curvature (mm) a rack cuts without undercut."""
+    a = cutter.pressure_angle
+    # the cutter's addendum h_a0 is the gears' dedendum
+    return module * (cutter.dedendum - cutter.fillet * (1.0 - np.sin(a))) / np.sin(a) ** 2
+
+
+def _undercut_remedy(cutter: RackCutter, module: float, rho: float, teeth_per_period: int,
+                     pinion_periods: int) -> str:
+    """Remedy text: the tooth count and pressure angle at which the rack stops undercutting."""
+    a = cutter.pressure_angle
+    per_m = (cutter.dedendum - cutter.fillet * (1.0 - np.sin(a))) / np.sin(a) ** 2
+    module_max = rho / per_m
+    z_min = pinion_periods * int(np.ceil(teeth_per_period * module / module_max))
+    lo, hi = a, np.radians(35.0)
+    f = lambda x: (cutter.dedendum - cutter.fillet * (1 - np.sin(x))) / np.sin(x) ** 2 * module - rho
+    if f(hi) > 0:
+        angle_text = "no pressure angle up to 35 deg helps"
+    else:
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if f(mid) > 0 else (lo, mid)
+        angle_text = f"pressure angle >= {np.degrees(hi):.1f} deg"
+    return (f"use module <= {module_max:.3f} mm (pinion z >= {z_min}) or {angle_text}")
+
+
+def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: str = "space",
+                  poses_per_tooth: int = 48, rays_per_tooth: int = 160,
+                  strict: bool = True) -> GeneratedPair:
+    """Generate both gears for ``law`` with ``pinion_teeth`` teeth on the pinion.
+
+    Raises DesignError (with the remedy) for undercut or pointed teeth and for tooth
+    counts that do not divide the law's periods.
+    """
+    require(corner in CORNER_MODES, "corner", corner, "must be 'space' or 'tooth'")
+    periods = law.pinion_periods
+    require(pinion_teeth >= 6 and pinion_teeth % periods == 0, "z", pinion_teeth,
+            f"must be a multiple of {periods} (law periods per pinion turn) and >= 6")
+    per_period = pinion_teeth // periods
+    wheel_teeth = per_period * law.wheel_periods
+    curves = pitch_curves(law)
+    pitch = curves.period_arc / per_period
+    module = pitch / np.pi
+    h_a = cutter.addendum * module
+
+    # undercut: the rack undercuts where the convex pitch curve bends tighter than the limit
+    limit = undercut_limit(cutter, module)
+    rho = curvature_radius(curves.pinion)[2:-2]      # corner ends handled by the pivot
+    convex = rho[rho > 0]
+    rho_min = float(convex.min()) if len(convex) else float("inf")
+    if rho_min < limit:
+        raise DesignError("z", pinion_teeth,
+                          f"the rack undercuts the pinion: pitch-curve radius of curvature "
+                          f"{rho_min:.2f} mm < {limit:.2f} mm at module {module:.3f} mm; "
+                          + _undercut_remedy(cutter, module, rho_min, per_period, periods))
+
+    theta0 = float(law.pinion_angle(curves.phi[0]))
+    pinion_grid = PolarGrid(theta0, law.theta_period, per_period * rays_per_tooth)
+    offset = pitch / 2.0 if corner == "space" else 0.0   # arc of the first pinion tooth centre
+    rack = rack_profile(cutter, module, pitch, 5)
+    # no offset fan at the pinion's corners: a chord there relieves the corner teeth's tips
+    pinion_blank = blank_radii(curves.pinion, pinion_grid, h_a, fan=False)
+    cut = cut_by_rolling_rack(curves.pinion, curves.arc, pinion_grid, rack, offset + pitch / 2.0,
+                              pitch, per_period * poses_per_tooth, corner_poses=4 * poses_per_tooth,
+                              period_angle=law.theta_period, reach=float(pinion_blank.max()))
+    pinion_radii = np.minimum(pinion_blank, cut)
+
+    wheel_grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, per_period * rays_per_tooth * 2)
+    wheel_blank = blank_radii(curves.wheel, wheel_grid, h_a)
+    window = 2.6 * pitch / float(np.min(np.hypot(*curves.pinion.T)))
+    carved = carve_by_pinion(law, pinion_grid, pinion_radii, periods, wheel_grid,
+                             law.center_distance, cutter.backlash / 2.0,
+                             per_period * poses_per_tooth, window, float(wheel_blank.max()))
+    wheel_radii = np.minimum(wheel_blank, carved)
+    require(np.all(np.isfinite(pinion_radii)) and np.all(np.isfinite(wheel_radii)), "z", pinion_teeth,
+            "the generated outline has gaps (pitch curve too tight for the cutter)")
+
+    # teeth too thin at the tip (the few next to a pitch-curve corner) are topped to the
+    # land floor when that costs at most MAX_TOPPING x m of height; otherwise refuse
+    topping = {}
+    for name, grid, curve, radii, blank in (
+            ("pinion", pinion_grid, curves.pinion, pinion_radii, pinion_blank),
+            ("wheel", wheel_grid, curves.wheel, wheel_radii, wheel_blank)):
+        pitch_r = polyline_envelope(grid, curve[None], nearest=False)
+        new, count, drop = top_pointed_teeth(grid, radii, pitch_r, blank, MIN_TIP_LAND)
+        if drop > MAX_TOPPING * module and strict:
+            raise DesignError("addendum", cutter.addendum,
+                              f"the {name} teeth come to a point (a {MIN_TIP_LAND} mm tip land needs "
+                              f"{drop:.2f} mm off the tip, > {MAX_TOPPING} x module {module:.3f} mm); "
+                              "use a smaller addendum, a smaller pressure angle or more teeth (--z)")
+        topping[name] = (count, drop)
+        if name == "pinion":
+            pinion_radii = new
+        else:
+            wheel_radii = new
+    lands_p = tip_lands(pinion_grid, pinion_radii, pinion_radii.max() + 0 * pinion_radii)
+    lands_w = tip_lands(wheel_grid, wheel_radii, wheel_radii.max() + 0 * wheel_radii)
+    return GeneratedPair(
+        law=law, curves=curves, cutter=cutter, pinion_teeth=pinion_teeth, wheel_teeth=wheel_teeth,
+        module=module, pitch=pitch, corner=corner,
+        pinion_outline=outline_from_radii(pinion_grid, pinion_radii, periods),
+        wheel_outline=outline_from_radii(wheel_grid, wheel_radii, law.wheel_periods),
+        pinion_radii=pinion_radii, wheel_radii=wheel_radii,
+        pinion_grid=pinion_grid, wheel_grid=wheel_grid,
+        undercut_limit=limit, min_curvature_radius=rho_min,
+        pinion_tip_land=float(lands_p.min()) if len(lands_p) else 0.0,
+        wheel_tip_land=float(lands_w.min()) if len(lands_w) else 0.0, topping=topping)
+
+
+def simplify_outline(outline: np.ndarray, tolerance: float = 0.002) -> np.ndarray:
+    """Drop outline points that lie within ``tolerance`` mm of the polyline (Douglas-Peucker)."""
+    import shapely
+
+    ring = shapely.simplify(shapely.LinearRing(outline), tolerance, preserve_topology=True)
+    return np.asarray(ring.coords)[:-1]
