@@ -103,8 +103,12 @@ def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
     # cutter tooth half thickness at the pitch line: p/4 plus the pinion's thinning j_n/4 (normal)
     half = pitch / 4.0 + cutter.backlash / (4.0 * cos_a)
     top = min(cutter.addendum * module + 0.15 * module, (pitch / 2.0 - half) / tan_a - 1e-3)
-    require(top > cutter.addendum * module, "pressure-angle", float(np.degrees(a)),
-            "too large for this addendum: the cutter teeth meet below the gears' tips")
+    if top <= cutter.addendum * module:
+        land = 2.0 * (pitch / 2.0 - half - cutter.addendum * module * tan_a)
+        raise DesignError("addendum", cutter.addendum,
+                          f"the teeth come to a point (the rack's tooth spaces close below the tip "
+                          f"line, tip land {land:.3f} mm at module {module:.3f} mm); use a smaller "
+                          "addendum, a smaller pressure angle or more teeth (--z)")
     yc = -h_f + rho
     xc = half + (yc * sin_a - rho) / cos_a                 # right fillet centre
     require(xc >= 0.0, "fillet", cutter.fillet, "too large: the cutter tip has no flat land")
@@ -194,6 +198,7 @@ def blank_radii(curve: np.ndarray, grid: PolarGrid, height: float, fan: bool = T
     if _outward_sign(full) < 0:
         full = full[::-1]
     offset = offset_polyline(full, height, closed=True, fan=fan)
+    offset = np.vstack([offset, offset[:1]])                 # close the loop
     return polyline_envelope(grid, offset[None], nearest=False)
 
 
@@ -254,26 +259,31 @@ def tip_lands(grid: PolarGrid, radii: np.ndarray, tip: np.ndarray) -> np.ndarray
 
 
 def top_pointed_teeth(grid: PolarGrid, radii: np.ndarray, pitch_radii: np.ndarray,
-                      blank: np.ndarray, floor: float) -> tuple[np.ndarray, int, float]:
+                      blank: np.ndarray, floor: float) -> tuple[np.ndarray, int, float, float]:
     """Top every tooth whose tip land is below ``floor`` mm down to where it is ``floor`` wide.
 
     Teeth are the runs of rays whose outline lies above the pitch curve. Returns the
-    new radii, how many teeth were topped and the largest height removed (mm).
+    new radii, how many teeth were topped, the largest height removed (mm) and the
+    smallest tip land left (mm).
     """
     above = radii > pitch_radii
     if above.all() or not above.any():
-        return radii, 0, 0.0
+        return radii, 0, 0.0, 0.0
     first = int(np.argmin(above))
     order = np.roll(np.arange(len(radii)), -first)
     a = above[order].astype(np.int8)
     edges = np.diff(np.concatenate(([0], a, [0])))
     starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
     out = radii.copy()
-    topped, worst = 0, 0.0
+    topped, worst, thinnest = 0, 0.0, np.inf
     for lo, hi in zip(starts, ends):                       # one iteration per tooth
         rays = order[lo:hi]
+        if hi - lo < 3:
+            continue                                        # a sliver above the pitch curve, no tooth
         uncut = radii[rays] >= blank[rays] - 1e-9
-        if grid.width * float(np.sum(blank[rays][uncut])) >= floor:
+        land_now = grid.width * float(np.sum(blank[rays][uncut]))
+        if land_now >= floor:
+            thinnest = min(thinnest, land_now)
             continue
         r = np.sort(radii[rays])[::-1]
         land = np.arange(1, len(r) + 1) * grid.width * r    # land width if cut at r[k]
@@ -281,7 +291,8 @@ def top_pointed_teeth(grid: PolarGrid, radii: np.ndarray, pitch_radii: np.ndarra
         out[rays] = np.minimum(out[rays], r[k])
         topped += 1
         worst = max(worst, float(r[0] - r[k]))
-    return out, topped, worst
+        thinnest = min(thinnest, float(land[k]))
+    return out, topped, worst, thinnest
 
 
 def curvature_radius(points: np.ndarray) -> np.ndarray:
@@ -374,24 +385,23 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
 
     # teeth too thin at the tip (the few next to a pitch-curve corner) are topped to the
     # land floor when that costs at most MAX_TOPPING x m of height; otherwise refuse
-    topping = {}
+    topping, lands = {}, {}
     for name, grid, curve, radii, blank in (
             ("pinion", pinion_grid, curves.pinion, pinion_radii, pinion_blank),
             ("wheel", wheel_grid, curves.wheel, wheel_radii, wheel_blank)):
         pitch_r = polyline_envelope(grid, curve[None], nearest=False)
-        new, count, drop = top_pointed_teeth(grid, radii, pitch_r, blank, MIN_TIP_LAND)
+        new, count, drop, land = top_pointed_teeth(grid, radii, pitch_r, blank, MIN_TIP_LAND)
         if drop > MAX_TOPPING * module and strict:
             raise DesignError("addendum", cutter.addendum,
                               f"the {name} teeth come to a point (a {MIN_TIP_LAND} mm tip land needs "
                               f"{drop:.2f} mm off the tip, > {MAX_TOPPING} x module {module:.3f} mm); "
                               "use a smaller addendum, a smaller pressure angle or more teeth (--z)")
         topping[name] = (count, drop)
+        lands[name] = land
         if name == "pinion":
             pinion_radii = new
         else:
             wheel_radii = new
-    lands_p = tip_lands(pinion_grid, pinion_radii, pinion_radii.max() + 0 * pinion_radii)
-    lands_w = tip_lands(wheel_grid, wheel_radii, wheel_radii.max() + 0 * wheel_radii)
     return GeneratedPair(
         law=law, curves=curves, cutter=cutter, pinion_teeth=pinion_teeth, wheel_teeth=wheel_teeth,
         module=module, pitch=pitch, corner=corner,
@@ -400,8 +410,7 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
         pinion_radii=pinion_radii, wheel_radii=wheel_radii,
         pinion_grid=pinion_grid, wheel_grid=wheel_grid,
         undercut_limit=limit, min_curvature_radius=rho_min,
-        pinion_tip_land=float(lands_p.min()) if len(lands_p) else 0.0,
-        wheel_tip_land=float(lands_w.min()) if len(lands_w) else 0.0, topping=topping)
+        pinion_tip_land=lands["pinion"], wheel_tip_land=lands["wheel"], topping=topping)
 
 
 def simplify_outline(outline: np.ndarray, tolerance: float = 0.002) -> np.ndarray:
