@@ -1,0 +1,352 @@
+"""Meshing check of two gear outlines (SPEC §10): contact, backlash, TE, hub speed ripple.
+
+Law-agnostic and pure numpy. Convention (both parts face-up as printed, seen from +z):
+the pinion axis is at the origin, the wheel axis at ``(D, 0)``. At pinion angle
+``theta`` the pinion (outline in its own frame) is rotated by ``-theta`` (clockwise)
+about the origin, the wheel by ``pi + phi(theta)`` (counter-clockwise) about
+``(D, 0)``. So the pinion's pitch point for ``theta`` lies at body angle ``+theta``
+and the wheel's pitch point for ``phi`` at body angle ``-phi``.
+
+The pinion drives. Under load the wheel lags: the **drive-side** contact is found
+by rotating the wheel backwards (decreasing ``phi``) from the law's angle until its
+outline first touches the pinion's; the **coast side** by rotating it forwards.
+``TE = phi_drive - phi_law``; angular backlash ``= phi_coast - phi_drive``.
+
+First contact between rotating polygons happens when a vertex of one meets an edge
+of the other. Seen from the wheel axis, a wheel vertex at radius rho sweeps a circle
+of that radius relative to the pinion and a pinion vertex sweeps a circle of its
+radius relative to the wheel; intersecting those circles with the other outline's
+edges gives, for every vertex/edge pair, the exact rotation to contact. Only the
+vertices and edges inside the *mesh window* (a box round the line of centres,
+between the two axes) take part.
+
+If the outlines overlap at the law's angle, the pose **interferes**. Its drive
+(coast) contact is then the smallest backward (forward) wheel rotation after
+which the outlines no longer overlap — the position the wheel would be pushed to
+if the teeth were rigid — and the overlap is measured both as that rotation
+(``penetration``, rad at the wheel, the smaller of the two directions) and as the
+overlapping area (mm^2).
+
+Angles in radians, lengths in mm; degrees, arcminutes and % only in ``to_dict``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+#: Default poses per period: 64 per wheel tooth for the 24 teeth of the source
+#: design's period (see ``benchmarks/meshcheck.py`` for the convergence study).
+DEFAULT_SAMPLES = 1536
+#: Default half-height of the mesh window as a fraction of the smaller gear's outer radius.
+WINDOW_FRACTION = 0.4
+
+
+@dataclass(frozen=True)
+class Transmission:
+    """The motion the pair should have.
+
+    ``driven_angle``: wheel angle phi(theta) in rad for pinion angles theta in rad
+    (vectorised, continuous, increasing). ``period``: pinion angle (rad) after which
+    the tooth pattern repeats. ``hub_speed_factor``: f(phi) such that the output
+    speed is proportional to f(phi) * dphi/dtheta at constant pinion speed (None: 1).
+    """
+
+    driven_angle: Callable[[np.ndarray], np.ndarray]
+    period: float
+    hub_speed_factor: Callable[[np.ndarray], np.ndarray] | None = None
+
+
+@dataclass(frozen=True)
+class MeshingReport:
+    """Per-pose results (arrays over the pinion angles ``theta``) and their summary.
+
+    ``phi_law``, ``phi_drive``, ``phi_coast``: wheel angles (rad); NaN where no contact
+    was found within the mesh window in that direction. ``interference``: per-pose
+    overlap at the law's angle. ``overlap_area``: mm^2 per pose. ``penetration``: wheel
+    rotation (rad) needed to clear an overlapping pose (0 when clear).
+    ``hub_speed``: f(phi_drive) dphi_drive/dtheta (relative units), ``pitch_radius``:
+    the wheel's instantaneous pitch radius (mm) at the installed distance.
+    """
+
+    theta: np.ndarray
+    phi_law: np.ndarray
+    phi_drive: np.ndarray
+    phi_coast: np.ndarray
+    interference: np.ndarray
+    overlap_area: np.ndarray
+    penetration: np.ndarray
+    hub_speed: np.ndarray
+    hub_speed_law: np.ndarray
+    pitch_radius: np.ndarray
+    distance: float
+    period: float
+
+    @property
+    def transmission_error(self) -> np.ndarray:
+        """phi_drive - phi_law (rad at the wheel)."""
+        return self.phi_drive - self.phi_law
+
+    @property
+    def backlash(self) -> np.ndarray:
+        """Angular backlash phi_coast - phi_drive (rad at the wheel)."""
+        return self.phi_coast - self.phi_drive
+
+    @property
+    def backlash_mm(self) -> np.ndarray:
+        """Backlash along the wheel's pitch curve (mm): pitch radius times angular backlash."""
+        return self.pitch_radius * self.backlash
+
+    @property
+    def interferes(self) -> bool:
+        return bool(np.any(self.interference))
+
+    @property
+    def contact_lost(self) -> bool:
+        """True when at some pose no drive-side contact was found (teeth out of mesh)."""
+        return bool(np.any(np.isnan(self.phi_drive)))
+
+    @property
+    def te_peak_to_peak(self) -> float:
+        return _peak_to_peak(self.transmission_error)
+
+    @property
+    def hub_speed_ripple(self) -> float:
+        """Peak-to-peak over mean of the hub speed from the drive-side contact (fraction)."""
+        return _peak_to_peak(self.hub_speed) / float(np.nanmean(self.hub_speed))
+
+    def to_dict(self) -> dict:
+        """Summary in degrees, arcminutes, mm and % for JSON and tables."""
+        arcmin = 60.0 * 180.0 / np.pi
+        te = self.transmission_error
+        return {
+            "distance_mm": self.distance,
+            "samples": int(len(self.theta)),
+            "period_deg": float(np.degrees(self.period)),
+            "interference": self.interferes,
+            "interfering_poses": int(np.count_nonzero(self.interference)),
+            "max_overlap_area_mm2": float(self.overlap_area.max()),
+            "max_penetration_arcmin": float(self.penetration.max() * arcmin),
+            "contact_lost": self.contact_lost,
+            "backlash_min_arcmin": _nan_none(np.nanmin(self.backlash) * arcmin),
+            "backlash_max_arcmin": _nan_none(np.nanmax(self.backlash) * arcmin),
+            "backlash_min_mm": _nan_none(np.nanmin(self.backlash_mm)),
+            "backlash_max_mm": _nan_none(np.nanmax(self.backlash_mm)),
+            "te_min_arcmin": _nan_none(np.nanmin(te) * arcmin),
+            "te_max_arcmin": _nan_none(np.nanmax(te) * arcmin),
+            "te_peak_to_peak_arcmin": _nan_none(self.te_peak_to_peak * arcmin),
+            "hub_speed_ripple_pct": _nan_none(100.0 * self.hub_speed_ripple),
+            "law_hub_speed_ripple_pct": float(
+                100.0 * _peak_to_peak(self.hub_speed_law) / np.mean(self.hub_speed_law)),
+        }
+
+
+def _peak_to_peak(values: np.ndarray) -> float:
+    if np.all(np.isnan(values)):
+        return float("nan")
+    return float(np.nanmax(values) - np.nanmin(values))
+
+
+def _nan_none(value: float) -> float | None:
+    return None if not np.isfinite(value) else float(value)
+
+
+def _rotate(points: np.ndarray, angle) -> np.ndarray:
+    """Rotate (N, 2) points by ``angle`` rad (scalar) counter-clockwise about the origin."""
+    c, s = np.cos(angle), np.sin(angle)
+    return np.column_stack([c * points[:, 0] - s * points[:, 1], s * points[:, 0] + c * points[:, 1]])
+
+
+def _wrap(angle: np.ndarray) -> np.ndarray:
+    """Angles into (-pi, pi]."""
+    return np.pi - np.mod(np.pi - angle, 2.0 * np.pi)
+
+
+def _window(world: np.ndarray, box: tuple[float, float, float]):
+    """Edges and vertices of the closed outline ``world`` near the mesh window.
+
+    ``box`` = (x_lo, x_hi, half height). Returns edge starts, edge ends and the
+    vertices (every end of an edge with an end inside the box).
+    """
+    xlo, xhi, half = box
+    inside = (world[:, 0] >= xlo) & (world[:, 0] <= xhi) & (np.abs(world[:, 1]) <= half)
+    edge = inside | np.roll(inside, -1)  # edge i runs from vertex i to vertex i+1
+    idx = np.flatnonzero(edge)
+    nxt = (idx + 1) % len(world)
+    vertex = edge | np.roll(edge, 1)
+    return world[idx], world[nxt], world[vertex]
+
+
+def _radial_candidates(radius: np.ndarray, lo: np.ndarray, hi: np.ndarray):
+    """Pairs (i, j) with lo[j] <= radius[i] <= hi[j], without the dense (M, E) table.
+
+    Every edge's radial range is at most ``max(hi - lo)`` long, so the candidates of a
+    radius are a contiguous run of the edges sorted by ``lo``.
+    """
+    order = np.argsort(lo)
+    lo_sorted = lo[order]
+    span = float(np.max(hi - lo))
+    first = np.searchsorted(lo_sorted, radius - span, side="left")
+    last = np.searchsorted(lo_sorted, radius, side="right")
+    counts = last - first
+    rows = np.repeat(np.arange(len(radius)), counts)
+    offsets = np.arange(len(rows)) - np.repeat(np.cumsum(counts) - counts, counts)
+    cols = order[first[rows] + offsets]
+    keep = hi[cols] >= radius[rows]
+    return rows[keep], cols[keep]
+
+
+def _circle_edge_angles(radius: np.ndarray, e0: np.ndarray, e1: np.ndarray):
+    """Angles (about the origin) where circles of ``radius`` (M,) cross edges e0->e1 (E, 2).
+
+    Returns (row index into radius, angle) for every crossing, both roots.
+    """
+    d = e1 - e0
+    dd = np.einsum("ij,ij->i", d, d)
+    ed = np.einsum("ij,ij->i", e0, d)
+    ee = np.einsum("ij,ij->i", e0, e0)
+    # quick reject: the circle radius must lie in the edge's radial range
+    t_near = np.clip(-ed / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
+    lo = np.hypot(e0[:, 0] + t_near * d[:, 0], e0[:, 1] + t_near * d[:, 1])
+    hi = np.sqrt(np.maximum(ee, np.einsum("ij,ij->i", e1, e1)))
+    rows, cols = _radial_candidates(radius, lo, hi)
+    if len(rows) == 0:
+        return rows, np.empty(0)
+    a, b, c = dd[cols], ed[cols], ee[cols] - radius[rows] ** 2
+    disc = np.sqrt(np.maximum(b * b - a * c, 0.0))
+    keep_rows, angles = [], []
+    for sign in (-1.0, 1.0):
+        t = (-b + sign * disc) / a
+        ok = (t >= 0.0) & (t <= 1.0)
+        px = e0[cols, 0] + t * d[cols, 0]
+        py = e0[cols, 1] + t * d[cols, 1]
+        keep_rows.append(rows[ok])
+        angles.append(np.arctan2(py, px)[ok])
+    return np.concatenate(keep_rows), np.concatenate(angles)
+
+
+def _vertex_gaps(vertices: np.ndarray, inside: np.ndarray, e0: np.ndarray, e1: np.ndarray,
+                 sign: float) -> tuple[np.ndarray, np.ndarray]:
+    """Signed drive and coast gaps (rad of wheel rotation) of each vertex to the other outline.
+
+    ``vertices`` of one outline and edges ``e0 -> e1`` of the other, relative to the
+    wheel axis; ``inside``: vertex lies inside the other outline. ``sign`` = +1 for
+    pinion vertices (they move +delta relative to the wheel when the wheel turns back
+    by delta), -1 for wheel vertices. A vertex outside has the rotation to its first
+    touch in each direction; a vertex inside counts as penetrating the flank it is
+    nearer to (smaller exit rotation): penetration on the drive side gives a negative
+    drive gap, on the coast side a negative coast gap. inf where nothing is met.
+    """
+    rows, edge_angle = _circle_edge_angles(np.hypot(vertices[:, 0], vertices[:, 1]), e0, e1)
+    own = np.arctan2(vertices[rows, 1], vertices[rows, 0])
+    delta = _wrap(sign * (edge_angle - own))  # > 0: met turning the wheel backwards
+    n = len(vertices)
+    back = np.full(n, np.inf)
+    fwd = np.full(n, np.inf)
+    np.minimum.at(back, rows[delta >= 0], delta[delta >= 0])
+    np.minimum.at(fwd, rows[delta <= 0], -delta[delta <= 0])
+    # inside: exits are `back` (wheel backwards) and `fwd`; drive-side penetration exits forwards
+    drive = np.where(inside & (fwd <= back), -fwd, np.where(inside, np.inf, back))
+    coast = np.where(inside & (back < fwd), -back, np.where(inside, np.inf, fwd))
+    return drive, coast
+
+
+def _overlap_area(p_world: np.ndarray, w_world: np.ndarray, box) -> float:
+    """Area (mm^2) where the two outlines (world frame) overlap inside the mesh window."""
+    import shapely
+
+    xlo, xhi, half = box
+    clip = shapely.box(xlo, -half, xhi, half)
+    a = shapely.intersection(shapely.make_valid(shapely.Polygon(p_world)), clip)
+    b = shapely.intersection(shapely.make_valid(shapely.Polygon(w_world)), clip)
+    return float(shapely.intersection(a, b).area)
+
+
+def _periodic_derivative(theta: np.ndarray, values: np.ndarray, rise: float, period: float):
+    """Central-difference d(values)/d(theta) over a period with values(theta + P) = values + rise."""
+    ext_t = np.concatenate([[theta[-1] - period], theta, [theta[0] + period]])
+    ext_v = np.concatenate([[values[-1] - rise], values, [values[0] + rise]])
+    return np.gradient(ext_v, ext_t)[1:-1]
+
+
+def mesh_window(pinion: np.ndarray, wheel: np.ndarray, distance: float,
+                half_height: float | None = None) -> tuple[float, float, float]:
+    """The mesh window (x_lo, x_hi, half height) in mm, world frame: where contacts can happen."""
+    rp = float(np.hypot(pinion[:, 0], pinion[:, 1]).max())
+    rw = float(np.hypot(wheel[:, 0], wheel[:, 1]).max())
+    if half_height is None:
+        half_height = WINDOW_FRACTION * min(rp, rw)
+    return distance - rw - 1e-6, rp + 1e-6, float(half_height)
+
+
+def check_meshing(pinion: np.ndarray, wheel: np.ndarray, transmission: Transmission,
+                  distance: float, samples: int = DEFAULT_SAMPLES,
+                  window: float | None = None, start: float = 0.0) -> MeshingReport:
+    """Run the meshing check (SPEC §10) over one period of ``transmission``.
+
+    ``pinion``, ``wheel``: closed outlines (N, 2) in mm in their own frames (any
+    orientation). ``distance``: installed centre distance (mm). ``samples``: poses
+    over the period, from ``start`` (rad). ``window``: half-height (mm) of the mesh
+    window round the line of centres (default: 0.4 x the smaller outer radius).
+    """
+    import shapely
+
+    pinion = np.asarray(pinion, dtype=float)
+    wheel = np.asarray(wheel, dtype=float)
+    period = float(transmission.period)
+    theta = start + period * np.arange(samples) / samples
+    phi_law = np.asarray(transmission.driven_angle(theta), dtype=float)
+    rise = float(transmission.driven_angle(np.array([start + period]))[0]
+                 - transmission.driven_angle(np.array([start]))[0])
+    box = mesh_window(pinion, wheel, distance, window)
+    centre = np.array([distance, 0.0])
+    pinion_body = shapely.Polygon(pinion)
+    wheel_body = shapely.Polygon(wheel)
+    shapely.prepare(pinion_body)
+    shapely.prepare(wheel_body)
+
+    delta_back = np.full(samples, np.nan)
+    delta_fwd = np.full(samples, np.nan)
+    interference = np.zeros(samples, dtype=bool)
+    area = np.zeros(samples)
+    for i in range(samples):
+        p_world = _rotate(pinion, -theta[i])
+        w_world = _rotate(wheel, np.pi + phi_law[i]) + centre
+        p0, p1, pv = _window(p_world, box)
+        w0, w1, wv = _window(w_world, box)
+        if len(p0) == 0 or len(w0) == 0:
+            continue
+        # vertices inside the other outline, tested in that outline's own frame
+        pv_in_wheel = _rotate(pv - centre, -(np.pi + phi_law[i]))
+        wv_in_pinion = _rotate(wv, theta[i])
+        p_inside = shapely.contains_xy(wheel_body, pv_in_wheel[:, 0], pv_in_wheel[:, 1])
+        w_inside = shapely.contains_xy(pinion_body, wv_in_pinion[:, 0], wv_in_pinion[:, 1])
+        p0, p1, pv, w0, w1, wv = (x - centre for x in (p0, p1, pv, w0, w1, wv))
+        drive_p, coast_p = _vertex_gaps(pv, p_inside, w0, w1, 1.0)
+        drive_w, coast_w = _vertex_gaps(wv, w_inside, p0, p1, -1.0)
+        delta_back[i] = min(drive_p.min(initial=np.inf), drive_w.min(initial=np.inf))
+        delta_fwd[i] = min(coast_p.min(initial=np.inf), coast_w.min(initial=np.inf))
+        if p_inside.any() or w_inside.any():
+            interference[i] = True
+            area[i] = _overlap_area(p_world, w_world, box)
+    delta_back[~np.isfinite(delta_back)] = np.nan
+    delta_fwd[~np.isfinite(delta_fwd)] = np.nan
+    penetration = np.where(interference, -np.minimum(np.nan_to_num(delta_back, nan=0.0),
+                                                     np.nan_to_num(delta_fwd, nan=0.0)), 0.0)
+    penetration = np.maximum(penetration, 0.0)
+
+    phi_drive = phi_law - delta_back
+    phi_coast = phi_law + delta_fwd
+    factor = transmission.hub_speed_factor
+    f_drive = np.ones(samples) if factor is None else np.asarray(factor(phi_drive), dtype=float)
+    f_law = np.ones(samples) if factor is None else np.asarray(factor(phi_law), dtype=float)
+    hub_speed = f_drive * _periodic_derivative(theta, phi_drive, rise, period)
+    law_rate = _periodic_derivative(theta, phi_law, rise, period)
+    hub_speed_law = f_law * law_rate
+    # instantaneous centre on the line of centres: r_w / r_p = dtheta/dphi, r_w + r_p = D
+    pitch_radius = distance / (1.0 + law_rate)
+    return MeshingReport(theta, phi_law, phi_drive, phi_coast, interference, area, penetration,
+                         hub_speed, hub_speed_law, pitch_radius, float(distance), period)
+
