@@ -171,7 +171,7 @@ def test_contact_angles_match_shapely_bisection(gap, tilt, offset, sides):
 def paper_pair():
     from wheelstep_cli.parts.gear_pair import GearPairSpec, build_gear_pair
 
-    return build_gear_pair(GearPairSpec())
+    return build_gear_pair(GearPairSpec(teeth="paper"))
 
 
 def test_paper_wheel_is_mirror_symmetric_so_it_fits_the_convention(paper_pair):

@@ -149,6 +149,9 @@ def gears(
                                  help="Half-width (carrier deg) of the ratio blend at each handover (generated) [0]."),
     corner: Optional[Corner] = Opt(None, "--corner",
                                    help="Centre a pinion space or tooth on each pitch-curve corner (generated) [space]."),
+    tilt: Optional[float] = Opt(None, "--tilt",
+                                help="Tilt of the rack teeth towards the radius, as a fraction of the "
+                                     "pitch-curve slope (generated) [0.6]."),
     law_csv: Optional[Path] = Opt(None, "--law-csv",
                                   help="CSV of driving angle, driven angle (deg) over one period: "
                                        "generate this law instead of the crank law (generated)."),
@@ -165,7 +168,7 @@ def gears(
                  install_distance=install_distance, module=module, backlash=backlash,
                  thickness=thickness, bore=bore, teeth=teeth.value if teeth else None,
                  pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
-                 fillet=fillet, blend=blend, corner=corner.value if corner else None,
+                 fillet=fillet, blend=blend, corner=corner.value if corner else None, tilt=tilt,
                  law_csv=str(law_csv) if law_csv else None)
     pair = build_gear_pair(spec)
     written = write_files_atomic(gear_pair_files(pair, out, fmt.value))

@@ -46,6 +46,7 @@ class GearPairSpec:
     fillet: float = 0.25             # cutter tip radius x module, generated teeth
     blend: float = 0.0               # deg of carrier angle: ratio blend half-width at handovers
     corner: str = "space"            # pinion "space" or "tooth" centred on each pitch-curve corner
+    tilt: float = 0.6                # rack-tooth tilt towards the radius (fraction of mu), generated
     law_csv: str | None = None       # driving/driven angle samples (deg) replacing the crank law
 
     @property
@@ -134,7 +135,8 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     require(spec.install_distance >= spec.center_distance, "install-distance", spec.install_distance,
             f"must be >= center-distance {spec.center_distance:g} mm")
     _, law = generation_law(spec)
-    gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner)
+    require(0.0 <= spec.tilt <= 1.5, "tilt", spec.tilt, "must be 0..1.5")
+    gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, tilt=spec.tilt)
     p_outline = simplify_outline(gen.pinion_outline)
     w_outline = simplify_outline(gen.wheel_outline)
     pinion = extrude_plate("pinion", p_outline, spec.thickness, spec.bore)
@@ -200,8 +202,10 @@ def generated_report(pair: GearPair) -> dict:
     alpha = gen.cutter.pressure_angle
     opening = pair.spec.install_distance - pair.spec.center_distance
     return {
-        "method": "pinion cut by a rolling rack (pivoting at pitch-curve corners); "
-                  "wheel carved by the pinion moving along the exact law",
+        "method": "pinion cut by a rolling rack with teeth tilted towards the radius (pivoting "
+                  "at pitch-curve corners); wheel carved by the pinion moving along the exact law, "
+                  "widened by a constant angular backlash",
+        "tilt": pair.spec.tilt,
         "rolling_center_distance_mm": gen.law.center_distance,
         "pitch_mm": gen.pitch,
         "module_mm": gen.module,
@@ -210,10 +214,13 @@ def generated_report(pair: GearPair) -> dict:
         "corner": gen.corner,
         "blend_deg": pair.spec.blend,
         "backlash": {
-            "flank_thinning_normal_mm": gen.cutter.backlash,
+            "normal_backlash_mm": gen.cutter.backlash,
+            "wheel_angular_play_arcmin": float(np.degrees(gen.play) * 60.0 * 2.0),
             "center_distance_opening_mm": 0.0,
             "opening_would_add_normal_mm": 2.0 * opening * float(np.sin(alpha)),
-            "note": "teeth generated for the installed distance; backlash by flank thinning only",
+            "note": "teeth generated for the installed distance; backlash by thinning (pinion "
+                    "teeth by j_n/2, wheel by a constant angular play worth j_n/2 at its mean "
+                    "pitch radius), none by opening the centre distance",
         },
         "undercut_limit_mm": gen.undercut_limit,
         "pitch_curve_min_convex_radius_mm": gen.min_curvature_radius,
