@@ -33,6 +33,8 @@ SCALLOP_CLEARANCE = 0.01
 #: Rack-tooth tilt towards the radius, as a fraction of the pitch curve's normal-to-radius angle
 #: (chosen by measurement: 0 -> 11.5 % hub speed ripple, 0.3 -> 11.4, 0.6 -> 4.9, 1.0 -> 8.9).
 DEFAULT_TILT = 0.6
+#: Where the angular play goes: 0 splits it (drive TE = -play), +-1 puts it all on the coast side.
+LEAD = 1.0
 #: Pinion outline taken into each carving pose: this many pitches either side of the pitch point.
 WINDOW_PITCHES = 2.6
 #: Most tooth height (x module) that may be topped off a pointed tooth before the design is refused.
@@ -254,7 +256,8 @@ def _polar_sweep(curve: np.ndarray) -> float:
 
 def carve_by_pinion(law: PitchLaw, pinion_grid: PolarGrid, pinion_radii: np.ndarray,
                     pinion_copies: int, wheel_grid: PolarGrid, distance: float, clearance: float,
-                    poses: int, window: float, reach: float = np.inf, play: float = 0.0) -> np.ndarray:
+                    poses: int, window: float, reach: float = np.inf, play: float = 0.0,
+                    lead: float = 0.0) -> np.ndarray:
     """Nearest crossing per wheel ray of the pinion moving along the law (one law period).
 
     Poses sample the driven angle uniformly (plus the law's corners); at each, the
@@ -301,6 +304,11 @@ def carve_by_pinion(law: PitchLaw, pinion_grid: PolarGrid, pinion_radii: np.ndar
             t = (j + edge) - lo
             widened = np.minimum(widened, (1 - t) * radii[lo % n] + t * radii[(lo + 1) % n])
         radii = widened
+        if lead:
+            # turn the widened space so the drive flanks sit on the law (TE 0 under load)
+            lo = np.floor(j + lead * span).astype(np.int64)
+            t = (j + lead * span) - lo
+            radii = (1 - t) * radii[lo % n] + t * radii[(lo + 1) % n]
     return radii
 
 
@@ -448,7 +456,7 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
     window = WINDOW_PITCHES * pitch / float(np.min(np.hypot(*curves.pinion.T)))
     carved = carve_by_pinion(law, pinion_grid, pinion_radii, periods, wheel_grid,
                              law.center_distance, clearance, per_period * poses_per_tooth, window,
-                             float(wheel_blank.max()), play)
+                             float(wheel_blank.max()), play, LEAD)
     wheel_radii = np.minimum(wheel_blank, carved)
     require(np.all(np.isfinite(pinion_radii)) and np.all(np.isfinite(wheel_radii)), "z", pinion_teeth,
             "the generated outline has gaps (pitch curve too tight for the cutter)")
@@ -483,7 +491,7 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
         pinion_tip_land=lands["pinion"], wheel_tip_land=lands["wheel"], topping=topping, play=play)
 
 
-def simplify_outline(outline: np.ndarray, tolerance: float = 0.002) -> np.ndarray:
+def simplify_outline(outline: np.ndarray, tolerance: float = 0.0003) -> np.ndarray:
     """Drop outline points that lie within ``tolerance`` mm of the polyline (Douglas-Peucker)."""
     import shapely
 
