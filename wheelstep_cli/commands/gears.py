@@ -127,22 +127,55 @@ def gears(
     fmt: Format = Opt(Format.both, "--format", help="Mesh files to write."),
     out: Path = Opt(Path("wheelstep-out"), "--out", "-o", help="Output folder."),
     profile: Optional[str] = PROFILE,
+    allow_interference: bool = Opt(
+        False, "--allow-interference",
+        help="Write the pair even if the meshing check finds overlapping teeth "
+             "(the paper method's pair does, at the shoe handovers)."),
 ) -> None:
-    """Write the non-circular gear pair as printable STL/3MF meshes and gears.json."""
+    """Write the non-circular gear pair as printable STL/3MF meshes and gears.json.
+
+    The written meshes are checked first (SPEC §10); a pair whose teeth overlap is
+    refused (exit 1, nothing written) unless --allow-interference."""
+    from wheelstep_cli.commands.meshcheck import _run_with_progress
     from wheelstep_cli.io.atomic import write_files_atomic
     from wheelstep_cli.parts.gear_pair import build_gear_pair, gear_pair_files
+    from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
 
     spec = _spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                  install_distance=install_distance, module=module, backlash=backlash,
                  thickness=thickness, bore=bore)
     pair = build_gear_pair(spec)
-    written = write_files_atomic(gear_pair_files(pair, out, fmt.value))
+    meshing = _run_with_progress(check_gear_pair, pair)
+    record = meshing_record(meshing)
+    if meshing.interferes and not allow_interference:
+        typer.echo(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
+                   f"{record['samples']} poses at {spec.install_distance:g} mm (max overlap "
+                   f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
+                   "(--allow-interference writes them anyway)", err=True)
+        raise typer.Exit(1)
+    written = write_files_atomic(gear_pair_files(pair, out, fmt.value, record))
     for part in (pair.pinion, pair.wheel):
         check = pair.checks[part.name]
         size = part.bounds[1] - part.bounds[0]
         typer.echo(f"{part.name}: {check.triangles} triangles, {check.volume / 1000:.2f} cm3, "
                    f"{size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} mm, printable")
+    _echo_meshing(record, spec.install_distance)
     typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+def _echo_meshing(record: dict, distance: float) -> None:
+    """One line on the meshing check; a warning line when the teeth interfere."""
+    def num(key, fmt):
+        return "n/a" if record[key] is None else format(record[key], fmt)
+
+    typer.echo(f"meshing at {distance:g} mm: hub speed ripple {num('hub_speed_ripple_pct', '.2f')} %, "
+               f"backlash {num('backlash_min_mm', '.3f')}..{num('backlash_max_mm', '.3f')} mm, "
+               f"TE {num('te_peak_to_peak_arcmin', '.2f')}' p-p")
+    if record["interference"]:
+        typer.echo(f"WARNING: the teeth interfere at {record['interfering_poses']} of "
+                   f"{record['samples']} poses (max overlap {record['max_overlap_area_mm2']:.3f} "
+                   f"mm2); hub speed ripple where they do not: "
+                   f"{num('hub_speed_ripple_clear_pct', '.2f')} %", err=True)
 
 
 def register(app: typer.Typer) -> None:
