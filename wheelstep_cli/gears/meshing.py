@@ -20,12 +20,14 @@ edges gives, for every vertex/edge pair, the exact rotation to contact. Only the
 vertices and edges inside the *mesh window* (a box round the line of centres,
 between the two axes) take part.
 
-If the outlines overlap at the law's angle, the pose **interferes**. Its drive
-(coast) contact is then the smallest backward (forward) wheel rotation after
-which the outlines no longer overlap — the position the wheel would be pushed to
-if the teeth were rigid — and the overlap is measured both as that rotation
-(``penetration``, rad at the wheel, the smaller of the two directions) and as the
-overlapping area (mm^2).
+If the outlines overlap at the law's angle (a vertex of one lies inside the other),
+the pose **interferes**; it is measured by the overlapping area (mm^2) and the
+penetration depth (mm: the deepest such vertex's distance to the other outline).
+Rigid teeth cannot take such a pose, so its contact angles are estimates: each
+vertex inside counts as pressing on the flank it leaves by the smaller rotation
+along its circle, giving a negative gap on that side (the drive side if it leaves
+turning the wheel forwards). Summaries therefore also give the hub speed ripple
+over the clear poses only.
 
 Angles in radians, lengths in mm; degrees, arcminutes and % only in ``to_dict``.
 """
@@ -67,8 +69,8 @@ class MeshingReport:
 
     ``phi_law``, ``phi_drive``, ``phi_coast``: wheel angles (rad); NaN where no contact
     was found within the mesh window in that direction. ``interference``: per-pose
-    overlap at the law's angle. ``overlap_area``: mm^2 per pose. ``penetration``: wheel
-    rotation (rad) needed to clear an overlapping pose (0 when clear).
+    overlap at the law's angle. ``overlap_area``: mm^2 per pose. ``penetration``: depth
+    (mm) of the deepest vertex inside the other outline (0 when clear).
     ``hub_speed``: f(phi_drive) dphi_drive/dtheta (relative units), ``pitch_radius``:
     the wheel's instantaneous pitch radius (mm) at the installed distance.
     """
@@ -161,7 +163,7 @@ class MeshingReport:
             "interference": self.interferes,
             "interfering_poses": int(np.count_nonzero(self.interference)),
             "max_overlap_area_mm2": float(self.overlap_area.max()),
-            "max_penetration_arcmin": float(self.penetration.max() * arcmin),
+            "max_penetration_mm": float(self.penetration.max()),
             "contact_lost": self.contact_lost,
             "backlash_min_arcmin": _nan_none(np.nanmin(self.backlash) * arcmin),
             "backlash_max_arcmin": _nan_none(np.nanmax(self.backlash) * arcmin),
@@ -352,9 +354,33 @@ def _contacts(pinion, wheel, pinion_body, wheel_body, theta, phi, centre, box):
     interference[pw.v_pose[p_inside]] = True
     interference[ww.v_pose[w_inside]] = True
     area = np.zeros(poses)
+    depth = np.zeros(poses)
     if interference.any():
         area[interference] = _overlap_area(p_world[interference], w_world[interference], box)
-    return back, fwd, interference, area
+        for verts, inside, edges in ((pw, p_inside, ww), (ww, w_inside, pw)):
+            np.maximum.at(depth, verts.v_pose[inside],
+                          _depth(verts.v[inside], verts.v_pose[inside], edges))
+    return back, fwd, interference, area, depth
+
+
+def _depth(points: np.ndarray, pose: np.ndarray, edges: _Window) -> np.ndarray:
+    """Distance (mm) of each point to the nearest window edge of the same pose."""
+    if len(points) == 0:
+        return np.zeros(0)
+    # edges come grouped by pose (np.nonzero order): each point meets its pose's run
+    first = np.searchsorted(edges.e_pose, pose, side="left")
+    last = np.searchsorted(edges.e_pose, pose, side="right")
+    counts = last - first
+    rows = np.repeat(np.arange(len(points)), counts)
+    cols = first[rows] + np.arange(len(rows)) - np.repeat(np.cumsum(counts) - counts, counts)
+    a, b, q = edges.e0[cols], edges.e1[cols], points[rows]
+    d = b - a
+    t = np.clip(np.einsum("ij,ij->i", q - a, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300),
+                0.0, 1.0)
+    dist = np.hypot(*(a + t[:, None] * d - q).T)
+    best = np.full(len(points), np.inf)
+    np.minimum.at(best, rows, dist)
+    return best
 
 
 def _periodic_derivative(theta: np.ndarray, values: np.ndarray, rise: float, period: float):
@@ -406,16 +432,15 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, transmission: Transmiss
     delta_fwd = np.empty(samples)
     interference = np.zeros(samples, dtype=bool)
     area = np.zeros(samples)
+    penetration = np.zeros(samples)
     for lo in range(0, samples, BATCH):
         sl = slice(lo, min(lo + BATCH, samples))
-        delta_back[sl], delta_fwd[sl], interference[sl], area[sl] = _contacts(
+        delta_back[sl], delta_fwd[sl], interference[sl], area[sl], penetration[sl] = _contacts(
             pinion, wheel, pinion_body, wheel_body, theta[sl], phi_law[sl], centre, box)
         if progress is not None:
             progress(sl.stop, samples)
     delta_back[~np.isfinite(delta_back)] = np.nan
     delta_fwd[~np.isfinite(delta_fwd)] = np.nan
-    penetration = np.where(interference, -np.fmin(delta_back, delta_fwd), 0.0)
-    penetration = np.maximum(np.nan_to_num(penetration), 0.0)
 
     phi_drive = phi_law - delta_back
     phi_coast = phi_law + delta_fwd

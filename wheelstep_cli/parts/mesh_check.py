@@ -59,7 +59,7 @@ def meshing_lines(summary: dict) -> list[str]:
     if summary["interference"]:
         lines.append(f"interference: YES at {summary['interfering_poses']} of {summary['samples']} "
                      f"poses (max overlap {summary['max_overlap_area_mm2']:.3f} mm2, "
-                     f"penetration {summary['max_penetration_arcmin']:.1f}' at the wheel)")
+                     f"penetration {summary['max_penetration_mm']:.3f} mm)")
     else:
         lines.append("interference: none")
     if summary["contact_lost"]:
