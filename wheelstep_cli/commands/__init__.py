@@ -7,6 +7,7 @@ import typer
 
 def register_all(app: typer.Typer) -> None:
     """Attach every command module's commands to ``app``."""
-    from wheelstep_cli.commands import gears
+    from wheelstep_cli.commands import gears, meshcheck
 
     gears.register(app)
+    meshcheck.register(app)

@@ -34,7 +34,7 @@ SCALLOP_CLEARANCE = 0.01
 #: (chosen by measurement: 0 -> 11.5 % hub speed ripple, 0.3 -> 11.4, 0.6 -> 4.9, 1.0 -> 8.9).
 DEFAULT_TILT = 0.6
 #: Where the angular play goes: 0 splits it (drive TE = -play), +-1 puts it all on the coast side.
-LEAD = 1.0
+LEAD = 0.0
 #: Pinion outline taken into each carving pose: this many pitches either side of the pitch point.
 WINDOW_PITCHES = 2.6
 #: Most tooth height (x module) that may be topped off a pointed tooth before the design is refused.
@@ -491,7 +491,7 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
         pinion_tip_land=lands["pinion"], wheel_tip_land=lands["wheel"], topping=topping, play=play)
 
 
-def simplify_outline(outline: np.ndarray, tolerance: float = 0.0003) -> np.ndarray:
+def simplify_outline(outline: np.ndarray, tolerance: float = 0.001) -> np.ndarray:
     """Drop outline points that lie within ``tolerance`` mm of the polyline (Douglas-Peucker)."""
     import shapely
 

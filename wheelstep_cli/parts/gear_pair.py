@@ -169,8 +169,9 @@ def partition_rows(partition: SectorPartition) -> list[dict]:
     ]
 
 
-def gear_pair_report(pair: GearPair) -> dict:
-    """Everything about the pair a person or a machine may want: inputs, partition, parts."""
+def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
+    """Everything about the pair a person or a machine may want: inputs, partition, parts,
+    and the meshing check of the written meshes when given."""
     spec = asdict(pair.spec)
     spec["backlash"] = pair.spec.backlash_mm
     parts = {}
@@ -193,6 +194,8 @@ def gear_pair_report(pair: GearPair) -> dict:
         report["sectors"] = partition_rows(pair.partition)
     if pair.generated is not None:
         report["generated"] = generated_report(pair)
+    if meshing is not None:
+        report["meshing"] = meshing
     return report
 
 
@@ -231,7 +234,8 @@ def generated_report(pair: GearPair) -> dict:
     }
 
 
-def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both") -> dict[Path, bytes]:
+def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both",
+                    meshing: dict | None = None) -> dict[Path, bytes]:
     """File name -> contents for the pair: STL per gear, a 3MF plate, and gears.json."""
     files: dict[Path, bytes] = {}
     parts = [pair.pinion, pair.wheel]
@@ -245,5 +249,5 @@ def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both") -> dict[Path, 
                    for part, shift in zip(parts, plate_layout(parts))]
         files[out / "gears.3mf"] = threemf_bytes(
             objects, {"Title": "wheelstep gear pair", "Application": "wheelstep"})
-    files[out / "gears.json"] = json_bytes(gear_pair_report(pair))
+    files[out / "gears.json"] = json_bytes(gear_pair_report(pair, meshing))
     return files
