@@ -222,17 +222,20 @@ class _Window:
     v: np.ndarray
 
 
-def _window(world: np.ndarray, box: tuple[float, float, float]) -> _Window:
+def _window(world: np.ndarray, box: tuple[float, float, float, float]) -> _Window:
     """Window parts of a closed outline posed as ``world`` (poses, N, 2).
 
-    ``box`` = (x_lo, x_hi, half height). An edge belongs to the window when one of
-    its ends lies in the box; the vertices are all ends of those edges.
+    ``box`` = (x_lo, x_hi, half height, margin). Vertices: those inside the box.
+    Edges: those whose bounding box meets the box widened by ``margin`` on every side,
+    so every edge through the box is there, however long, and the outline round a
+    vertex is in view within ``margin``.
     """
-    xlo, xhi, half = box
+    xlo, xhi, half, margin = box
     x, y = world[..., 0], world[..., 1]
-    inside = (x >= xlo) & (x <= xhi) & (np.abs(y) <= half)
-    edge = inside | np.roll(inside, -1, axis=1)  # edge i runs from vertex i to vertex i+1
-    vertex = edge | np.roll(edge, 1, axis=1)
+    vertex = (x >= xlo) & (x <= xhi) & (np.abs(y) <= half)
+    x1, y1 = np.roll(x, -1, axis=1), np.roll(y, -1, axis=1)  # edge i: vertex i -> i+1
+    edge = ((np.minimum(x, x1) <= xhi + margin) & (np.maximum(x, x1) >= xlo - margin)
+            & (np.minimum(y, y1) <= half + margin) & (np.maximum(y, y1) >= -half - margin))
     e_pose, e_idx = np.nonzero(edge)
     v_pose, v_idx = np.nonzero(vertex)
     n = world.shape[1]
@@ -322,7 +325,7 @@ def _overlap_area(p_world: np.ndarray, w_world: np.ndarray, box) -> np.ndarray:
     """Areas (mm^2) where the posed outlines (poses, N, 2) overlap inside the mesh window."""
     import shapely
 
-    xlo, xhi, half = box
+    xlo, xhi, half, _ = box
     a = shapely.clip_by_rect(shapely.polygons(p_world), xlo, -half, xhi, half)
     b = shapely.clip_by_rect(shapely.polygons(w_world), xlo, -half, xhi, half)
     return shapely.area(shapely.intersection(a, b))
@@ -391,13 +394,19 @@ def _periodic_derivative(theta: np.ndarray, values: np.ndarray, rise: float, per
 
 
 def mesh_window(pinion: np.ndarray, wheel: np.ndarray, distance: float,
-                half_height: float | None = None) -> tuple[float, float, float]:
-    """The mesh window (x_lo, x_hi, half height) in mm, world frame: where contacts can happen."""
+                half_height: float | None = None) -> tuple[float, float, float, float]:
+    """The mesh window (x_lo, x_hi, half height, margin) in mm, world frame.
+
+    Contacts are searched for at the vertices inside the box; edges are taken from the
+    box widened by the margin.
+    """
     rp = float(np.hypot(pinion[:, 0], pinion[:, 1]).max())
     rw = float(np.hypot(wheel[:, 0], wheel[:, 1]).max())
     if half_height is None:
         half_height = WINDOW_FRACTION * min(rp, rw)
-    return distance - rw - 1e-6, rp + 1e-6, float(half_height)
+    # contacts lie between the wheel's tips (x = D - rw) and the pinion's (x = rp); the
+    # margin keeps the outline round an overlapping vertex in view for its depth
+    return distance - rw - 1e-6, rp + 1e-6, float(half_height), 0.25 * float(half_height)
 
 
 def check_meshing(pinion: np.ndarray, wheel: np.ndarray, transmission: Transmission,
