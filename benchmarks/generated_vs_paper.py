@@ -94,11 +94,12 @@ def main() -> None:
             ("normal backlash, tilt 0.6", dict(tilt=0.6, backlash_mode="normal")),
             ("angular backlash split, no tilt", dict(tilt=0.0, lead=0.0)),
             ("angular backlash split, tilt 0.6", dict(tilt=0.6, lead=0.0)),
-            ("angular backlash on coast side, tilt 0.3", dict(tilt=0.3)),
-            ("angular backlash on coast side, tilt 1.0", dict(tilt=1.0)),
-            ("angular backlash on coast side, tilt 0.6, tooth on corner", dict(tilt=0.6, corner="tooth")),
-            ("blend 1 deg (rack undercuts at the blended corner)", dict(blend=1.0)),
-            ("blend 4 deg", dict(blend=4.0)),
+            ("angular backlash all on the coast side (TE 0), tilt 0.6", dict(tilt=0.6, lead=1.0)),
+            ("angular backlash split, tilt 0.3", dict(tilt=0.3)),
+            ("angular backlash split, tilt 1.0", dict(tilt=1.0)),
+            ("angular backlash split, tilt 0.6, tooth on corner", dict(tilt=0.6, corner="tooth")),
+            ("default + blend 1 deg (rack undercut check off)", dict(blend=1.0)),
+            ("default + blend 4 deg", dict(blend=4.0)),
         ]
         for label, kw in alternatives:
             blend = kw.pop("blend", 0.0)
