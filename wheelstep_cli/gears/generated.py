@@ -230,6 +230,91 @@ def cut_by_rolling_rack(curve: np.ndarray, arc: np.ndarray, grid: PolarGrid, rac
     return radii
 
 
+def _topped(outline: np.ndarray, grid: PolarGrid, topped: np.ndarray, before: np.ndarray,
+            copies: int) -> np.ndarray:
+    """The exact outline cut down to the topped radii (rays a topping lowered; others untouched)."""
+    lowered = topped < before - 1e-12
+    if not lowered.any():
+        return outline
+    import shapely
+
+    cap = np.where(lowered, topped, 10.0 * float(before.max()))
+    limit = shapely.Polygon(outline_from_radii(grid, cap, copies))
+    result = shapely.Polygon(outline).intersection(limit).buffer(0)
+    if result.geom_type != "Polygon":
+        result = max(result.geoms, key=lambda g: g.area)
+    coords = np.asarray(result.exterior.coords)[:-1]
+    area = 0.5 * np.sum(coords[:, 0] * np.roll(coords[:, 1], -1) - np.roll(coords[:, 0], -1) * coords[:, 1])
+    return coords if area > 0 else coords[::-1]
+
+
+def rack_tooth_polygons(cutter: RackCutter, module: float, pitch: float, teeth: int = 5,
+                        flank_points: int = 40) -> tuple[np.ndarray, np.ndarray]:
+    """Closed cutter teeth in rack coordinates, shape (teeth, K, 2), and their centres x (mm).
+
+    Each tooth runs from its left top over the tip to its right top and closes far
+    outside the blank, so a tooth can be tilted about its pitch point on its own.
+    """
+    one = rack_profile(cutter, module, pitch, 1, flank_points)
+    far = one[:, 1].max() + 4.0 * module
+    closed = np.vstack([one, [[one[-1, 0], far], [one[0, 0], far]]])
+    centres = (np.arange(teeth) - (teeth - 1) / 2.0) * pitch
+    return closed[None, :, :] + np.column_stack([centres, np.zeros(teeth)])[:, None, :], centres
+
+
+def pinion_by_rack(curve: np.ndarray, arc: np.ndarray, cutter: RackCutter, module: float,
+                   pitch: float, rack_center: float, poses: int, corner_poses: int,
+                   period_angle: float, copies: int, tilt: float) -> np.ndarray:
+    """Pinion outline (N, 2, CCW, mm) = blank minus the union of every rack-tooth pose (exact).
+
+    Same kinematics as :func:`cut_by_rolling_rack` (rolling, pivoting at the corner,
+    teeth tilted by -tilt mu), but as polygon booleans: teeth that lean over their
+    neighbours' spaces keep their true shape, which a polar ray map cannot hold.
+    """
+    import shapely
+
+    teeth, centres = rack_tooth_polygons(cutter, module, pitch)
+    k = teeth.shape[1]
+    flat = teeth.reshape(-1, 2)
+    tooth_x = np.repeat(centres, k)
+    sign = _outward_sign(curve)
+    mu = radial_tilt(curve, arc)
+    tilt_fn = (lambda a: -tilt * mu(a)) if tilt else None
+    total = arc[-1]
+    s = (np.arange(poses) + 0.5) * total / poses
+    origin, tangent, normal = _curve_frames(curve, arc, s, sign)
+    shift = np.mod(rack_center - s + pitch / 2.0, pitch) - pitch / 2.0
+    worlds = [_place_rack(origin, tangent, normal, flat, tooth_x, shift, tilt_fn, s)]
+    c, sn = np.cos(-period_angle), np.sin(-period_angle)
+    t_end = curve[-1] - curve[-2]
+    t_in = np.array([c * t_end[0] - sn * t_end[1], sn * t_end[0] + c * t_end[1]])
+    t_out = curve[1] - curve[0]
+    turn = np.arctan2(t_in[0] * t_out[1] - t_in[1] * t_out[0], np.dot(t_in, t_out))
+    if corner_poses > 0 and abs(turn) > 1e-6:
+        angles = np.arctan2(t_in[1], t_in[0]) + turn * np.linspace(0.0, 1.0, corner_poses)
+        tan_c = np.column_stack([np.cos(angles), np.sin(angles)])
+        nor_c = sign * np.column_stack([tan_c[:, 1], -tan_c[:, 0]])
+        shift_c = np.full(corner_poses, np.mod(rack_center + pitch / 2.0, pitch) - pitch / 2.0)
+        worlds.append(_place_rack(np.broadcast_to(curve[0], (corner_poses, 2)), tan_c, nor_c, flat,
+                                  tooth_x, shift_c, tilt_fn, np.zeros(corner_poses)))
+    polys = np.concatenate([w.reshape(-1, len(centres), k, 2).reshape(-1, k, 2) for w in worlds])
+    turn_sign = np.sign(_polar_sweep(curve))
+    rotated = [polys @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
+               for a in turn_sign * period_angle * np.arange(copies)]
+    cutter_region = shapely.union_all(shapely.polygons(np.concatenate(rotated)))
+    body = np.concatenate([curve[:-1] @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
+                           for a in turn_sign * period_angle * np.arange(copies)])
+    # bevel joins: a chord across each pitch-curve corner relieves the corner teeth's tips
+    blank = shapely.Polygon(body).buffer(cutter.addendum * module, join_style="bevel")
+    # buffer(0) drops the zero-area slivers booleans can leave where rack poses just touch
+    pinion = blank.difference(cutter_region).buffer(0)
+    if pinion.geom_type != "Polygon":
+        pinion = max(pinion.geoms, key=lambda g: g.area)
+    outline = np.asarray(pinion.exterior.coords)[:-1]
+    area = 0.5 * np.sum(outline[:, 0] * np.roll(outline[:, 1], -1) - np.roll(outline[:, 0], -1) * outline[:, 1])
+    return outline if area > 0 else outline[::-1]
+
+
 def blank_radii(curve: np.ndarray, grid: PolarGrid, height: float, fan: bool = True) -> np.ndarray:
     """Farthest crossing per ray of the pitch curve offset outward by ``height`` mm.
 
@@ -254,30 +339,41 @@ def _polar_sweep(curve: np.ndarray) -> float:
     return float(np.sum(np.diff(np.unwrap(np.arctan2(curve[:, 1], curve[:, 0])))))
 
 
-def carve_by_pinion(law: PitchLaw, pinion_grid: PolarGrid, pinion_radii: np.ndarray,
-                    pinion_copies: int, wheel_grid: PolarGrid, distance: float, clearance: float,
-                    poses: int, window: float, reach: float = np.inf, play: float = 0.0,
-                    lead: float = 0.0) -> np.ndarray:
+def carve_by_pinion(law: PitchLaw, pinion_outline: np.ndarray, wheel_grid: PolarGrid,
+                    distance: float, clearance: float, poses: int, window: float,
+                    reach: float = np.inf, play: float = 0.0, lead: float = 0.0) -> np.ndarray:
     """Nearest crossing per wheel ray of the pinion moving along the law (one law period).
 
-    Poses sample the driven angle uniformly (plus the law's corners); at each, the
-    pinion's outline (dilated by ``clearance`` mm along its normals) within ``window``
-    rad of its pitch point is placed in the wheel frame (pinion rotated by -theta at
-    the origin, wheel by pi + phi about (distance, 0)). With ``play`` > 0 (rad of wheel
-    angle) the carving is widened to the union over wheel turns in [-play, play]: a
-    constant angular backlash, so the drive-side TE is constant along the cycle.
+    ``pinion_outline``: closed CCW outline (mm, pinion frame, ordered by polar angle
+    overall). Poses sample the driven angle uniformly (plus the law's corners); at
+    each, the outline (dilated by ``clearance`` mm) within ``window`` rad of its pitch
+    point is placed in the wheel frame (pinion rotated by -theta at the origin, wheel
+    by pi + phi about (distance, 0)). With ``play`` > 0 (rad of wheel angle) the
+    carving is widened to the union over wheel turns in [-play, play]: a constant
+    angular backlash, so the drive-side TE is constant along the cycle; ``lead``
+    (-1..1) shifts that window (+1: all play on the coast side).
     """
-    outline = outline_from_radii(pinion_grid, pinion_radii, pinion_copies)
+    import shapely
+
+    ring = shapely.simplify(shapely.LinearRing(pinion_outline), 0.0005, preserve_topology=True)
+    dense = np.asarray(shapely.segmentize(ring, 0.05).coords)[:-1]
     # outline is CCW: its right-hand normal points outward
-    dilated = miter_offset(outline, clearance) if clearance > 0 else outline
-    n_rays = len(outline)
-    half = int(np.ceil(window / pinion_grid.width))
+    dilated = miter_offset(dense, clearance) if clearance > 0 else dense
+    n_pts = len(dense)
+    angle = np.unwrap(np.arctan2(dense[:, 1], dense[:, 0]))
+    reach_angle = np.maximum.accumulate(angle)
     phi = law.phi[0] + law.phi_period * (np.arange(poses) + 0.5) / poses
     if law.corners:
         phi = np.sort(np.append(phi, np.asarray(law.corners)))
     theta = law.pinion_angle(phi)
-    centre = np.round((theta - pinion_grid.start) / pinion_grid.width - 0.5).astype(np.int64)
-    idx = np.mod(centre[:, None] + np.arange(-half, half + 1)[None, :], n_rays)
+    local = angle[0] + np.mod(theta - angle[0], 2.0 * np.pi)
+    start = np.searchsorted(reach_angle, local - window)
+    end = np.searchsorted(reach_angle, local + window)
+    # windows wrapping past the outline's start: look them up one turn on
+    wrap = local - window < angle[0]
+    start[wrap] = np.searchsorted(reach_angle, local[wrap] - window + 2.0 * np.pi) - n_pts
+    width = int(np.max(end - start)) + 1
+    idx = np.mod(start[:, None] + np.arange(width)[None, :], n_pts)
     pts = dilated[idx]                                       # (poses, K, 2) pinion body frame
     c, s = np.cos(-theta), np.sin(-theta)
     wx = c[:, None] * pts[..., 0] - s[:, None] * pts[..., 1] - distance
@@ -287,44 +383,33 @@ def carve_by_pinion(law: PitchLaw, pinion_grid: PolarGrid, pinion_radii: np.ndar
     body = np.stack([c[:, None] * wx - s[:, None] * wy, s[:, None] * wx + c[:, None] * wy], axis=-1)
     radii = polyline_envelope(wheel_grid, body, reach=reach)
     if play > 0:
-        # the union of the carving over all wheel turns in [-play, play] is, ray by ray,
-        # the smallest radius within +-play: a periodic sliding minimum
-        span = play / wheel_grid.width
-        k = int(np.floor(span))
-        if k > 0:
-            padded = np.concatenate([radii[-k:], radii, radii[:k]])
-            widened = np.lib.stride_tricks.sliding_window_view(padded, 2 * k + 1).min(axis=1)
-        else:
-            widened = radii
-        # the window's fractional ends, by linear interpolation between rays
-        n = len(radii)
-        j = np.arange(n)
-        for edge in (-span, span):
-            lo = np.floor(j + edge).astype(np.int64)
-            t = (j + edge) - lo
-            widened = np.minimum(widened, (1 - t) * radii[lo % n] + t * radii[(lo + 1) % n])
-        radii = widened
-        if lead:
-            # turn the widened space so the drive flanks sit on the law (TE 0 under load)
-            lo = np.floor(j + lead * span).astype(np.int64)
-            t = (j + lead * span) - lo
-            radii = (1 - t) * radii[lo % n] + t * radii[(lo + 1) % n]
+        radii = _widen(radii, play / wheel_grid.width, lead)
     return radii
 
 
-def tip_lands(grid: PolarGrid, radii: np.ndarray, tip: np.ndarray) -> np.ndarray:
-    """Widths (mm) of the uncut tip lands over one period (runs of rays left at the blank)."""
-    uncut = radii >= tip - 1e-9
-    if uncut.all():
-        return np.array([grid.period * float(np.mean(tip))])
-    # rotate so the array starts at a cut ray, then measure runs of uncut rays
-    first = int(np.argmin(uncut))
-    u = np.roll(uncut, -first).astype(np.int8)
-    t = np.roll(tip, -first)
-    edges = np.diff(np.concatenate(([0], u, [0])))
-    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
-    widths = np.array([grid.width * t[a:b].sum() for a, b in zip(starts, ends)])
-    return widths
+def _widen(radii: np.ndarray, span: float, lead: float) -> np.ndarray:
+    """Periodic sliding minimum over +-span rays (fractional ends interpolated), shifted by lead*span.
+
+    The union of the carving over all wheel turns in [-play, play] is, ray by ray, the
+    smallest radius within +-play.
+    """
+    k = int(np.floor(span))
+    if k > 0:
+        padded = np.concatenate([radii[-k:], radii, radii[:k]])
+        widened = np.lib.stride_tricks.sliding_window_view(padded, 2 * k + 1).min(axis=1)
+    else:
+        widened = radii
+    n = len(radii)
+    j = np.arange(n)
+    for edge in (-span, span):
+        lo = np.floor(j + edge).astype(np.int64)
+        t = (j + edge) - lo
+        widened = np.minimum(widened, (1 - t) * radii[lo % n] + t * radii[(lo + 1) % n])
+    if lead:
+        lo = np.floor(j + lead * span).astype(np.int64)
+        t = (j + lead * span) - lo
+        widened = (1 - t) * widened[lo % n] + t * widened[(lo + 1) % n]
+    return widened
 
 
 def top_pointed_teeth(grid: PolarGrid, radii: np.ndarray, pitch_radii: np.ndarray,
@@ -442,6 +527,9 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
                               pitch, per_period * poses_per_tooth, corner_poses=4 * poses_per_tooth,
                               period_angle=law.theta_period, reach=float(pinion_blank.max()), tilt=tilt)
     pinion_radii = np.minimum(pinion_blank, cut)
+    pinion_exact = pinion_by_rack(curves.pinion, curves.arc, cutter, module, pitch, offset + pitch / 2.0,
+                                  per_period * poses_per_tooth, 4 * poses_per_tooth, law.theta_period,
+                                  periods, tilt)
 
     wheel_grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, per_period * rays_per_tooth * 2)
     wheel_blank = blank_radii(curves.wheel, wheel_grid, h_a)
@@ -454,9 +542,8 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
     else:
         clearance, play = cutter.backlash / 2.0, 0.0
     window = WINDOW_PITCHES * pitch / float(np.min(np.hypot(*curves.pinion.T)))
-    carved = carve_by_pinion(law, pinion_grid, pinion_radii, periods, wheel_grid,
-                             law.center_distance, clearance, per_period * poses_per_tooth, window,
-                             float(wheel_blank.max()), play, LEAD)
+    carved = carve_by_pinion(law, pinion_exact, wheel_grid, law.center_distance, clearance,
+                             per_period * poses_per_tooth, window, float(wheel_blank.max()), play, LEAD)
     wheel_radii = np.minimum(wheel_blank, carved)
     require(np.all(np.isfinite(pinion_radii)) and np.all(np.isfinite(wheel_radii)), "z", pinion_teeth,
             "the generated outline has gaps (pitch curve too tight for the cutter)")
@@ -464,6 +551,7 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
     # teeth too thin at the tip (the few next to a pitch-curve corner) are topped to the
     # land floor when that costs at most MAX_TOPPING x m of height; otherwise refuse
     topping, lands = {}, {}
+    pinion_cut = pinion_radii
     for name, grid, curve, radii, blank in (
             ("pinion", pinion_grid, curves.pinion, pinion_radii, pinion_blank),
             ("wheel", wheel_grid, curves.wheel, wheel_radii, wheel_blank)):
@@ -483,7 +571,7 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
     return GeneratedPair(
         law=law, curves=curves, cutter=cutter, pinion_teeth=pinion_teeth, wheel_teeth=wheel_teeth,
         module=module, pitch=pitch, corner=corner,
-        pinion_outline=outline_from_radii(pinion_grid, pinion_radii, periods),
+        pinion_outline=_topped(pinion_exact, pinion_grid, pinion_radii, pinion_cut, periods),
         wheel_outline=outline_from_radii(wheel_grid, wheel_radii, law.wheel_periods),
         pinion_radii=pinion_radii, wheel_radii=wheel_radii,
         pinion_grid=pinion_grid, wheel_grid=wheel_grid,
@@ -492,8 +580,23 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
 
 
 def simplify_outline(outline: np.ndarray, tolerance: float = 0.001) -> np.ndarray:
-    """Drop outline points that lie within ``tolerance`` mm of the polyline (Douglas-Peucker)."""
+    """Drop outline points within ``tolerance`` mm of the polyline (Douglas-Peucker) and spikes.
+
+    A spike is a vertex where the outline doubles back on itself (a zero-width sliver a
+    boolean can leave); a few vectorised passes remove nested ones.
+    """
     import shapely
 
     ring = shapely.simplify(shapely.LinearRing(outline), tolerance, preserve_topology=True)
-    return np.asarray(ring.coords)[:-1]
+    pts = np.asarray(ring.coords)[:-1]
+    for _ in range(8):
+        d_in = pts - np.roll(pts, 1, axis=0)
+        d_out = np.roll(pts, -1, axis=0) - pts
+        norm = np.hypot(d_in[:, 0], d_in[:, 1]) * np.hypot(d_out[:, 0], d_out[:, 1])
+        cos = np.sum(d_in * d_out, axis=1) / np.maximum(norm, 1e-300)
+        spike = (cos < -0.95) | (norm < 1e-18)
+        if not spike.any():
+            break
+        spike &= ~np.roll(spike, 1)          # never drop two neighbours in one pass
+        pts = pts[~spike]
+    return pts
