@@ -143,3 +143,18 @@ def test_law_from_samples_recovers_ratio_and_rolling_arcs(amp, shift):
     curves = pitch_curves(law)
     wheel_arc = np.sum(np.hypot(*np.diff(curves.wheel, axis=0).T))
     assert wheel_arc == pytest.approx(curves.period_arc, rel=1e-6)   # they roll without slip
+
+
+def test_default_pair_meshes_without_interference_within_its_backlash_band(cli, tmp_path):
+    # the written pair, checked by the meshing check on its mid-thickness sections (SPEC §10)
+    result = cli("gears", "--format", "stl", "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((tmp_path / "gears.json").read_text())
+    meshing, generated = report["meshing"], report["generated"]
+    assert meshing["interference"] is False and not meshing["contact_lost"]
+    # constant angular play worth j_n = 0.5 mm at the mean wheel pitch radius: the normal
+    # backlash scales with the wheel pitch radius (79.8..102 mm over 92.6), plus 2 x 0.01 mm
+    assert 0.5 * 79.0 / 92.6 < meshing["backlash_min_mm"] and meshing["backlash_max_mm"] < 0.5 * 103.0 / 92.6 + 0.03
+    assert meshing["hub_speed_ripple_pct"] < 8.0                  # paper pair: hundreds of %
+    assert generated["module_mm"] == pytest.approx(2.1082, abs=1e-4)
+    assert "hub speed ripple" in result.stdout
