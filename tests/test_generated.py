@@ -158,3 +158,17 @@ def test_default_pair_meshes_without_interference_within_its_backlash_band(cli, 
     assert meshing["hub_speed_ripple_pct"] < 8.0                  # paper pair: hundreds of %
     assert generated["module_mm"] == pytest.approx(2.1082, abs=1e-4)
     assert "hub speed ripple" in result.stdout
+
+
+def test_blend_keeps_closure_and_is_not_refused_as_undercut():
+    from wheelstep_cli.gears.law import blended_pitch_law
+
+    law = crank_pitch_law(CrankLaw(60, 100, 360, 144, 2))
+    blended = blended_pitch_law(law, np.radians(1.0))
+    assert blended.theta_period == pytest.approx(law.theta_period, abs=1e-12)   # closes exactly
+    phi = np.linspace(-np.pi / 4, np.pi / 4, 2001)[:-1]
+    assert np.mean(blended.ratio(phi)) == pytest.approx(np.mean(law.ratio(phi)), rel=1e-4)
+    far = np.abs(phi) < np.radians(40.0)
+    assert np.allclose(blended.ratio(phi[far]), law.ratio(phi[far]), rtol=1e-6)   # only near corners
+    pair = generate_pair(blended, 48, RackCutter())       # the blended corner is cut like a pivot
+    assert pair.corner == "space"

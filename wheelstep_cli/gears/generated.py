@@ -508,7 +508,14 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
 
     # undercut: the rack undercuts where the convex pitch curve bends tighter than the limit
     limit = undercut_limit(cutter, module)
-    rho = curvature_radius(curves.pinion)[2:-2]      # corner ends handled by the pivot
+    rho = curvature_radius(curves.pinion)
+    # corners are cut by the pivoting rack, and so are blended corners: leave them out
+    keep = np.ones(len(rho), dtype=bool)
+    keep[:2] = keep[-2:] = False
+    for smoothed in law.blended_corners:
+        d = np.mod(curves.phi - smoothed + law.phi_period / 2.0, law.phi_period) - law.phi_period / 2.0
+        keep &= np.abs(d) > 1.5 * law.blend_half_width
+    rho = rho[keep]
     convex = rho[rho > 0]
     rho_min = float(convex.min()) if len(convex) else float("inf")
     if rho_min < limit and strict:

@@ -42,6 +42,8 @@ class PitchLaw:
     corners: tuple[float, ...] = ()
     hub_factor: object = field(default=None, compare=False)
     exact: object = field(default=None, compare=False)   # CrankLaw for closed forms
+    blended_corners: tuple[float, ...] = ()   # corners (rad) smoothed by a blend ...
+    blend_half_width: float = 0.0             # ... of this half-width (rad)
 
     @property
     def phi_period(self) -> float:
@@ -101,7 +103,8 @@ class PitchLaw:
     def scaled(self, center_distance: float) -> "PitchLaw":
         """The same law at another centre distance (mm)."""
         return PitchLaw(self.phi, self.theta, self.ratio_table, center_distance, self.corners,
-                        self.hub_factor, _scaled_exact(self.exact, center_distance))
+                        self.hub_factor, _scaled_exact(self.exact, center_distance),
+                        self.blended_corners, self.blend_half_width)
 
 
 def _scaled_exact(exact, center_distance):
@@ -140,7 +143,8 @@ def blended_pitch_law(law: PitchLaw, half_width: float) -> PitchLaw:
         ([0.0], np.cumsum(0.5 * (smooth[1:] + smooth[:-1]) * step)))
     # remove the trapezoid's tiny closure error so theta closes exactly
     theta += (law.theta_period - (theta[-1] - theta[0])) * (phi - phi[0]) / law.phi_period
-    return PitchLaw(phi, theta, smooth, law.center_distance, (), law.hub_factor, None)
+    return PitchLaw(phi, theta, smooth, law.center_distance, (), law.hub_factor, None,
+                    law.corners, half_width)
 
 
 def law_from_samples(theta_deg: np.ndarray, phi_deg: np.ndarray, center_distance: float,
