@@ -35,6 +35,8 @@ SCALLOP_CLEARANCE = 0.01
 DEFAULT_TILT = 0.6
 #: Where the angular play goes: 0 splits it (drive TE = -play), +-1 puts it all on the coast side.
 LEAD = 0.0
+#: Radius (x module) the pinion's tip corners are rounded to (tip relief; 0: sharp).
+TIP_ROUND = 0.0
 #: Pinion outline taken into each carving pose: this many pitches either side of the pitch point.
 WINDOW_PITCHES = 2.6
 #: Most tooth height (x module) that may be topped off a pointed tooth before the design is refused.
@@ -308,6 +310,10 @@ def pinion_by_rack(curve: np.ndarray, arc: np.ndarray, cutter: RackCutter, modul
     blank = shapely.Polygon(body).buffer(cutter.addendum * module, join_style="bevel")
     # buffer(0) drops the zero-area slivers booleans can leave where rack poses just touch
     pinion = blank.difference(cutter_region).buffer(0)
+    if TIP_ROUND > 0:
+        # an opening rounds the convex corners (tooth tips) to TIP_ROUND x m, nothing else
+        r = TIP_ROUND * module
+        pinion = pinion.buffer(-r, quad_segs=8).buffer(r, quad_segs=8)
     if pinion.geom_type != "Polygon":
         pinion = max(pinion.geoms, key=lambda g: g.area)
     outline = np.asarray(pinion.exterior.coords)[:-1]
