@@ -15,7 +15,8 @@ def default_pair(tmp_path_factory):
     out = tmp_path_factory.mktemp("gears")
     from wheelstep_cli.cli import run
 
-    assert run(["gears", "--z", "48", "--out", str(out)]) == 0
+    # the paper pair interferes at the shoe handovers: written only on request (test_gears_meshing)
+    assert run(["gears", "--z", "48", "--allow-interference", "--out", str(out)]) == 0
     return out
 
 
@@ -31,7 +32,16 @@ def test_writes_printable_meshes_and_report(default_pair):
         assert mesh.bounds[1, 2] - mesh.bounds[0, 2] == pytest.approx(10.0)
     assert report["parameters"]["install_distance"] == 144
     assert report["parameters"]["backlash"] == pytest.approx(0.5)
-    assert len(report["sectors"]) == 24
+    assert report["parameters"]["teeth"] == "generated"       # the default since issue 6
+    assert report["generated"]["pinion_teeth"] == 48 and report["generated"]["wheel_teeth"] == 96
+    assert report["parts"]["pinion"]["teeth"] == 48 and report["parts"]["wheel"]["teeth"] == 96
+
+
+def test_paper_method_still_writes_its_sector_table(cli, tmp_path):
+    assert cli("gears", "--teeth", "paper", "--allow-interference", "--format", "stl",
+               "--out", tmp_path).exit_code == 0
+    report = json.loads((tmp_path / "gears.json").read_text())
+    assert len(report["sectors"]) == 24 and "generated" not in report
     assert report["parts"]["pinion"]["teeth"] == 48 and report["parts"]["wheel"]["teeth"] == 96
 
 
@@ -46,7 +56,8 @@ def test_3mf_reads_back_strict_with_two_named_objects(default_pair):
 
 
 def test_bore_is_cut(default_pair, cli, tmp_path):
-    assert cli("gears", "--bore", "0", "--format", "stl", "--out", tmp_path).exit_code == 0
+    assert cli("gears", "--bore", "0", "--format", "stl", "--allow-interference",
+               "--out", tmp_path).exit_code == 0
     solid = assert_printable_stl(tmp_path / "pinion.stl")
     bored = assert_printable_stl(default_pair / "pinion.stl")
     removed = solid.volume - bored.volume
@@ -58,17 +69,19 @@ def test_bore_is_cut(default_pair, cli, tmp_path):
 
 def test_same_inputs_give_identical_files(default_pair, tmp_path):
     # a separate process, so nothing cached in this one can make them equal
-    subprocess.run([sys.executable, "-m", "wheelstep_cli", "gears", "--out", str(tmp_path)],
+    subprocess.run([sys.executable, "-m", "wheelstep_cli", "gears", "--allow-interference",
+                    "--out", str(tmp_path)],
                    check=True, capture_output=True)
     for name in ("pinion.stl", "wheel.stl", "gears.3mf", "gears.json"):
         assert (tmp_path / name).read_bytes() == (default_pair / name).read_bytes(), name
 
 
 def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_pair):
-    assert cli("gears", "--profile", "bntu-2024", "--out", tmp_path / "p").exit_code == 0
+    assert cli("gears", "--profile", "bntu-2024", "--allow-interference",
+               "--out", tmp_path / "p").exit_code == 0
     assert (tmp_path / "p" / "wheel.stl").read_bytes() == (default_pair / "wheel.stl").read_bytes()
     assert cli("gears", "--profile", "bntu-2024", "--thickness", "6", "--format", "stl",
-               "--out", tmp_path / "q").exit_code == 0
+               "--allow-interference", "--out", tmp_path / "q").exit_code == 0
     mesh = assert_printable_stl(tmp_path / "q" / "pinion.stl")
     assert mesh.bounds[1, 2] == pytest.approx(6.0)
     assert not (tmp_path / "q" / "gears.3mf").exists()
@@ -77,7 +90,7 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_pa
 @pytest.mark.parametrize("args, param", [
     (["--b", "110"], "b ="),                      # R_min = a - 4b + c < 0
     (["--z", "47"], "z ="),                        # not whole sectors
-    (["--module", "4"], "module ="),               # pointed teeth
+    (["--teeth", "paper", "--module", "4"], "module ="),   # pointed teeth
     (["--bore", "100"], "bore ="),                 # bore larger than the root
     (["--a", "-60"], "a ="),                       # negative length
     (["--a", "sixty"], "'--a'"),                   # not a number

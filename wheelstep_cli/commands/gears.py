@@ -11,6 +11,16 @@ import typer
 Opt = typer.Option
 
 
+class Teeth(str, Enum):
+    generated = "generated"
+    paper = "paper"
+
+
+class Corner(str, Enum):
+    space = "space"
+    tooth = "tooth"
+
+
 class Format(str, Enum):
     stl = "stl"
     threemf = "3mf"
@@ -127,22 +137,83 @@ def gears(
     fmt: Format = Opt(Format.both, "--format", help="Mesh files to write."),
     out: Path = Opt(Path("wheelstep-out"), "--out", "-o", help="Output folder."),
     profile: Optional[str] = PROFILE,
+    teeth: Optional[Teeth] = Opt(None, "--teeth",
+                                 help="generated: conjugate teeth (SPEC §9, default); "
+                                      "paper: the source's sector involutes (SPEC §5)."),
+    pressure_angle: Optional[float] = Opt(None, "--pressure-angle",
+                                          help="Rack pressure angle, deg (generated) [20]."),
+    addendum: Optional[float] = Opt(None, "--addendum", help="Addendum, x module (generated) [1.0]."),
+    dedendum: Optional[float] = Opt(None, "--dedendum", help="Dedendum, x module (generated) [1.25]."),
+    fillet: Optional[float] = Opt(None, "--fillet", help="Rack tip fillet radius, x module (generated) [0.25]."),
+    blend: Optional[float] = Opt(None, "--blend",
+                                 help="Half-width (carrier deg) of the ratio blend at each handover (generated) [0]."),
+    corner: Optional[Corner] = Opt(None, "--corner",
+                                   help="Centre a pinion space or tooth on each pitch-curve corner (generated) [space]."),
+    tilt: Optional[float] = Opt(None, "--tilt",
+                                help="Tilt of the rack teeth towards the radius, as a fraction of the "
+                                     "pitch-curve slope (generated) [0.6]."),
+    law_csv: Optional[Path] = Opt(None, "--law-csv",
+                                  help="CSV of driving angle, driven angle (deg) over one period: "
+                                       "generate this law instead of the crank law (generated)."),
+    allow_interference: bool = Opt(
+        False, "--allow-interference",
+        help="Write the pair even if the meshing check finds overlapping teeth "
+             "(the paper method's pair does, at the shoe handovers)."),
 ) -> None:
-    """Write the non-circular gear pair as printable STL/3MF meshes and gears.json."""
+    """Write the non-circular gear pair as printable STL/3MF meshes and gears.json.
+
+    The written meshes are checked first (SPEC §10); a pair whose teeth overlap is
+    refused (exit 1, nothing written) unless --allow-interference. Generated teeth
+    (default) roll at the installed distance; the module follows from the pitch-curve
+    perimeter and --z (--module applies to --teeth paper only)."""
+    from wheelstep_cli.commands.meshcheck import _run_with_progress
     from wheelstep_cli.io.atomic import write_files_atomic
     from wheelstep_cli.parts.gear_pair import build_gear_pair, gear_pair_files
+    from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
 
     spec = _spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                  install_distance=install_distance, module=module, backlash=backlash,
-                 thickness=thickness, bore=bore)
+                 thickness=thickness, bore=bore, teeth=teeth.value if teeth else None,
+                 pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
+                 fillet=fillet, blend=blend, corner=corner.value if corner else None, tilt=tilt,
+                 law_csv=str(law_csv) if law_csv else None)
     pair = build_gear_pair(spec)
-    written = write_files_atomic(gear_pair_files(pair, out, fmt.value))
+    meshing = _run_with_progress(check_gear_pair, pair)
+    record = meshing_record(meshing)
+    if meshing.interferes and not allow_interference:
+        typer.echo(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
+                   f"{record['samples']} poses at {spec.install_distance:g} mm (max overlap "
+                   f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
+                   "(--allow-interference writes them anyway)", err=True)
+        raise typer.Exit(1)
+    written = write_files_atomic(gear_pair_files(pair, out, fmt.value, record))
     for part in (pair.pinion, pair.wheel):
         check = pair.checks[part.name]
         size = part.bounds[1] - part.bounds[0]
         typer.echo(f"{part.name}: {check.triangles} triangles, {check.volume / 1000:.2f} cm3, "
                    f"{size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} mm, printable")
+    if pair.generated is not None:
+        gen = pair.generated
+        typer.echo(f"generated teeth: z = {gen.pinion_teeth}/{gen.wheel_teeth}, pitch {gen.pitch:.4f} mm, "
+                   f"module {gen.module:.4f} mm, rolling at {gen.law.center_distance:g} mm, "
+                   f"backlash j_n = {gen.cutter.backlash:g} mm")
+    _echo_meshing(record, spec.install_distance)
     typer.echo("wrote " + ", ".join(str(p) for p in written))
+
+
+def _echo_meshing(record: dict, distance: float) -> None:
+    """One line on the meshing check; a warning line when the teeth interfere."""
+    def num(key, fmt):
+        return "n/a" if record[key] is None else format(record[key], fmt)
+
+    typer.echo(f"meshing at {distance:g} mm: hub speed ripple {num('hub_speed_ripple_pct', '.2f')} %, "
+               f"backlash {num('backlash_min_mm', '.3f')}..{num('backlash_max_mm', '.3f')} mm, "
+               f"TE {num('te_peak_to_peak_arcmin', '.2f')}' p-p")
+    if record["interference"]:
+        typer.echo(f"WARNING: the teeth interfere at {record['interfering_poses']} of "
+                   f"{record['samples']} poses (max overlap {record['max_overlap_area_mm2']:.3f} "
+                   f"mm2); hub speed ripple where they do not: "
+                   f"{num('hub_speed_ripple_clear_pct', '.2f')} %", err=True)
 
 
 def register(app: typer.Typer) -> None:

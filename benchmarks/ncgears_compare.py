@@ -1,0 +1,111 @@
+"""wheelstep's generator vs the open-source ncgears (PyPI) on a smooth law both can take.
+
+ncgears cannot take the crank law (its pitch curves have corners), so both generate
+Bäsel's kind of smooth 1:1 law psi(phi) = phi - 0.3 sin(phi) with 28 teeth of
+module 1.5 at 20 deg, and both pairs are measured by the same meshing check
+(wheelstep_cli.gears.meshing) at the centre distance each reports. Times are wall
+clock on this machine. ncgears is optional: the script says so and skips it when it
+is not installed (pip install ncgears; its code is not part of this repository).
+
+Run from the repository root:  python benchmarks/ncgears_compare.py
+"""
+
+from __future__ import annotations
+
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from wheelstep_cli.gears.generated import RackCutter, generate_pair, simplify_outline  # noqa: E402
+from wheelstep_cli.gears.law import center_distance_for_module, law_from_samples  # noqa: E402
+from wheelstep_cli.gears.meshing import Transmission, check_meshing  # noqa: E402
+from wheelstep_cli.geometry.outline import signed_area  # noqa: E402
+
+AMPLITUDE, TEETH, MODULE = 0.3, 28, 1.5
+CLEARANCE = 0.05            # ncgears: inward offset of each face, x module
+BACKLASH = 4 * CLEARANCE * MODULE   # ncgears thins every flank of both gears: same total play
+
+
+def law(distance: float):
+    phi = np.linspace(0.0, 360.0, 721)
+    psi = np.degrees(np.radians(phi) - AMPLITUDE * np.sin(np.radians(phi)))
+    return law_from_samples(phi, psi, distance)
+
+
+def report(name, pinion, wheel, the_law, distance, seconds):
+    t0 = time.perf_counter()
+    rep = check_meshing(pinion, wheel, Transmission(the_law.carrier_angle, the_law.theta_period),
+                        distance, samples=1024)
+    d = rep.to_dict()
+    print(f"{name:28s} centre {distance:8.4f} mm  generate {seconds:6.2f} s  check "
+          f"{time.perf_counter() - t0:5.2f} s  interference {str(d['interference']):5s}  "
+          f"TE {d['te_min_arcmin']:7.2f}..{d['te_max_arcmin']:<7.2f}' (p-p {d['te_peak_to_peak_arcmin']:.3f}')  "
+          f"largest TE step {d['te_max_step_arcmin']:.3f}'  "
+          f"backlash {d['backlash_min_mm']:.3f}..{d['backlash_max_mm']:.3f} mm")
+    return rep
+
+
+def best_orientation(pinion, wheel, the_law, distance):
+    """ncgears' frames are not ours: try the mirror images and keep the one that meshes."""
+    best = None
+    for sx in (1.0, -1.0):
+        p = pinion * [1.0, sx]
+        w = wheel * [1.0, sx]
+        for turn in (0.0, np.pi):
+            c, s = np.cos(turn), np.sin(turn)
+            w2 = w @ np.array([[c, s], [-s, c]])
+            if signed_area(p) < 0:
+                p = p[::-1]
+            if signed_area(w2) < 0:
+                w2 = w2[::-1]
+            rep = check_meshing(p, w2, Transmission(the_law.carrier_angle, the_law.theta_period),
+                                distance, samples=64)
+            score = np.nanmax(np.abs(rep.transmission_error)) + 10 * rep.interference.sum()
+            if best is None or score < best[0]:
+                best = (score, p, w2)
+    return best[1], best[2]
+
+
+def main() -> None:
+    unit = law(1.0)
+    distance = center_distance_for_module(unit, TEETH, MODULE)
+    the_law = law(distance)
+    t0 = time.perf_counter()
+    pair = generate_pair(the_law, TEETH, RackCutter(np.radians(20.0), 1.0, 1.25, 0.25, BACKLASH))
+    seconds = time.perf_counter() - t0
+    report("wheelstep generated", simplify_outline(pair.pinion_outline),
+           simplify_outline(pair.wheel_outline), the_law, distance, seconds)
+    try:
+        import ncgears
+    except ImportError:
+        print("ncgears: not installed (pip install ncgears) - skipped")
+        return
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        try:
+            theirs = ncgears.generate(f"phi - {AMPLITUDE}*sin(phi)", teeth=TEETH, module=MODULE,
+                                      pressure_angle_deg=20.0, clearance=CLEARANCE,
+                                      output_directory=tmp, name="ncgears")
+        except Exception as exc:        # report exactly why it could not run
+            print(f"ncgears: failed: {type(exc).__name__}: {exc}")
+            return
+        seconds = time.perf_counter() - t0
+    nc_law = law(theirs.center_distance)
+    # same 1 um simplification as wheelstep's written outlines (the check is O(vertices^2))
+    drive = simplify_outline(np.asarray(theirs.drive_outline, dtype=float))
+    driven = simplify_outline(np.asarray(theirs.driven_outline, dtype=float))
+    print(f"ncgears outlines: {len(theirs.drive_outline)} / {len(theirs.driven_outline)} points, "
+          f"{len(drive)} / {len(driven)} after 1 um simplification")
+    p, w = best_orientation(drive, driven, nc_law, theirs.center_distance)
+    report(f"ncgears {getattr(ncgears, '__version__', '')}".strip(), p, w, nc_law,
+           theirs.center_distance, seconds)
+    print(f"ncgears' own verification: {theirs.summary()}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,90 @@
+"""`wheelstep gears` checks what it writes (SPEC §10) and `wheelstep mesh-check` on files."""
+
+import json
+
+import numpy as np
+import pytest
+
+
+@pytest.fixture(scope="module")
+def paper_pair(tmp_path_factory):
+    from wheelstep_cli.cli import run
+
+    out = tmp_path_factory.mktemp("paper")
+    assert run(["gears", "--teeth", "paper", "--allow-interference", "--out", str(out)]) == 0
+    return out
+
+
+def test_default_paper_pair_is_refused_because_it_interferes(cli, tmp_path):
+    out = tmp_path / "out"
+    result = cli("gears", "--teeth", "paper", "--out", out)
+    assert result.exit_code == 1
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and "interfere" in lines[0] and "nothing written" in lines[0]
+    assert not out.exists() or not any(out.iterdir())
+
+
+def test_allowed_pair_stores_the_check_and_prints_the_ripple(paper_pair, cli, tmp_path):
+    report = json.loads((paper_pair / "gears.json").read_text())
+    meshing = report["meshing"]
+    assert meshing["interference"] is True and meshing["distance_mm"] == 144
+    assert meshing["interfering_poses"] > 0 and meshing["max_overlap_area_mm2"] > 0
+    # away from the handovers the paper teeth mesh with backlash of the order of j_n = 0.5 mm
+    assert 0.2 < meshing["backlash_max_mm"] < 1.0
+    assert meshing["hub_speed_ripple_clear_pct"] > 1.0   # not conjugate: visible ripple
+    result = cli("gears", "--teeth", "paper", "--allow-interference", "--format", "stl",
+                 "--out", tmp_path)
+    assert "hub speed ripple" in result.stdout and "interfere" in result.stderr
+
+
+def test_mesh_check_on_the_written_files_agrees_with_gears_json(paper_pair, cli, tmp_path):
+    stored = json.loads((paper_pair / "gears.json").read_text())["meshing"]
+    png = tmp_path / "check.png"
+    result = cli("mesh-check", paper_pair / "pinion.stl", paper_pair / "wheel.stl",
+                 "--distance", "144", "--json", "--plot", png)
+    assert result.exit_code == 1   # interference is a failed check
+    measured = json.loads(result.stdout)
+    assert measured["interfering_poses"] == pytest.approx(stored["interfering_poses"], abs=3)
+    for key in ("backlash_max_mm", "hub_speed_ripple_clear_pct", "max_overlap_area_mm2"):
+        assert measured[key] == pytest.approx(stored[key], rel=0.02), key
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # the 3MF objects, by default name and by explicit name, give the same answer
+    three = cli("mesh-check", paper_pair / "gears.3mf", f"{paper_pair / 'gears.3mf'}:wheel",
+                "--json", "--samples", "384")
+    stl = cli("mesh-check", paper_pair / "pinion.stl", paper_pair / "wheel.stl",
+              "--json", "--samples", "384")
+    a, b = json.loads(three.stdout), json.loads(stl.stdout)
+    assert a["backlash_max_mm"] == pytest.approx(b["backlash_max_mm"], abs=1e-3)
+    assert a["te_peak_to_peak_arcmin"] == pytest.approx(b["te_peak_to_peak_arcmin"], abs=0.05)
+
+
+def test_a_pair_that_meshes_is_written_and_mesh_check_exits_0(cli, tmp_path):
+    # a small crank (b = 20) gives gentle handovers: the paper teeth then clear everywhere
+    result = cli("gears", "--b", "20", "--format", "stl", "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    meshing = json.loads((tmp_path / "gears.json").read_text())["meshing"]
+    assert meshing["interference"] is False and not meshing["contact_lost"]
+    assert meshing["backlash_min_mm"] > 0
+    check = cli("mesh-check", tmp_path / "pinion.stl", tmp_path / "wheel.stl", "--b", "20",
+                "--samples", "384")
+    assert check.exit_code == 0 and "interference: none" in check.stdout
+    assert "hub speed ripple" in check.stdout
+
+
+@pytest.mark.parametrize("args, param", [
+    (["missing.stl", "wheel.stl"], "pinion ="),
+    (["PIN", "nothing.txt"], "wheel ="),
+    (["PIN", "PIN", "--samples", "3"], "samples ="),
+    (["PIN", "PIN", "--distance", "-5"], "distance ="),
+    (["PIN", "PIN", "--plot", "x.pdf"], "plot ="),
+    (["PIN", "PIN", "--b", "110"], "b ="),
+])
+def test_mesh_check_bad_input_one_line_exit_2(paper_pair, cli, tmp_path, args, param):
+    args = [str(paper_pair / "pinion.stl") if a == "PIN" else a for a in args]
+    (tmp_path / "nothing.txt").write_text("x")
+    result = cli("mesh-check", *[str(tmp_path / a) if a.endswith((".stl", ".txt")) and "/" not in a
+                                 else a for a in args])
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and param in lines[0], result.stderr
+    assert not (tmp_path / "x.pdf").exists()

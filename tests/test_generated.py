@@ -1,0 +1,174 @@
+"""Generated teeth (SPEC §9): involute limit, undercut/pointed refusal, law-agnostic pitch curves."""
+
+import json
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.gears.generated import RackCutter, generate_pair
+from wheelstep_cli.gears.law import (center_distance_for_module, crank_pitch_law, law_from_samples,
+                                     pitch_curves)
+from wheelstep_cli.gears.pitch import CrankLaw
+from wheelstep_cli.geometry.outline import check_outline
+
+
+def involute_error(outline, pitch_radius, teeth, module, alpha, thickness, first_centre, band):
+    """Normal distance (mm) of outline points in a radius band from the exact involute flanks.
+
+    Teeth are centred at first_centre + k 2pi/teeth with arc thickness ``thickness`` at the
+    pitch circle; the flank at radius rho sits at half-angle s/2r + inv(alpha) - inv(alpha_rho).
+    """
+    inv = lambda a: np.tan(a) - a
+    rho = np.hypot(outline[:, 0], outline[:, 1])
+    keep = (rho > band[0]) & (rho < band[1])
+    rho, beta = rho[keep], np.arctan2(outline[keep, 1], outline[keep, 0])
+    step = 2 * np.pi / teeth
+    d = np.mod(beta - first_centre + step / 2, step) - step / 2
+    a_rho = np.arccos(pitch_radius * np.cos(alpha) / rho)
+    half = thickness / (2 * pitch_radius) + inv(alpha) - inv(a_rho)
+    return np.abs(np.abs(d) - half) * rho * np.cos(a_rho), len(rho)
+
+
+@pytest.mark.parametrize("backlash", [0.0, 0.5])
+def test_constant_ratio_gives_involute_spur_gears(backlash):
+    # b = 0: U = n = 2, circles r = L/3 = 48 (z 48, m 2) and r_H = 96 (z 96)
+    law = crank_pitch_law(CrankLaw(60.0, 0.0, 360.0, 144.0, 2))
+    alpha = np.radians(20.0)
+    pair = generate_pair(law, 48, RackCutter(alpha, 1.0, 1.25, 0.25, backlash))
+    assert pair.module == pytest.approx(2.0, abs=1e-6) and pair.wheel_teeth == 96
+    m, p = 2.0, 2.0 * np.pi
+    # pinion: a tooth centred half a pitch after the period start (a space at theta = -90 deg)
+    s_pinion = p / 2 - backlash / (2 * np.cos(alpha))
+    err, n = involute_error(pair.pinion_outline, 48.0, 48, m, alpha, s_pinion,
+                            -np.pi / 2 + np.pi / 48, (48 - 0.8 * m, 48 + 0.9 * m))
+    assert n > 2000 and err.max() < 0.005, err.max()
+    # wheel: carved by the pinion dilated by j_n/2 -> its teeth lose j_n/2 of thickness too
+    s_wheel = p / 2 - backlash / (2 * np.cos(alpha))
+    err, n = involute_error(pair.wheel_outline, 96.0, 96, m, alpha, s_wheel,
+                            np.pi / 4, (96 - 0.8 * m, 96 + 0.9 * m))
+    assert n > 4000 and err.max() < 0.005, err.max()
+
+
+def test_reference_design_generates_valid_outlines_with_the_spec_pitch():
+    law = crank_pitch_law(CrankLaw(60, 100, 360, 143.5, 2))
+    curves = pitch_curves(law)
+    assert curves.period_arc / 24 == pytest.approx(6.600, abs=5e-4)     # SPEC §9: 6.600 mm
+    pair = generate_pair(law, 48, RackCutter())
+    assert pair.module == pytest.approx(2.1008, abs=1e-4)
+    for outline, name in ((pair.pinion_outline, "pinion"), (pair.wheel_outline, "wheel")):
+        check_outline(outline, name)
+    assert pair.min_curvature_radius > pair.undercut_limit
+    assert pair.pinion_tip_land >= 0.1 and pair.wheel_tip_land >= 0.1
+
+
+def test_undercut_is_refused_with_the_remedy():
+    law = crank_pitch_law(CrankLaw(60, 100, 360, 144, 2))
+    with pytest.raises(DesignError) as info:
+        generate_pair(law, 48, RackCutter(pressure_angle=np.radians(10.0)))
+    text = str(info.value)
+    assert "undercut" in text and "pressure angle >=" in text and "module <=" in text
+    # following the remedy's pressure angle makes the same law generate
+    needed = float(text.split("pressure angle >= ")[1].split(" deg")[0])
+    generate_pair(law, 48, RackCutter(pressure_angle=np.radians(needed + 0.2)))
+
+
+def test_undercut_on_a_small_spur_pinion():
+    law = crank_pitch_law(CrankLaw(60.0, 0.0, 360.0, 144.0, 2))
+    with pytest.raises(DesignError, match="undercut"):
+        generate_pair(law, 12, RackCutter())       # z = 12 < 17 at 20 deg
+
+
+def test_pointed_teeth_are_refused():
+    law = crank_pitch_law(CrankLaw(60, 100, 360, 144, 2))
+    with pytest.raises(DesignError, match="come to a point"):
+        generate_pair(law, 48, RackCutter(pressure_angle=np.radians(30.0), addendum=1.25,
+                                          dedendum=1.5, fillet=0.1))
+
+
+def test_cli_reports_undercut_and_pointed_in_one_line(cli, tmp_path):
+    for args, words in ((["--pressure-angle", "10"], "undercut"),
+                        (["--pressure-angle", "30", "--addendum", "1.25", "--dedendum", "1.5",
+                          "--fillet", "0.1"], "come to a point")):
+        out = tmp_path / "x"
+        result = cli("gears", *args, "--out", out)
+        assert result.exit_code == 2
+        lines = result.stderr.strip().splitlines()
+        assert len(lines) == 1 and words in lines[0], result.stderr
+        assert not out.exists()
+
+
+def basel_law(center_distance=1.0, rows=721):
+    """Bäsel (arXiv:1905.02642) §8, Fig. 8.3: driven angle psi = phi - (2 - sqrt 2) sin phi."""
+    phi = np.linspace(0.0, 360.0, rows)
+    psi = np.degrees(np.radians(phi) - (2 - np.sqrt(2)) * np.sin(np.radians(phi)))
+    return law_from_samples(phi, psi, center_distance)
+
+
+def test_basel_example_reproduces_its_centre_distance():
+    # published: z = 14, m = 2 -> a = 28.4385 (perimeter integral I(0, 2pi) = 3.09315)
+    law = basel_law()
+    unit = pitch_curves(law, 65536).period_arc
+    assert unit == pytest.approx(3.09315, abs=5e-5)
+    assert center_distance_for_module(law, 14, 2.0) == pytest.approx(28.4385, abs=5e-4)
+
+
+def test_law_csv_generates_a_smooth_published_style_case(cli, tmp_path):
+    csv = tmp_path / "law.csv"
+    phi = np.linspace(0.0, 360.0, 361)
+    psi = np.degrees(np.radians(phi) - 0.3 * np.sin(np.radians(phi)))
+    distance = center_distance_for_module(law_from_samples(phi, psi, 1.0), 28, 1.5)   # z 28, m 1.5
+    csv.write_text("driving_deg,driven_deg\n" + "\n".join(f"{a:.9f},{b:.9f}" for a, b in zip(phi, psi)))
+    out = tmp_path / "out"
+    result = cli("gears", "--law-csv", csv, "--z", "28", "--center-distance", f"{distance:.6f}",
+                 "--install-distance", f"{distance:.6f}", "--bore", "4", "--format", "stl", "--out", out)
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((out / "gears.json").read_text())
+    assert report["generated"]["wheel_teeth"] == 28
+    assert report["generated"]["pinion_teeth"] == 28
+
+
+@settings(max_examples=12, deadline=None)
+@given(amp=st.floats(0.0, 0.25), shift=st.floats(-30.0, 30.0))
+def test_law_from_samples_recovers_ratio_and_rolling_arcs(amp, shift):
+    # phi(theta) = theta + amp sin(theta) over one turn: U = 1/(1 + amp cos theta)
+    theta = np.linspace(shift, shift + 360.0, 181)
+    phi = theta + np.degrees(amp * np.sin(np.radians(theta)))
+    law = law_from_samples(theta, phi, 100.0)
+    t = np.radians(np.linspace(shift, shift + 360.0, 50))
+    ph = law.carrier_angle(t)
+    assert np.allclose(law.ratio(ph), 1.0 / (1.0 + amp * np.cos(t)), atol=1e-6)
+    assert np.allclose(law.pinion_radius(ph) + law.wheel_radius(ph), 100.0)
+    curves = pitch_curves(law)
+    wheel_arc = np.sum(np.hypot(*np.diff(curves.wheel, axis=0).T))
+    assert wheel_arc == pytest.approx(curves.period_arc, rel=1e-6)   # they roll without slip
+
+
+def test_default_pair_meshes_without_interference_within_its_backlash_band(cli, tmp_path):
+    # the written pair, checked by the meshing check on its mid-thickness sections (SPEC §10)
+    result = cli("gears", "--format", "stl", "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((tmp_path / "gears.json").read_text())
+    meshing, generated = report["meshing"], report["generated"]
+    assert meshing["interference"] is False and not meshing["contact_lost"]
+    # constant angular play worth j_n = 0.5 mm at the mean wheel pitch radius: the normal
+    # backlash scales with the wheel pitch radius (79.8..102 mm over 92.6), plus 2 x 0.01 mm
+    assert 0.5 * 79.0 / 92.6 < meshing["backlash_min_mm"] and meshing["backlash_max_mm"] < 0.5 * 103.0 / 92.6 + 0.03
+    assert meshing["hub_speed_ripple_pct"] < 8.0                  # paper pair: hundreds of %
+    assert generated["module_mm"] == pytest.approx(2.1082, abs=1e-4)
+    assert "hub speed ripple" in result.stdout
+
+
+def test_blend_keeps_closure_and_is_not_refused_as_undercut():
+    from wheelstep_cli.gears.law import blended_pitch_law
+
+    law = crank_pitch_law(CrankLaw(60, 100, 360, 144, 2))
+    blended = blended_pitch_law(law, np.radians(1.0))
+    assert blended.theta_period == pytest.approx(law.theta_period, abs=1e-12)   # closes exactly
+    phi = np.linspace(-np.pi / 4, np.pi / 4, 2001)[:-1]
+    assert np.mean(blended.ratio(phi)) == pytest.approx(np.mean(law.ratio(phi)), rel=1e-4)
+    far = np.abs(phi) < np.radians(40.0)
+    assert np.allclose(blended.ratio(phi[far]), law.ratio(phi[far]), rtol=1e-4)   # ~only near corners
+    pair = generate_pair(blended, 48, RackCutter())       # the blended corner is cut like a pivot
+    assert pair.corner == "space"

@@ -1,0 +1,615 @@
+"""Generated (conjugate) teeth for a non-circular pair (SPEC §9).
+
+The pinion is cut by a straight-sided rack (pressure angle alpha, tip fillet)
+whose pitch line rolls without slip on the pinion's pitch curve; at a pitch-curve
+corner the rack pivots about the corner point. The wheel is then cut by that
+pinion moving along the exact law ("rotate and carve"): its outline is the blank
+minus the union of the pinion's poses in the wheel frame, so the pair is conjugate
+by construction, including the concave notch at each shoe handover.
+
+Backlash: the pinion's teeth are thinned by j_n/2 (the rack tooth is thickened),
+and the wheel is carved by the pinion dilated by j_n/2 along its normals, so the
+total normal backlash at the design centre distance is j_n and both gears' teeth
+are thinned by j_n/2. Opening the centre distance adds about 2 dL sin(alpha).
+
+Angles in radians, lengths in mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.gears.envelope import (PolarGrid, miter_offset, offset_polyline, outline_from_radii,
+                                         polyline_envelope)
+from wheelstep_cli.gears.law import PitchCurves, PitchLaw, pitch_curves
+
+#: Smallest tip land (mm) before a tooth counts as pointed (same floor as the paper method).
+MIN_TIP_LAND = 0.1
+#: Normal clearance (mm) added to the angular backlash so discretisation scallops never touch.
+SCALLOP_CLEARANCE = 0.01
+#: Rack-tooth tilt towards the radius, as a fraction of the pitch curve's normal-to-radius angle
+#: (chosen by measurement: 0 -> 11.5 % hub speed ripple, 0.3 -> 11.4, 0.6 -> 4.9, 1.0 -> 8.9).
+DEFAULT_TILT = 0.6
+#: Where the angular play goes: 0 splits it (drive TE = -play), +-1 puts it all on the coast side.
+LEAD = 0.0
+#: Radius (x module) the pinion's tip corners are rounded to (tip relief; 0: sharp).
+TIP_ROUND = 0.0
+#: Pinion outline taken into each carving pose: this many pitches either side of the pitch point.
+WINDOW_PITCHES = 2.6
+#: Most tooth height (x module) that may be topped off a pointed tooth before the design is refused.
+MAX_TOPPING = 0.35
+CORNER_MODES = ("space", "tooth")
+
+
+@dataclass(frozen=True)
+class RackCutter:
+    """Basic rack: pressure angle (rad); addendum, dedendum, tip fillet radius as multiples of m.
+
+    ``addendum`` is the gears' tooth height above the pitch curve, ``dedendum`` the
+    depth below it (the cutter's tooth height), ``fillet`` the cutter's tip radius.
+    ``backlash`` is the total normal backlash j_n (mm) of the pair.
+    """
+
+    pressure_angle: float = np.radians(20.0)
+    addendum: float = 1.0
+    dedendum: float = 1.25
+    fillet: float = 0.25
+    backlash: float = 0.5
+
+    def __post_init__(self) -> None:
+        require(np.radians(5.0) <= self.pressure_angle <= np.radians(35.0), "pressure-angle",
+                float(np.degrees(self.pressure_angle)), "must be 5..35 deg")
+        require(0.3 <= self.addendum <= 2.0, "addendum", self.addendum, "must be 0.3..2 x module")
+        require(self.addendum < self.dedendum <= 2.5, "dedendum", self.dedendum,
+                f"must be > addendum ({self.addendum:g}) and <= 2.5 x module (tip clearance)")
+        require(0.0 <= self.fillet <= 0.45, "fillet", self.fillet, "must be 0..0.45 x module")
+        require(np.isfinite(self.backlash) and self.backlash >= 0, "backlash", self.backlash,
+                "must be >= 0 mm")
+
+
+@dataclass(frozen=True)
+class GeneratedPair:
+    """Generated outlines and what was found about them.
+
+    ``pinion_outline`` / ``wheel_outline``: closed CCW (N, 2) arrays in mm (own frames,
+    pitch point for carrier angle phi at pinion body angle +theta(phi), wheel -phi).
+    """
+
+    law: PitchLaw
+    curves: PitchCurves
+    cutter: RackCutter
+    pinion_teeth: int
+    wheel_teeth: int
+    module: float
+    pitch: float
+    corner: str
+    pinion_outline: np.ndarray
+    wheel_outline: np.ndarray
+    pinion_radii: np.ndarray
+    wheel_radii: np.ndarray
+    pinion_grid: PolarGrid
+    wheel_grid: PolarGrid
+    undercut_limit: float
+    min_curvature_radius: float
+    pinion_tip_land: float
+    wheel_tip_land: float
+    topping: dict
+    play: float = 0.0      # rad of wheel angle each side (angular backlash mode)
+
+
+def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
+                 flank_points: int = 60) -> np.ndarray:
+    """Cutter polyline (K, 2) in rack coordinates (x along the pitch line, y outward, mm).
+
+    ``teeth`` cutter teeth centred at x = (j - (teeth-1)/2) p; each cuts one space
+    of the gear, reaching y = -dedendum m with tip fillets; between teeth the
+    polyline runs at a height the gear blank never reaches.
+    """
+    a = cutter.pressure_angle
+    tan_a, cos_a, sin_a = np.tan(a), np.cos(a), np.sin(a)
+    h_f = cutter.dedendum * module
+    rho = cutter.fillet * module
+    # cutter tooth half thickness at the pitch line: p/4 plus the pinion's thinning j_n/4 (normal)
+    half = pitch / 4.0 + cutter.backlash / (4.0 * cos_a)
+    top = min(cutter.addendum * module + 0.15 * module, (pitch / 2.0 - half) / tan_a - 1e-3)
+    if top <= cutter.addendum * module:
+        land = 2.0 * (pitch / 2.0 - half - cutter.addendum * module * tan_a)
+        raise DesignError("addendum", cutter.addendum,
+                          f"the teeth come to a point (the rack's tooth spaces close below the tip "
+                          f"line, tip land {land:.3f} mm at module {module:.3f} mm); use a smaller "
+                          "addendum, a smaller pressure angle or more teeth (--z)")
+    yc = -h_f + rho
+    xc = half + (yc * sin_a - rho) / cos_a                 # right fillet centre
+    require(xc >= 0.0, "fillet", cutter.fillet, "too large: the cutter tip has no flat land")
+    # right half of one cutter tooth, from the tip centre out to the top
+    tip = np.column_stack([np.linspace(0.0, xc, 4, endpoint=False), np.full(4, -h_f)])
+    arc_t = np.linspace(-np.pi / 2.0, -a, 10)
+    fillet = np.column_stack([xc + rho * np.cos(arc_t), yc + rho * np.sin(arc_t)])
+    y = np.linspace(yc - rho * sin_a, top, flank_points)[1:]
+    flank = np.column_stack([half + y * tan_a, y])
+    right = np.vstack([tip, fillet, flank, [[pitch / 2.0, top]]])
+    tooth = np.vstack([right[::-1] * [-1.0, 1.0], right[1:]])   # left top -> tip -> right top
+    shifts = (np.arange(teeth) - (teeth - 1) / 2.0) * pitch
+    rack = (tooth[None, :, :] + np.column_stack([shifts, np.zeros(teeth)])[:, None, :])
+    rack = rack[:, :-1].reshape(-1, 2)
+    return np.vstack([rack, tooth[-1:] + [shifts[-1], 0.0]])
+
+
+def _curve_frames(points: np.ndarray, arc: np.ndarray, s: np.ndarray, outward_sign: float):
+    """Point, unit tangent and outward unit normal at arc positions s on a sampled curve."""
+    x = np.interp(s, arc, points[:, 0])
+    y = np.interp(s, arc, points[:, 1])
+    seg = np.diff(points, axis=0)
+    seg /= np.hypot(seg[:, 0], seg[:, 1])[:, None]
+    idx = np.clip(np.searchsorted(arc, s, side="right") - 1, 0, len(seg) - 1)
+    tangent = seg[idx]
+    normal = outward_sign * np.column_stack([tangent[:, 1], -tangent[:, 0]])
+    return np.column_stack([x, y]), tangent, normal
+
+
+def _outward_sign(points: np.ndarray) -> float:
+    """+1 when the right-hand normal of the polyline points away from the origin."""
+    seg = np.diff(points, axis=0)
+    right = np.column_stack([seg[:, 1], -seg[:, 0]])
+    return 1.0 if np.sum(right * points[:-1]) > 0 else -1.0
+
+
+def radial_tilt(curve: np.ndarray, arc: np.ndarray):
+    """Angle mu(s) (rad) between the pitch-curve normal and the radius vector, as a function of arc.
+
+    Tilting a rack tooth by -mu turns its axis from the pitch-curve normal to the
+    radius: both flanks then meet the direction of motion at the pressure angle.
+    """
+    seg = np.diff(curve, axis=0)
+    mid = 0.5 * (curve[1:] + curve[:-1])
+    radial = mid / np.hypot(mid[:, 0], mid[:, 1])[:, None]
+    cross = radial[:, 0] * seg[:, 1] - radial[:, 1] * seg[:, 0]
+    mu = np.arctan2(np.sum(radial * seg, axis=1), cross)
+    s_mid = 0.5 * (arc[1:] + arc[:-1])
+    total = arc[-1]
+    return lambda s: np.interp(np.mod(s, total), s_mid, mu)
+
+
+def _place_rack(origin, tangent, normal, rack, tooth_x, rel_shift, tilt_of_arc, arc_at_contact):
+    """Rack points in the gear frame for poses (P,) : each rack tooth tilted about its pitch point.
+
+    ``tooth_x``: per rack point, its tooth's centre x in the template; ``rel_shift``:
+    per pose, the template's x offset; ``tilt_of_arc``: tilt (rad) of a tooth centred
+    at an arc position (None: no tilt); ``arc_at_contact``: per pose, the contact arc.
+    """
+    rx = rack[None, :, 0] + rel_shift[:, None]
+    ry = np.broadcast_to(rack[None, :, 1], rx.shape)
+    if tilt_of_arc is not None:
+        centre = tooth_x[None, :] + rel_shift[:, None]
+        tau = tilt_of_arc(arc_at_contact[:, None] + centre)
+        dx = rx - centre
+        c, s = np.cos(tau), np.sin(tau)
+        rx, ry = centre + c * dx - s * ry, s * dx + c * ry
+    return origin[:, None, :] + rx[..., None] * tangent[:, None, :] + ry[..., None] * normal[:, None, :]
+
+
+def cut_by_rolling_rack(curve: np.ndarray, arc: np.ndarray, grid: PolarGrid, rack: np.ndarray,
+                        rack_center: float, pitch: float, poses: int,
+                        corner_poses: int, period_angle: float, reach: float = np.inf,
+                        tilt: float = 0.0) -> np.ndarray:
+    """Nearest rack crossing per ray as the rack's pitch line rolls on ``curve`` (one period).
+
+    The rack's tooth centres sit at arc positions ``rack_center + k p``. At the
+    period ends (a corner, when the tangent there jumps) the rack pivots about the
+    corner point through ``corner_poses`` intermediate orientations. With ``tilt``
+    = c != 0 each rack tooth is turned by -c mu(s_k) about its pitch point (c = 1:
+    tooth axes along the radius, as in the paper's sectors).
+    """
+    sign = _outward_sign(curve)
+    total = arc[-1]
+    teeth = int(round((rack[-1, 0] - rack[0, 0]) / pitch))
+    tooth_x = (np.round(rack[:, 0] / pitch + (teeth - 1) / 2.0) - (teeth - 1) / 2.0) * pitch
+    mu = radial_tilt(curve, arc)
+    tilt_fn = (lambda a: -tilt * mu(a)) if tilt else None
+    s = (np.arange(poses) + 0.5) * total / poses
+    origin, tangent, normal = _curve_frames(curve, arc, s, sign)
+    shift = np.mod(rack_center - s + pitch / 2.0, pitch) - pitch / 2.0
+    world = _place_rack(origin, tangent, normal, rack, tooth_x, shift, tilt_fn, s)
+    radii = polyline_envelope(grid, world, reach=reach)
+    # the tangent arriving at the start corner: the period's end tangent, rotated back one period
+    c, sn = np.cos(-period_angle), np.sin(-period_angle)
+    t_end = curve[-1] - curve[-2]
+    t_in = np.array([c * t_end[0] - sn * t_end[1], sn * t_end[0] + c * t_end[1]])
+    t_out = curve[1] - curve[0]
+    turn = np.arctan2(t_in[0] * t_out[1] - t_in[1] * t_out[0], np.dot(t_in, t_out))
+    if corner_poses > 0 and abs(turn) > 1e-6:
+        start = np.arctan2(t_in[1], t_in[0])
+        angles = start + turn * np.linspace(0.0, 1.0, corner_poses)
+        tangent = np.column_stack([np.cos(angles), np.sin(angles)])
+        normal = sign * np.column_stack([tangent[:, 1], -tangent[:, 0]])
+        shift = np.full(corner_poses, np.mod(rack_center + pitch / 2.0, pitch) - pitch / 2.0)
+        origin = np.broadcast_to(curve[0], (corner_poses, 2))
+        world = _place_rack(origin, tangent, normal, rack, tooth_x, shift, tilt_fn, np.zeros(corner_poses))
+        polyline_envelope(grid, world, out=radii, reach=reach)
+    return radii
+
+
+def _topped(outline: np.ndarray, grid: PolarGrid, topped: np.ndarray, before: np.ndarray,
+            copies: int) -> np.ndarray:
+    """The exact outline cut down to the topped radii (rays a topping lowered; others untouched)."""
+    lowered = topped < before - 1e-12
+    if not lowered.any():
+        return outline
+    import shapely
+
+    cap = np.where(lowered, topped, 10.0 * float(before.max()))
+    limit = shapely.Polygon(outline_from_radii(grid, cap, copies))
+    result = shapely.Polygon(outline).intersection(limit).buffer(0)
+    if result.geom_type != "Polygon":
+        result = max(result.geoms, key=lambda g: g.area)
+    coords = np.asarray(result.exterior.coords)[:-1]
+    area = 0.5 * np.sum(coords[:, 0] * np.roll(coords[:, 1], -1) - np.roll(coords[:, 0], -1) * coords[:, 1])
+    return coords if area > 0 else coords[::-1]
+
+
+def rack_tooth_polygons(cutter: RackCutter, module: float, pitch: float, teeth: int = 5,
+                        flank_points: int = 40) -> tuple[np.ndarray, np.ndarray]:
+    """Closed cutter teeth in rack coordinates, shape (teeth, K, 2), and their centres x (mm).
+
+    Each tooth runs from its left top over the tip to its right top and closes far
+    outside the blank, so a tooth can be tilted about its pitch point on its own.
+    """
+    one = rack_profile(cutter, module, pitch, 1, flank_points)
+    far = one[:, 1].max() + 4.0 * module
+    closed = np.vstack([one, [[one[-1, 0], far], [one[0, 0], far]]])
+    centres = (np.arange(teeth) - (teeth - 1) / 2.0) * pitch
+    return closed[None, :, :] + np.column_stack([centres, np.zeros(teeth)])[:, None, :], centres
+
+
+def pinion_by_rack(curve: np.ndarray, arc: np.ndarray, cutter: RackCutter, module: float,
+                   pitch: float, rack_center: float, poses: int, corner_poses: int,
+                   period_angle: float, copies: int, tilt: float) -> np.ndarray:
+    """Pinion outline (N, 2, CCW, mm) = blank minus the union of every rack-tooth pose (exact).
+
+    Same kinematics as :func:`cut_by_rolling_rack` (rolling, pivoting at the corner,
+    teeth tilted by -tilt mu), but as polygon booleans: teeth that lean over their
+    neighbours' spaces keep their true shape, which a polar ray map cannot hold.
+    """
+    import shapely
+
+    teeth, centres = rack_tooth_polygons(cutter, module, pitch)
+    k = teeth.shape[1]
+    flat = teeth.reshape(-1, 2)
+    tooth_x = np.repeat(centres, k)
+    sign = _outward_sign(curve)
+    mu = radial_tilt(curve, arc)
+    tilt_fn = (lambda a: -tilt * mu(a)) if tilt else None
+    total = arc[-1]
+    s = (np.arange(poses) + 0.5) * total / poses
+    origin, tangent, normal = _curve_frames(curve, arc, s, sign)
+    shift = np.mod(rack_center - s + pitch / 2.0, pitch) - pitch / 2.0
+    worlds = [_place_rack(origin, tangent, normal, flat, tooth_x, shift, tilt_fn, s)]
+    c, sn = np.cos(-period_angle), np.sin(-period_angle)
+    t_end = curve[-1] - curve[-2]
+    t_in = np.array([c * t_end[0] - sn * t_end[1], sn * t_end[0] + c * t_end[1]])
+    t_out = curve[1] - curve[0]
+    turn = np.arctan2(t_in[0] * t_out[1] - t_in[1] * t_out[0], np.dot(t_in, t_out))
+    if corner_poses > 0 and abs(turn) > 1e-6:
+        angles = np.arctan2(t_in[1], t_in[0]) + turn * np.linspace(0.0, 1.0, corner_poses)
+        tan_c = np.column_stack([np.cos(angles), np.sin(angles)])
+        nor_c = sign * np.column_stack([tan_c[:, 1], -tan_c[:, 0]])
+        shift_c = np.full(corner_poses, np.mod(rack_center + pitch / 2.0, pitch) - pitch / 2.0)
+        worlds.append(_place_rack(np.broadcast_to(curve[0], (corner_poses, 2)), tan_c, nor_c, flat,
+                                  tooth_x, shift_c, tilt_fn, np.zeros(corner_poses)))
+    polys = np.concatenate([w.reshape(-1, len(centres), k, 2).reshape(-1, k, 2) for w in worlds])
+    turn_sign = np.sign(_polar_sweep(curve))
+    rotated = [polys @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
+               for a in turn_sign * period_angle * np.arange(copies)]
+    cutter_region = shapely.union_all(shapely.polygons(np.concatenate(rotated)))
+    body = np.concatenate([curve[:-1] @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
+                           for a in turn_sign * period_angle * np.arange(copies)])
+    # bevel joins: a chord across each pitch-curve corner relieves the corner teeth's tips
+    blank = shapely.Polygon(body).buffer(cutter.addendum * module, join_style="bevel")
+    # buffer(0) drops the zero-area slivers booleans can leave where rack poses just touch
+    pinion = blank.difference(cutter_region).buffer(0)
+    if TIP_ROUND > 0:
+        # an opening rounds the convex corners (tooth tips) to TIP_ROUND x m, nothing else
+        r = TIP_ROUND * module
+        pinion = pinion.buffer(-r, quad_segs=8).buffer(r, quad_segs=8)
+    if pinion.geom_type != "Polygon":
+        pinion = max(pinion.geoms, key=lambda g: g.area)
+    outline = np.asarray(pinion.exterior.coords)[:-1]
+    area = 0.5 * np.sum(outline[:, 0] * np.roll(outline[:, 1], -1) - np.roll(outline[:, 0], -1) * outline[:, 1])
+    return outline if area > 0 else outline[::-1]
+
+
+def blank_radii(curve: np.ndarray, grid: PolarGrid, height: float, fan: bool = True) -> np.ndarray:
+    """Farthest crossing per ray of the pitch curve offset outward by ``height`` mm.
+
+    ``curve`` spans one period (grid.period rad of body angle); it is closed over the
+    whole turn first so the corners between periods get their offset fans.
+    """
+    copies = int(round(2.0 * np.pi / grid.period))
+    angles = grid.period * np.arange(copies) * np.sign(_polar_sweep(curve))
+    c, s = np.cos(angles), np.sin(angles)
+    body = curve[:-1]
+    full = np.concatenate([np.column_stack([ci * body[:, 0] - si * body[:, 1],
+                                            si * body[:, 0] + ci * body[:, 1]]) for ci, si in zip(c, s)])
+    if _outward_sign(full) < 0:
+        full = full[::-1]
+    offset = offset_polyline(full, height, closed=True, fan=fan)
+    offset = np.vstack([offset, offset[:1]])                 # close the loop
+    return polyline_envelope(grid, offset[None], nearest=False)
+
+
+def _polar_sweep(curve: np.ndarray) -> float:
+    """Signed body angle (rad) a curve sweeps from its first to its last point."""
+    return float(np.sum(np.diff(np.unwrap(np.arctan2(curve[:, 1], curve[:, 0])))))
+
+
+def carve_by_pinion(law: PitchLaw, pinion_outline: np.ndarray, wheel_grid: PolarGrid,
+                    distance: float, clearance: float, poses: int, window: float,
+                    reach: float = np.inf, play: float = 0.0, lead: float = 0.0) -> np.ndarray:
+    """Nearest crossing per wheel ray of the pinion moving along the law (one law period).
+
+    ``pinion_outline``: closed CCW outline (mm, pinion frame, ordered by polar angle
+    overall). Poses sample the driven angle uniformly (plus the law's corners); at
+    each, the outline (dilated by ``clearance`` mm) within ``window`` rad of its pitch
+    point is placed in the wheel frame (pinion rotated by -theta at the origin, wheel
+    by pi + phi about (distance, 0)). With ``play`` > 0 (rad of wheel angle) the
+    carving is widened to the union over wheel turns in [-play, play]: a constant
+    angular backlash, so the drive-side TE is constant along the cycle; ``lead``
+    (-1..1) shifts that window (+1: all play on the coast side).
+    """
+    import shapely
+
+    ring = shapely.simplify(shapely.LinearRing(pinion_outline), 0.0005, preserve_topology=True)
+    dense = np.asarray(shapely.segmentize(ring, 0.05).coords)[:-1]
+    # outline is CCW: its right-hand normal points outward
+    dilated = miter_offset(dense, clearance) if clearance > 0 else dense
+    n_pts = len(dense)
+    angle = np.unwrap(np.arctan2(dense[:, 1], dense[:, 0]))
+    reach_angle = np.maximum.accumulate(angle)
+    phi = law.phi[0] + law.phi_period * (np.arange(poses) + 0.5) / poses
+    if law.corners:
+        phi = np.sort(np.append(phi, np.asarray(law.corners)))
+    theta = law.pinion_angle(phi)
+    local = angle[0] + np.mod(theta - angle[0], 2.0 * np.pi)
+    start = np.searchsorted(reach_angle, local - window)
+    end = np.searchsorted(reach_angle, local + window)
+    # windows wrapping past the outline's start: look them up one turn on
+    wrap = local - window < angle[0]
+    start[wrap] = np.searchsorted(reach_angle, local[wrap] - window + 2.0 * np.pi) - n_pts
+    width = int(np.max(end - start)) + 1
+    idx = np.mod(start[:, None] + np.arange(width)[None, :], n_pts)
+    pts = dilated[idx]                                       # (poses, K, 2) pinion body frame
+    c, s = np.cos(-theta), np.sin(-theta)
+    wx = c[:, None] * pts[..., 0] - s[:, None] * pts[..., 1] - distance
+    wy = s[:, None] * pts[..., 0] + c[:, None] * pts[..., 1]
+    ang = -(np.pi + phi)
+    c, s = np.cos(ang), np.sin(ang)
+    body = np.stack([c[:, None] * wx - s[:, None] * wy, s[:, None] * wx + c[:, None] * wy], axis=-1)
+    radii = polyline_envelope(wheel_grid, body, reach=reach)
+    if play > 0:
+        radii = _widen(radii, play / wheel_grid.width, lead)
+    return radii
+
+
+def _widen(radii: np.ndarray, span: float, lead: float) -> np.ndarray:
+    """Periodic sliding minimum over +-span rays (fractional ends interpolated), shifted by lead*span.
+
+    The union of the carving over all wheel turns in [-play, play] is, ray by ray, the
+    smallest radius within +-play.
+    """
+    k = int(np.floor(span))
+    if k > 0:
+        padded = np.concatenate([radii[-k:], radii, radii[:k]])
+        widened = np.lib.stride_tricks.sliding_window_view(padded, 2 * k + 1).min(axis=1)
+    else:
+        widened = radii
+    n = len(radii)
+    j = np.arange(n)
+    for edge in (-span, span):
+        lo = np.floor(j + edge).astype(np.int64)
+        t = (j + edge) - lo
+        widened = np.minimum(widened, (1 - t) * radii[lo % n] + t * radii[(lo + 1) % n])
+    if lead:
+        lo = np.floor(j + lead * span).astype(np.int64)
+        t = (j + lead * span) - lo
+        widened = (1 - t) * widened[lo % n] + t * widened[(lo + 1) % n]
+    return widened
+
+
+def top_pointed_teeth(grid: PolarGrid, radii: np.ndarray, pitch_radii: np.ndarray,
+                      blank: np.ndarray, floor: float) -> tuple[np.ndarray, int, float, float]:
+    """Top every tooth whose tip land is below ``floor`` mm down to where it is ``floor`` wide.
+
+    Teeth are the runs of rays whose outline lies above the pitch curve. Returns the
+    new radii, how many teeth were topped, the largest height removed (mm) and the
+    smallest tip land left (mm).
+    """
+    above = radii > pitch_radii
+    if above.all() or not above.any():
+        return radii, 0, 0.0, 0.0
+    first = int(np.argmin(above))
+    order = np.roll(np.arange(len(radii)), -first)
+    a = above[order].astype(np.int8)
+    edges = np.diff(np.concatenate(([0], a, [0])))
+    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    out = radii.copy()
+    topped, worst, thinnest = 0, 0.0, np.inf
+    for lo, hi in zip(starts, ends):                       # one iteration per tooth
+        rays = order[lo:hi]
+        if hi - lo < 3:
+            continue                                        # a sliver above the pitch curve, no tooth
+        uncut = radii[rays] >= blank[rays] - 1e-9
+        land_now = grid.width * float(np.sum(blank[rays][uncut]))
+        if land_now >= floor:
+            thinnest = min(thinnest, land_now)
+            continue
+        r = np.sort(radii[rays])[::-1]
+        land = np.arange(1, len(r) + 1) * grid.width * r    # land width if cut at r[k]
+        k = int(np.argmax(land >= floor)) if np.any(land >= floor) else len(r) - 1
+        out[rays] = np.minimum(out[rays], r[k])
+        topped += 1
+        worst = max(worst, float(r[0] - r[k]))
+        thinnest = min(thinnest, float(land[k]))
+    return out, topped, worst, thinnest
+
+
+def curvature_radius(points: np.ndarray) -> np.ndarray:
+    """Signed radius of curvature (mm) along a sampled curve; > 0 where convex (seen from outside)."""
+    d1 = np.gradient(points, axis=0)
+    d2 = np.gradient(d1, axis=0)
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    speed = np.hypot(d1[:, 0], d1[:, 1])
+    orient = 1.0 if np.sum(points[:-1, 0] * points[1:, 1] - points[1:, 0] * points[:-1, 1]) > 0 else -1.0
+    with np.errstate(divide="ignore"):
+        return orient * speed**3 / cross
+
+
+def undercut_limit(cutter: RackCutter, module: float) -> float:
+    """Smallest convex pitch-curve radius of curvature (mm) a rack cuts without undercut."""
+    a = cutter.pressure_angle
+    # the cutter's addendum h_a0 is the gears' dedendum
+    return module * (cutter.dedendum - cutter.fillet * (1.0 - np.sin(a))) / np.sin(a) ** 2
+
+
+def _undercut_remedy(cutter: RackCutter, module: float, rho: float, teeth_per_period: int,
+                     pinion_periods: int) -> str:
+    """Remedy text: the tooth count and pressure angle at which the rack stops undercutting."""
+    a = cutter.pressure_angle
+    per_m = (cutter.dedendum - cutter.fillet * (1.0 - np.sin(a))) / np.sin(a) ** 2
+    module_max = rho / per_m
+    z_min = pinion_periods * int(np.ceil(teeth_per_period * module / module_max))
+    lo, hi = a, np.radians(35.0)
+    f = lambda x: (cutter.dedendum - cutter.fillet * (1 - np.sin(x))) / np.sin(x) ** 2 * module - rho
+    if f(hi) > 0:
+        angle_text = "no pressure angle up to 35 deg helps"
+    else:
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if f(mid) > 0 else (lo, mid)
+        angle_text = f"pressure angle >= {np.degrees(hi):.1f} deg"
+    return (f"use module <= {module_max:.3f} mm (pinion z >= {z_min}) or {angle_text}")
+
+
+def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: str = "space",
+                  poses_per_tooth: int = 48, rays_per_tooth: int = 160,
+                  strict: bool = True, tilt: float = DEFAULT_TILT,
+                  backlash_mode: str = "angular") -> GeneratedPair:
+    """Generate both gears for ``law`` with ``pinion_teeth`` teeth on the pinion.
+
+    Raises DesignError (with the remedy) for undercut or pointed teeth and for tooth
+    counts that do not divide the law's periods.
+    """
+    require(corner in CORNER_MODES, "corner", corner, "must be 'space' or 'tooth'")
+    periods = law.pinion_periods
+    require(pinion_teeth >= 6 and pinion_teeth % periods == 0, "z", pinion_teeth,
+            f"must be a multiple of {periods} (law periods per pinion turn) and >= 6")
+    per_period = pinion_teeth // periods
+    wheel_teeth = per_period * law.wheel_periods
+    curves = pitch_curves(law)
+    pitch = curves.period_arc / per_period
+    module = pitch / np.pi
+    h_a = cutter.addendum * module
+
+    # undercut: the rack undercuts where the convex pitch curve bends tighter than the limit
+    limit = undercut_limit(cutter, module)
+    rho = curvature_radius(curves.pinion)
+    # corners are cut by the pivoting rack, and so are blended corners: leave them out
+    keep = np.ones(len(rho), dtype=bool)
+    keep[:2] = keep[-2:] = False
+    for smoothed in law.blended_corners:
+        d = np.mod(curves.phi - smoothed + law.phi_period / 2.0, law.phi_period) - law.phi_period / 2.0
+        keep &= np.abs(d) > 1.5 * law.blend_half_width
+    rho = rho[keep]
+    convex = rho[rho > 0]
+    rho_min = float(convex.min()) if len(convex) else float("inf")
+    if rho_min < limit and strict:
+        raise DesignError("z", pinion_teeth,
+                          f"the rack undercuts the pinion: pitch-curve radius of curvature "
+                          f"{rho_min:.2f} mm < {limit:.2f} mm at module {module:.3f} mm; "
+                          + _undercut_remedy(cutter, module, rho_min, per_period, periods))
+
+    theta0 = float(law.pinion_angle(curves.phi[0]))
+    pinion_grid = PolarGrid(theta0, law.theta_period, per_period * rays_per_tooth)
+    offset = pitch / 2.0 if corner == "space" else 0.0   # arc of the first pinion tooth centre
+    rack = rack_profile(cutter, module, pitch, 5)
+    # no offset fan at the pinion's corners: a chord there relieves the corner teeth's tips
+    pinion_blank = blank_radii(curves.pinion, pinion_grid, h_a, fan=False)
+    cut = cut_by_rolling_rack(curves.pinion, curves.arc, pinion_grid, rack, offset + pitch / 2.0,
+                              pitch, per_period * poses_per_tooth, corner_poses=4 * poses_per_tooth,
+                              period_angle=law.theta_period, reach=float(pinion_blank.max()), tilt=tilt)
+    pinion_radii = np.minimum(pinion_blank, cut)
+    pinion_exact = pinion_by_rack(curves.pinion, curves.arc, cutter, module, pitch, offset + pitch / 2.0,
+                                  per_period * poses_per_tooth, 4 * poses_per_tooth, law.theta_period,
+                                  periods, tilt)
+
+    wheel_grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, per_period * rays_per_tooth * 2)
+    wheel_blank = blank_radii(curves.wheel, wheel_grid, h_a)
+    # backlash: a constant angular play of the wheel (TE constant along the cycle) plus a thin
+    # normal clearance that keeps discretisation scallops from touching
+    if backlash_mode == "angular":
+        clearance = min(cutter.backlash / 2.0, SCALLOP_CLEARANCE)
+        mean_rh = float(np.mean(np.hypot(*curves.wheel.T)))
+        play = (cutter.backlash / 2.0 - clearance) / (mean_rh * np.cos(cutter.pressure_angle))
+    else:
+        clearance, play = cutter.backlash / 2.0, 0.0
+    window = WINDOW_PITCHES * pitch / float(np.min(np.hypot(*curves.pinion.T)))
+    carved = carve_by_pinion(law, pinion_exact, wheel_grid, law.center_distance, clearance,
+                             per_period * poses_per_tooth, window, float(wheel_blank.max()), play, LEAD)
+    wheel_radii = np.minimum(wheel_blank, carved)
+    require(np.all(np.isfinite(pinion_radii)) and np.all(np.isfinite(wheel_radii)), "z", pinion_teeth,
+            "the generated outline has gaps (pitch curve too tight for the cutter)")
+
+    # teeth too thin at the tip (the few next to a pitch-curve corner) are topped to the
+    # land floor when that costs at most MAX_TOPPING x m of height; otherwise refuse
+    topping, lands = {}, {}
+    pinion_cut = pinion_radii
+    for name, grid, curve, radii, blank in (
+            ("pinion", pinion_grid, curves.pinion, pinion_radii, pinion_blank),
+            ("wheel", wheel_grid, curves.wheel, wheel_radii, wheel_blank)):
+        pitch_r = polyline_envelope(grid, curve[None], nearest=False)
+        new, count, drop, land = top_pointed_teeth(grid, radii, pitch_r, blank, MIN_TIP_LAND)
+        if drop > MAX_TOPPING * module and strict:
+            raise DesignError("addendum", cutter.addendum,
+                              f"the {name} teeth come to a point (a {MIN_TIP_LAND} mm tip land needs "
+                              f"{drop:.2f} mm off the tip, > {MAX_TOPPING} x module {module:.3f} mm); "
+                              "use a smaller addendum, a smaller pressure angle or more teeth (--z)")
+        topping[name] = (count, drop)
+        lands[name] = land
+        if name == "pinion":
+            pinion_radii = new
+        else:
+            wheel_radii = new
+    return GeneratedPair(
+        law=law, curves=curves, cutter=cutter, pinion_teeth=pinion_teeth, wheel_teeth=wheel_teeth,
+        module=module, pitch=pitch, corner=corner,
+        pinion_outline=_topped(pinion_exact, pinion_grid, pinion_radii, pinion_cut, periods),
+        wheel_outline=outline_from_radii(wheel_grid, wheel_radii, law.wheel_periods),
+        pinion_radii=pinion_radii, wheel_radii=wheel_radii,
+        pinion_grid=pinion_grid, wheel_grid=wheel_grid,
+        undercut_limit=limit, min_curvature_radius=rho_min,
+        pinion_tip_land=lands["pinion"], wheel_tip_land=lands["wheel"], topping=topping, play=play)
+
+
+def simplify_outline(outline: np.ndarray, tolerance: float = 0.001) -> np.ndarray:
+    """Drop outline points within ``tolerance`` mm of the polyline (Douglas-Peucker) and spikes.
+
+    A spike is a vertex where the outline doubles back on itself (a zero-width sliver a
+    boolean can leave); a few vectorised passes remove nested ones.
+    """
+    import shapely
+
+    ring = shapely.simplify(shapely.LinearRing(outline), tolerance, preserve_topology=True)
+    pts = np.asarray(ring.coords)[:-1]
+    for _ in range(8):
+        d_in = pts - np.roll(pts, 1, axis=0)
+        d_out = np.roll(pts, -1, axis=0) - pts
+        norm = np.hypot(d_in[:, 0], d_in[:, 1]) * np.hypot(d_out[:, 0], d_out[:, 1])
+        cos = np.sum(d_in * d_out, axis=1) / np.maximum(norm, 1e-300)
+        spike = (cos < -0.95) | (norm < 1e-18)
+        if not spike.any():
+            break
+        spike &= ~np.roll(spike, 1)          # never drop two neighbours in one pass
+        pts = pts[~spike]
+    return pts

@@ -1,0 +1,147 @@
+"""Read gear meshes back (STL, or an object of a 3MF) and section them into 2D outlines.
+
+The part's own frame is kept: its rotation axis is the mesh's z axis through
+x = y = 0, as ``wheelstep gears`` writes them (3MF build-item transforms, which only
+place parts on the plate, are ignored). Lengths in mm.
+"""
+
+from __future__ import annotations
+
+import io
+import zipfile
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError
+
+_CORE_NS = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
+_UNITS_MM = {"micron": 1e-3, "millimeter": 1.0, "centimeter": 10.0, "inch": 25.4,
+             "foot": 304.8, "meter": 1000.0}
+
+
+def split_mesh_spec(spec: str) -> tuple[Path, str | None]:
+    """``FILE.3mf:NAME`` -> (path, name); anything else -> (path, None)."""
+    head, sep, tail = str(spec).rpartition(":")
+    if sep and head.lower().endswith(".3mf") and tail and "/" not in tail:
+        return Path(head), tail
+    return Path(spec), None
+
+
+def read_mesh(spec: str, param: str, default_name: str | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices (V, 3) in mm and triangles (F, 3) of an STL file or a 3MF object.
+
+    ``spec``: ``FILE.stl``, ``FILE.3mf`` (its only object, else the object called
+    ``default_name``) or ``FILE.3mf:NAME``. ``param`` names the argument in errors.
+    """
+    path, name = split_mesh_spec(spec)
+    if not path.is_file():
+        raise DesignError(param, str(spec), "no such file")
+    suffix = path.suffix.lower()
+    try:
+        if suffix == ".3mf":
+            return _read_3mf_object(path, name, default_name, param)
+        if suffix == ".stl":
+            if name is not None:
+                raise DesignError(param, str(spec), "an STL file holds one mesh; drop ':NAME'")
+            return _read_stl(path)
+    except DesignError:
+        raise
+    except Exception as err:  # malformed files of every kind end here
+        raise DesignError(param, str(spec), f"cannot be read as {suffix[1:].upper()} "
+                          f"({type(err).__name__}: {str(err)[:80]})") from None
+    raise DesignError(param, str(spec), "must be an .stl or .3mf file")
+
+
+def _read_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    import trimesh
+
+    mesh = trimesh.load(path, file_type="stl", force="mesh", process=True)
+    if len(mesh.faces) == 0:
+        raise ValueError("no triangles")
+    return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64)
+
+
+def _read_3mf_object(path: Path, name: str | None, default_name: str | None,
+                     param: str) -> tuple[np.ndarray, np.ndarray]:
+    """Mesh of one named object of a 3MF package, in its own frame (mm)."""
+    with zipfile.ZipFile(path) as zf:
+        model_name = _model_part(zf)
+        root = ET.parse(io.BytesIO(zf.read(model_name))).getroot()
+    scale = _UNITS_MM.get(root.get("unit", "millimeter"))
+    if scale is None:
+        raise ValueError(f"unknown unit {root.get('unit')!r}")
+    ns = {"m": _CORE_NS}
+    objects = {}
+    for obj in root.iterfind("m:resources/m:object", ns):
+        mesh = obj.find("m:mesh", ns)
+        if mesh is not None:
+            objects[obj.get("name") or f"object {obj.get('id')}"] = mesh
+    if not objects:
+        raise DesignError(param, str(path), "holds no mesh object")
+    wanted = name
+    if wanted is None:
+        wanted = next(iter(objects)) if len(objects) == 1 else default_name
+    if wanted not in objects:
+        names = ", ".join(sorted(objects))
+        raise DesignError(param, f"{path}:{wanted}" if wanted else str(path),
+                          f"name one of its objects as FILE.3mf:NAME ({names})")
+    mesh = objects[wanted]
+    vertices = np.array([[float(v.get(k)) for k in "xyz"]
+                         for v in mesh.iterfind("m:vertices/m:vertex", ns)], dtype=float)
+    faces = np.array([[int(t.get(k)) for k in ("v1", "v2", "v3")]
+                      for t in mesh.iterfind("m:triangles/m:triangle", ns)], dtype=np.int64)
+    if len(faces) == 0 or faces.min() < 0 or faces.max() >= len(vertices):
+        raise ValueError(f"object {wanted!r} has no valid triangles")
+    return vertices * scale, faces
+
+
+def _model_part(zf: zipfile.ZipFile) -> str:
+    """The 3D model part named by the package relationships (default 3D/3dmodel.model)."""
+    try:
+        rels = ET.fromstring(zf.read("_rels/.rels"))
+        for rel in rels:
+            if rel.get("Type", "").endswith("/3dmodel"):
+                return rel.get("Target", "").lstrip("/")
+    except KeyError:
+        pass
+    return "3D/3dmodel.model"
+
+
+def section_outline(vertices: np.ndarray, faces: np.ndarray, param: str,
+                    z: float | None = None) -> np.ndarray:
+    """Outer boundary (N, 2), counter-clockwise, of the mesh's section at height ``z`` (mm).
+
+    ``z`` defaults to mid-thickness. Holes (the bore) are dropped: the outer boundary
+    is the ring of largest area.
+    """
+    import manifold3d as m3d
+
+    vertices = np.asarray(vertices, dtype=np.float64)
+    if z is None:
+        z = 0.5 * (vertices[:, 2].min() + vertices[:, 2].max())
+    mesh = m3d.Mesh(vert_properties=np.ascontiguousarray(vertices, dtype=np.float32),
+                    tri_verts=np.ascontiguousarray(faces, dtype=np.uint32))
+    solid = m3d.Manifold(mesh)
+    if solid.status() != m3d.Error.NoError:
+        raise DesignError(param, "mesh", f"is not a closed manifold solid "
+                          f"(manifold3d: {solid.status().name}); cannot section it")
+    rings = [np.asarray(r, dtype=float) for r in solid.slice(float(z)).to_polygons()]
+    rings = [r for r in rings if len(r) >= 3]
+    if not rings:
+        raise DesignError(param, "mesh", f"has no material at mid-thickness z = {z:g} mm")
+    areas = [_signed_area(r) for r in rings]
+    outer = rings[int(np.argmax(np.abs(areas)))]
+    return outer if _signed_area(outer) > 0 else outer[::-1]
+
+
+def _signed_area(ring: np.ndarray) -> float:
+    x, y = ring[:, 0], ring[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def read_outline(spec: str, param: str, default_name: str | None = None) -> np.ndarray:
+    """Read a gear mesh and return its mid-thickness outline (N, 2), mm, counter-clockwise."""
+    vertices, faces = read_mesh(spec, param, default_name)
+    return section_outline(vertices, faces, param)
