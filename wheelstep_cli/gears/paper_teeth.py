@@ -65,34 +65,33 @@ def _profile_radii(pitch_radius: np.ndarray, module: float, points: int) -> np.n
     return pitch_radius[:, None] + module * steps[None, :]
 
 
+def _sector_flanks(start, width, pitch_radius, form: ToothForm, points: int, sign: float,
+                   period: float) -> FlankTable:
+    """Flanks of a tooth (sign = +1, pinion) or a space (sign = -1, wheel) centred in each sector.
+
+    flank 1 = start + width/4 + sign (dOmega - Omega_3 + Omega_j),
+    flank 2 = start + 3 width/4 - sign (dOmega - Omega_3 + Omega_j)   (SPEC §5).
+    """
+    m = form.module
+    base = pitch_radius - m
+    radius = _profile_radii(pitch_radius, m, points)
+    shift = (form.backlash / (4.0 * base))[:, None] - involute_polar_angle(base, pitch_radius)[:, None] \
+        + involute_polar_angle(base[:, None], radius)
+    start, width = start[:, None], width[:, None]
+    left = start + width / 4.0 + sign * shift
+    right = start + 3.0 * width / 4.0 - sign * shift
+    return FlankTable(left, right, radius, pitch_radius - 1.25 * m, pitch_radius + m, period)
+
+
 def pinion_flanks(part: SectorPartition, form: ToothForm, points: int = 5) -> FlankTable:
     """Pinion tooth flanks (SPEC §5): theta_ij (flank 1) and theta_sij (flank 2)."""
-    m = form.module
-    r = part.r_pinion
-    base = r - m
-    radius = _profile_radii(r, m, points)
-    inv = involute_polar_angle(base[:, None], radius)
-    inv_pitch = involute_polar_angle(base, r)[:, None]
-    correction = (form.backlash / (4.0 * base))[:, None]
-    theta, dtheta = part.theta[:, None], part.dtheta[:, None]
-    left = theta + dtheta / 4.0 + correction - inv_pitch + inv
-    right = theta + 3.0 * dtheta / 4.0 - correction + inv_pitch - inv
-    return FlankTable(left, right, radius, r - 1.25 * m, r + m, part.law.turns * np.pi / 2.0)
+    return _sector_flanks(part.theta, part.dtheta, part.r_pinion, form, points, +1.0,
+                          part.law.turns * np.pi / 2.0)
 
 
 def wheel_flanks(part: SectorPartition, form: ToothForm, points: int = 5) -> FlankTable:
     """Carrier-wheel space flanks (SPEC §5): phi_ij (flank 1) and phi_sij (flank 2)."""
-    m = form.module
-    r = part.r_wheel
-    base = r - m
-    radius = _profile_radii(r, m, points)
-    inv = involute_polar_angle(base[:, None], radius)
-    inv_pitch = involute_polar_angle(base, r)[:, None]
-    correction = (form.backlash / (4.0 * base))[:, None]
-    phi, dphi = part.phi[:, None], part.dphi[:, None]
-    left = phi + dphi / 4.0 - correction + inv_pitch - inv
-    right = phi + 3.0 * dphi / 4.0 + correction - inv_pitch + inv
-    return FlankTable(left, right, radius, r - 1.25 * m, r + m, np.pi / 2.0)
+    return _sector_flanks(part.phi, part.dphi, part.r_wheel, form, points, -1.0, np.pi / 2.0)
 
 
 def check_tooth_form(part: SectorPartition, form: ToothForm) -> None:

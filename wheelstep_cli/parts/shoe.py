@@ -18,7 +18,8 @@ import numpy as np
 
 from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.geometry.outline import check_outline, signed_area
-from wheelstep_cli.geometry.solids import MeshReport, Part, bore_segments, circle, require_printable
+from wheelstep_cli.geometry.solids import (MeshReport, Part, bore_segments, circle, part_record,
+                                           require_printable)
 from wheelstep_cli.io.jsonio import csv_bytes, json_bytes
 from wheelstep_cli.io.stl import stl_bytes
 from wheelstep_cli.io.threemf import PlateObject, threemf_bytes
@@ -232,12 +233,7 @@ def shoe_report(shoe: Shoe) -> dict:
             "sole_length_mm": float(shoe.profile[-1, 0] - shoe.profile[0, 0]),
             "body_height_mm": shoe.body_height,
             "socket_floor_mm": shoe.socket_floor,
-            "volume_mm3": check.volume,
-            "bounding_box_mm": part.bounds,
-            "triangles": check.triangles,
-            "checks": {"manifold": True, "watertight": check.watertight,
-                       "winding_consistent": check.winding_consistent,
-                       "volume_matches_outline": check.volume_error < 1e-3},
+            **part_record(part, check),
         },
     }
 
