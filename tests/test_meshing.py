@@ -123,15 +123,28 @@ def test_bar_against_plate_matches_hand_computed_contact_angle():
 
 
 def _first_touch(moving: shapely.Polygon, fixed: shapely.Polygon, centre, direction: float) -> float:
-    """Independent reference: bisection on shapely intersects over the wheel rotation (rad)."""
+    """Independent reference: scan then bisect shapely ``intersects`` over the wheel rotation (rad).
+
+    "Touches after turning by a" is true only on an interval [first, exit]: turned far
+    enough, the tooth passes clean through a block (a 3 mm tooth at 25 mm from the axis
+    clears a 6 mm block in about 0.5 rad). So the bracket is found by scanning in steps
+    that move any point of the wheel by at most 0.1 mm (thinner than every part here),
+    then bisected.
+    """
     from shapely import affinity
 
     def touches(angle):
         turned = affinity.rotate(moving, direction * angle, origin=tuple(centre), use_radians=True)
         return turned.intersects(fixed)
 
-    lo, hi = 0.0, 0.5
-    assert touches(hi) and not touches(lo)
+    reach = np.hypot(*(np.asarray(moving.exterior.coords) - centre).T).max()  # mm
+    step = 0.1 / reach
+    lo = 0.0
+    assert not touches(lo)
+    while not touches(lo + step):
+        lo += step
+        assert lo < np.pi, "never touches"
+    hi = lo + step
     for _ in range(60):
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if touches(mid) else (mid, hi)
