@@ -491,6 +491,51 @@ def _overlap_area(p_world: np.ndarray, w_world: np.ndarray, box) -> np.ndarray:
     return shapely.area(shapely.intersection(a, b))
 
 
+#: Body-angle bins of the radial bands used to skip vertices far from the other outline.
+BAND_BINS = 2048
+
+
+def _radial_band(outline: _Sorted, half_width: float):
+    """Least and greatest distance (mm) from its axis of the outline's edges seen within
+    ``half_width`` rad of each of BAND_BINS body-angle bins: (rmin, rmax), inf / -inf where
+    no edge is that near. None when the bins would not narrow anything down."""
+    if not half_width < 0.5:
+        return None
+    points = outline.points
+    nxt = np.roll(points, -1, axis=0)
+    d = nxt - points
+    dd = np.einsum("ij,ij->i", d, d)
+    t_near = np.clip(-np.einsum("ij,ij->i", points, d) / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
+    lo = np.hypot(points[:, 0] + t_near * d[:, 0], points[:, 1] + t_near * d[:, 1])
+    hi = np.maximum(np.hypot(points[:, 0], points[:, 1]), np.hypot(nxt[:, 0], nxt[:, 1]))
+    a0 = np.arctan2(points[:, 1], points[:, 0])
+    sweep = _wrap(np.arctan2(nxt[:, 1], nxt[:, 0]) - a0)
+    start = np.where(sweep >= 0.0, a0, a0 + sweep)
+    sweep = np.where(lo > 1e-9 * np.maximum(hi, 1.0), np.abs(sweep), 2.0 * np.pi)
+    width = 2.0 * np.pi / BAND_BINS
+    grow = half_width + 1e-6
+    b0 = np.floor(np.mod(start - grow, 2.0 * np.pi) / width).astype(np.intp)
+    count = np.minimum(np.floor((sweep + 2.0 * grow) / width).astype(np.intp) + 2, BAND_BINS)
+    owner, k = _expand(np.zeros(len(points), dtype=np.intp), count, np.arange(int(count.max())))
+    cell = (b0[owner] + k) % BAND_BINS
+    rmin = np.full(BAND_BINS, np.inf)
+    rmax = np.full(BAND_BINS, -np.inf)
+    np.minimum.at(rmin, cell, lo[owner])
+    np.maximum.at(rmax, cell, hi[owner])
+    return rmin, rmax
+
+
+def _near_band(body: np.ndarray, slack: np.ndarray | float, band) -> np.ndarray:
+    """Points (own frame of the band's outline, mm) within ``slack`` mm of its radial band."""
+    if band is None:
+        return np.ones(len(body), dtype=bool)
+    rmin, rmax = band
+    r = np.hypot(body[:, 0], body[:, 1])
+    cell = (np.floor(np.mod(np.arctan2(body[:, 1], body[:, 0]), 2.0 * np.pi)
+                     / (2.0 * np.pi / BAND_BINS)).astype(np.intp)) % BAND_BINS
+    return (r + slack >= rmin[cell]) & (r - slack <= rmax[cell])
+
+
 @dataclass(frozen=True)
 class _Pair:
     """Both outlines prepared for the check, the mesh window and its angular sectors."""
@@ -503,6 +548,8 @@ class _Pair:
     box: tuple
     pinion_sector: tuple | None
     wheel_sector: tuple | None
+    wheel_band: tuple | None    # radial band of the wheel seen by pinion vertices within REACH
+    pinion_band: tuple | None   # radial band of the pinion seen by wheel vertices within REACH
 
 
 def _prepare(pinion: np.ndarray, wheel: np.ndarray, distance: float, box) -> _Pair:
@@ -514,8 +561,20 @@ def _prepare(pinion: np.ndarray, wheel: np.ndarray, distance: float, box) -> _Pa
     pinion_body, wheel_body = shapely.Polygon(pinion), shapely.Polygon(wheel)
     shapely.prepare(pinion_body)
     shapely.prepare(wheel_body)
+    # A wheel vertex turning by REACH about the wheel axis moves at most `move` mm, and
+    # a point of a wheel edge lies within half its length of the edge's midpoint; seen
+    # from the pinion axis (at least `near` mm away in the window) that is an angle of
+    # asin(reach / near) at most. Likewise a pinion edge's points, from the wheel axis.
+    move = REACH * float(np.hypot(wheel[:, 0], wheel[:, 1]).max()) + 0.5 * w.e_length
+    near = box[0] - box[3] - w.e_length
+    pinion_band = (_radial_band(p, float(np.arcsin(move / near)))
+                   if 0.0 < move < 0.5 * near else None)
+    near_w = distance - box[1] - box[3] - p.e_length
+    wheel_band = (_radial_band(w, REACH + float(np.arcsin(0.5 * p.e_length / near_w)))
+                  if 0.5 * p.e_length < 0.5 * near_w else None)
     return _Pair(p, w, pinion_body, wheel_body, centre, box,
-                 _sector(box, np.zeros(2), p.e_length), _sector(box, centre, w.e_length))
+                 _sector(box, np.zeros(2), p.e_length), _sector(box, centre, w.e_length),
+                 wheel_band, pinion_band)
 
 
 def _contacts(pair: _Pair, theta: np.ndarray, phi: np.ndarray):
@@ -532,16 +591,36 @@ def _contacts(pair: _Pair, theta: np.ndarray, phi: np.ndarray):
     w_inside = shapely.contains_xy(pair.pinion_body, wv_body[:, 0], wv_body[:, 1])
     pw = _Window(pw.e_pose, pw.e0 - centre, pw.e1 - centre, pw.v_pose, pw.v - centre)
     ww = _Window(ww.e_pose, ww.e0 - centre, ww.e1 - centre, ww.v_pose, ww.v - centre)
-    sides = ((pw, p_inside, _edge_table(ww), 1.0), (ww, w_inside, _edge_table(pw), -1.0))
+    # vertices and edges that cannot meet the other outline within REACH (radial bands)
+    rho_w = np.hypot(ww.v[:, 0], ww.v[:, 1])
+    p_near = _near_band(pv_body, 1e-9, pair.wheel_band)
+    w_near = _near_band(wv_body, REACH * rho_w + 1e-9, pair.pinion_band)
+    half = lambda e: 0.5 * np.hypot(*(e.e1 - e.e0).T)  # noqa: E731
+    mid = lambda e: 0.5 * (e.e0 + e.e1)  # noqa: E731
+    # wheel edges: crossed by a pinion vertex that turned at most REACH about the wheel axis
+    we_near = _near_band(_rotate(mid(ww) + centre, theta[ww.e_pose]),
+                         REACH * np.sqrt(np.maximum(np.einsum("ij,ij->i", ww.e0, ww.e0),
+                                                    np.einsum("ij,ij->i", ww.e1, ww.e1)))
+                         + half(ww) + 1e-9, pair.pinion_band)
+    # pinion edges: crossed by a wheel vertex at the same radius and within REACH of angle
+    pe_near = _near_band(_rotate(mid(pw), -(np.pi + phi[pw.e_pose])), half(pw) + 1e-9,
+                         pair.wheel_band)
+    sides = ((pw, p_inside, p_near, ww, we_near, 1.0),
+             (ww, w_inside, w_near, pw, pe_near, -1.0))
 
     def pose_minima(reach, active):
         back, fwd = np.full(poses, np.inf), np.full(poses, np.inf)
         unsettled = np.zeros(poses, dtype=bool)
-        for verts, inside, edges, sign in sides:
+        for verts, inside, near, edges, e_near, sign in sides:
             sel = active[verts.v_pose]
-            esel = active[edges.pose]
-            table = edges if esel.all() else _EdgeTable(*(getattr(edges, f)[esel] for f in
-                                                          _EdgeTable.__dataclass_fields__))
+            esel = active[edges.e_pose]
+            if np.isfinite(reach):
+                # a far vertex inside the other outline has no exit within reach
+                unsettled[verts.v_pose[sel & ~near & inside]] = True
+                sel &= near
+                esel &= e_near
+            table = _edge_table(_Window(edges.e_pose[esel], edges.e0[esel], edges.e1[esel],
+                                        edges.v_pose, edges.v))
             v_back, v_fwd = _rotations_to_touch(verts.v[sel], verts.v_pose[sel], table, sign, reach)
             drive, coast = _gaps(v_back, v_fwd, inside[sel])
             np.minimum.at(back, verts.v_pose[sel], drive)
