@@ -49,7 +49,7 @@ BATCH = 64
 #: Most outline points (poses x points of both outlines) in one batch; bounds its memory.
 BATCH_POINTS = 1_500_000
 #: Most vertex/edge candidate pairs held at once (about 100 bytes each in temporaries).
-MAX_PAIRS = 1 << 20
+MAX_PAIRS = 1 << 19
 #: First pass: only contacts within this wheel rotation (rad) are looked for; poses with
 #: no contact that close are redone without the limit. Changes the speed, not the result.
 REACH = 0.01
