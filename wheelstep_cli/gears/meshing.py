@@ -605,6 +605,9 @@ def _contacts(pair: _Pair, theta: np.ndarray, phi: np.ndarray):
     # pinion edges: crossed by a wheel vertex at the same radius and within REACH of angle
     pe_near = _near_band(_rotate(mid(pw), -(np.pi + phi[pw.e_pose])), half(pw) + 1e-9,
                          pair.wheel_band)
+    # the bands' angular margins allow for short edges only: never skip a longer one
+    we_near |= half(ww) > 0.5 * pair.wheel.e_length
+    pe_near |= half(pw) > 0.5 * pair.pinion.e_length
     sides = ((pw, p_inside, p_near, ww, we_near, 1.0),
              (ww, w_inside, w_near, pw, pe_near, -1.0))
 
