@@ -276,3 +276,27 @@ def test_large_outlines_bounded_memory_and_same_answer_as_coarse():
     # facets of the coarse outline move contacts by about their sagitta (~1e-4 mm)
     assert np.allclose(report.phi_drive, rough.phi_drive, rtol=0, atol=1e-5)
     assert np.allclose(report.phi_coast, rough.phi_coast, rtol=0, atol=1e-5)
+
+
+@settings(max_examples=10, deadline=None)
+@given(st.floats(0.2, 3.0), st.floats(-0.6, 0.6), st.floats(-0.3, 0.3), st.integers(3, 9),
+       st.floats(-0.2, 0.2))
+def test_fast_path_equals_plain_search_on_coarse_polygons(gap, tilt, offset, sides, swing):
+    """Coarse polygons with long edges (the ones the fast path never skips) over a few
+    poses of a swinging wheel, near contact and far from it."""
+    import wheelstep_cli.gears.meshing as meshing
+
+    t = np.linspace(0, 2 * np.pi, sides, endpoint=False) + tilt
+    tooth = shapely.Polygon(np.column_stack([25.0 + 3.0 * np.cos(t), offset + 3.0 * np.sin(t)]))
+    wheel = _ccw(shapely.union(tooth, shapely.box(0.0, -0.5, 24.0, 0.5)))
+    hi_y, lo_y = 3.0 + gap + 0.4, -3.0 - gap - 0.4
+    pinion = _ccw(shapely.union_all([shapely.box(14.0, hi_y, 30.0, hi_y + 6.0),
+                                     shapely.box(14.0, lo_y - 6.0, 30.0, lo_y),
+                                     shapely.box(14.0, lo_y - 6.0, 19.0, hi_y + 6.0)]))
+    swinging = Transmission(lambda x: swing * np.sin(np.asarray(x, dtype=float)), 2.0 * np.pi)
+    for window in (None, 60.0):
+        fast = check_meshing(pinion, wheel, swinging, 50.0, samples=16, window=window)
+        with pytest.MonkeyPatch.context() as patch:
+            patch.setattr(meshing, "REACH", np.inf)
+            plain = check_meshing(pinion, wheel, swinging, 50.0, samples=16, window=window)
+        _reports_equal(fast, plain)
