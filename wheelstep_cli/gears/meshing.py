@@ -20,6 +20,12 @@ edges gives, for every vertex/edge pair, the exact rotation to contact. Only the
 vertices and edges inside the *mesh window* (a box round the line of centres,
 between the two axes) take part.
 
+Search (speed and memory only, the result is the same): pairs are found by sorting,
+never in dense vertex x edge tables, and produced in bounded chunks. A first pass
+looks only for contacts within ``REACH`` rad and skips vertices and edges whose
+radial band cannot meet the other outline that close; a pose not settled within
+``REACH`` is searched again over all pairs.
+
 If the outlines overlap at the law's angle (a vertex of one lies inside the other),
 the pose **interferes**; it is measured by the overlapping area (mm^2) and the
 penetration depth (mm: the deepest such vertex's distance to the other outline).
