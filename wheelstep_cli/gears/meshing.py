@@ -531,15 +531,37 @@ def _radial_band(outline: _Sorted, half_width: float):
     return rmin, rmax
 
 
-def _near_band(body: np.ndarray, slack: np.ndarray | float, band) -> np.ndarray:
-    """Points (own frame of the band's outline, mm) within ``slack`` mm of its radial band."""
-    if band is None:
-        return np.ones(len(body), dtype=bool)
+def _band_at(body: np.ndarray, band):
+    """(distance from the axis, rmin, rmax) of the band at points (own frame of the band's
+    outline, mm)."""
     rmin, rmax = band
     r = np.hypot(body[:, 0], body[:, 1])
     cell = (np.floor(np.mod(np.arctan2(body[:, 1], body[:, 0]), 2.0 * np.pi)
                      / (2.0 * np.pi / BAND_BINS)).astype(np.intp)) % BAND_BINS
-    return (r + slack >= rmin[cell]) & (r - slack <= rmax[cell])
+    return r, rmin[cell], rmax[cell]
+
+
+def _near_band(body: np.ndarray, slack: np.ndarray | float, band) -> np.ndarray:
+    """Points (own frame of the band's outline, mm) within ``slack`` mm of its radial band."""
+    if band is None:
+        return np.ones(len(body), dtype=bool)
+    r, rmin, rmax = _band_at(body, band)
+    return (r + slack >= rmin) & (r - slack <= rmax)
+
+
+def _contains(polygon, body: np.ndarray, band) -> np.ndarray:
+    """Points (own frame of the polygon, mm) inside it. A point farther from the axis than
+    every edge seen at its angle is outside (the ray out from the axis through it meets
+    no edge beyond it), so only the others go to shapely."""
+    import shapely
+
+    maybe = np.ones(len(body), dtype=bool)
+    if band is not None:
+        r, _, rmax = _band_at(body, band)
+        maybe = r <= rmax + 1e-9
+    inside = np.zeros(len(body), dtype=bool)
+    inside[maybe] = shapely.contains_xy(polygon, body[maybe, 0], body[maybe, 1])
+    return inside
 
 
 @dataclass(frozen=True)
@@ -593,8 +615,8 @@ def _contacts(pair: _Pair, theta: np.ndarray, phi: np.ndarray):
     # vertices inside the other outline, tested in that outline's own frame
     pv_body = _rotate(pw.v - centre, -(np.pi + phi[pw.v_pose]))
     wv_body = _rotate(ww.v, theta[ww.v_pose])
-    p_inside = shapely.contains_xy(pair.wheel_body, pv_body[:, 0], pv_body[:, 1])
-    w_inside = shapely.contains_xy(pair.pinion_body, wv_body[:, 0], wv_body[:, 1])
+    p_inside = _contains(pair.wheel_body, pv_body, pair.wheel_band)
+    w_inside = _contains(pair.pinion_body, wv_body, pair.pinion_band)
     pw = _Window(pw.e_pose, pw.e0 - centre, pw.e1 - centre, pw.v_pose, pw.v - centre)
     ww = _Window(ww.e_pose, ww.e0 - centre, ww.e1 - centre, ww.v_pose, ww.v - centre)
     # vertices and edges that cannot meet the other outline within REACH (radial bands)
