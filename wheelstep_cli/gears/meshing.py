@@ -53,7 +53,7 @@ WINDOW_FRACTION = 0.25
 #: Poses handled together in one vectorised batch (fewer for very large outlines).
 BATCH = 64
 #: Most outline points (poses x points of both outlines) in one batch; bounds its memory.
-BATCH_POINTS = 1_500_000
+BATCH_POINTS = 1_000_000
 #: Most vertex/edge candidate pairs held at once (about 100 bytes each in temporaries).
 MAX_PAIRS = 1 << 19
 #: First pass: only contacts within this wheel rotation (rad) are looked for; poses with
