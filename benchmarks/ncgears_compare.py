@@ -50,25 +50,27 @@ def report(name, pinion, wheel, the_law, distance, seconds):
     return rep
 
 
+def orient(pinion, wheel, sx, turn):
+    """Mirror both outlines by ``sx`` in y, turn the wheel by ``turn`` rad, make both CCW."""
+    p = pinion * [1.0, sx]
+    c, s = np.cos(turn), np.sin(turn)
+    w2 = (wheel * [1.0, sx]) @ np.array([[c, s], [-s, c]])
+    return (p[::-1] if signed_area(p) < 0 else p), (w2[::-1] if signed_area(w2) < 0 else w2)
+
+
 def best_orientation(pinion, wheel, the_law, distance):
-    """ncgears' frames are not ours: try the mirror images and keep the one that meshes."""
+    """ncgears' frames are not ours: try the mirror images and keep the one that meshes.
+    Returns the oriented outlines and (sx, turn)."""
     best = None
     for sx in (1.0, -1.0):
-        p = pinion * [1.0, sx]
-        w = wheel * [1.0, sx]
         for turn in (0.0, np.pi):
-            c, s = np.cos(turn), np.sin(turn)
-            w2 = w @ np.array([[c, s], [-s, c]])
-            if signed_area(p) < 0:
-                p = p[::-1]
-            if signed_area(w2) < 0:
-                w2 = w2[::-1]
+            p, w2 = orient(pinion, wheel, sx, turn)
             rep = check_meshing(p, w2, Transmission(the_law.carrier_angle, the_law.theta_period),
                                 distance, samples=64)
             score = np.nanmax(np.abs(rep.transmission_error)) + 10 * rep.interference.sum()
             if best is None or score < best[0]:
-                best = (score, p, w2)
-    return best[1], best[2]
+                best = (score, p, w2, (sx, turn))
+    return best[1], best[2], best[3]
 
 
 def main() -> None:
@@ -101,9 +103,19 @@ def main() -> None:
     driven = simplify_outline(np.asarray(theirs.driven_outline, dtype=float))
     print(f"ncgears outlines: {len(theirs.drive_outline)} / {len(theirs.driven_outline)} points, "
           f"{len(drive)} / {len(driven)} after 1 um simplification")
-    p, w = best_orientation(drive, driven, nc_law, theirs.center_distance)
-    report(f"ncgears {getattr(ncgears, '__version__', '')}".strip(), p, w, nc_law,
-           theirs.center_distance, seconds)
+    p, w, frame = best_orientation(drive, driven, nc_law, theirs.center_distance)
+    name = f"ncgears {getattr(ncgears, '__version__', '')}".strip()
+    report(name, p, w, nc_law, theirs.center_distance, seconds)
+    # the unsimplified outlines (these once exhausted memory in the check)
+    import tracemalloc
+
+    raw = orient(np.asarray(theirs.drive_outline, dtype=float),
+                 np.asarray(theirs.driven_outline, dtype=float), *frame)
+    tracemalloc.start()
+    report(f"{name} unsimplified", *raw, nc_law, theirs.center_distance, seconds)
+    print(f"  ({len(raw[0])} / {len(raw[1])} points; peak traced memory of the check "
+          f"{tracemalloc.get_traced_memory()[1] / 1e6:.0f} MB)")
+    tracemalloc.stop()
     print(f"ncgears' own verification: {theirs.summary()}")
 
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 import shapely
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from wheelstep_cli.gears.meshing import Transmission, check_meshing
@@ -123,15 +123,28 @@ def test_bar_against_plate_matches_hand_computed_contact_angle():
 
 
 def _first_touch(moving: shapely.Polygon, fixed: shapely.Polygon, centre, direction: float) -> float:
-    """Independent reference: bisection on shapely intersects over the wheel rotation (rad)."""
+    """Independent reference: scan then bisect shapely ``intersects`` over the wheel rotation (rad).
+
+    "Touches after turning by a" is true only on an interval [first, exit]: turned far
+    enough, the tooth passes clean through a block (a 3 mm tooth at 25 mm from the axis
+    clears a 6 mm block in about 0.5 rad). So the bracket is found by scanning in steps
+    that move any point of the wheel by at most 0.1 mm (thinner than every part here),
+    then bisected.
+    """
     from shapely import affinity
 
     def touches(angle):
         turned = affinity.rotate(moving, direction * angle, origin=tuple(centre), use_radians=True)
         return turned.intersects(fixed)
 
-    lo, hi = 0.0, 0.5
-    assert touches(hi) and not touches(lo)
+    reach = np.hypot(*(np.asarray(moving.exterior.coords) - centre).T).max()  # mm
+    step = 0.1 / reach
+    lo = 0.0
+    assert not touches(lo)
+    while not touches(lo + step):
+        lo += step
+        assert lo < np.pi, "never touches"
+    hi = lo + step
     for _ in range(60):
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if touches(mid) else (mid, hi)
@@ -144,6 +157,8 @@ def _ccw(poly: shapely.Polygon) -> np.ndarray:
 
 @settings(max_examples=15, deadline=None)
 @given(st.floats(0.2, 3.0), st.floats(-0.6, 0.6), st.floats(-0.3, 0.3), st.integers(5, 9))
+@example(0.2, -0.14214059737073936, 0.2, 5)   # the tooth passes clean through a block by 0.5 rad
+@example(0.2, 0.2, -0.17849989594809426, 5)
 def test_contact_angles_match_shapely_bisection(gap, tilt, offset, sides):
     """A polygonal wheel 'tooth' on a bar between two pinion 'teeth' (blocks)."""
     D = 50.0
@@ -201,3 +216,87 @@ def test_paper_pair_runs_and_reports_finite_figures(paper_pair):
     assert summary["law_hub_speed_ripple_pct"] < 3.0
     for key in ("backlash_min_mm", "te_peak_to_peak_arcmin", "hub_speed_ripple_pct"):
         assert np.isfinite(summary[key])
+
+
+def _reports_equal(a, b, atol=0.0):
+    for name in ("phi_drive", "phi_coast", "overlap_area", "penetration"):
+        np.testing.assert_allclose(getattr(a, name), getattr(b, name), rtol=0, atol=atol,
+                                   equal_nan=True, err_msg=name)
+    assert np.array_equal(a.interference, b.interference)
+
+
+@pytest.mark.parametrize("case", ["spur", "paper"])
+def test_first_pass_within_reach_and_chunking_change_nothing(case, spur_pair, paper_pair,
+                                                             monkeypatch):
+    """The fast path (contacts within REACH first, far vertices and edges skipped, pairs
+    in chunks) gives exactly what the plain search over all pairs gives, also where the
+    teeth interfere (the paper pair) and the first pass must hand poses to the second."""
+    import wheelstep_cli.gears.meshing as meshing
+    from wheelstep_cli.gears.pitch import carrier_angle
+
+    if case == "spur":
+        pinion, wheel = spur_pair
+        args = (spur_transmission(Z1, Z2), M * (Z1 + Z2) / 2.0)
+    else:
+        law = paper_pair.law
+        pinion, wheel = paper_pair.pinion_outline, paper_pair.wheel_outline
+        args = (Transmission(lambda t: carrier_angle(law, t), law.turns * np.pi / 2.0), 144.0)
+    fast = check_meshing(pinion, wheel, *args, samples=48)
+    monkeypatch.setattr(meshing, "REACH", np.inf)
+    monkeypatch.setattr(meshing, "MAX_PAIRS", 997)   # many small chunks
+    plain = check_meshing(pinion, wheel, *args, samples=48)
+    _reports_equal(fast, plain)
+    if case == "paper":
+        assert fast.interferes   # the second pass was needed
+
+
+def test_large_outlines_bounded_memory_and_same_answer_as_coarse():
+    """~20k-point outlines (like unsimplified exports) run in bounded memory and agree
+    with a coarse sampling of the same involute pair and with the built-in backlash."""
+    import tracemalloc
+
+    fine = (involute_gear(Z1, M, J / 2.0, False, flank_points=416),
+            involute_gear(Z2, M, J / 2.0, True, flank_points=250))
+    coarse = (involute_gear(Z1, M, J / 2.0, False, flank_points=60),
+              involute_gear(Z2, M, J / 2.0, True, flank_points=60))
+    assert min(len(fine[0]), len(fine[1])) > 20000
+    a = M * (Z1 + Z2) / 2.0
+    tracemalloc.start()
+    try:
+        report = check_meshing(*fine, spur_transmission(Z1, Z2), a, samples=12)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 200e6   # bytes, numpy temporaries included
+    rough = check_meshing(*coarse, spur_transmission(Z1, Z2), a, samples=12)
+    r2 = M * Z2 / 2.0
+    assert not report.interferes and not report.contact_lost
+    assert np.allclose(report.transmission_error, -J / 2.0 / r2, rtol=2e-3)
+    assert np.allclose(report.backlash, J / r2, rtol=2e-3)
+    # facets of the coarse outline move contacts by about their sagitta (~1e-4 mm)
+    assert np.allclose(report.phi_drive, rough.phi_drive, rtol=0, atol=1e-5)
+    assert np.allclose(report.phi_coast, rough.phi_coast, rtol=0, atol=1e-5)
+
+
+@settings(max_examples=10, deadline=None)
+@given(st.floats(0.2, 3.0), st.floats(-0.6, 0.6), st.floats(-0.3, 0.3), st.integers(3, 9),
+       st.floats(-0.2, 0.2))
+def test_fast_path_equals_plain_search_on_coarse_polygons(gap, tilt, offset, sides, swing):
+    """Coarse polygons with long edges (the ones the fast path never skips) over a few
+    poses of a swinging wheel, near contact and far from it."""
+    import wheelstep_cli.gears.meshing as meshing
+
+    t = np.linspace(0, 2 * np.pi, sides, endpoint=False) + tilt
+    tooth = shapely.Polygon(np.column_stack([25.0 + 3.0 * np.cos(t), offset + 3.0 * np.sin(t)]))
+    wheel = _ccw(shapely.union(tooth, shapely.box(0.0, -0.5, 24.0, 0.5)))
+    hi_y, lo_y = 3.0 + gap + 0.4, -3.0 - gap - 0.4
+    pinion = _ccw(shapely.union_all([shapely.box(14.0, hi_y, 30.0, hi_y + 6.0),
+                                     shapely.box(14.0, lo_y - 6.0, 30.0, lo_y),
+                                     shapely.box(14.0, lo_y - 6.0, 19.0, hi_y + 6.0)]))
+    swinging = Transmission(lambda x: swing * np.sin(np.asarray(x, dtype=float)), 2.0 * np.pi)
+    for window in (None, 60.0):
+        fast = check_meshing(pinion, wheel, swinging, 50.0, samples=16, window=window)
+        with pytest.MonkeyPatch.context() as patch:
+            patch.setattr(meshing, "REACH", np.inf)
+            plain = check_meshing(pinion, wheel, swinging, 50.0, samples=16, window=window)
+        _reports_equal(fast, plain)

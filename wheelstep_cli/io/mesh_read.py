@@ -132,8 +132,22 @@ def section_outline(vertices: np.ndarray, faces: np.ndarray, param: str,
     if not rings:
         raise DesignError(param, "mesh", f"has no material at mid-thickness z = {z:g} mm")
     areas = [_signed_area(r) for r in rings]
-    outer = rings[int(np.argmax(np.abs(areas)))]
+    outer = _drop_collinear(rings[int(np.argmax(np.abs(areas)))])
     return outer if _signed_area(outer) > 0 else outer[::-1]
+
+
+def _drop_collinear(ring: np.ndarray, tol: float = 1e-5) -> np.ndarray:
+    """The ring without the points lying on the segment between their neighbours (within
+    ``tol`` mm). A section of an extruded wall cuts every side quad's diagonal at its
+    midpoint, doubling the points without changing the shape; the meshing check costs
+    in proportion to the points."""
+    prev, nxt = np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0)
+    a, b = ring - prev, nxt - ring
+    chord = np.hypot(*(nxt - prev).T)
+    off_line = np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) > tol * np.maximum(chord, 1e-300)
+    between = np.einsum("ij,ij->i", a, b) > 0.0
+    keep = off_line | ~between
+    return ring[keep] if np.count_nonzero(keep) >= 3 else ring
 
 
 def _signed_area(ring: np.ndarray) -> float:
