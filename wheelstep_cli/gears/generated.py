@@ -2,7 +2,8 @@
 
 The pinion is cut by a straight-sided rack (pressure angle alpha, tip fillet)
 whose pitch line rolls without slip on the pinion's pitch curve; at a pitch-curve
-corner the rack pivots about the corner point. The wheel is then cut by that
+corner the rack pivots about the corner point through part of the turn from each side
+(PIVOT), leaving a ridge in the corner space that hands the drive over sooner. The wheel is then cut by that
 pinion moving along the exact law ("rotate and carve"): its outline is the blank
 minus the union of the pinion's poses in the wheel frame, so the pair is conjugate
 by construction, including the concave notch at each shoe handover.
@@ -218,7 +219,8 @@ def cut_by_rolling_rack(curve: np.ndarray, arc: np.ndarray, grid: PolarGrid, rac
 
     The rack's tooth centres sit at arc positions ``rack_center + k p``. At the
     period ends (a corner, when the tangent there jumps) the rack pivots about the
-    corner point through ``corner_poses`` intermediate orientations. With ``tilt``
+    corner point through the orientations of ``corner_poses`` spread over the turn
+    that lie within PIVOT of either end. With ``tilt``
     = c != 0 each rack tooth is turned by -c mu(s_k) about its pitch point (c = 1:
     tooth axes along the radius, as in the paper's sectors).
     """
