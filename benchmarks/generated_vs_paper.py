@@ -107,7 +107,7 @@ def main() -> None:
                                                                    wheel_rays_per_tooth=160)),
             ("default, 960 rays per tooth", dict(rays_per_tooth=960, wheel_rays_per_tooth=960)),
             ("default, 192 wheel-carving poses per tooth", dict(carve_poses_per_tooth=192)),
-            ("default, 80 % of the play on the coast side", dict(lead=0.8)),
+            ("default, play split evenly (LEAD 0)", dict(lead=0.0)),
         ]
         for label, kw in alternatives:
             blend = kw.pop("blend", 0.0)
