@@ -2,11 +2,12 @@
 
 The pinion is cut by a straight-sided rack (pressure angle alpha, tip fillet)
 whose pitch line rolls without slip on the pinion's pitch curve; at a pitch-curve
-corner the rack pivots about the corner point through part of the turn from each side
-(PIVOT), leaving a ridge in the corner space that hands the drive over sooner. The wheel is then cut by that
-pinion moving along the exact law ("rotate and carve"): its outline is the blank
-minus the union of the pinion's poses in the wheel frame, so the pair is conjugate
-by construction, including the concave notch at each shoe handover.
+corner the rack pivots about the corner point through part of the turn from each
+side (PIVOT), leaving a ridge in the corner space that hands the drive over sooner.
+The wheel is then cut by that pinion moving along the exact law ("rotate and
+carve"): its outline is the blank minus the union of the pinion's poses in the
+wheel frame, so the pair is conjugate by construction, including the concave notch
+at each shoe handover.
 
 Backlash: the pinion's teeth are thinned by j_n/2 (the rack tooth is thickened),
 and the wheel is carved by the pinion dilated by j_n/2 along its normals, so the
@@ -56,8 +57,8 @@ PIVOT = 0.2
 #: Pinion poses per tooth pitch that carve the wheel (a sharp pinion tip corner sliding fast
 #: along a wheel flank leaves cusps between poses: 48 -> 7.9 %, 192 -> 4.3 % in exact-polygon trials).
 CARVE_POSES_PER_TOOTH = 48
-#: Wheel rays per pinion tooth pitch over the wheel's ray map (two rays per pitch-curve period
-#: and tooth pair, see generate_pair). Near the notch the wheel flanks run almost along the rays,
+#: Wheel ray-map density: the wheel's ray map holds 2 x this many rays per wheel tooth (the
+#: same rule as ``rays_per_tooth``). Near the notch the wheel flanks run almost along the rays,
 #: and the chords between rays stand proud of the carved flank; denser rays cut that
 #: (160 -> 3.93 %, 320 -> 4.55, 400 -> 3.48, 480 -> 2.89, 640 -> 3.57, 960 -> 3.27 % ripple).
 WHEEL_RAYS_PER_TOOTH = 480
@@ -573,7 +574,8 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
                                   per_period * poses_per_tooth, 4 * poses_per_tooth, law.theta_period,
                                   periods, tilt)
 
-    wheel_grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, per_period * 2 * (wheel_rays_per_tooth or WHEEL_RAYS_PER_TOOTH))
+    wheel_rays = per_period * 2 * (wheel_rays_per_tooth or WHEEL_RAYS_PER_TOOTH)
+    wheel_grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, wheel_rays)
     wheel_blank = blank_radii(curves.wheel, wheel_grid, h_a)
     # backlash: a constant angular play of the wheel (TE constant along the cycle) plus a thin
     # normal clearance that keeps discretisation scallops from touching
