@@ -59,14 +59,15 @@ def built(spec, samples):
 def variant(label, samples, blend=0.0, **kwargs):
     law = crank_pitch_law(CrankLaw(60, 100, 360, INSTALL, 2))
     gen_law = blended_pitch_law(law, np.radians(blend))
-    saved = (gen.LEAD,)
+    saved = (gen.LEAD, gen.PIVOT)
     gen.LEAD = kwargs.pop("lead", gen.LEAD)
+    gen.PIVOT = kwargs.pop("pivot", gen.PIVOT)
     t0 = time.perf_counter()
     try:
         pair = gen.generate_pair(gen_law, 48, kwargs.pop("cutter", gen.RackCutter(backlash=0.5)),
                                  strict=False, **kwargs)
     finally:
-        (gen.LEAD,) = saved
+        (gen.LEAD, gen.PIVOT) = saved
     seconds = time.perf_counter() - t0
     p, w = gen.simplify_outline(pair.pinion_outline), gen.simplify_outline(pair.wheel_outline)
     return measure(label, p, w, law, INSTALL, seconds, samples)
@@ -100,6 +101,13 @@ def main() -> None:
             ("angular backlash split, tilt 0.6, tooth on corner", dict(tilt=0.6, corner="tooth")),
             ("default + blend 1 deg (rack undercut check off)", dict(blend=1.0)),
             ("default + blend 4 deg", dict(blend=4.0)),
+            ("default, rack pivots the whole corner turn", dict(pivot=1.0)),
+            ("default, rack pivots 0.3 of the turn from each side", dict(pivot=0.3)),
+            ("default, 160 rays per tooth (pinion and wheel)", dict(rays_per_tooth=160,
+                                                                   wheel_rays_per_tooth=160)),
+            ("default, 960 rays per tooth", dict(rays_per_tooth=960, wheel_rays_per_tooth=960)),
+            ("default, 192 wheel-carving poses per tooth", dict(carve_poses_per_tooth=192)),
+            ("default, play split evenly (LEAD 0)", dict(lead=0.0)),
         ]
         for label, kw in alternatives:
             blend = kw.pop("blend", 0.0)

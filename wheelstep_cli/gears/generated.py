@@ -2,10 +2,12 @@
 
 The pinion is cut by a straight-sided rack (pressure angle alpha, tip fillet)
 whose pitch line rolls without slip on the pinion's pitch curve; at a pitch-curve
-corner the rack pivots about the corner point. The wheel is then cut by that
-pinion moving along the exact law ("rotate and carve"): its outline is the blank
-minus the union of the pinion's poses in the wheel frame, so the pair is conjugate
-by construction, including the concave notch at each shoe handover.
+corner the rack pivots about the corner point through part of the turn from each
+side (PIVOT), leaving a ridge in the corner space that hands the drive over sooner.
+The wheel is then cut by that pinion moving along the exact law ("rotate and
+carve"): its outline is the blank minus the union of the pinion's poses in the
+wheel frame, so the pair is conjugate by construction, including the concave notch
+at each shoe handover.
 
 Backlash: the pinion's teeth are thinned by j_n/2 (the rack tooth is thickened),
 and the wheel is carved by the pinion dilated by j_n/2 along its normals, so the
@@ -34,7 +36,11 @@ SCALLOP_CLEARANCE = 0.01
 #: (chosen by measurement: 0 -> 11.5 % hub speed ripple, 0.3 -> 11.4, 0.6 -> 4.9, 1.0 -> 8.9).
 DEFAULT_TILT = 0.6
 #: Where the angular play goes: 0 splits it (drive TE = -play), +-1 puts it all on the coast side.
-LEAD = 0.0
+#: Mostly on the coast side: the drive contact then lags the law by little, so the hub speed factor
+#: is not read at a lagged angle (a 0.8 % step at each corner with the play split); 0.8 keeps 2'
+#: of the play on the drive side as margin (pivot 0.2: LEAD 0 -> 3.0 %, 0.8 -> 2.36, 0.9 -> 2.40,
+#: 1.0 -> 2.50 %, no interference in any).
+LEAD = 0.8
 #: Radius (x module) the pinion's tip corners are rounded to (tip relief; 0: sharp).
 TIP_ROUND = 0.0
 #: Pinion outline taken into each carving pose: this many pitches either side of the pitch point.
@@ -42,6 +48,20 @@ WINDOW_PITCHES = 2.6
 #: Most tooth height (x module) that may be topped off a pointed tooth before the design is refused.
 MAX_TOPPING = 0.35
 CORNER_MODES = ("space", "tooth")
+#: Fraction of the corner turn the rack pivots through from each side (>= 0.5: the whole turn).
+#: A partial pivot leaves a ridge in the corner space, so the wheel tooth there takes over
+#: the drive before the previous tooth tip lets go (measured: 1.0 -> 4.66 %, 0.4 -> 4.66,
+#: 0.3 -> 4.32, 0.2 -> 3.98, 0.15 -> 3.93, 0.1 -> 4.09, 0 -> 4.45 % hub speed ripple with 160 rays
+#: and the play split; with 480 rays and LEAD 0.8: 0.15 -> 2.91, 0.2 -> 2.36 %).
+PIVOT = 0.2
+#: Pinion poses per tooth pitch that carve the wheel (a sharp pinion tip corner sliding fast
+#: along a wheel flank leaves cusps between poses: 48 -> 7.9 %, 192 -> 4.3 % in exact-polygon trials).
+CARVE_POSES_PER_TOOTH = 48
+#: Wheel ray-map density: the wheel's ray map holds 2 x this many rays per wheel tooth (the
+#: same rule as ``rays_per_tooth``). Near the notch the wheel flanks run almost along the rays,
+#: and the chords between rays stand proud of the carved flank; denser rays cut that
+#: (160 -> 3.93 %, 320 -> 4.55, 400 -> 3.48, 480 -> 2.89, 640 -> 3.57, 960 -> 3.27 % ripple).
+WHEEL_RAYS_PER_TOOTH = 480
 
 
 @dataclass(frozen=True)
@@ -138,6 +158,12 @@ def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
     return np.vstack([rack, tooth[-1:] + [shifts[-1], 0.0]])
 
 
+def _pivot_fractions(count: int) -> np.ndarray:
+    """Fractions of the corner turn the pivoting rack takes: [0, PIVOT] and [1 - PIVOT, 1]."""
+    f = np.linspace(0.0, 1.0, count)
+    return f[(f <= PIVOT + 1e-12) | (f >= 1.0 - PIVOT - 1e-12)]
+
+
 def _curve_frames(points: np.ndarray, arc: np.ndarray, s: np.ndarray, outward_sign: float):
     """Point, unit tangent and outward unit normal at arc positions s on a sampled curve."""
     x = np.interp(s, arc, points[:, 0])
@@ -199,7 +225,8 @@ def cut_by_rolling_rack(curve: np.ndarray, arc: np.ndarray, grid: PolarGrid, rac
 
     The rack's tooth centres sit at arc positions ``rack_center + k p``. At the
     period ends (a corner, when the tangent there jumps) the rack pivots about the
-    corner point through ``corner_poses`` intermediate orientations. With ``tilt``
+    corner point through the orientations of ``corner_poses`` spread over the turn
+    that lie within PIVOT of either end. With ``tilt``
     = c != 0 each rack tooth is turned by -c mu(s_k) about its pitch point (c = 1:
     tooth axes along the radius, as in the paper's sectors).
     """
@@ -222,7 +249,8 @@ def cut_by_rolling_rack(curve: np.ndarray, arc: np.ndarray, grid: PolarGrid, rac
     turn = np.arctan2(t_in[0] * t_out[1] - t_in[1] * t_out[0], np.dot(t_in, t_out))
     if corner_poses > 0 and abs(turn) > 1e-6:
         start = np.arctan2(t_in[1], t_in[0])
-        angles = start + turn * np.linspace(0.0, 1.0, corner_poses)
+        angles = start + turn * _pivot_fractions(corner_poses)
+        corner_poses = len(angles)
         tangent = np.column_stack([np.cos(angles), np.sin(angles)])
         normal = sign * np.column_stack([tangent[:, 1], -tangent[:, 0]])
         shift = np.full(corner_poses, np.mod(rack_center + pitch / 2.0, pitch) - pitch / 2.0)
@@ -293,7 +321,8 @@ def pinion_by_rack(curve: np.ndarray, arc: np.ndarray, cutter: RackCutter, modul
     t_out = curve[1] - curve[0]
     turn = np.arctan2(t_in[0] * t_out[1] - t_in[1] * t_out[0], np.dot(t_in, t_out))
     if corner_poses > 0 and abs(turn) > 1e-6:
-        angles = np.arctan2(t_in[1], t_in[0]) + turn * np.linspace(0.0, 1.0, corner_poses)
+        angles = np.arctan2(t_in[1], t_in[0]) + turn * _pivot_fractions(corner_poses)
+        corner_poses = len(angles)
         tan_c = np.column_stack([np.cos(angles), np.sin(angles)])
         nor_c = sign * np.column_stack([tan_c[:, 1], -tan_c[:, 0]])
         shift_c = np.full(corner_poses, np.mod(rack_center + pitch / 2.0, pitch) - pitch / 2.0)
@@ -493,9 +522,10 @@ def _undercut_remedy(cutter: RackCutter, module: float, rho: float, teeth_per_pe
 
 
 def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: str = "space",
-                  poses_per_tooth: int = 48, rays_per_tooth: int = 160,
+                  poses_per_tooth: int = 48, rays_per_tooth: int = 480,
                   strict: bool = True, tilt: float = DEFAULT_TILT,
-                  backlash_mode: str = "angular") -> GeneratedPair:
+                  backlash_mode: str = "angular", carve_poses_per_tooth: int | None = None,
+                  wheel_rays_per_tooth: int | None = None) -> GeneratedPair:
     """Generate both gears for ``law`` with ``pinion_teeth`` teeth on the pinion.
 
     Raises DesignError (with the remedy) for undercut or pointed teeth and for tooth
@@ -544,7 +574,8 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
                                   per_period * poses_per_tooth, 4 * poses_per_tooth, law.theta_period,
                                   periods, tilt)
 
-    wheel_grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, per_period * rays_per_tooth * 2)
+    wheel_rays = per_period * 2 * (wheel_rays_per_tooth or WHEEL_RAYS_PER_TOOTH)
+    wheel_grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, wheel_rays)
     wheel_blank = blank_radii(curves.wheel, wheel_grid, h_a)
     # backlash: a constant angular play of the wheel (TE constant along the cycle) plus a thin
     # normal clearance that keeps discretisation scallops from touching
@@ -555,8 +586,12 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
     else:
         clearance, play = cutter.backlash / 2.0, 0.0
     window = WINDOW_PITCHES * pitch / float(np.min(np.hypot(*curves.pinion.T)))
+    # the lead only pays where the law has handover corners (the hub speed factor kinks there);
+    # a smooth law keeps the play split evenly, as ordinary spur gears are thinned
+    lead = LEAD if (law.corners or law.blended_corners) else 0.0
     carved = carve_by_pinion(law, pinion_exact, wheel_grid, law.center_distance, clearance,
-                             per_period * poses_per_tooth, window, float(wheel_blank.max()), play, LEAD)
+                             per_period * (carve_poses_per_tooth or CARVE_POSES_PER_TOOTH), window,
+                             float(wheel_blank.max()), play, lead)
     wheel_radii = np.minimum(wheel_blank, carved)
     require(np.all(np.isfinite(pinion_radii)) and np.all(np.isfinite(wheel_radii)), "z", pinion_teeth,
             "the generated outline has gaps (pitch curve too tight for the cutter)")
