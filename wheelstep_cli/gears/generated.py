@@ -230,17 +230,32 @@ def cut_by_rolling_rack(curve: np.ndarray, arc: np.ndarray, grid: PolarGrid, rac
     = c != 0 each rack tooth is turned by -c mu(s_k) about its pitch point (c = 1:
     tooth axes along the radius, as in the paper's sectors).
     """
-    sign = _outward_sign(curve)
-    total = arc[-1]
     teeth = int(round((rack[-1, 0] - rack[0, 0]) / pitch))
     tooth_x = (np.round(rack[:, 0] / pitch + (teeth - 1) / 2.0) - (teeth - 1) / 2.0) * pitch
+    rolling, *pivot = _rack_poses(curve, arc, rack, tooth_x, rack_center, pitch, poses,
+                                  corner_poses, period_angle, tilt)
+    radii = polyline_envelope(grid, rolling, reach=reach)
+    for world in pivot:
+        polyline_envelope(grid, world, out=radii, reach=reach)
+    return radii
+
+
+def _rack_poses(curve: np.ndarray, arc: np.ndarray, rack: np.ndarray, tooth_x: np.ndarray,
+                rack_center: float, pitch: float, poses: int, corner_poses: int,
+                period_angle: float, tilt: float) -> list[np.ndarray]:
+    """Rack points (mm, gear frame) in every cutting pose over one period of ``curve``.
+
+    The first array holds the ``poses`` rolling poses; where the period ends in a
+    corner (the tangent jumps) a second holds the pivot poses about the corner point.
+    ``tooth_x`` is each rack point's tooth centre along the rack (mm).
+    """
+    sign = _outward_sign(curve)
     mu = radial_tilt(curve, arc)
     tilt_fn = (lambda a: -tilt * mu(a)) if tilt else None
-    s = (np.arange(poses) + 0.5) * total / poses
+    s = (np.arange(poses) + 0.5) * arc[-1] / poses
     origin, tangent, normal = _curve_frames(curve, arc, s, sign)
     shift = np.mod(rack_center - s + pitch / 2.0, pitch) - pitch / 2.0
-    world = _place_rack(origin, tangent, normal, rack, tooth_x, shift, tilt_fn, s)
-    radii = polyline_envelope(grid, world, reach=reach)
+    worlds = [_place_rack(origin, tangent, normal, rack, tooth_x, shift, tilt_fn, s)]
     # the tangent arriving at the start corner: the period's end tangent, rotated back one period
     c, sn = np.cos(-period_angle), np.sin(-period_angle)
     t_end = curve[-1] - curve[-2]
@@ -248,16 +263,14 @@ def cut_by_rolling_rack(curve: np.ndarray, arc: np.ndarray, grid: PolarGrid, rac
     t_out = curve[1] - curve[0]
     turn = np.arctan2(t_in[0] * t_out[1] - t_in[1] * t_out[0], np.dot(t_in, t_out))
     if corner_poses > 0 and abs(turn) > 1e-6:
-        start = np.arctan2(t_in[1], t_in[0])
-        angles = start + turn * _pivot_fractions(corner_poses)
-        corner_poses = len(angles)
+        angles = np.arctan2(t_in[1], t_in[0]) + turn * _pivot_fractions(corner_poses)
+        count = len(angles)
         tangent = np.column_stack([np.cos(angles), np.sin(angles)])
         normal = sign * np.column_stack([tangent[:, 1], -tangent[:, 0]])
-        shift = np.full(corner_poses, np.mod(rack_center + pitch / 2.0, pitch) - pitch / 2.0)
-        origin = np.broadcast_to(curve[0], (corner_poses, 2))
-        world = _place_rack(origin, tangent, normal, rack, tooth_x, shift, tilt_fn, np.zeros(corner_poses))
-        polyline_envelope(grid, world, out=radii, reach=reach)
-    return radii
+        shift = np.full(count, np.mod(rack_center + pitch / 2.0, pitch) - pitch / 2.0)
+        origin = np.broadcast_to(curve[0], (count, 2))
+        worlds.append(_place_rack(origin, tangent, normal, rack, tooth_x, shift, tilt_fn, np.zeros(count)))
+    return worlds
 
 
 def _topped(outline: np.ndarray, grid: PolarGrid, topped: np.ndarray, before: np.ndarray,
@@ -307,27 +320,8 @@ def pinion_by_rack(curve: np.ndarray, arc: np.ndarray, cutter: RackCutter, modul
     k = teeth.shape[1]
     flat = teeth.reshape(-1, 2)
     tooth_x = np.repeat(centres, k)
-    sign = _outward_sign(curve)
-    mu = radial_tilt(curve, arc)
-    tilt_fn = (lambda a: -tilt * mu(a)) if tilt else None
-    total = arc[-1]
-    s = (np.arange(poses) + 0.5) * total / poses
-    origin, tangent, normal = _curve_frames(curve, arc, s, sign)
-    shift = np.mod(rack_center - s + pitch / 2.0, pitch) - pitch / 2.0
-    worlds = [_place_rack(origin, tangent, normal, flat, tooth_x, shift, tilt_fn, s)]
-    c, sn = np.cos(-period_angle), np.sin(-period_angle)
-    t_end = curve[-1] - curve[-2]
-    t_in = np.array([c * t_end[0] - sn * t_end[1], sn * t_end[0] + c * t_end[1]])
-    t_out = curve[1] - curve[0]
-    turn = np.arctan2(t_in[0] * t_out[1] - t_in[1] * t_out[0], np.dot(t_in, t_out))
-    if corner_poses > 0 and abs(turn) > 1e-6:
-        angles = np.arctan2(t_in[1], t_in[0]) + turn * _pivot_fractions(corner_poses)
-        corner_poses = len(angles)
-        tan_c = np.column_stack([np.cos(angles), np.sin(angles)])
-        nor_c = sign * np.column_stack([tan_c[:, 1], -tan_c[:, 0]])
-        shift_c = np.full(corner_poses, np.mod(rack_center + pitch / 2.0, pitch) - pitch / 2.0)
-        worlds.append(_place_rack(np.broadcast_to(curve[0], (corner_poses, 2)), tan_c, nor_c, flat,
-                                  tooth_x, shift_c, tilt_fn, np.zeros(corner_poses)))
+    worlds = _rack_poses(curve, arc, flat, tooth_x, rack_center, pitch, poses, corner_poses,
+                         period_angle, tilt)
     polys = np.concatenate([w.reshape(-1, len(centres), k, 2).reshape(-1, k, 2) for w in worlds])
     turn_sign = np.sign(_polar_sweep(curve))
     rotated = [polys @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
