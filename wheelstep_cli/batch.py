@@ -189,7 +189,9 @@ def _check_entry(doc, index, raw, defaults, printers, designs, names, issues, fi
                  doc.where(path), override_where)
 
 
-def _printer(doc, path, name, cache, issues, find_profile) -> Printer | None:
+def _lookup_profile(doc, path, name, cache, issues, find_profile, load):
+    """A profile named at ``path`` of the batch, read once per name: ``load(name, file, located)``
+    turns it into the cached value; problems become issues (None is cached then)."""
     if not isinstance(name, str):
         issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: must be a profile name"))
         return None
@@ -197,11 +199,7 @@ def _printer(doc, path, name, cache, issues, find_profile) -> Printer | None:
         cache[name] = None
         try:
             file = find_profile(name)
-            located = read_located_yaml(file, _label(file))
-            if not is_printer_profile(located.data):
-                raise DesignError("printer", name, "is a design profile, not a printer profile; "
-                                  "printer profiles: " + ", ".join(_profile_names(printer=True)))
-            cache[name] = printer_from_profile(profile_label(name), file, _label(file))
+            cache[name] = load(name, file, read_located_yaml(file, _label(file)))
         except InvalidInput as err:
             issues.extend(err.issues)
         except DesignError as err:
@@ -209,38 +207,33 @@ def _printer(doc, path, name, cache, issues, find_profile) -> Printer | None:
                 issues.append(Issue(str(err.value), "", err.limit))
             else:
                 issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: {err.limit}"))
-    if cache[name] is None:
-        if not any(i.where == doc.where(path) for i in issues):
-            issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: the printer profile has errors (above)"))
-        return None
     return cache[name]
 
 
-def _design(doc, path, name, cache, issues, find_profile):
-    if not isinstance(name, str):
-        issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: must be a profile name"))
-        return None
-    if name not in cache:
-        cache[name] = None
-        try:
-            file = find_profile(name)
-            located = read_located_yaml(file, _label(file))
-            if is_printer_profile(located.data) or not isinstance(located.data, dict):
-                raise DesignError("design", name, "is not a design profile; design profiles: "
-                                  + ", ".join(_profile_names(printer=False)))
-            cache[name] = (located, hashlib.sha256(file.read_bytes()).hexdigest())
-        except InvalidInput as err:
-            issues.extend(err.issues)
-        except DesignError as err:
-            if err.param == "profile":
-                issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: {err.limit}"))
-            elif err.param == "yaml":
-                issues.append(Issue(str(err.value), "", err.limit))
-            else:
-                issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: {err.limit}"))
-    if cache[name] is None:
-        return None
-    return cache[name][0]
+def _load_printer(name: str, file: Path, located: LocatedYaml) -> Printer:
+    if not is_printer_profile(located.data):
+        raise DesignError("printer", name, "is a design profile, not a printer profile; "
+                          "printer profiles: " + ", ".join(_profile_names(printer=True)))
+    return printer_from_profile(profile_label(name), file, _label(file), located)
+
+
+def _load_design(name: str, file: Path, located: LocatedYaml) -> tuple[LocatedYaml, str]:
+    if is_printer_profile(located.data) or not isinstance(located.data, dict):
+        raise DesignError("design", name, "is not a design profile; design profiles: "
+                          + ", ".join(_profile_names(printer=False)))
+    return located, hashlib.sha256(file.read_bytes()).hexdigest()
+
+
+def _printer(doc, path, name, cache, issues, find_profile) -> Printer | None:
+    printer = _lookup_profile(doc, path, name, cache, issues, find_profile, _load_printer)
+    if printer is None and not any(i.where == doc.where(path) for i in issues):
+        issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: the printer profile has errors (above)"))
+    return printer
+
+
+def _design(doc, path, name, cache, issues, find_profile) -> LocatedYaml | None:
+    found = _lookup_profile(doc, path, name, cache, issues, find_profile, _load_design)
+    return None if found is None else found[0]
 
 
 def _design_layers(kind: PartKind, design: LocatedYaml, issues: list[Issue]):

@@ -59,14 +59,18 @@ def is_printer_profile(data: Any) -> bool:
     return isinstance(data, dict) and "printer" in data
 
 
-def printer_from_profile(name: str, path: Path, label: str) -> Printer:
-    """Read and check a printer profile; every problem is reported with ``label:line``."""
+def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | None = None) -> Printer:
+    """Read and check a printer profile; every problem is reported with ``label:line``.
+
+    ``doc`` is the profile already parsed (as :func:`read_located_yaml` gives it), if it was.
+    """
     from wheelstep_cli.io.located_yaml import YamlSyntaxError
 
-    try:
-        doc = read_located_yaml(path, label)
-    except YamlSyntaxError as err:
-        raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+    if doc is None:
+        try:
+            doc = read_located_yaml(path, label)
+        except YamlSyntaxError as err:
+            raise InvalidInput([Issue(err.where, "", err.limit)]) from None
     issues: list[Issue] = []
     printer = _parse_printer(name, doc, issues)
     if issues:
