@@ -198,21 +198,23 @@ def _print_check(check, run, rise) -> None:
         return
     typer.echo(f"CANNOT CLIMB a {run:g} x {rise:g} mm stair: no landing angle makes one cycle both "
                f"advance {run:g} mm and rise {rise:g} mm.")
-    if check.landing_for_rise:
-        typer.echo("  where a cycle rises " + f"{rise:g} mm it advances " + ", ".join(
-            f"{adv:.1f} mm (landing {np.degrees(al):.1f} deg)"
-            for al, adv in zip(check.landing_for_rise, check.advance_at_rise)))
-    else:
-        typer.echo(f"  no landing angle gives a rise of {rise:g} mm per cycle")
-    if check.landing_for_run:
-        typer.echo("  where a cycle advances " + f"{run:g} mm it rises " + ", ".join(
-            f"{r:.1f} mm (landing {np.degrees(al):.1f} deg)"
-            for al, r in zip(check.landing_for_run, check.rise_at_run)))
-    else:
-        typer.echo(f"  no landing angle gives an advance of {run:g} mm per cycle")
+    _echo_section("rises", rise, "advances", check.landing_for_rise, check.advance_at_rise)
+    _echo_section("advances", run, "rises", check.landing_for_run, check.rise_at_run)
     typer.echo(f"  closest: landing {np.degrees(check.best_landing):.1f} deg advances {check.best_advance:.1f} mm "
                f"and rises {check.best_rise:.1f} mm")
 
 
 def register(app: typer.Typer) -> None:
     app.command("stairs")(stairs)
+
+
+def _echo_section(given: str, amount: float, other: str, landings, values) -> None:
+    """One line of the climb check: where a cycle ``given`` ``amount`` mm, how far it ``other``."""
+    import numpy as np
+
+    if len(landings):
+        typer.echo(f"  where a cycle {given} {amount:g} mm it {other} " + ", ".join(
+            f"{v:.1f} mm (landing {np.degrees(al):.1f} deg)" for al, v in zip(landings, values)))
+    else:
+        noun = {"rises": "a rise", "advances": "an advance"}[given]
+        typer.echo(f"  no landing angle gives {noun} of {amount:g} mm per cycle")
