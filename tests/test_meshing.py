@@ -250,6 +250,28 @@ def test_first_pass_within_reach_and_chunking_change_nothing(case, spur_pair, pa
         assert fast.interferes   # the second pass was needed
 
 
+@pytest.mark.parametrize("case", ["spur", "paper"])
+def test_threads_change_nothing(case, spur_pair, paper_pair, monkeypatch):
+    """Poses checked on several threads give bit for bit what one thread gives."""
+    import wheelstep_cli.gears.meshing as meshing
+    from wheelstep_cli.gears.pitch import carrier_angle
+
+    if case == "spur":
+        pinion, wheel = spur_pair
+        args = (spur_transmission(Z1, Z2), M * (Z1 + Z2) / 2.0)
+    else:
+        law = paper_pair.law
+        pinion, wheel = paper_pair.pinion_outline, paper_pair.wheel_outline
+        args = (Transmission(lambda t: carrier_angle(law, t), law.turns * np.pi / 2.0), 144.0)
+    monkeypatch.setattr(meshing, "BATCH", 7)          # many batches to share out
+    monkeypatch.setattr(meshing, "THREADS", 1)
+    single = check_meshing(pinion, wheel, *args, samples=96)
+    monkeypatch.setattr(meshing, "THREADS", 3)
+    threaded = check_meshing(pinion, wheel, *args, samples=96)
+    _reports_equal(single, threaded)
+    assert np.array_equal(single.hub_speed, threaded.hub_speed, equal_nan=True)
+
+
 def test_large_outlines_bounded_memory_and_same_answer_as_coarse():
     """~20k-point outlines (like unsimplified exports) run in bounded memory and agree
     with a coarse sampling of the same involute pair and with the built-in backlash."""

@@ -40,6 +40,9 @@ Angles in radians, lengths in mm; degrees, arcminutes and % only in ``to_dict``.
 
 from __future__ import annotations
 
+import os
+import threading
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Callable
 
@@ -59,6 +62,8 @@ MAX_PAIRS = 1 << 19
 #: First pass: only contacts within this wheel rotation (rad) are looked for; poses with
 #: no contact that close are redone without the limit. Changes the speed, not the result.
 REACH = 0.01
+#: Threads sharing the poses (one per core, at most 4).
+THREADS = max(1, min(4, os.cpu_count() or 1))
 
 
 @dataclass(frozen=True)
@@ -750,7 +755,6 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, transmission: Transmiss
     rise = float(transmission.driven_angle(np.array([start + period]))[0]
                  - transmission.driven_angle(np.array([start]))[0])
     box = mesh_window(pinion, wheel, distance, window)
-    pair = _prepare(pinion, wheel, distance, box)
     batch = max(1, min(BATCH, BATCH_POINTS // (len(pinion) + len(wheel))))
 
     delta_back = np.empty(samples)
@@ -758,12 +762,23 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, transmission: Transmiss
     interference = np.zeros(samples, dtype=bool)
     area = np.zeros(samples)
     penetration = np.zeros(samples)
-    for lo in range(0, samples, batch):
-        sl = slice(lo, min(lo + batch, samples))
-        delta_back[sl], delta_fwd[sl], interference[sl], area[sl], penetration[sl] = _contacts(
-            pair, theta[sl], phi_law[sl])
-        if progress is not None:
-            progress(sl.stop, samples)
+    slices = [slice(lo, min(lo + batch, samples)) for lo in range(0, samples, batch)]
+    # batches are independent and numpy / shapely release the GIL in their loops: threads
+    # share the work between cores; each batch fills its own slice, so the result is the same.
+    # Each thread prepares its own outlines (a prepared GEOS geometry is not thread-safe).
+    own = threading.local()
+
+    def batch_contacts(sl):
+        if not hasattr(own, "pair"):
+            own.pair = _prepare(pinion, wheel, distance, box)
+        return _contacts(own.pair, theta[sl], phi_law[sl])
+
+    with ThreadPoolExecutor(max_workers=THREADS) as pool:
+        results = pool.map(batch_contacts, slices)
+        for sl, result in zip(slices, results):
+            delta_back[sl], delta_fwd[sl], interference[sl], area[sl], penetration[sl] = result
+            if progress is not None:
+                progress(sl.stop, samples)
     delta_back[~np.isfinite(delta_back)] = np.nan
     delta_fwd[~np.isfinite(delta_fwd)] = np.nan
 
