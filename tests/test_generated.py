@@ -153,9 +153,10 @@ def test_default_pair_meshes_without_interference_within_its_backlash_band(cli, 
     meshing, generated = report["meshing"], report["generated"]
     assert meshing["interference"] is False and not meshing["contact_lost"]
     # constant angular play worth j_n = 0.5 mm at the mean wheel pitch radius: the normal
-    # backlash scales with the wheel pitch radius (79.8..102 mm over 92.6), plus 2 x 0.01 mm
+    # backlash scales with the wheel pitch radius (79.8..102 mm over 92.6), plus 2 x 0.006 mm
     assert 0.5 * 79.0 / 92.6 < meshing["backlash_min_mm"] and meshing["backlash_max_mm"] < 0.5 * 103.0 / 92.6 + 0.03
-    assert meshing["hub_speed_ripple_pct"] < 3.0                  # measured 2.36 %; paper pair: hundreds
+    # the target (at most 2 %); measured 1.52 % at the check's 1536 poses; paper pair: hundreds
+    assert meshing["hub_speed_ripple_pct"] <= 2.0
     assert generated["module_mm"] == pytest.approx(2.1082, abs=1e-4)
     assert "hub speed ripple" in result.stdout
 
@@ -172,3 +173,21 @@ def test_blend_keeps_closure_and_is_not_refused_as_undercut():
     assert np.allclose(blended.ratio(phi[far]), law.ratio(phi[far]), rtol=1e-4)   # ~only near corners
     pair = generate_pair(blended, 48, RackCutter())       # the blended corner is cut like a pivot
     assert pair.corner == "space"
+
+
+def test_round_tips_rounds_convex_corners_only():
+    from wheelstep_cli.gears.generated import round_tips
+
+    # an L-shaped plate: five convex corners and one concave corner
+    ell = np.array([[0, 0], [10, 0], [10, 4], [4, 4], [4, 10], [0, 10]], dtype=float)
+    r = 0.5
+    rounded = round_tips(ell, r)
+    area = 0.5 * np.sum(rounded[:, 0] * np.roll(rounded[:, 1], -1) - np.roll(rounded[:, 0], -1) * rounded[:, 1])
+    # each convex corner loses (1 - pi/4) r^2; the arcs are chords of 8 per quarter turn
+    # inscribed in the circle, so a little more
+    lost = 5 * (1 - np.pi / 4) * r * r
+    assert 64.0 - 1.05 * lost < area <= 64.0 - lost
+    assert area > 0                                            # counter-clockwise
+    # the concave corner stays sharp (to the chord error of the polygonal buffers)
+    assert np.min(np.hypot(rounded[:, 0] - 4.0, rounded[:, 1] - 4.0)) < 0.01
+    assert not np.any(np.all(np.isclose(rounded, [10.0, 0.0], atol=1e-3), axis=1))  # convex ones cut

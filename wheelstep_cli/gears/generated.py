@@ -19,6 +19,8 @@ Angles in radians, lengths in mm.
 
 from __future__ import annotations
 
+import functools
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,41 +29,57 @@ from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.gears.envelope import (PolarGrid, miter_offset, offset_polyline, outline_from_radii,
                                          polyline_envelope)
 from wheelstep_cli.gears.law import PitchCurves, PitchLaw, pitch_curves
+from wheelstep_cli.gears.meshing import THREADS
 
 #: Smallest tip land (mm) before a tooth counts as pointed (same floor as the paper method).
 MIN_TIP_LAND = 0.1
-#: Normal clearance (mm) added to the angular backlash so discretisation scallops never touch.
-SCALLOP_CLEARANCE = 0.01
+#: Normal clearance (mm) added to the angular backlash so discretisation scallops never touch
+#: (with the carving paths and rounded tips, ripple at 1536 poses: 0.002 interferes by microns,
+#: 0.004 -> 2.35 %, 0.005 -> 1.59, 0.006 -> 1.52, 0.007 -> 1.58, 0.008 -> 1.63, 0.01 -> 1.92 %).
+SCALLOP_CLEARANCE = 0.006
 #: Rack-tooth tilt towards the radius, as a fraction of the pitch curve's normal-to-radius angle
-#: (chosen by measurement: 0 -> 11.5 % hub speed ripple, 0.3 -> 11.4, 0.6 -> 4.9, 1.0 -> 8.9).
+#: (chosen by measurement: 0 -> 11.5 % hub speed ripple, 0.3 -> 11.4, 0.6 -> 4.9, 1.0 -> 8.9; with
+#: the carving paths and rounded tips: 0.5 -> 8.39, 0.6 -> 1.52, 0.7 -> 3.05 %).
 DEFAULT_TILT = 0.6
 #: Where the angular play goes: 0 splits it (drive TE = -play), +-1 puts it all on the coast side.
 #: Mostly on the coast side: the drive contact then lags the law by little, so the hub speed factor
 #: is not read at a lagged angle (a 0.8 % step at each corner with the play split); 0.8 keeps 2'
 #: of the play on the drive side as margin (pivot 0.2: LEAD 0 -> 3.0 %, 0.8 -> 2.36, 0.9 -> 2.40,
-#: 1.0 -> 2.50 %, no interference in any).
+#: 1.0 -> 2.50 %, no interference in any; with the carving paths and rounded tips: 0.8 -> 1.52,
+#: 0.9 -> 1.43 %).
 LEAD = 0.8
-#: Radius (x module) the pinion's tip corners are rounded to (tip relief; 0: sharp).
-TIP_ROUND = 0.0
+#: Radius (x module) the pinion's tip corners are rounded to (tip relief; 0: sharp). A sharp
+#: tip corner touches the wheel as a point, and near the handover corners such contacts rode
+#: over the flanks with sawtooth speed errors; a rounded tip carves, and then drives on, a
+#: smooth flank (with the carving paths: 0 -> 2.51 %, 0.05 -> 1.90, 0.08 -> 2.08, 0.1 -> 1.92,
+#: 0.12 -> 1.94, 0.15 -> 2.56, 0.2 -> 3.10 % ripple at 1536 poses, clearance 0.01).
+TIP_ROUND = 0.1
 #: Pinion outline taken into each carving pose: this many pitches either side of the pitch point.
-WINDOW_PITCHES = 2.6
+WINDOW_PITCHES = 1.8
 #: Most tooth height (x module) that may be topped off a pointed tooth before the design is refused.
 MAX_TOPPING = 0.35
 CORNER_MODES = ("space", "tooth")
+#: Douglas-Peucker tolerance (mm) of the pinion outline that carves the wheel and is written.
+PINION_TOLERANCE = 0.0005
+#: Douglas-Peucker tolerance (mm) of the wheel's ray-map outline as written.
+WHEEL_TOLERANCE = 0.0005
 #: Fraction of the corner turn the rack pivots through from each side (>= 0.5: the whole turn).
 #: A partial pivot leaves a ridge in the corner space, so the wheel tooth there takes over
 #: the drive before the previous tooth tip lets go (measured: 1.0 -> 4.66 %, 0.4 -> 4.66,
 #: 0.3 -> 4.32, 0.2 -> 3.98, 0.15 -> 3.93, 0.1 -> 4.09, 0 -> 4.45 % hub speed ripple with 160 rays
-#: and the play split; with 480 rays and LEAD 0.8: 0.15 -> 2.91, 0.2 -> 2.36 %).
+#: and the play split; with 480 rays and LEAD 0.8: 0.15 -> 2.91, 0.2 -> 2.36 %; with the carving
+#: paths and rounded tips: 0.1 -> 7.95, 0.15 -> 1.59, 0.2 -> 1.59, 0.3 -> 4.87 %).
 PIVOT = 0.2
-#: Pinion poses per tooth pitch that carve the wheel (a sharp pinion tip corner sliding fast
-#: along a wheel flank leaves cusps between poses: 48 -> 7.9 %, 192 -> 4.3 % in exact-polygon trials).
-CARVE_POSES_PER_TOOTH = 48
+#: Pinion poses per tooth pitch that carve the wheel. Between poses the carving also follows
+#: each outline point's path (see :func:`carve_by_pinion`), so 24 carve as well as 48 did.
+CARVE_POSES_PER_TOOTH = 24
 #: Wheel ray-map density: the wheel's ray map holds 2 x this many rays per wheel tooth (the
 #: same rule as ``rays_per_tooth``). Near the notch the wheel flanks run almost along the rays,
-#: and the chords between rays stand proud of the carved flank; denser rays cut that
-#: (160 -> 3.93 %, 320 -> 4.55, 400 -> 3.48, 480 -> 2.89, 640 -> 3.57, 960 -> 3.27 % ripple).
-WHEEL_RAYS_PER_TOOTH = 480
+#: and the chords between rays stand proud of the carved flank by microns: a pinion tip then
+#: rides over them (480 rays: 4 um humps in TE; 960, 1440, 1920: gone, the same ripple).
+WHEEL_RAYS_PER_TOOTH = 960
+#: Carving poses whose outline points are followed as one path (see :func:`carve_by_pinion`).
+PATH_RUN = 64
 
 
 @dataclass(frozen=True)
@@ -217,29 +235,6 @@ def _place_rack(origin, tangent, normal, rack, tooth_x, rel_shift, tilt_of_arc, 
     return origin[:, None, :] + rx[..., None] * tangent[:, None, :] + ry[..., None] * normal[:, None, :]
 
 
-def cut_by_rolling_rack(curve: np.ndarray, arc: np.ndarray, grid: PolarGrid, rack: np.ndarray,
-                        rack_center: float, pitch: float, poses: int,
-                        corner_poses: int, period_angle: float, reach: float = np.inf,
-                        tilt: float = 0.0) -> np.ndarray:
-    """Nearest rack crossing per ray as the rack's pitch line rolls on ``curve`` (one period).
-
-    The rack's tooth centres sit at arc positions ``rack_center + k p``. At the
-    period ends (a corner, when the tangent there jumps) the rack pivots about the
-    corner point through the orientations of ``corner_poses`` spread over the turn
-    that lie within PIVOT of either end. With ``tilt``
-    = c != 0 each rack tooth is turned by -c mu(s_k) about its pitch point (c = 1:
-    tooth axes along the radius, as in the paper's sectors).
-    """
-    teeth = int(round((rack[-1, 0] - rack[0, 0]) / pitch))
-    tooth_x = (np.round(rack[:, 0] / pitch + (teeth - 1) / 2.0) - (teeth - 1) / 2.0) * pitch
-    rolling, *pivot = _rack_poses(curve, arc, rack, tooth_x, rack_center, pitch, poses,
-                                  corner_poses, period_angle, tilt)
-    radii = polyline_envelope(grid, rolling, reach=reach)
-    for world in pivot:
-        polyline_envelope(grid, world, out=radii, reach=reach)
-    return radii
-
-
 def _rack_poses(curve: np.ndarray, arc: np.ndarray, rack: np.ndarray, tooth_x: np.ndarray,
                 rack_center: float, pitch: float, poses: int, corner_poses: int,
                 period_angle: float, tilt: float) -> list[np.ndarray]:
@@ -283,12 +278,7 @@ def _topped(outline: np.ndarray, grid: PolarGrid, topped: np.ndarray, before: np
 
     cap = np.where(lowered, topped, 10.0 * float(before.max()))
     limit = shapely.Polygon(outline_from_radii(grid, cap, copies))
-    result = shapely.Polygon(outline).intersection(limit).buffer(0)
-    if result.geom_type != "Polygon":
-        result = max(result.geoms, key=lambda g: g.area)
-    coords = np.asarray(result.exterior.coords)[:-1]
-    area = 0.5 * np.sum(coords[:, 0] * np.roll(coords[:, 1], -1) - np.roll(coords[:, 0], -1) * coords[:, 1])
-    return coords if area > 0 else coords[::-1]
+    return _ccw_outline(shapely.Polygon(outline).intersection(limit).buffer(0))
 
 
 def rack_tooth_polygons(cutter: RackCutter, module: float, pitch: float, teeth: int = 5,
@@ -324,22 +314,39 @@ def pinion_by_rack(curve: np.ndarray, arc: np.ndarray, cutter: RackCutter, modul
                          period_angle, tilt)
     polys = np.concatenate([w.reshape(-1, len(centres), k, 2).reshape(-1, k, 2) for w in worlds])
     turn_sign = np.sign(_polar_sweep(curve))
-    rotated = [polys @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
-               for a in turn_sign * period_angle * np.arange(copies)]
-    cutter_region = shapely.union_all(shapely.polygons(np.concatenate(rotated)))
+    # one period's cutter region, then its rotated copies (a union of all poses at once costs more)
+    import shapely.affinity
+
+    region = shapely.union_all(shapely.polygons(polys))
+    cutter_region = shapely.union_all([shapely.affinity.rotate(region, a, origin=(0.0, 0.0), use_radians=True)
+                                       for a in turn_sign * period_angle * np.arange(copies)])
     body = np.concatenate([curve[:-1] @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
                            for a in turn_sign * period_angle * np.arange(copies)])
     # bevel joins: a chord across each pitch-curve corner relieves the corner teeth's tips
     blank = shapely.Polygon(body).buffer(cutter.addendum * module, join_style="bevel")
     # buffer(0) drops the zero-area slivers booleans can leave where rack poses just touch
-    pinion = blank.difference(cutter_region).buffer(0)
-    if TIP_ROUND > 0:
-        # an opening rounds the convex corners (tooth tips) to TIP_ROUND x m, nothing else
-        r = TIP_ROUND * module
-        pinion = pinion.buffer(-r, quad_segs=8).buffer(r, quad_segs=8)
-    if pinion.geom_type != "Polygon":
-        pinion = max(pinion.geoms, key=lambda g: g.area)
-    outline = np.asarray(pinion.exterior.coords)[:-1]
+    return _ccw_outline(blank.difference(cutter_region).buffer(0))
+
+
+def round_tips(outline: np.ndarray, radius: float) -> np.ndarray:
+    """The outline (N, 2, mm) with its convex corners (tooth tips) rounded to ``radius`` mm.
+
+    An opening (erode, then dilate) changes nothing else. The outline is first thinned
+    by a fraction of a micron: a boolean's many collinear points slow the buffers down.
+    """
+    import shapely
+
+    if radius <= 0:
+        return outline
+    body = shapely.simplify(shapely.Polygon(outline), 0.0002)
+    return _ccw_outline(body.buffer(-radius, quad_segs=8).buffer(radius, quad_segs=8))
+
+
+def _ccw_outline(polygon) -> np.ndarray:
+    """Exterior (N, 2) of a shapely polygon, counter-clockwise; of the largest part if it split."""
+    if polygon.geom_type != "Polygon":
+        polygon = max(polygon.geoms, key=lambda g: g.area)
+    outline = np.asarray(polygon.exterior.coords)[:-1]
     area = 0.5 * np.sum(outline[:, 0] * np.roll(outline[:, 1], -1) - np.roll(outline[:, 0], -1) * outline[:, 1])
     return outline if area > 0 else outline[::-1]
 
@@ -377,7 +384,10 @@ def carve_by_pinion(law: PitchLaw, pinion_outline: np.ndarray, wheel_grid: Polar
     overall). Poses sample the driven angle uniformly (plus the law's corners); at
     each, the outline (dilated by ``clearance`` mm) within ``window`` rad of its pitch
     point is placed in the wheel frame (pinion rotated by -theta at the origin, wheel
-    by pi + phi about (distance, 0)). With ``play`` > 0 (rad of wheel angle) the
+    by pi + phi about (distance, 0)). The wheel is carved both by the outline in each
+    pose and by the path of each outline point from pose to pose: the poses alone leave
+    a scallop between the imprints of a sharp tooth tip, the paths alone one between
+    neighbouring points of a flank. With ``play`` > 0 (rad of wheel angle) the
     carving is widened to the union over wheel turns in [-play, play]: a constant
     angular backlash, so the drive-side TE is constant along the cycle; ``lead``
     (-1..1) shifts that window (+1: all play on the coast side).
@@ -402,18 +412,35 @@ def carve_by_pinion(law: PitchLaw, pinion_outline: np.ndarray, wheel_grid: Polar
     wrap = local - window < angle[0]
     start[wrap] = np.searchsorted(reach_angle, local[wrap] - window + 2.0 * np.pi) - n_pts
     width = int(np.max(end - start)) + 1
-    idx = np.mod(start[:, None] + np.arange(width)[None, :], n_pts)
-    pts = dilated[idx]                                       # (poses, K, 2) pinion body frame
-    c, s = np.cos(-theta), np.sin(-theta)
-    wx = c[:, None] * pts[..., 0] - s[:, None] * pts[..., 1] - distance
-    wy = s[:, None] * pts[..., 0] + c[:, None] * pts[..., 1]
-    ang = -(np.pi + phi)
-    c, s = np.cos(ang), np.sin(ang)
-    body = np.stack([c[:, None] * wx - s[:, None] * wy, s[:, None] * wx + c[:, None] * wy], axis=-1)
-    radii = polyline_envelope(wheel_grid, body, reach=reach)
+
+    def carve_run(i0: int) -> np.ndarray:
+        # poses in runs of PATH_RUN (each run shares its last pose with the next): the outline
+        # in each pose, and every outline point any pose of the run holds followed through it
+        run = slice(i0, min(i0 + PATH_RUN, len(phi) - 1) + 1)
+        idx = np.mod(start[run, None] + np.arange(width)[None, :], n_pts)
+        radii = polyline_envelope(wheel_grid, _in_wheel_frame(dilated[idx], theta[run], phi[run], distance),
+                                  reach=reach)
+        points = np.arange(int(start[run].min()), int(end[run].max()) + 1)
+        path = _in_wheel_frame(dilated[np.mod(points, n_pts)][None], theta[run], phi[run], distance)
+        return polyline_envelope(wheel_grid, np.ascontiguousarray(path.transpose(1, 0, 2)), out=radii,
+                                 reach=reach)
+
+    # runs are independent and numpy releases the GIL in its loops: threads share the cores
+    with ThreadPoolExecutor(max_workers=THREADS) as pool:
+        radii = functools.reduce(np.minimum, pool.map(carve_run, range(0, len(phi) - 1, PATH_RUN)))
     if play > 0:
         radii = _widen(radii, play / wheel_grid.width, lead)
     return radii
+
+
+def _in_wheel_frame(points: np.ndarray, theta: np.ndarray, phi: np.ndarray, distance: float) -> np.ndarray:
+    """Pinion points (P or 1, K, 2; mm, pinion frame) in the wheel frame at poses (theta, phi) (P,)."""
+    c, s = np.cos(-theta), np.sin(-theta)
+    wx = c[:, None] * points[..., 0] - s[:, None] * points[..., 1] - distance
+    wy = s[:, None] * points[..., 0] + c[:, None] * points[..., 1]
+    ang = -(np.pi + phi)
+    c, s = np.cos(ang), np.sin(ang)
+    return np.stack([c[:, None] * wx - s[:, None] * wy, s[:, None] * wx + c[:, None] * wy], axis=-1)
 
 
 def _widen(radii: np.ndarray, span: float, lead: float) -> np.ndarray:
@@ -557,16 +584,30 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
     theta0 = float(law.pinion_angle(curves.phi[0]))
     pinion_grid = PolarGrid(theta0, law.theta_period, per_period * rays_per_tooth)
     offset = pitch / 2.0 if corner == "space" else 0.0   # arc of the first pinion tooth centre
-    rack = rack_profile(cutter, module, pitch, 5)
     # no offset fan at the pinion's corners: a chord there relieves the corner teeth's tips
     pinion_blank = blank_radii(curves.pinion, pinion_grid, h_a, fan=False)
-    cut = cut_by_rolling_rack(curves.pinion, curves.arc, pinion_grid, rack, offset + pitch / 2.0,
-                              pitch, per_period * poses_per_tooth, corner_poses=4 * poses_per_tooth,
-                              period_angle=law.theta_period, reach=float(pinion_blank.max()), tilt=tilt)
-    pinion_radii = np.minimum(pinion_blank, cut)
     pinion_exact = pinion_by_rack(curves.pinion, curves.arc, cutter, module, pitch, offset + pitch / 2.0,
                                   per_period * poses_per_tooth, 4 * poses_per_tooth, law.theta_period,
                                   periods, tilt)
+    # its ray map (farthest crossing: the tips, also of teeth leaning over a neighbour's space)
+    cut = polyline_envelope(pinion_grid, np.vstack([pinion_exact, pinion_exact[:1]])[None], nearest=False)
+    pinion_radii = np.minimum(pinion_blank, cut)
+    pinion_cut = pinion_radii
+
+    # teeth too thin at the tip (the few next to a pitch-curve corner) are topped to the
+    # land floor when that costs at most MAX_TOPPING x m of height; otherwise refuse. The
+    # pinion is topped before it carves the wheel, so the wheel is conjugate to the pinion
+    # as written (a tip topped after carving leaves the wheel without contact there).
+    require(np.all(np.isfinite(pinion_radii)), "z", pinion_teeth,
+            "the generated outline has gaps (pitch curve too tight for the cutter)")
+    topping, lands = {}, {}
+    pinion_radii, topping["pinion"], lands["pinion"] = _top_or_refuse(
+        "pinion", pinion_grid, curves.pinion, pinion_radii, pinion_blank, cutter, module, strict)
+    # the outline as written (tips rounded; slivers and spikes a boolean can leave removed)
+    # carves the wheel
+    rounded = round_tips(pinion_exact, TIP_ROUND * module)
+    pinion_outline = simplify_outline(_topped(rounded, pinion_grid, pinion_radii, pinion_cut, periods),
+                                      PINION_TOLERANCE)
 
     wheel_rays = per_period * 2 * (wheel_rays_per_tooth or WHEEL_RAYS_PER_TOOTH)
     wheel_grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, wheel_rays)
@@ -583,42 +624,38 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
     # the lead only pays where the law has handover corners (the hub speed factor kinks there);
     # a smooth law keeps the play split evenly, as ordinary spur gears are thinned
     lead = LEAD if (law.corners or law.blended_corners) else 0.0
-    carved = carve_by_pinion(law, pinion_exact, wheel_grid, law.center_distance, clearance,
+    carved = carve_by_pinion(law, pinion_outline, wheel_grid, law.center_distance, clearance,
                              per_period * (carve_poses_per_tooth or CARVE_POSES_PER_TOOTH), window,
                              float(wheel_blank.max()), play, lead)
     wheel_radii = np.minimum(wheel_blank, carved)
-    require(np.all(np.isfinite(pinion_radii)) and np.all(np.isfinite(wheel_radii)), "z", pinion_teeth,
+    require(np.all(np.isfinite(wheel_radii)), "z", pinion_teeth,
             "the generated outline has gaps (pitch curve too tight for the cutter)")
 
-    # teeth too thin at the tip (the few next to a pitch-curve corner) are topped to the
-    # land floor when that costs at most MAX_TOPPING x m of height; otherwise refuse
-    topping, lands = {}, {}
-    pinion_cut = pinion_radii
-    for name, grid, curve, radii, blank in (
-            ("pinion", pinion_grid, curves.pinion, pinion_radii, pinion_blank),
-            ("wheel", wheel_grid, curves.wheel, wheel_radii, wheel_blank)):
-        pitch_r = polyline_envelope(grid, curve[None], nearest=False)
-        new, count, drop, land = top_pointed_teeth(grid, radii, pitch_r, blank, MIN_TIP_LAND)
-        if drop > MAX_TOPPING * module and strict:
-            raise DesignError("addendum", cutter.addendum,
-                              f"the {name} teeth come to a point (a {MIN_TIP_LAND} mm tip land needs "
-                              f"{drop:.2f} mm off the tip, > {MAX_TOPPING} x module {module:.3f} mm); "
-                              "use a smaller addendum, a smaller pressure angle or more teeth (--z)")
-        topping[name] = (count, drop)
-        lands[name] = land
-        if name == "pinion":
-            pinion_radii = new
-        else:
-            wheel_radii = new
+    wheel_radii, topping["wheel"], lands["wheel"] = _top_or_refuse(
+        "wheel", wheel_grid, curves.wheel, wheel_radii, wheel_blank, cutter, module, strict)
     return GeneratedPair(
         law=law, curves=curves, cutter=cutter, pinion_teeth=pinion_teeth, wheel_teeth=wheel_teeth,
         module=module, pitch=pitch, corner=corner,
-        pinion_outline=_topped(pinion_exact, pinion_grid, pinion_radii, pinion_cut, periods),
+        pinion_outline=pinion_outline,
         wheel_outline=outline_from_radii(wheel_grid, wheel_radii, law.wheel_periods),
         pinion_radii=pinion_radii, wheel_radii=wheel_radii,
         pinion_grid=pinion_grid, wheel_grid=wheel_grid,
         undercut_limit=limit, min_curvature_radius=rho_min,
         pinion_tip_land=lands["pinion"], wheel_tip_land=lands["wheel"], topping=topping, play=play)
+
+
+def _top_or_refuse(name: str, grid: PolarGrid, curve: np.ndarray, radii: np.ndarray,
+                   blank: np.ndarray, cutter: RackCutter, module: float, strict: bool):
+    """Top the gear's pointed teeth (see :func:`top_pointed_teeth`), or refuse when that costs
+    more than MAX_TOPPING x module: (new radii, (teeth topped, largest drop mm), thinnest land mm)."""
+    pitch_r = polyline_envelope(grid, curve[None], nearest=False)
+    new, count, drop, land = top_pointed_teeth(grid, radii, pitch_r, blank, MIN_TIP_LAND)
+    if drop > MAX_TOPPING * module and strict:
+        raise DesignError("addendum", cutter.addendum,
+                          f"the {name} teeth come to a point (a {MIN_TIP_LAND} mm tip land needs "
+                          f"{drop:.2f} mm off the tip, > {MAX_TOPPING} x module {module:.3f} mm); "
+                          "use a smaller addendum, a smaller pressure angle or more teeth (--z)")
+    return new, (count, drop), land
 
 
 def simplify_outline(outline: np.ndarray, tolerance: float = 0.001) -> np.ndarray:
