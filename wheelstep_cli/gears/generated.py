@@ -4,8 +4,10 @@ The pinion is cut by a straight-sided rack (pressure angle alpha, tip fillet)
 whose pitch line rolls without slip on the pinion's pitch curve; at a pitch-curve
 corner the rack pivots about the corner point through part of the turn from each
 side (PIVOT), leaving a ridge in the corner space that hands the drive over sooner.
-The wheel is then cut by that pinion moving along the exact law ("rotate and
-carve"): its outline is the blank minus the union of the pinion's poses in the
+The pinion's tip corners are rounded (a sharp corner drives as a point), its pointed
+corner teeth topped, and that outline, as written, cuts the wheel moving along the
+exact law ("rotate and carve"): the wheel's outline is the blank minus the union of
+the pinion's poses and of the paths its outline points run between poses, in the
 wheel frame, so the pair is conjugate by construction, including the concave notch
 at each shoe handover.
 
@@ -39,7 +41,7 @@ MIN_TIP_LAND = 0.1
 SCALLOP_CLEARANCE = 0.006
 #: Rack-tooth tilt towards the radius, as a fraction of the pitch curve's normal-to-radius angle
 #: (chosen by measurement: 0 -> 11.5 % hub speed ripple, 0.3 -> 11.4, 0.6 -> 4.9, 1.0 -> 8.9; with
-#: the carving paths and rounded tips: 0.5 -> 8.39, 0.6 -> 1.52, 0.7 -> 3.05 %).
+#: the carving paths and rounded tips, clearance 0.005: 0.5 -> 8.39, 0.6 -> 1.59, 0.7 -> 3.05 %).
 DEFAULT_TILT = 0.6
 #: Where the angular play goes: 0 splits it (drive TE = -play), +-1 puts it all on the coast side.
 #: Mostly on the coast side: the drive contact then lags the law by little, so the hub speed factor
@@ -68,7 +70,7 @@ WHEEL_TOLERANCE = 0.0005
 #: the drive before the previous tooth tip lets go (measured: 1.0 -> 4.66 %, 0.4 -> 4.66,
 #: 0.3 -> 4.32, 0.2 -> 3.98, 0.15 -> 3.93, 0.1 -> 4.09, 0 -> 4.45 % hub speed ripple with 160 rays
 #: and the play split; with 480 rays and LEAD 0.8: 0.15 -> 2.91, 0.2 -> 2.36 %; with the carving
-#: paths and rounded tips: 0.1 -> 7.95, 0.15 -> 1.59, 0.2 -> 1.59, 0.3 -> 4.87 %).
+#: paths and rounded tips, clearance 0.005: 0.1 -> 7.95, 0.15 -> 1.59, 0.2 -> 1.59, 0.3 -> 4.87 %).
 PIVOT = 0.2
 #: Pinion poses per tooth pitch that carve the wheel. Between poses the carving also follows
 #: each outline point's path (see :func:`carve_by_pinion`), so 24 carve as well as 48 did.
