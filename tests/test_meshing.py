@@ -225,6 +225,17 @@ def _reports_equal(a, b, atol=0.0):
     assert np.array_equal(a.interference, b.interference)
 
 
+def _case(case, spur_pair, paper_pair):
+    """Outlines and (transmission, centre distance) of the spur or the paper pair."""
+    from wheelstep_cli.gears.pitch import carrier_angle
+
+    if case == "spur":
+        return (*spur_pair, (spur_transmission(Z1, Z2), M * (Z1 + Z2) / 2.0))
+    law = paper_pair.law
+    transmission = Transmission(lambda t: carrier_angle(law, t), law.turns * np.pi / 2.0)
+    return paper_pair.pinion_outline, paper_pair.wheel_outline, (transmission, 144.0)
+
+
 @pytest.mark.parametrize("case", ["spur", "paper"])
 def test_first_pass_within_reach_and_chunking_change_nothing(case, spur_pair, paper_pair,
                                                              monkeypatch):
@@ -232,15 +243,8 @@ def test_first_pass_within_reach_and_chunking_change_nothing(case, spur_pair, pa
     in chunks) gives exactly what the plain search over all pairs gives, also where the
     teeth interfere (the paper pair) and the first pass must hand poses to the second."""
     import wheelstep_cli.gears.meshing as meshing
-    from wheelstep_cli.gears.pitch import carrier_angle
 
-    if case == "spur":
-        pinion, wheel = spur_pair
-        args = (spur_transmission(Z1, Z2), M * (Z1 + Z2) / 2.0)
-    else:
-        law = paper_pair.law
-        pinion, wheel = paper_pair.pinion_outline, paper_pair.wheel_outline
-        args = (Transmission(lambda t: carrier_angle(law, t), law.turns * np.pi / 2.0), 144.0)
+    pinion, wheel, args = _case(case, spur_pair, paper_pair)
     fast = check_meshing(pinion, wheel, *args, samples=48)
     monkeypatch.setattr(meshing, "REACH", np.inf)
     monkeypatch.setattr(meshing, "MAX_PAIRS", 997)   # many small chunks
@@ -254,15 +258,8 @@ def test_first_pass_within_reach_and_chunking_change_nothing(case, spur_pair, pa
 def test_threads_change_nothing(case, spur_pair, paper_pair, monkeypatch):
     """Poses checked on several threads give bit for bit what one thread gives."""
     import wheelstep_cli.gears.meshing as meshing
-    from wheelstep_cli.gears.pitch import carrier_angle
 
-    if case == "spur":
-        pinion, wheel = spur_pair
-        args = (spur_transmission(Z1, Z2), M * (Z1 + Z2) / 2.0)
-    else:
-        law = paper_pair.law
-        pinion, wheel = paper_pair.pinion_outline, paper_pair.wheel_outline
-        args = (Transmission(lambda t: carrier_angle(law, t), law.turns * np.pi / 2.0), 144.0)
+    pinion, wheel, args = _case(case, spur_pair, paper_pair)
     monkeypatch.setattr(meshing, "BATCH", 7)          # many batches to share out
     monkeypatch.setattr(meshing, "THREADS", 1)
     single = check_meshing(pinion, wheel, *args, samples=96)
