@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from clicheck import error_line
 from meshcheck import read_3mf_strict
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -289,11 +290,9 @@ def test_invalid_batch_reports_file_line_exit_2_nothing_written(cli, tmp_path, t
     batch = write(tmp_path / "bad.yaml", text)
     out = tmp_path / "out"
     result = cli("batch", batch, "--out", out)
-    assert result.exit_code == 2
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1, result.stderr
-    assert lines[0].startswith(f"wheelstep: error: {batch}:{line_of(batch, needle)}: "), lines[0]
-    assert expect in lines[0]
+    line = error_line(result)
+    assert line.startswith(f"wheelstep: error: {batch}:{line_of(batch, needle)}: "), line
+    assert expect in line
     assert not out.exists()
 
 

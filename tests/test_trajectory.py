@@ -10,6 +10,8 @@ from hypothesis import strategies as st_
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.mechanism import trajectory as tr
 
+from clicheck import error_line
+
 
 def _assert_smooth_closed(path, tol=1e-9):
     """Every piece starts where the previous ends, with the same direction; the loop turns once."""
@@ -121,8 +123,6 @@ def test_cli_polyline_dxf(cli, tmp_path):
 def test_cli_bad_input_one_line_exit_2(cli, tmp_path):
     out = tmp_path / "x.dxf"
     res = cli("trajectory", "--r1", "30", "--h-max", "40", "--dxf", out)
-    assert res.exit_code == 2 and not out.exists()
-    lines = res.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("wheelstep: error: h-max = 40")
+    assert error_line(res).startswith("wheelstep: error: h-max = 40") and not out.exists()
     res = cli("trajectory", "--r3", "400", "--h-max", "100")
     assert res.exit_code == 2 and "either --r3 or --h-max" in res.stderr
