@@ -258,12 +258,13 @@ def test_first_pass_within_reach_and_chunking_change_nothing(case, spur_pair, pa
 def test_threads_change_nothing(case, spur_pair, paper_pair, monkeypatch):
     """Poses checked on several threads give bit for bit what one thread gives."""
     import wheelstep_cli.gears.meshing as meshing
+    import wheelstep_cli.gears.threads as threads
 
     pinion, wheel, args = _case(case, spur_pair, paper_pair)
     monkeypatch.setattr(meshing, "BATCH", 7)          # many batches to share out
-    monkeypatch.setattr(meshing, "THREADS", 1)
+    monkeypatch.setattr(threads, "THREADS", 1)
     single = check_meshing(pinion, wheel, *args, samples=96)
-    monkeypatch.setattr(meshing, "THREADS", 3)
+    monkeypatch.setattr(threads, "THREADS", 3)
     threaded = check_meshing(pinion, wheel, *args, samples=96)
     _reports_equal(single, threaded)
     assert np.array_equal(single.hub_speed, threaded.hub_speed, equal_nan=True)

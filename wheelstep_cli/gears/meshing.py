@@ -40,13 +40,13 @@ Angles in radians, lengths in mm; degrees, arcminutes and % only in ``to_dict``.
 
 from __future__ import annotations
 
-import os
 import threading
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
+
+from wheelstep_cli.gears.threads import thread_map
 
 #: Default poses per period: 64 per wheel tooth for the 24 teeth of the source
 #: design's period (see ``benchmarks/meshcheck.py`` for the convergence study).
@@ -62,8 +62,6 @@ MAX_PAIRS = 1 << 19
 #: First pass: only contacts within this wheel rotation (rad) are looked for; poses with
 #: no contact that close are redone without the limit. Changes the speed, not the result.
 REACH = 0.01
-#: Threads sharing the poses (one per core, at most 4).
-THREADS = max(1, min(4, os.cpu_count() or 1))
 
 
 @dataclass(frozen=True)
@@ -773,12 +771,10 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, transmission: Transmiss
             own.pair = _prepare(pinion, wheel, distance, box)
         return _contacts(own.pair, theta[sl], phi_law[sl])
 
-    with ThreadPoolExecutor(max_workers=THREADS) as pool:
-        results = pool.map(batch_contacts, slices)
-        for sl, result in zip(slices, results):
-            delta_back[sl], delta_fwd[sl], interference[sl], area[sl], penetration[sl] = result
-            if progress is not None:
-                progress(sl.stop, samples)
+    for sl, result in zip(slices, thread_map(batch_contacts, slices)):
+        delta_back[sl], delta_fwd[sl], interference[sl], area[sl], penetration[sl] = result
+        if progress is not None:
+            progress(sl.stop, samples)
     delta_back[~np.isfinite(delta_back)] = np.nan
     delta_fwd[~np.isfinite(delta_fwd)] = np.nan
 

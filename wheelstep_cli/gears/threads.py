@@ -1,0 +1,23 @@
+"""Independent numpy / shapely work shared between the cores on threads.
+
+numpy and shapely release the GIL in their inner loops, so threads run such work in
+parallel without copying the data to other processes.
+"""
+
+from __future__ import annotations
+
+import os
+from concurrent.futures import ThreadPoolExecutor
+from typing import Callable, Iterable, Iterator, TypeVar
+
+T = TypeVar("T")
+R = TypeVar("R")
+
+#: Threads that share the work (one per core, at most 4).
+THREADS = max(1, min(4, os.cpu_count() or 1))
+
+
+def thread_map(fn: Callable[[T], R], items: Iterable[T]) -> Iterator[R]:
+    """``fn`` of every item on THREADS threads; the results in the items' order."""
+    with ThreadPoolExecutor(max_workers=THREADS) as pool:
+        yield from pool.map(fn, items)
