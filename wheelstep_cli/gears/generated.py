@@ -22,7 +22,6 @@ Angles in radians, lengths in mm.
 from __future__ import annotations
 
 import functools
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,7 +30,7 @@ from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.gears.envelope import (PolarGrid, miter_offset, offset_polyline, outline_from_radii,
                                          polyline_envelope)
 from wheelstep_cli.gears.law import PitchCurves, PitchLaw, pitch_curves
-from wheelstep_cli.gears.meshing import THREADS
+from wheelstep_cli.gears.threads import thread_map
 
 #: Smallest tip land (mm) before a tooth counts as pointed (same floor as the paper method).
 MIN_TIP_LAND = 0.1
@@ -307,6 +306,7 @@ def pinion_by_rack(curve: np.ndarray, arc: np.ndarray, cutter: RackCutter, modul
     neighbours' spaces keep their true shape, which a polar ray map cannot hold.
     """
     import shapely
+    import shapely.affinity
 
     teeth, centres = rack_tooth_polygons(cutter, module, pitch)
     k = teeth.shape[1]
@@ -317,8 +317,6 @@ def pinion_by_rack(curve: np.ndarray, arc: np.ndarray, cutter: RackCutter, modul
     polys = np.concatenate([w.reshape(-1, len(centres), k, 2).reshape(-1, k, 2) for w in worlds])
     turn_sign = np.sign(_polar_sweep(curve))
     # one period's cutter region, then its rotated copies (a union of all poses at once costs more)
-    import shapely.affinity
-
     region = shapely.union_all(shapely.polygons(polys))
     cutter_region = shapely.union_all([shapely.affinity.rotate(region, a, origin=(0.0, 0.0), use_radians=True)
                                        for a in turn_sign * period_angle * np.arange(copies)])
@@ -383,7 +381,7 @@ def carve_by_pinion(law: PitchLaw, pinion_outline: np.ndarray, wheel_grid: Polar
     """Nearest crossing per wheel ray of the pinion moving along the law (one law period).
 
     ``pinion_outline``: closed CCW outline (mm, pinion frame, ordered by polar angle
-    overall). Poses sample the driven angle uniformly (plus the law's corners); at
+    overall), carved with as it is (only split into pieces of at most 0.05 mm). Poses sample the driven angle uniformly (plus the law's corners); at
     each, the outline (dilated by ``clearance`` mm) within ``window`` rad of its pitch
     point is placed in the wheel frame (pinion rotated by -theta at the origin, wheel
     by pi + phi about (distance, 0)). The wheel is carved both by the outline in each
@@ -396,8 +394,7 @@ def carve_by_pinion(law: PitchLaw, pinion_outline: np.ndarray, wheel_grid: Polar
     """
     import shapely
 
-    ring = shapely.simplify(shapely.LinearRing(pinion_outline), 0.0005, preserve_topology=True)
-    dense = np.asarray(shapely.segmentize(ring, 0.05).coords)[:-1]
+    dense = np.asarray(shapely.segmentize(shapely.LinearRing(pinion_outline), 0.05).coords)[:-1]
     # outline is CCW: its right-hand normal points outward
     dilated = miter_offset(dense, clearance) if clearance > 0 else dense
     n_pts = len(dense)
@@ -427,9 +424,7 @@ def carve_by_pinion(law: PitchLaw, pinion_outline: np.ndarray, wheel_grid: Polar
         return polyline_envelope(wheel_grid, np.ascontiguousarray(path.transpose(1, 0, 2)), out=radii,
                                  reach=reach)
 
-    # runs are independent and numpy releases the GIL in its loops: threads share the cores
-    with ThreadPoolExecutor(max_workers=THREADS) as pool:
-        radii = functools.reduce(np.minimum, pool.map(carve_run, range(0, len(phi) - 1, PATH_RUN)))
+    radii = functools.reduce(np.minimum, thread_map(carve_run, range(0, len(phi) - 1, PATH_RUN)))
     if play > 0:
         radii = _widen(radii, play / wheel_grid.width, lead)
     return radii
@@ -593,22 +588,21 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
                                   periods, tilt)
     # its ray map (farthest crossing: the tips, also of teeth leaning over a neighbour's space)
     cut = polyline_envelope(pinion_grid, np.vstack([pinion_exact, pinion_exact[:1]])[None], nearest=False)
-    pinion_radii = np.minimum(pinion_blank, cut)
-    pinion_cut = pinion_radii
+    cut_radii = np.minimum(pinion_blank, cut)
 
     # teeth too thin at the tip (the few next to a pitch-curve corner) are topped to the
     # land floor when that costs at most MAX_TOPPING x m of height; otherwise refuse. The
     # pinion is topped before it carves the wheel, so the wheel is conjugate to the pinion
     # as written (a tip topped after carving leaves the wheel without contact there).
-    require(np.all(np.isfinite(pinion_radii)), "z", pinion_teeth,
+    require(np.all(np.isfinite(cut_radii)), "z", pinion_teeth,
             "the generated outline has gaps (pitch curve too tight for the cutter)")
     topping, lands = {}, {}
     pinion_radii, topping["pinion"], lands["pinion"] = _top_or_refuse(
-        "pinion", pinion_grid, curves.pinion, pinion_radii, pinion_blank, cutter, module, strict)
+        "pinion", pinion_grid, curves.pinion, cut_radii, pinion_blank, cutter, module, strict)
     # the outline as written (tips rounded; slivers and spikes a boolean can leave removed)
     # carves the wheel
     rounded = round_tips(pinion_exact, TIP_ROUND * module)
-    pinion_outline = simplify_outline(_topped(rounded, pinion_grid, pinion_radii, pinion_cut, periods),
+    pinion_outline = simplify_outline(_topped(rounded, pinion_grid, pinion_radii, cut_radii, periods),
                                       PINION_TOLERANCE)
 
     wheel_rays = per_period * 2 * (wheel_rays_per_tooth or WHEEL_RAYS_PER_TOOTH)
