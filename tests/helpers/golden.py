@@ -1,0 +1,146 @@
+"""Golden figures: the key outputs of every preset and a few designs, kept in tests/golden/.
+
+Each case runs one command of the real CLI in a fresh folder and records its exit code,
+the SHA-256 and size of every file it wrote, the SHA-256 of what it printed on stdout
+(for the report commands) and the numeric figures of every JSON file it wrote (flattened
+to ``file:key.path`` -> value). The golden test compares a new run with the stored one:
+hashes exactly, figures to 1e-9 relative, so a refactor that changes an output shows
+which figure moved and by how much.
+
+Regenerate after an intended change (and list it in the change's note)::
+
+    python -m tests.helpers.golden --update
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import io
+import json
+import math
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+GOLDEN_DIR = Path(__file__).resolve().parents[1] / "golden"
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+#: name -> command line (relative paths are resolved in the case's own folder).
+CASES: dict[str, list[str]] = {
+    "gears-default": ["gears", "--z", "48", "--out", "out"],
+    "gears-desk-demo": ["gears", "--profile", "desk-demo", "--out", "out"],
+    "gears-z24": ["gears", "--z", "24", "--out", "out"],
+    "gears-turns4-z24": ["gears", "--turns", "4", "--z", "24", "--out", "out"],
+    "gears-paper": ["gears", "--teeth", "paper", "--allow-interference", "--out", "out"],
+    "shoe-default": ["shoe", "--out", "out"],
+    "shoe-desk-demo": ["shoe", "--profile", "desk-demo", "--out", "out"],
+    "batch-shop-floor": ["batch", "{examples}/shop-floor.yaml", "--out", "out", "--jobs", "1"],
+    "pitch-json": ["pitch", "--json"],
+    "teeth-json": ["teeth", "--json"],
+    "kinematics-json": ["kinematics", "--json"],
+    "stairs-json": ["stairs", "--run", "300", "--rise", "150", "--sole-radius", "70",
+                    "--landing-angle", "-90", "--json"],
+    "linkage-jansen-json": ["linkage", "--preset", "jansen", "--json"],
+    "trajectory-json": ["trajectory", "-H", "300", "--r1", "20", "--r2", "45", "--h-max", "120",
+                        "--json"],
+}
+
+#: Lists longer than this (sector tables, paths) are hashed with the file, not flattened.
+LONG_LIST = 40
+
+
+def _flatten(value, prefix: str, out: dict) -> None:
+    if isinstance(value, dict):
+        for key, item in value.items():
+            _flatten(item, f"{prefix}.{key}" if prefix else str(key), out)
+    elif isinstance(value, list):
+        if len(value) <= LONG_LIST:
+            for i, item in enumerate(value):
+                _flatten(item, f"{prefix}[{i}]", out)
+    elif isinstance(value, bool) or value is None:
+        out[prefix] = value
+    elif isinstance(value, (int, float)):
+        out[prefix] = value
+
+
+def _sha(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def run_case(name: str) -> dict:
+    """Run one case in a fresh temporary folder and return its record."""
+    from wheelstep_cli.cli import run
+
+    args = [a.replace("{examples}", str(EXAMPLES)) for a in CASES[name]]
+    with tempfile.TemporaryDirectory() as tmp:
+        cwd = os.getcwd()
+        os.chdir(tmp)
+        stdout, stderr = io.StringIO(), io.StringIO()
+        try:
+            with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+                code = run(args)
+        finally:
+            os.chdir(cwd)
+        files, figures = {}, {}
+        for path in sorted(Path(tmp).rglob("*")):
+            if not path.is_file():
+                continue
+            rel = path.relative_to(tmp).as_posix()
+            data = path.read_bytes()
+            files[rel] = {"sha256": _sha(data), "bytes": len(data)}
+            if rel.endswith(".json"):
+                _flatten(json.loads(data), rel + ":", figures)
+        text = stdout.getvalue()
+        if args[-1] == "--json":
+            _flatten(json.loads(text), "stdout:", figures)
+        return {"args": CASES[name], "exit_code": code, "stdout_sha256": _sha(text.encode()) if
+                args[-1] == "--json" else None, "files": files, "figures": figures}
+
+
+def golden_path(name: str) -> Path:
+    return GOLDEN_DIR / f"{name}.json"
+
+
+def load(name: str) -> dict:
+    return json.loads(golden_path(name).read_text())
+
+
+def differences(stored: dict, new: dict, rel: float = 1e-9) -> list[str]:
+    """What differs between two records, one line each (empty: identical)."""
+    lines = []
+    if stored["exit_code"] != new["exit_code"]:
+        lines.append(f"exit code {stored['exit_code']} -> {new['exit_code']}")
+    if stored["stdout_sha256"] != new["stdout_sha256"]:
+        lines.append("stdout changed")
+    for name in sorted(set(stored["files"]) | set(new["files"])):
+        old, now = stored["files"].get(name), new["files"].get(name)
+        if old != now:
+            lines.append(f"file {name}: {old and old['sha256'][:12]} -> {now and now['sha256'][:12]}")
+    for key in sorted(set(stored["figures"]) | set(new["figures"])):
+        old, now = stored["figures"].get(key, "missing"), new["figures"].get(key, "missing")
+        if isinstance(old, float) and isinstance(now, float):
+            if not math.isclose(old, now, rel_tol=rel, abs_tol=1e-12):
+                lines.append(f"figure {key}: {old!r} -> {now!r}")
+        elif old != now:
+            lines.append(f"figure {key}: {old!r} -> {now!r}")
+    return lines
+
+
+def main(argv: list[str]) -> int:
+    names = [a for a in argv if not a.startswith("--")] or list(CASES)
+    if "--update" not in argv:
+        print("usage: python -m tests.helpers.golden --update [CASE ...]")
+        return 2
+    GOLDEN_DIR.mkdir(exist_ok=True)
+    for name in names:
+        record = run_case(name)
+        golden_path(name).write_text(json.dumps(record, indent=1, sort_keys=True) + "\n")
+        print(f"{name}: exit {record['exit_code']}, {len(record['files'])} files, "
+              f"{len(record['figures'])} figures")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
