@@ -21,10 +21,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from wheelstep_cli.gears.generated import RackCutter, generate_pair, simplify_outline  # noqa: E402
+from wheelstep_cli.gears.generation import RackCutter, generate_pair, simplify_outline  # noqa: E402
 from wheelstep_cli.gears.law import center_distance_for_module, law_from_samples  # noqa: E402
 from wheelstep_cli.gears.meshing import Transmission, check_meshing  # noqa: E402
-from wheelstep_cli.geometry.outline import signed_area  # noqa: E402
+from wheelstep_cli.geometry.planar import signed_area  # noqa: E402
 
 AMPLITUDE, TEETH, MODULE = 0.3, 28, 1.5
 CLEARANCE = 0.05            # ncgears: inward offset of each face, x module

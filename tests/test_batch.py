@@ -14,8 +14,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from clicheck import error_line
-from meshcheck import read_3mf_strict
+from tests.helpers.clicheck import error_line
+from tests.helpers.meshcheck import read_3mf_strict
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "shop-floor.yaml"
@@ -392,7 +392,8 @@ def test_demo_wheel_teeth_keep_two_extrusion_lines(demo_pair):
 
 def test_inset_bottom_volume_exact_on_a_plate_with_a_hole():
     """20 x 20 mm plate, 3 mm thick, 6 mm bore: the foot loses exactly the offset ring."""
-    from wheelstep_cli.geometry.solids import bore_segments, check_part, extrude_plate, inset_bottom
+    from wheelstep_cli.geometry.mesh_checks import check_part
+    from wheelstep_cli.geometry.solids import bore_segments, extrude_plate, inset_bottom
 
     square = np.array([[-10, -10], [10, -10], [10, 10], [-10, 10]], dtype=float)
     plate = extrude_plate("plate", square, 3.0, bore=6.0)

@@ -7,8 +7,8 @@ import sys
 import numpy as np
 import pytest
 
-from clicheck import error_line
-from meshcheck import assert_printable_stl, read_3mf_strict
+from tests.helpers.clicheck import error_line
+from tests.helpers.meshcheck import assert_printable_stl, read_3mf_strict
 
 
 @pytest.fixture(scope="module")

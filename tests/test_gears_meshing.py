@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-from clicheck import error_line
+from tests.helpers.clicheck import error_line
 
 
 @pytest.fixture(scope="module")

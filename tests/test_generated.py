@@ -7,13 +7,13 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.gears.generated import RackCutter, generate_pair
+from wheelstep_cli.gears.generation import RackCutter, generate_pair
 from wheelstep_cli.gears.law import (center_distance_for_module, crank_pitch_law, law_from_samples,
                                      pitch_curves)
 from wheelstep_cli.gears.pitch import CrankLaw
-from wheelstep_cli.geometry.outline import check_outline
+from wheelstep_cli.geometry.planar import check_outline
 
-from clicheck import error_line
+from tests.helpers.clicheck import error_line
 
 
 def involute_error(outline, pitch_radius, teeth, module, alpha, thickness, first_centre, band):
@@ -176,7 +176,7 @@ def test_blend_keeps_closure_and_is_not_refused_as_undercut():
 
 
 def test_round_tips_rounds_convex_corners_only():
-    from wheelstep_cli.gears.generated import round_tips
+    from wheelstep_cli.gears.generation import round_tips
 
     # an L-shaped plate: five convex corners and one concave corner
     ell = np.array([[0, 0], [10, 0], [10, 4], [4, 4], [4, 10], [0, 10]], dtype=float)

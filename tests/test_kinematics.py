@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from wheelstep_cli.mechanism.kinematics import hub_kinematics
 from wheelstep_cli.mechanism.shoe import ShoeDesign
 
-from clicheck import error_line
+from tests.helpers.clicheck import error_line
 
 # valid designs (a, b, R_min) with a strut c = R_min - a + 4b > 0
 designs = st.tuples(st.floats(0.0, 250.0), st.floats(1.0, 300.0), st.floats(0.02, 0.98)).map(

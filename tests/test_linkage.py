@@ -10,7 +10,7 @@ from hypothesis import strategies as st_
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.mechanism import linkage as lk
 
-from clicheck import error_line
+from tests.helpers.clicheck import error_line
 
 
 def test_chebyshev_lambda_reference_points():

@@ -5,12 +5,12 @@ import pytest
 import shapely
 
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.io.mesh_read import read_mesh, read_outline, section_outline, split_mesh_spec
+from wheelstep_cli.formats.mesh_read import read_mesh, read_outline, section_outline, split_mesh_spec
 
 
 @pytest.fixture(scope="module")
 def written(tmp_path_factory):
-    from wheelstep_cli.io.atomic import write_files_atomic
+    from wheelstep_cli.formats.atomic import write_files_atomic
     from wheelstep_cli.parts.gear_pair import GearPairSpec, build_gear_pair, gear_pair_files
 
     out = tmp_path_factory.mktemp("pair")

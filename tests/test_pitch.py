@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
+from tests.helpers.strategies import crank_laws
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.gears.pitch import (CrankLaw, carrier_angle, pinion_angle, pinion_radius, ratio,
                                        wheel_radius)
@@ -11,14 +12,6 @@ from wheelstep_cli.gears.pitch import (CrankLaw, carrier_angle, pinion_angle, pi
 REF = CrankLaw(60, 100, 360, 143.5, 2)
 
 
-@st.composite
-def laws(draw):
-    a = draw(st.floats(10, 200))
-    c = draw(st.floats(50, 600))
-    b = draw(st.floats(0, 0.95 * (a + c) / 4))
-    L = draw(st.floats(40, 400))
-    n = draw(st.sampled_from([2, 4]))
-    return CrankLaw(a, b, c, L, n)
 
 
 def test_reference_u_and_handover_radii():
@@ -28,7 +21,7 @@ def test_reference_u_and_handover_radii():
 
 
 @settings(max_examples=60, deadline=None)
-@given(laws())
+@given(crank_laws())
 def test_closure_sum_symmetry_and_inverse(law):
     phi = np.linspace(-np.pi / 4, np.pi / 4, 201)
     # r + r_H = L and the rolling condition r dtheta = r_H dphi

@@ -8,7 +8,7 @@ from wheelstep_cli.errors import DesignError
 from wheelstep_cli.gears.pitch import CrankLaw, wheel_radius
 from wheelstep_cli.gears.sectors import sector_partition, sectors_per_quarter
 
-from test_pitch import laws
+from tests.helpers.strategies import crank_laws
 
 REF_ROWS = {  # i: phi_i, dphi_i, r_Hi, theta_i, dtheta_i, r_i (deg, mm) from SPEC §4
     1: (-45.00, 4.33, 82.20, -90.00, 5.81, 61.30),
@@ -43,7 +43,7 @@ def test_table_output_lists_every_sector(cli):
 
 
 @settings(max_examples=40, deadline=None)
-@given(laws(), st.integers(4, 40))
+@given(crank_laws(), st.integers(4, 40))
 def test_partition_properties(law, count):
     part = sector_partition(law, count)
     assert part.dphi.sum() == pytest.approx(np.pi / 2, abs=1e-9)

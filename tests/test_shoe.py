@@ -12,8 +12,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from clicheck import error_line
-from meshcheck import assert_printable_stl, read_3mf_strict
+from tests.helpers.clicheck import error_line
+from tests.helpers.meshcheck import assert_printable_stl, read_3mf_strict
 from wheelstep_cli.mechanism.shoe import ShoeDesign, contact_angles, sole_polar, sole_profile
 from wheelstep_cli.parts.shoe import ShoeSpec, build_shoe, shoe_files
 

@@ -10,7 +10,7 @@ from hypothesis import strategies as st_
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.mechanism import trajectory as tr
 
-from clicheck import error_line
+from tests.helpers.clicheck import error_line
 
 
 def _assert_smooth_closed(path, tol=1e-9):

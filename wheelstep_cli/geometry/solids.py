@@ -1,51 +1,14 @@
-"""Extrusion of checked outlines into solids with manifold3d, and mesh validity checks."""
+"""Solids with manifold3d (the only module that imports it): extrusion of checked outlines,
+elephant-foot insets, footprints."""
 
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.geometry.outline import check_outline, min_radius, signed_area
-
-
-@dataclass(frozen=True)
-class Part:
-    """A printable triangle mesh in mm with its name and the volume it should have."""
-
-    name: str
-    vertices: np.ndarray
-    faces: np.ndarray
-    expected_volume: float
-
-    @property
-    def bounds(self) -> np.ndarray:
-        """[[xmin, ymin, zmin], [xmax, ymax, zmax]] in mm."""
-        return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
-
-
-@dataclass(frozen=True)
-class MeshReport:
-    """What the pre-write mesh check found."""
-
-    watertight: bool
-    winding_consistent: bool
-    volume: float
-    expected_volume: float
-    triangles: int
-
-    @property
-    def volume_error(self) -> float:
-        return abs(self.volume - self.expected_volume) / self.expected_volume
-
-    @property
-    def ok(self) -> bool:
-        return (self.watertight and self.winding_consistent and self.volume > 0
-                and self.volume_error < VOLUME_TOLERANCE)
-
-
-VOLUME_TOLERANCE = 1e-3
+from wheelstep_cli.geometry.mesh_checks import Part
+from wheelstep_cli.geometry.planar import (check_outline, group_rings_by_shell, inset_area_lost,
+                                          min_radius, signed_area)
 
 
 def circle(radius: float, segments: int) -> np.ndarray:
@@ -106,58 +69,6 @@ def solid_from_polygons(name: str, polygons: list[np.ndarray], height: float,
     return Part(name, vertices, faces, float(expected_volume))
 
 
-def check_part(part: Part) -> MeshReport:
-    """Check a part is printable: watertight, consistently wound, expected positive volume.
-
-    Watertight: every undirected edge is shared by exactly two triangles.
-    Consistent winding: those two triangles traverse it in opposite directions.
-    """
-    faces = np.asarray(part.faces, dtype=np.int64)
-    directed = np.stack([faces, np.roll(faces, -1, axis=1)], axis=2).reshape(-1, 2)
-    undirected = np.sort(directed, axis=1)
-    _, edge_uses = np.unique(undirected, axis=0, return_counts=True)
-    watertight = bool(len(faces) > 0 and np.all(edge_uses == 2))
-    _, directed_uses = np.unique(directed, axis=0, return_counts=True)
-    winding = bool(watertight and np.all(directed_uses == 1))
-    return MeshReport(
-        watertight=watertight,
-        winding_consistent=winding,
-        volume=mesh_volume(part.vertices, faces),
-        expected_volume=part.expected_volume,
-        triangles=len(faces),
-    )
-
-
-def mesh_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
-    """Signed volume in mm^3 of a closed triangle mesh (positive when outward-wound)."""
-    tri = np.asarray(vertices, dtype=np.float64)[np.asarray(faces)]
-    return float(np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0)
-
-
-def part_record(part: Part, check: MeshReport) -> dict:
-    """The part's size and print checks for a JSON report (mm, mm^3)."""
-    return {
-        "volume_mm3": check.volume,
-        "bounding_box_mm": part.bounds,
-        "triangles": check.triangles,
-        "checks": {"manifold": True, "watertight": check.watertight,
-                   "winding_consistent": check.winding_consistent,
-                   "volume_matches_outline": check.volume_error < VOLUME_TOLERANCE},
-    }
-
-
-def require_printable(part: Part) -> MeshReport:
-    """Run :func:`check_part` and raise if the part must not be written."""
-    report = check_part(part)
-    if not report.ok:
-        raise DesignError(
-            part.name, "mesh",
-            f"failed the print check (watertight={report.watertight}, "
-            f"winding={report.winding_consistent}, volume={report.volume:.1f} mm3, "
-            f"expected {report.expected_volume:.1f} mm3)")
-    return report
-
-
 def inset_bottom(part: Part, height: float, inset: float) -> Part:
     """Elephant-foot compensation: the part's lowest ``height`` mm shrunk inwards by ``inset`` mm.
 
@@ -165,10 +76,9 @@ def inset_bottom(part: Part, height: float, inset: float) -> Part:
     about the squash keeps bed-side edges (and bores) true. The part must be a prism
     over its lowest ``height`` (as every extruded plate is); this is checked. The
     expected volume drops by ``height`` times the area lost in the offset, computed
-    independently with shapely, so the later volume check stays exact.
+    independently in 2D (geometry.planar), so the later volume check stays exact.
     """
     import manifold3d as m3d
-    import shapely
 
     if not (np.isfinite(height) and height >= 0):
         raise DesignError("elephant_foot_height", height, "must be >= 0 mm")
@@ -196,9 +106,7 @@ def inset_bottom(part: Part, height: float, inset: float) -> Part:
     if result.status() != m3d.Error.NoError:
         raise DesignError(part.name, "elephant foot", f"manifold3d reports {result.status().name}")
     mesh = result.to_mesh()
-    shape = shapely.MultiPolygon([shapely.Polygon(ring[0], ring[1:])
-                                  for ring in _rings_by_shell(section.to_polygons())])
-    lost = shape.area - shape.buffer(-inset, join_style="mitre", mitre_limit=2.0).area
+    lost = inset_area_lost(group_rings_by_shell(section.to_polygons()), inset, mitre_limit=2.0)
     return Part(part.name, np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3],
                 np.asarray(mesh.tri_verts, dtype=np.int64), part.expected_volume - height * lost)
 
@@ -209,7 +117,7 @@ def footprint(part: Part) -> list[list[np.ndarray]]:
     Slivers below 0.001 mm^2 (left by the projection where faces were split) are dropped.
     """
     rings = _manifold_of(part).project().to_polygons()
-    return _rings_by_shell([r for r in rings if abs(signed_area(np.asarray(r))) >= 1e-3])
+    return group_rings_by_shell([r for r in rings if abs(signed_area(np.asarray(r))) >= 1e-3])
 
 
 def _manifold_of(part: Part):
@@ -221,21 +129,3 @@ def _manifold_of(part: Part):
     if solid.status() != m3d.Error.NoError:
         raise DesignError(part.name, "mesh", f"is not a closed manifold ({solid.status().name})")
     return solid
-
-
-def _rings_by_shell(rings) -> list[list[np.ndarray]]:
-    """Group manifold3d contours (outer CCW, holes CW) into [outer, holes...] lists."""
-    import shapely
-
-    rings = [np.asarray(r, dtype=np.float64) for r in rings if len(r) >= 3]
-    shells = [r for r in rings if signed_area(r) > 0]
-    holes = [r for r in rings if signed_area(r) < 0]
-    groups = [[s] for s in shells]
-    polys = [shapely.Polygon(s) for s in shells]
-    for hole in holes:
-        probe = shapely.Point(hole[0])
-        # the smallest shell containing the hole owns it
-        owners = [i for i, p in enumerate(polys) if p.covers(probe)]
-        if owners:
-            groups[min(owners, key=lambda i: polys[i].area)].append(hole)
-    return groups

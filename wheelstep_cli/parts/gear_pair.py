@@ -11,10 +11,11 @@ from wheelstep_cli.errors import require
 from wheelstep_cli.gears.paper_teeth import ToothForm, check_tooth_form, pinion_outline, wheel_outline
 from wheelstep_cli.gears.pitch import CrankLaw
 from wheelstep_cli.gears.sectors import SectorPartition, sector_partition, sectors_per_quarter
-from wheelstep_cli.geometry.solids import MeshReport, Part, extrude_plate, part_record, require_printable
-from wheelstep_cli.io.jsonio import json_bytes
-from wheelstep_cli.io.stl import stl_bytes
-from wheelstep_cli.io.threemf import PlateObject, threemf_bytes
+from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
+from wheelstep_cli.geometry.solids import extrude_plate
+from wheelstep_cli.formats.jsonio import json_bytes
+from wheelstep_cli.formats.stl import stl_bytes
+from wheelstep_cli.formats.threemf import PlateObject, threemf_bytes
 
 #: Gap between parts on the plate, mm.
 PLATE_GAP = 5.0
@@ -60,7 +61,7 @@ class GearPairSpec:
         return ToothForm(self.module, self.backlash_mm)
 
     def cutter(self):
-        from wheelstep_cli.gears.generated import RackCutter
+        from wheelstep_cli.gears.generation import RackCutter
 
         return RackCutter(np.radians(self.pressure_angle), self.addendum, self.dedendum,
                           self.fillet, self.backlash_mm)
@@ -130,7 +131,7 @@ def generation_law(spec: GearPairSpec):
 
 def _build_generated(spec: GearPairSpec) -> GearPair:
     """Generated teeth (SPEC §9): pitch curves rolling at the installed distance."""
-    from wheelstep_cli.gears.generated import WHEEL_TOLERANCE, generate_pair, simplify_outline
+    from wheelstep_cli.gears.generation import WHEEL_TOLERANCE, generate_pair, simplify_outline
 
     require(spec.install_distance >= spec.center_distance, "install-distance", spec.install_distance,
             f"must be >= center-distance {spec.center_distance:g} mm")

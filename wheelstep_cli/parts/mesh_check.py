@@ -35,7 +35,7 @@ def check_gear_pair(pair, samples: int = DEFAULT_SAMPLES,
     """Meshing check of a built :class:`~wheelstep_cli.parts.gear_pair.GearPair` as it will be
     written: both meshes are sectioned at mid-thickness (SPEC §10) and checked at the
     installed centre distance over one period of the law."""
-    from wheelstep_cli.io.mesh_read import section_outline
+    from wheelstep_cli.formats.mesh_read import section_outline
 
     pinion = section_outline(pair.pinion.vertices, pair.pinion.faces, "pinion")
     wheel = section_outline(pair.wheel.vertices, pair.wheel.faces, "wheel")

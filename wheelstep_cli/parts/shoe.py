@@ -17,12 +17,12 @@ from pathlib import Path
 import numpy as np
 
 from wheelstep_cli.errors import DesignError, require
-from wheelstep_cli.geometry.outline import check_outline, signed_area
-from wheelstep_cli.geometry.solids import (MeshReport, Part, bore_segments, circle, part_record,
-                                           require_printable)
-from wheelstep_cli.io.jsonio import csv_bytes, json_bytes
-from wheelstep_cli.io.stl import stl_bytes
-from wheelstep_cli.io.threemf import PlateObject, threemf_bytes
+from wheelstep_cli.geometry.planar import check_outline, signed_area
+from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
+from wheelstep_cli.geometry.solids import bore_segments, circle
+from wheelstep_cli.formats.jsonio import csv_bytes, json_bytes
+from wheelstep_cli.formats.stl import stl_bytes
+from wheelstep_cli.formats.threemf import PlateObject, threemf_bytes
 from wheelstep_cli.mechanism.shoe import (
     ShoeDesign,
     contact_angles,

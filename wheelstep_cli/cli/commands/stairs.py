@@ -52,7 +52,7 @@ def _print_table(title: str, rows) -> None:
 def _sweep(run, rise, angles, radii, json):
     import numpy as np
 
-    from wheelstep_cli.io.jsonio import json_text
+    from wheelstep_cli.formats.jsonio import json_text
     from wheelstep_cli.mechanism.stairs import sizing_sweep
 
     rows = sizing_sweep(run, rise, np.radians(angles), radii)
@@ -102,7 +102,7 @@ def stairs(
     """
     import numpy as np
 
-    from wheelstep_cli.io.jsonio import json_text
+    from wheelstep_cli.formats.jsonio import json_text
     from wheelstep_cli.mechanism import stairs as st
 
     require(run > 0, "run", run, "must be > 0 mm")
@@ -153,7 +153,7 @@ def stairs(
 
     files = {}
     if plot is not None:
-        from wheelstep_cli.io.mechanism_plots import stairs_png
+        from wheelstep_cli.render.mechanism_plots import stairs_png
 
         what = "check of" if checking else "sized"
         title = (f"{what} a = {design.a:.1f}, b = {design.b:.1f}, Y1 = {design.y1:.1f}, Y2 = {design.y2:.1f} mm; "
@@ -162,7 +162,7 @@ def stairs(
                                  st.hub_path(design, beta, *st.cycle_motion(design, beta), 3), title,
                                  (float(adv), float(ris)))
     if files:
-        from wheelstep_cli.io.atomic import write_files_atomic
+        from wheelstep_cli.formats.atomic import write_files_atomic
 
         write_files_atomic(files)
 

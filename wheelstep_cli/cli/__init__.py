@@ -43,7 +43,7 @@ def _root(version: bool = typer.Option(False, "--version", callback=_version, is
 
 
 def _register_commands() -> None:
-    from wheelstep_cli.commands import register_all
+    from wheelstep_cli.cli.commands import register_all
 
     register_all(app)
 

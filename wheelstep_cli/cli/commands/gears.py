@@ -8,6 +8,8 @@ from typing import Optional
 
 import typer
 
+from wheelstep_cli.config.resolve import gear_pair_spec
+
 Opt = typer.Option
 
 
@@ -25,24 +27,6 @@ class Format(str, Enum):
     stl = "stl"
     threemf = "3mf"
     both = "both"
-
-
-def _spec(profile, **cli):
-    """Resolve a GearPairSpec: command line over profile over built-in defaults."""
-    from wheelstep_cli.io.profiles import load_profile, merge_options, profile_section
-    from wheelstep_cli.parts.gear_pair import SPEC_KEYS, GearPairSpec
-
-    layers = []
-    if profile:
-        path, data = load_profile(profile)
-        layers.append(profile_section(path, data, "gears", SPEC_KEYS))
-        mechanism = profile_section(path, data, "mechanism", ("a", "b", "c", "r_min"))
-        if "c" not in mechanism and "r_min" in mechanism:
-            a, b = cli.get("a") or mechanism.get("a", 60.0), cli.get("b") or mechanism.get("b", 100.0)
-            mechanism["c"] = mechanism["r_min"] - a + 4 * b
-        mechanism.pop("r_min", None)
-        layers.append(mechanism)
-    return GearPairSpec(**merge_options(cli, *layers))
 
 
 # Shared option declarations (defaults None so a profile can fill what is not given).
@@ -67,10 +51,10 @@ def pitch(
 ) -> None:
     """Print the equal-arc sector partition of one carrier quarter (SPEC §4)."""
     from wheelstep_cli.gears.sectors import sector_partition, sectors_per_quarter
-    from wheelstep_cli.io.jsonio import json_text
+    from wheelstep_cli.formats.jsonio import json_text
     from wheelstep_cli.parts.gear_pair import partition_rows
 
-    spec = _spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
+    spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
     law = spec.law()
     part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns))
     rows = partition_rows(part)
@@ -98,9 +82,9 @@ def teeth(
 
     from wheelstep_cli.gears.paper_teeth import check_tooth_form, pinion_flanks, wheel_flanks
     from wheelstep_cli.gears.sectors import sector_partition, sectors_per_quarter
-    from wheelstep_cli.io.jsonio import json_text
+    from wheelstep_cli.formats.jsonio import json_text
 
-    spec = _spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
+    spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                  module=module, backlash=backlash)
     law = spec.law()
     part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns))
@@ -166,12 +150,12 @@ def gears(
     refused (exit 1, nothing written) unless --allow-interference. Generated teeth
     (default) roll at the installed distance; the module follows from the pitch-curve
     perimeter and --z (--module applies to --teeth paper only)."""
-    from wheelstep_cli.commands.meshcheck import _run_with_progress
-    from wheelstep_cli.io.atomic import write_files_atomic
+    from wheelstep_cli.cli.commands.meshcheck import _run_with_progress
+    from wheelstep_cli.formats.atomic import write_files_atomic
     from wheelstep_cli.parts.gear_pair import build_gear_pair, gear_pair_files
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
 
-    spec = _spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
+    spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                  install_distance=install_distance, module=module, backlash=backlash,
                  thickness=thickness, bore=bore, teeth=teeth.value if teeth else None,
                  pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from wheelstep_cli.errors import DesignError, require
-from wheelstep_cli.gears.envelope import (PolarGrid, miter_offset, offset_polyline, outline_from_radii,
+from wheelstep_cli.gears.generation.envelope import (PolarGrid, miter_offset, offset_polyline, outline_from_radii,
                                          polyline_envelope)
 from wheelstep_cli.gears.law import PitchCurves, PitchLaw, pitch_curves
 from wheelstep_cli.gears.threads import thread_map

@@ -7,7 +7,7 @@ from typing import Optional
 
 import typer
 
-from wheelstep_cli.commands.gears import A, B, C, CENTER, JSON, PROFILE, TURNS, Opt
+from wheelstep_cli.cli.commands.gears import A, B, C, CENTER, JSON, PROFILE, TURNS, Opt
 
 
 def mesh_check(
@@ -28,14 +28,14 @@ def mesh_check(
     """Section two gear meshes at mid-thickness and check them over one period of the law:
     interference, backlash, transmission error and hub speed ripple. Exit 1 if they
     interfere or lose contact."""
-    from wheelstep_cli.commands.gears import _spec
+    from wheelstep_cli.config.resolve import gear_pair_spec
     from wheelstep_cli.errors import require
-    from wheelstep_cli.io.atomic import write_bytes_atomic
-    from wheelstep_cli.io.jsonio import json_text
-    from wheelstep_cli.io.mesh_read import read_outline
+    from wheelstep_cli.formats.atomic import write_bytes_atomic
+    from wheelstep_cli.formats.jsonio import json_text
+    from wheelstep_cli.formats.mesh_read import read_outline
     from wheelstep_cli.parts.mesh_check import check_crank_pair, meshing_lines, meshing_plot_png
 
-    spec = _spec(profile, a=a, b=b, c=c, turns=turns, center_distance=center_distance,
+    spec = gear_pair_spec(profile, a=a, b=b, c=c, turns=turns, center_distance=center_distance,
                  install_distance=distance)
     law = spec.law()
     dist = spec.install_distance

@@ -20,7 +20,7 @@ def batch(
 
     from wheelstep_cli.batch import load_batch, run_batch
     from wheelstep_cli.errors import DesignError
-    from wheelstep_cli.io.schema import InvalidInput
+    from wheelstep_cli.config.schema import InvalidInput
 
     if jobs < 0:
         raise DesignError("jobs", jobs, "must be >= 0 (0: one per CPU core)")

@@ -20,9 +20,9 @@ from typing import Any, Callable
 import numpy as np
 
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.io.located_yaml import LocatedYaml, read_located_yaml
-from wheelstep_cli.io.printers import Printer, is_printer_profile, printer_from_profile
-from wheelstep_cli.io.schema import InvalidInput, Issue, check_mapping, dotted, show, type_problem
+from wheelstep_cli.config.located_yaml import LocatedYaml, read_located_yaml
+from wheelstep_cli.config.printers import Printer, is_printer_profile, printer_from_profile
+from wheelstep_cli.config.schema import InvalidInput, Issue, check_mapping, dotted, show, type_problem
 from wheelstep_cli.parts.kinds import KINDS, PartKind, printed_spec
 
 TOP_KEYS = ("description", "defaults", "parts")
@@ -73,8 +73,8 @@ class BatchPlan:
 
 def load_batch(path: Path, label: str | None = None) -> BatchPlan:
     """Read and check a batch file and every profile it names; raise InvalidInput listing all issues."""
-    from wheelstep_cli.io.located_yaml import YamlSyntaxError
-    from wheelstep_cli.io.profiles import find_profile as find_named_profile
+    from wheelstep_cli.config.located_yaml import YamlSyntaxError
+    from wheelstep_cli.config.profiles import find_profile as find_named_profile
 
     def find_profile(name: str) -> Path:  # a profile given as a relative .yaml path: next to the batch file
         given = Path(name)
@@ -302,7 +302,7 @@ def _label(file: Path) -> str:
 
 
 def _profile_names(printer: bool) -> list[str]:
-    from wheelstep_cli.io.profiles import profile_dirs
+    from wheelstep_cli.config.profiles import profile_dirs
 
     import yaml
 
@@ -354,7 +354,8 @@ class EntryResult:
 
 def build_entry(entry: Entry) -> EntryResult:
     """Build one entry's parts for its printer (worker-process entry point; never raises)."""
-    from wheelstep_cli.geometry.solids import Part, footprint, inset_bottom, require_printable
+    from wheelstep_cli.geometry.mesh_checks import Part, require_printable
+    from wheelstep_cli.geometry.solids import footprint, inset_bottom
 
     try:
         kind = KINDS[entry.kind]
@@ -411,7 +412,7 @@ class Plate:
 
 def plate_threemf(plate: Plate) -> tuple[int, bytes]:
     """(plate number, 3MF bytes) of a packed plate (worker-process entry point)."""
-    from wheelstep_cli.io.threemf import PlateObject, threemf_bytes
+    from wheelstep_cli.formats.threemf import PlateObject, threemf_bytes
 
     objects = []
     for item in plate.items:
@@ -427,7 +428,7 @@ def plate_threemf(plate: Plate) -> tuple[int, bytes]:
 
 def plate_picture(plate: Plate) -> bytes:
     """Top-view PNG of a packed plate: the bed with the parts' footprints."""
-    from wheelstep_cli.io.plate_png import plate_png
+    from wheelstep_cli.render.plate_png import plate_png
 
     shapes = []
     for item in plate.items:
@@ -513,7 +514,7 @@ class BatchOutcome:
 def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
               progress: Callable[[str, int], Any] | None = None) -> BatchOutcome:
     """Build, pack, render and write a checked batch; ``progress(stage, total)`` -> advance()."""
-    from wheelstep_cli.io.atomic import remove_files, write_files_atomic
+    from wheelstep_cli.formats.atomic import remove_files, write_files_atomic
 
     advance = progress or (lambda stage, total: (lambda: None))
     with _executor(jobs) as pool:
@@ -548,7 +549,7 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
         files[out / f"{plate.stem}.png"] = png
     for entry in built:
         files[out / "reports" / f"{entry.name}.json"] = _entry_report_bytes(entry, results[entry.index])
-    from wheelstep_cli.io.print_sheet import print_sheet_bytes
+    from wheelstep_cli.render.print_sheet import print_sheet_bytes
 
     files[out / "print-sheet.md"] = print_sheet_bytes(plan, plates, built, results, failed)
     files[out / MANIFEST] = _manifest_bytes(plan, out, files, plates, built, results, failed)
@@ -625,7 +626,7 @@ def _previous_outputs(out: Path) -> set[str]:
 
 def part_summary(part: BuiltPart, printer: Printer) -> dict:
     """Volume, bounding box, mass estimates and checks of one built part."""
-    from wheelstep_cli.io.print_sheet import estimated_mass
+    from wheelstep_cli.render.print_sheet import estimated_mass
 
     lo, hi = part.bounds
     return {"volume_mm3": part.volume, "bounding_box_mm": [lo, hi], "size_mm": hi - lo,
@@ -634,7 +635,7 @@ def part_summary(part: BuiltPart, printer: Printer) -> dict:
 
 
 def _entry_report_bytes(entry: Entry, result: EntryResult) -> bytes:
-    from wheelstep_cli.io.jsonio import json_bytes
+    from wheelstep_cli.formats.jsonio import json_bytes
 
     return json_bytes({
         "entry": entry.name, "kind": entry.kind, "design_profile": entry.design_label,
@@ -664,7 +665,7 @@ def tool_versions() -> dict[str, str]:
 
 
 def _manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
-    from wheelstep_cli.io.jsonio import json_bytes
+    from wheelstep_cli.formats.jsonio import json_bytes
 
     printers = {}
     for entry in plan.entries:

@@ -7,7 +7,7 @@ import typer
 
 def register_all(app: typer.Typer) -> None:
     """Attach every command module's commands to ``app``."""
-    from wheelstep_cli.commands import batch, gears, linkage, meshcheck, shoe, stairs, trajectory
+    from wheelstep_cli.cli.commands import batch, gears, linkage, meshcheck, shoe, stairs, trajectory
 
     gears.register(app)
     meshcheck.register(app)

@@ -1,23 +1,27 @@
 """YAML presets in ``profiles/``: designs (mechanism, gears, shoe) and printers.
 
-A profile is looked up as a path, then as ``NAME.yaml`` in ``./profiles`` and in
-the project's own ``profiles/`` folder. Keys are checked against what the
+A profile is looked up as a path, then as ``NAME.yaml`` in ``./profiles`` and among
+the presets shipped with the package (``wheelstep_cli.profiles``, read with
+importlib.resources, so they are there after a normal install too). Keys are checked against what the
 command knows; an unknown key is an error naming the file and the allowed keys.
 """
 
 from __future__ import annotations
 
+import importlib.resources
 from pathlib import Path
 from typing import Any, Iterable
 
 from wheelstep_cli.errors import DesignError
 
-PROJECT_PROFILES = Path(__file__).resolve().parents[2] / "profiles"
+def shipped_profiles() -> Path:
+    """Folder of the presets installed with the package."""
+    return Path(str(importlib.resources.files("wheelstep_cli.profiles")))
 
 
 def profile_dirs() -> list[Path]:
     """Folders searched for profiles by name, in order."""
-    return [Path.cwd() / "profiles", PROJECT_PROFILES]
+    return [Path.cwd() / "profiles", shipped_profiles()]
 
 
 def find_profile(name_or_path: str) -> Path:

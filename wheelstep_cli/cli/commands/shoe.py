@@ -7,28 +7,10 @@ from typing import Optional
 
 import typer
 
-from wheelstep_cli.commands.gears import Format
+from wheelstep_cli.cli.commands.gears import Format
+from wheelstep_cli.config.resolve import shoe_spec
 
 Opt = typer.Option
-
-
-def _spec(profile, **cli):
-    """Resolve a ShoeSpec: command line over profile (``shoe:``, ``mechanism:``) over defaults."""
-    from wheelstep_cli.io.profiles import load_profile, merge_options, profile_section
-    from wheelstep_cli.parts.shoe import SPEC_KEYS, ShoeSpec
-
-    layers = []
-    if profile:
-        path, data = load_profile(profile)
-        part_keys = tuple(k for k in SPEC_KEYS if k not in ("a", "b", "c", "r_min"))
-        layers.append(profile_section(path, data, "shoe", part_keys))
-        mechanism = profile_section(path, data, "mechanism", ("a", "b", "c", "r_min"))
-        if cli.get("c") is not None or cli.get("r_min") is not None:
-            # the strut given on the command line replaces the profile's, in either form
-            mechanism.pop("c", None)
-            mechanism.pop("r_min", None)
-        layers.append(mechanism)
-    return ShoeSpec(**merge_options(cli, *layers))
 
 
 A = Opt(None, "--a", help="Hub axis to crank axes, mm [60].")
@@ -68,11 +50,11 @@ def shoe(
     ream or drill for a press fit), a flat top 15 mm above the sole's ends; at least 2 mm
     of plastic is kept around and under the socket.
     """
-    from wheelstep_cli.io.atomic import write_files_atomic
-    from wheelstep_cli.io.jsonio import json_text
+    from wheelstep_cli.formats.atomic import write_files_atomic
+    from wheelstep_cli.formats.jsonio import json_text
     from wheelstep_cli.parts.shoe import build_shoe, shoe_files, shoe_report
 
-    spec = _spec(profile, a=a, b=b, c=c, r_min=r_min, width=width, strut_diameter=strut_diameter,
+    spec = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min, width=width, strut_diameter=strut_diameter,
                  socket_depth=socket_depth, rim=rim)
     built = build_shoe(spec)
     files = shoe_files(built, out, fmt.value)
@@ -133,13 +115,13 @@ def kinematics(
     import numpy as np
 
     from wheelstep_cli.errors import require
-    from wheelstep_cli.io.jsonio import json_text
+    from wheelstep_cli.formats.jsonio import json_text
     from wheelstep_cli.mechanism.kinematics import hub_kinematics
 
     require(np.isfinite(motor_rpm) and motor_rpm > 0, "motor-rpm", motor_rpm, "must be > 0")
     require(points >= 3, "points", points, "must be >= 3")
     require(rows >= 2, "rows", rows, "must be >= 2")
-    design = _spec(profile, a=a, b=b, c=c, r_min=r_min).design()
+    design = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min).design()
     if turns is None:
         turns = _profile_turns(profile) if profile else 2
     kin = hub_kinematics(design, motor_rpm * 2.0 * np.pi / 60.0, turns, points)
@@ -158,7 +140,7 @@ def kinematics(
                   "with_m_s": kin.speed_geared / 1000.0, "ratio_u": kin.ratio},
     }
     if plot is not None:
-        from wheelstep_cli.io.atomic import write_bytes_atomic
+        from wheelstep_cli.formats.atomic import write_bytes_atomic
 
         write_bytes_atomic(plot, kinematics_png(design, kin))
     if json:
@@ -180,7 +162,7 @@ def kinematics(
 
 def _profile_turns(profile: str) -> int:
     """Pinion turns per carrier turn from a profile's ``gears:`` section (2 if not set)."""
-    from wheelstep_cli.io.profiles import load_profile
+    from wheelstep_cli.config.profiles import load_profile
 
     _, data = load_profile(profile)
     gears = data.get("gears") or {}

@@ -41,7 +41,7 @@ def trajectory(
     """Compose a foot path: support segment AD and arcs r1, r2, r3 (or clearance h_max), SPEC §8."""
     import numpy as np
 
-    from wheelstep_cli.io.jsonio import csv_bytes, json_text
+    from wheelstep_cli.formats.jsonio import csv_bytes, json_text
     from wheelstep_cli.mechanism import trajectory as tr
 
     r2 = r1 if r2 is None else r2
@@ -70,17 +70,17 @@ def trajectory(
     if csv is not None:
         files[csv] = csv_bytes(["x_mm", "y_mm", "piece"], np.column_stack([points, pieces]))
     if dxf is not None:
-        from wheelstep_cli.io.mechanism_dxf import path_dxf_bytes
+        from wheelstep_cli.formats.dxf import path_dxf_bytes
 
         files[dxf] = path_dxf_bytes(path.pieces, polyline=dxf_polyline)
     if plot is not None:
-        from wheelstep_cli.io.mechanism_plots import trajectory_png
+        from wheelstep_cli.render.mechanism_plots import trajectory_png
 
         title = (f"foot path: H = {path.support_length:g}, r1 = {path.r1:g}, r2 = {path.r2:g}, "
                  f"r3 = {path.r3:.2f}, h_max = {path.h_max:.2f} mm")
         files[plot] = trajectory_png(path, points, pieces, title)
     if files:
-        from wheelstep_cli.io.atomic import write_files_atomic
+        from wheelstep_cli.formats.atomic import write_files_atomic
 
         write_files_atomic(files)
     if json:

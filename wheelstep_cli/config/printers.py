@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from wheelstep_cli.io.located_yaml import LocatedYaml, read_located_yaml
-from wheelstep_cli.io.schema import InvalidInput, Issue, check_mapping, dotted, show
+from wheelstep_cli.config.located_yaml import LocatedYaml, read_located_yaml
+from wheelstep_cli.config.schema import InvalidInput, Issue, check_mapping, dotted, show
 
 TECHNOLOGIES = ("fdm", "resin")
 #: printer key -> (smallest, largest) allowed value in mm
@@ -64,7 +64,7 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
 
     ``doc`` is the profile already parsed (as :func:`read_located_yaml` gives it), if it was.
     """
-    from wheelstep_cli.io.located_yaml import YamlSyntaxError
+    from wheelstep_cli.config.located_yaml import YamlSyntaxError
 
     if doc is None:
         try:

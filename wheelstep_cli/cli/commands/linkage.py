@@ -86,7 +86,7 @@ def linkage(
     """Foot path, stride, lift, duty factor, foot and body speed of a walking linkage (SPEC §7)."""
     import numpy as np
 
-    from wheelstep_cli.io.jsonio import csv_bytes, json_text
+    from wheelstep_cli.formats.jsonio import csv_bytes, json_text
     from wheelstep_cli.mechanism import linkage as lk
 
     require(36 <= samples <= 100000, "samples", samples, "must be in [36, 100000]")
@@ -135,15 +135,15 @@ def linkage(
         table = np.column_stack([np.degrees(theta), gait.foot, gait.velocity, gait.speed, gait.support])
         files[csv] = csv_bytes(["crank_deg", "x_mm", "y_mm", "vx_mm_s", "vy_mm_s", "speed_mm_s", "support"], table)
     if plot is not None:
-        from wheelstep_cli.io.mechanism_plots import linkage_png
+        from wheelstep_cli.render.mechanism_plots import linkage_png
 
         files[plot] = linkage_png(leg, sol, gait, rpm)
     if gif is not None:
-        from wheelstep_cli.io.mechanism_plots import linkage_gif
+        from wheelstep_cli.render.mechanism_plots import linkage_gif
 
         files[gif] = linkage_gif(leg, sol, gait, min(gif_frames, samples))
     if files:
-        from wheelstep_cli.io.atomic import write_files_atomic
+        from wheelstep_cli.formats.atomic import write_files_atomic
 
         write_files_atomic(files)
 

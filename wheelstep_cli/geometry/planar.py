@@ -51,3 +51,25 @@ def check_outline(outline: np.ndarray, what: str) -> np.ndarray:
 def min_radius(outline: np.ndarray) -> float:
     """Smallest distance in mm from the origin to the outline (vertices and edges)."""
     return float(shapely.Polygon(outline).exterior.distance(shapely.Point(0.0, 0.0)))
+
+
+def group_rings_by_shell(rings) -> list[list[np.ndarray]]:
+    """Group manifold3d contours (outer CCW, holes CW) into [outer, holes...] lists."""
+    rings = [np.asarray(r, dtype=np.float64) for r in rings if len(r) >= 3]
+    shells = [r for r in rings if signed_area(r) > 0]
+    holes = [r for r in rings if signed_area(r) < 0]
+    groups = [[s] for s in shells]
+    polys = [shapely.Polygon(s) for s in shells]
+    for hole in holes:
+        probe = shapely.Point(hole[0])
+        # the smallest shell containing the hole owns it
+        owners = [i for i, p in enumerate(polys) if p.covers(probe)]
+        if owners:
+            groups[min(owners, key=lambda i: polys[i].area)].append(hole)
+    return groups
+
+
+def inset_area_lost(shells: list[list[np.ndarray]], inset: float, mitre_limit: float) -> float:
+    """Area (mm^2) an inward mitred offset by ``inset`` mm removes from [outer, holes...] shells."""
+    shape = shapely.MultiPolygon([shapely.Polygon(ring[0], ring[1:]) for ring in shells])
+    return float(shape.area - shape.buffer(-inset, join_style="mitre", mitre_limit=mitre_limit).area)

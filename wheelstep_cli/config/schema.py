@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import Any, Iterable
 
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.io.located_yaml import LocatedYaml
+from wheelstep_cli.config.located_yaml import LocatedYaml
 
 
 @dataclass(frozen=True)

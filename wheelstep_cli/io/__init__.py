@@ -1,1 +1,0 @@
-"""File writers and readers; every write is atomic."""
