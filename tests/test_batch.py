@@ -273,8 +273,9 @@ parts:
     (VALID_ENTRY + "    overrides:\n      z: 23\n", "z: 23", "z = 23: must make z*n/4 whole sectors"),
     (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      width: -3\n", "width",
      "parts[0].overrides.width = -3: must be > 0 mm"),
-    (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      b: 60\n", "- name: pair",
-     "parts[0]: c = 180: must be > 4b - a = 210 mm"),
+    # the R_min rule names the parameter the entry gave (b), not the design's strut c
+    (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      b: 60\n", "b: 60",
+     "parts[0].overrides.b = 60: must be < (a + c)/4 = 52.5 mm"),
     (VALID_ENTRY.replace("kind: gear-pair", "kind: gears"), "kind", "unknown kind; allowed: gear-pair, shoe"),
     (VALID_ENTRY.replace("printer: fdm-0.4-pla", "printer: fdm-0.6-abs"), "printer",
      "not found; known profiles:"),

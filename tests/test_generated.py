@@ -8,9 +8,9 @@ from hypothesis import given, settings, strategies as st
 
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.gears.generation import RackCutter, generate_pair
-from wheelstep_cli.gears.law import (center_distance_for_module, crank_pitch_law, law_from_samples,
-                                     pitch_curves)
-from wheelstep_cli.gears.pitch import CrankLaw
+from wheelstep_cli.gears.laws import CrankLaw, blended_law, law_from_samples
+from wheelstep_cli.gears.pitch_curves import center_distance_for_module, pinion_radius, pitch_curves, wheel_radius
+from wheelstep_cli.mechanism.crank import CrankMechanism
 from wheelstep_cli.geometry.planar import check_outline
 
 from tests.helpers.clicheck import error_line
@@ -36,9 +36,9 @@ def involute_error(outline, pitch_radius, teeth, module, alpha, thickness, first
 @pytest.mark.parametrize("backlash", [0.0, 0.5])
 def test_constant_ratio_gives_involute_spur_gears(backlash):
     # b = 0: U = n = 2, circles r = L/3 = 48 (z 48, m 2) and r_H = 96 (z 96)
-    law = crank_pitch_law(CrankLaw(60.0, 0.0, 360.0, 144.0, 2))
+    law, L = CrankLaw(CrankMechanism(60.0, 0.0, 360.0), 2), 144.0
     alpha = np.radians(20.0)
-    pair = generate_pair(law, 48, RackCutter(alpha, 1.0, 1.25, 0.25, backlash))
+    pair = generate_pair(law, 48, RackCutter(alpha, 1.0, 1.25, 0.25, backlash), L)
     assert pair.module == pytest.approx(2.0, abs=1e-6) and pair.wheel_teeth == 96
     m, p = 2.0, 2.0 * np.pi
     # pinion: a tooth centred half a pitch after the period start (a space at theta = -90 deg)
@@ -54,10 +54,10 @@ def test_constant_ratio_gives_involute_spur_gears(backlash):
 
 
 def test_reference_design_generates_valid_outlines_with_the_spec_pitch():
-    law = crank_pitch_law(CrankLaw(60, 100, 360, 143.5, 2))
-    curves = pitch_curves(law)
+    law, L = CrankLaw(CrankMechanism(60, 100, 360), 2), 143.5
+    curves = pitch_curves(law, L)
     assert curves.period_arc / 24 == pytest.approx(6.600, abs=5e-4)     # SPEC §9: 6.600 mm
-    pair = generate_pair(law, 48, RackCutter())
+    pair = generate_pair(law, 48, RackCutter(), L)
     assert pair.module == pytest.approx(2.1008, abs=1e-4)
     for outline, name in ((pair.pinion_outline, "pinion"), (pair.wheel_outline, "wheel")):
         check_outline(outline, name)
@@ -66,27 +66,27 @@ def test_reference_design_generates_valid_outlines_with_the_spec_pitch():
 
 
 def test_undercut_is_refused_with_the_remedy():
-    law = crank_pitch_law(CrankLaw(60, 100, 360, 144, 2))
+    law, L = CrankLaw(CrankMechanism(60, 100, 360), 2), 144
     with pytest.raises(DesignError) as info:
-        generate_pair(law, 48, RackCutter(pressure_angle=np.radians(10.0)))
+        generate_pair(law, 48, RackCutter(pressure_angle=np.radians(10.0)), L)
     text = str(info.value)
     assert "undercut" in text and "pressure angle >=" in text and "module <=" in text
     # following the remedy's pressure angle makes the same law generate
     needed = float(text.split("pressure angle >= ")[1].split(" deg")[0])
-    generate_pair(law, 48, RackCutter(pressure_angle=np.radians(needed + 0.2)))
+    generate_pair(law, 48, RackCutter(pressure_angle=np.radians(needed + 0.2)), L)
 
 
 def test_undercut_on_a_small_spur_pinion():
-    law = crank_pitch_law(CrankLaw(60.0, 0.0, 360.0, 144.0, 2))
+    law, L = CrankLaw(CrankMechanism(60.0, 0.0, 360.0), 2), 144.0
     with pytest.raises(DesignError, match="undercut"):
-        generate_pair(law, 12, RackCutter())       # z = 12 < 17 at 20 deg
+        generate_pair(law, 12, RackCutter(), L)       # z = 12 < 17 at 20 deg
 
 
 def test_pointed_teeth_are_refused():
-    law = crank_pitch_law(CrankLaw(60, 100, 360, 144, 2))
+    law, L = CrankLaw(CrankMechanism(60, 100, 360), 2), 144
     with pytest.raises(DesignError, match="come to a point"):
         generate_pair(law, 48, RackCutter(pressure_angle=np.radians(30.0), addendum=1.25,
-                                          dedendum=1.5, fillet=0.1))
+                                          dedendum=1.5, fillet=0.1), L)
 
 
 def test_cli_reports_undercut_and_pointed_in_one_line(cli, tmp_path):
@@ -99,17 +99,17 @@ def test_cli_reports_undercut_and_pointed_in_one_line(cli, tmp_path):
         assert not out.exists()
 
 
-def basel_law(center_distance=1.0, rows=721):
+def basel_law(rows=721):
     """Bäsel (arXiv:1905.02642) §8, Fig. 8.3: driven angle psi = phi - (2 - sqrt 2) sin phi."""
     phi = np.linspace(0.0, 360.0, rows)
     psi = np.degrees(np.radians(phi) - (2 - np.sqrt(2)) * np.sin(np.radians(phi)))
-    return law_from_samples(phi, psi, center_distance)
+    return law_from_samples(phi, psi)
 
 
 def test_basel_example_reproduces_its_centre_distance():
     # published: z = 14, m = 2 -> a = 28.4385 (perimeter integral I(0, 2pi) = 3.09315)
     law = basel_law()
-    unit = pitch_curves(law, 65536).period_arc
+    unit = pitch_curves(law, 1.0, 65536).period_arc
     assert unit == pytest.approx(3.09315, abs=5e-5)
     assert center_distance_for_module(law, 14, 2.0) == pytest.approx(28.4385, abs=5e-4)
 
@@ -118,7 +118,7 @@ def test_law_csv_generates_a_smooth_published_style_case(cli, tmp_path):
     csv = tmp_path / "law.csv"
     phi = np.linspace(0.0, 360.0, 361)
     psi = np.degrees(np.radians(phi) - 0.3 * np.sin(np.radians(phi)))
-    distance = center_distance_for_module(law_from_samples(phi, psi, 1.0), 28, 1.5)   # z 28, m 1.5
+    distance = center_distance_for_module(law_from_samples(phi, psi), 28, 1.5)   # z 28, m 1.5
     csv.write_text("driving_deg,driven_deg\n" + "\n".join(f"{a:.9f},{b:.9f}" for a, b in zip(phi, psi)))
     out = tmp_path / "out"
     result = cli("gears", "--law-csv", csv, "--z", "28", "--center-distance", f"{distance:.6f}",
@@ -135,12 +135,12 @@ def test_law_from_samples_recovers_ratio_and_rolling_arcs(amp, shift):
     # phi(theta) = theta + amp sin(theta) over one turn: U = 1/(1 + amp cos theta)
     theta = np.linspace(shift, shift + 360.0, 181)
     phi = theta + np.degrees(amp * np.sin(np.radians(theta)))
-    law = law_from_samples(theta, phi, 100.0)
+    law = law_from_samples(theta, phi)
     t = np.radians(np.linspace(shift, shift + 360.0, 50))
     ph = law.carrier_angle(t)
     assert np.allclose(law.ratio(ph), 1.0 / (1.0 + amp * np.cos(t)), atol=1e-6)
-    assert np.allclose(law.pinion_radius(ph) + law.wheel_radius(ph), 100.0)
-    curves = pitch_curves(law)
+    assert np.allclose(pinion_radius(law, ph, 100.0) + wheel_radius(law, ph, 100.0), 100.0)
+    curves = pitch_curves(law, 100.0)
     wheel_arc = np.sum(np.hypot(*np.diff(curves.wheel, axis=0).T))
     assert wheel_arc == pytest.approx(curves.period_arc, rel=1e-6)   # they roll without slip
 
@@ -162,16 +162,14 @@ def test_default_pair_meshes_without_interference_within_its_backlash_band(cli, 
 
 
 def test_blend_keeps_closure_and_is_not_refused_as_undercut():
-    from wheelstep_cli.gears.law import blended_pitch_law
-
-    law = crank_pitch_law(CrankLaw(60, 100, 360, 144, 2))
-    blended = blended_pitch_law(law, np.radians(1.0))
+    law, L = CrankLaw(CrankMechanism(60, 100, 360), 2), 144
+    blended = blended_law(law, np.radians(1.0))
     assert blended.theta_period == pytest.approx(law.theta_period, abs=1e-12)   # closes exactly
     phi = np.linspace(-np.pi / 4, np.pi / 4, 2001)[:-1]
     assert np.mean(blended.ratio(phi)) == pytest.approx(np.mean(law.ratio(phi)), rel=1e-4)
     far = np.abs(phi) < np.radians(40.0)
     assert np.allclose(blended.ratio(phi[far]), law.ratio(phi[far]), rtol=1e-4)   # ~only near corners
-    pair = generate_pair(blended, 48, RackCutter())       # the blended corner is cut like a pivot
+    pair = generate_pair(blended, 48, RackCutter(), L)       # the blended corner is cut like a pivot
     assert pair.corner == "space"
 
 

@@ -198,11 +198,8 @@ def test_paper_wheel_is_mirror_symmetric_so_it_fits_the_convention(paper_pair):
 
 
 def test_paper_pair_runs_and_reports_finite_figures(paper_pair):
-    from wheelstep_cli.gears.pitch import carrier_angle, hub_speed_analogue
-
     law = paper_pair.law
-    transmission = Transmission(lambda t: carrier_angle(law, t), law.turns * np.pi / 2.0,
-                                lambda p: hub_speed_analogue(law, p))
+    transmission = Transmission(law.carrier_angle, law.theta_period, law.hub_speed_factor)
     report = check_meshing(paper_pair.pinion_outline, paper_pair.wheel_outline, transmission,
                            144.0, samples=96)
     summary = report.to_dict()
@@ -227,12 +224,10 @@ def _reports_equal(a, b, atol=0.0):
 
 def _case(case, spur_pair, paper_pair):
     """Outlines and (transmission, centre distance) of the spur or the paper pair."""
-    from wheelstep_cli.gears.pitch import carrier_angle
-
     if case == "spur":
         return (*spur_pair, (spur_transmission(Z1, Z2), M * (Z1 + Z2) / 2.0))
     law = paper_pair.law
-    transmission = Transmission(lambda t: carrier_angle(law, t), law.turns * np.pi / 2.0)
+    transmission = Transmission(law.carrier_angle, law.theta_period)
     return paper_pair.pinion_outline, paper_pair.wheel_outline, (transmission, 144.0)
 
 

@@ -14,7 +14,8 @@ from hypothesis import strategies as st
 
 from tests.helpers.clicheck import error_line
 from tests.helpers.meshcheck import assert_printable_stl, read_3mf_strict
-from wheelstep_cli.mechanism.shoe import ShoeDesign, contact_angles, sole_polar, sole_profile
+from wheelstep_cli.mechanism.crank import CrankMechanism
+from wheelstep_cli.mechanism.sole import contact_angles, sole_polar, sole_profile
 from wheelstep_cli.parts.shoe import ShoeSpec, build_shoe, shoe_files
 
 FILES = ("shoe.stl", "shoe.3mf", "shoe.json", "shoe-profile.csv", "shoe-profile.dxf")
@@ -121,7 +122,7 @@ def test_strut_given_as_c_or_rmin_agrees(cli):
 @given(designs, st.lists(st.floats(-math.pi / 4, math.pi / 4), min_size=1, max_size=20))
 def test_profile_and_sizing_match_spec_formulas(design_args, phis):
     a, b, r_min = design_args
-    design = ShoeDesign.from_r_min(a, b, r_min)
+    design = CrankMechanism.from_r_min(a, b, r_min)
     c = r_min - a + 4 * b
     assert design.c == pytest.approx(c)
     assert design.r_min == pytest.approx(r_min)
@@ -142,7 +143,7 @@ def test_profile_and_sizing_match_spec_formulas(design_args, phis):
 @settings(max_examples=60, deadline=None)
 @given(designs)
 def test_sole_arc_length_is_the_rolling_part(design_args):
-    design = ShoeDesign.from_r_min(*design_args)
+    design = CrankMechanism.from_r_min(*design_args)
     dense = sole_profile(design, contact_angles(200_001))
     length = np.linalg.norm(np.diff(dense, axis=0), axis=1).sum()
     assert length == pytest.approx(design.x_roll, rel=1e-7)
@@ -291,12 +292,12 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_sh
 
 
 @pytest.mark.parametrize("args, param", [
-    (["--rmin", "0"], "rmin ="),                          # cusp
-    (["--rmin", "-5"], "rmin ="),                         # loop
+    (["--rmin", "0"], "r_min ="),                          # cusp
+    (["--rmin", "-5"], "r_min ="),                         # loop
     (["--c", "300"], "c ="),                              # R_min = a - 4b + c < 0
     (["--a", "-60"], "a ="),
     (["--b", "-1"], "b ="),
-    (["--rmin", "30", "--c", "360"], "rmin ="),           # contradicts c
+    (["--rmin", "30", "--c", "360"], "r_min ="),           # contradicts c
     (["--strut-diameter", "40"], "strut-diameter ="),     # socket wider than the body
     (["--strut-diameter", "-3"], "strut-diameter ="),
     (["--socket-depth", "80"], "socket-depth ="),         # deeper than the body

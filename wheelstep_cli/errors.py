@@ -2,19 +2,36 @@
 
 from __future__ import annotations
 
+from typing import Iterable
+
 
 class DesignError(ValueError):
     """An input that cannot give a valid part.
 
-    ``param`` is the user-facing parameter name (CLI option without dashes,
-    same as the YAML key), ``value`` what was given, ``limit`` what it must satisfy.
+    ``param`` is the parameter's snake_case name (the YAML key; the CLI shows it as its
+    flag), ``value`` what was given, ``limit`` what it must satisfy. A rule that ties
+    several parameters (R_min = a - 4b + c > 0) states itself for each of them in
+    ``alternatives`` (name -> (value, limit)), so the error can name the one the user
+    gave (:meth:`for_given`).
     """
 
-    def __init__(self, param: str, value: object, limit: str):
+    def __init__(self, param: str, value: object, limit: str,
+                 alternatives: dict[str, tuple[object, str]] | None = None):
         self.param = param
         self.value = value
         self.limit = limit
+        self.alternatives = dict(alternatives or {})
         super().__init__(f"{param} = {_fmt(value)}: {limit}")
+
+    def for_given(self, given: Iterable[str]) -> "DesignError":
+        """This error restated for a parameter the user gave, when it names one they did not."""
+        given = set(given)
+        if self.param in given:
+            return self
+        for name, (value, limit) in self.alternatives.items():
+            if name in given:
+                return DesignError(name, value, limit)
+        return self
 
 
 def _fmt(value: object) -> str:

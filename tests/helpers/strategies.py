@@ -4,15 +4,25 @@ from __future__ import annotations
 
 from hypothesis import strategies as st
 
-from wheelstep_cli.gears.pitch import CrankLaw
+from wheelstep_cli.gears.laws import CrankLaw
+from wheelstep_cli.mechanism.crank import CrankMechanism
+
+
+@st.composite
+def mechanisms(draw):
+    """Valid crank mechanisms over the whole reachable space: R_min = a - 4b + c > 0 (mm)."""
+    a = draw(st.floats(10, 200))
+    c = draw(st.floats(50, 600))
+    b = draw(st.floats(0, 0.95 * (a + c) / 4))
+    return CrankMechanism(a, b, c)
 
 
 @st.composite
 def crank_laws(draw):
-    """Valid crank laws over the whole reachable space: R_min > 0, n = 2 or 4 (mm)."""
-    a = draw(st.floats(10, 200))
-    c = draw(st.floats(50, 600))
-    b = draw(st.floats(0, 0.95 * (a + c) / 4))
-    L = draw(st.floats(40, 400))
-    n = draw(st.sampled_from([2, 4]))
-    return CrankLaw(a, b, c, L, n)
+    """Crank laws of valid mechanisms, n = 2 or 4 pinion turns per carrier turn."""
+    return CrankLaw(draw(mechanisms()), draw(st.sampled_from([2, 4])))
+
+
+def center_distances():
+    """Centre distances a user may choose, mm."""
+    return st.floats(40, 400)

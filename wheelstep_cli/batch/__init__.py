@@ -275,6 +275,7 @@ def _resolve_spec(doc, path, kind, design_name, layers, overrides, override_wher
         printed = printed_spec(kind, spec, printer.hole_compensation, printer.tooth_clearance)
         kind.precheck(printed)
     except DesignError as err:
+        err = err.for_given(override_where)
         param = err.param.replace("-", "_")
         if param in override_where:
             issues.append(Issue(override_where[param], dotted(path + ("overrides", param)),

@@ -5,6 +5,8 @@ The one place where the CLI's options and a design profile's sections meet.
 
 from __future__ import annotations
 
+from wheelstep_cli.errors import DesignError
+
 
 def gear_pair_spec(profile, **cli):
     """Resolve a GearPairSpec: command line over profile over built-in defaults."""
@@ -21,7 +23,12 @@ def gear_pair_spec(profile, **cli):
             mechanism["c"] = mechanism["r_min"] - a + 4 * b
         mechanism.pop("r_min", None)
         layers.append(mechanism)
-    return GearPairSpec(**merge_options(cli, *layers))
+    spec = GearPairSpec(**merge_options(cli, *layers))
+    try:
+        spec.mechanism()
+    except DesignError as err:
+        raise err.for_given(k for k, v in cli.items() if v is not None) from None
+    return spec
 
 
 def shoe_spec(profile, **cli):

@@ -45,3 +45,24 @@ def path_dxf_bytes(pieces, polyline: bool = False, layer: str = "FOOT_PATH") -> 
     finally:
         ezdxf.options.write_fixed_meta_data_for_testing = fixed
     return buf.getvalue().encode("utf-8")
+
+
+def polyline_dxf_bytes(points: np.ndarray, layer: str = "SOLE") -> bytes:
+    """DXF (R2010, mm) holding ``points`` as one open LWPOLYLINE on ``layer``; deterministic."""
+    import ezdxf
+
+    fixed = ezdxf.options.write_fixed_meta_data_for_testing
+    ezdxf.options.write_fixed_meta_data_for_testing = True  # fixed dates, GUIDs, ezdxf marker
+    try:
+        doc = ezdxf.new("R2010", units=ezdxf.units.MM)
+        doc.layers.add(layer)
+        doc.modelspace().add_lwpolyline(np.asarray(points, dtype=float).tolist(), format="xy",
+                                        dxfattribs={"layer": layer})
+        # ezdxf registers CLASS entries from a set (hash-seed order): register them sorted first
+        for dxftype in sorted(doc.entitydb.dxf_types_in_use()):
+            doc.classes.add_class(dxftype)
+        stream = io.StringIO()
+        doc.write(stream)
+    finally:
+        ezdxf.options.write_fixed_meta_data_for_testing = fixed
+    return doc.encode(stream.getvalue())

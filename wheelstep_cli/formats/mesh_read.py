@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from wheelstep_cli.errors import DesignError
+from wheelstep_cli.geometry.solids import section_outline
 
 _CORE_NS = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
 _UNITS_MM = {"micron": 1e-3, "millimeter": 1.0, "centimeter": 10.0, "inch": 25.4,
@@ -107,52 +108,6 @@ def _model_part(zf: zipfile.ZipFile) -> str:
     except KeyError:
         pass
     return "3D/3dmodel.model"
-
-
-def section_outline(vertices: np.ndarray, faces: np.ndarray, param: str,
-                    z: float | None = None) -> np.ndarray:
-    """Outer boundary (N, 2), counter-clockwise, of the mesh's section at height ``z`` (mm).
-
-    ``z`` defaults to mid-thickness. Holes (the bore) are dropped: the outer boundary
-    is the ring of largest area.
-    """
-    import manifold3d as m3d
-
-    vertices = np.asarray(vertices, dtype=np.float64)
-    if z is None:
-        z = 0.5 * (vertices[:, 2].min() + vertices[:, 2].max())
-    mesh = m3d.Mesh(vert_properties=np.ascontiguousarray(vertices, dtype=np.float32),
-                    tri_verts=np.ascontiguousarray(faces, dtype=np.uint32))
-    solid = m3d.Manifold(mesh)
-    if solid.status() != m3d.Error.NoError:
-        raise DesignError(param, "mesh", f"is not a closed manifold solid "
-                          f"(manifold3d: {solid.status().name}); cannot section it")
-    rings = [np.asarray(r, dtype=float) for r in solid.slice(float(z)).to_polygons()]
-    rings = [r for r in rings if len(r) >= 3]
-    if not rings:
-        raise DesignError(param, "mesh", f"has no material at mid-thickness z = {z:g} mm")
-    areas = [_signed_area(r) for r in rings]
-    outer = _drop_collinear(rings[int(np.argmax(np.abs(areas)))])
-    return outer if _signed_area(outer) > 0 else outer[::-1]
-
-
-def _drop_collinear(ring: np.ndarray, tol: float = 1e-5) -> np.ndarray:
-    """The ring without the points lying on the segment between their neighbours (within
-    ``tol`` mm). A section of an extruded wall cuts every side quad's diagonal at its
-    midpoint, doubling the points without changing the shape; the meshing check costs
-    in proportion to the points."""
-    prev, nxt = np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0)
-    a, b = ring - prev, nxt - ring
-    chord = np.hypot(*(nxt - prev).T)
-    off_line = np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) > tol * np.maximum(chord, 1e-300)
-    between = np.einsum("ij,ij->i", a, b) > 0.0
-    keep = off_line | ~between
-    return ring[keep] if np.count_nonzero(keep) >= 3 else ring
-
-
-def _signed_area(ring: np.ndarray) -> float:
-    x, y = ring[:, 0], ring[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
 
 
 def read_outline(spec: str, param: str, default_name: str | None = None) -> np.ndarray:

@@ -73,3 +73,9 @@ def inset_area_lost(shells: list[list[np.ndarray]], inset: float, mitre_limit: f
     """Area (mm^2) an inward mitred offset by ``inset`` mm removes from [outer, holes...] shells."""
     shape = shapely.MultiPolygon([shapely.Polygon(ring[0], ring[1:]) for ring in shells])
     return float(shape.area - shape.buffer(-inset, join_style="mitre", mitre_limit=mitre_limit).area)
+
+
+def polyline_box_distance(points: np.ndarray, box: tuple[float, float, float, float]) -> float:
+    """Least distance (mm) between an open polyline (N, 2) and the box (xmin, ymin, xmax, ymax);
+    0 where they meet."""
+    return float(shapely.LineString(points).distance(shapely.box(*box)))

@@ -1,5 +1,5 @@
 """Solids with manifold3d (the only module that imports it): extrusion of checked outlines,
-elephant-foot insets, footprints."""
+sockets, elephant-foot insets, footprints and sections."""
 
 from __future__ import annotations
 
@@ -58,7 +58,13 @@ def solid_from_polygons(name: str, polygons: list[np.ndarray], height: float,
 
     section = m3d.CrossSection([np.ascontiguousarray(p, dtype=np.float64) for p in polygons],
                                m3d.FillRule.Positive)
-    solid = m3d.Manifold.extrude(section, height)
+    return _part_of(name, m3d.Manifold.extrude(section, height), expected_volume)
+
+
+def _part_of(name: str, solid, expected_volume: float) -> Part:
+    """The manifold3d solid as a Part (mm), refused when manifold3d reports an error or it is empty."""
+    import manifold3d as m3d
+
     if solid.status() != m3d.Error.NoError:
         raise DesignError(name, "solid", f"manifold3d reports {solid.status().name}")
     mesh = solid.to_mesh()
@@ -67,6 +73,24 @@ def solid_from_polygons(name: str, polygons: list[np.ndarray], height: float,
     if len(faces) == 0:
         raise DesignError(name, "solid", "came out empty")
     return Part(name, vertices, faces, float(expected_volume))
+
+
+def extrude_with_socket(name: str, outline: np.ndarray, width: float, socket_ring: np.ndarray,
+                        socket_base: float, socket_length: float, expected_volume: float) -> Part:
+    """Extrude a checked outline (x, y in mm, CCW) by ``width`` mm along +z and cut a socket.
+
+    The socket is a prism of cross-section ``socket_ring`` (CCW, mm) along +y, from
+    y = ``socket_base`` for ``socket_length`` mm, centred at z = width / 2.
+    """
+    import manifold3d as m3d
+
+    body = m3d.Manifold.extrude(m3d.CrossSection([np.ascontiguousarray(outline)], m3d.FillRule.Positive),
+                                width)
+    prism = m3d.Manifold.extrude(m3d.CrossSection([np.ascontiguousarray(socket_ring)], m3d.FillRule.Positive),
+                                 socket_length)
+    # rotate -90 deg about x: the prism's +z axis becomes +y
+    cutter = prism.rotate([-90.0, 0.0, 0.0]).translate([0.0, socket_base, width / 2.0])
+    return _part_of(name, body - cutter, expected_volume)
 
 
 def inset_bottom(part: Part, height: float, inset: float) -> Part:
@@ -103,12 +127,8 @@ def inset_bottom(part: Part, height: float, inset: float) -> Part:
     foot = m3d.Manifold.extrude(foot_section, height).translate((0.0, 0.0, z0))
     above = solid.trim_by_plane((0.0, 0.0, 1.0), z0 + height)
     result = above + foot
-    if result.status() != m3d.Error.NoError:
-        raise DesignError(part.name, "elephant foot", f"manifold3d reports {result.status().name}")
-    mesh = result.to_mesh()
     lost = inset_area_lost(group_rings_by_shell(section.to_polygons()), inset, mitre_limit=2.0)
-    return Part(part.name, np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3],
-                np.asarray(mesh.tri_verts, dtype=np.int64), part.expected_volume - height * lost)
+    return _part_of(part.name, result, part.expected_volume - height * lost)
 
 
 def footprint(part: Part) -> list[list[np.ndarray]]:
@@ -129,3 +149,44 @@ def _manifold_of(part: Part):
     if solid.status() != m3d.Error.NoError:
         raise DesignError(part.name, "mesh", f"is not a closed manifold ({solid.status().name})")
     return solid
+
+
+def section_outline(vertices: np.ndarray, faces: np.ndarray, param: str,
+                    z: float | None = None) -> np.ndarray:
+    """Outer boundary (N, 2), counter-clockwise, of the mesh's section at height ``z`` (mm).
+
+    ``z`` defaults to mid-thickness. Holes (the bore) are dropped: the outer boundary
+    is the ring of largest area.
+    """
+    import manifold3d as m3d
+
+    vertices = np.asarray(vertices, dtype=np.float64)
+    if z is None:
+        z = 0.5 * (vertices[:, 2].min() + vertices[:, 2].max())
+    mesh = m3d.Mesh(vert_properties=np.ascontiguousarray(vertices, dtype=np.float32),
+                    tri_verts=np.ascontiguousarray(faces, dtype=np.uint32))
+    solid = m3d.Manifold(mesh)
+    if solid.status() != m3d.Error.NoError:
+        raise DesignError(param, "mesh", f"is not a closed manifold solid "
+                          f"(manifold3d: {solid.status().name}); cannot section it")
+    rings = [np.asarray(r, dtype=float) for r in solid.slice(float(z)).to_polygons()]
+    rings = [r for r in rings if len(r) >= 3]
+    if not rings:
+        raise DesignError(param, "mesh", f"has no material at mid-thickness z = {z:g} mm")
+    areas = [signed_area(r) for r in rings]
+    outer = _drop_collinear(rings[int(np.argmax(np.abs(areas)))])
+    return outer if signed_area(outer) > 0 else outer[::-1]
+
+
+def _drop_collinear(ring: np.ndarray, tol: float = 1e-5) -> np.ndarray:
+    """The ring without the points lying on the segment between their neighbours (within
+    ``tol`` mm). A section of an extruded wall cuts every side quad's diagonal at its
+    midpoint, doubling the points without changing the shape; the meshing check costs
+    in proportion to the points."""
+    prev, nxt = np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0)
+    a, b = ring - prev, nxt - ring
+    chord = np.hypot(*(nxt - prev).T)
+    off_line = np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) > tol * np.maximum(chord, 1e-300)
+    between = np.einsum("ij,ij->i", a, b) > 0.0
+    keep = off_line | ~between
+    return ring[keep] if np.count_nonzero(keep) >= 3 else ring

@@ -9,7 +9,8 @@ import numpy as np
 
 from wheelstep_cli.errors import require
 from wheelstep_cli.gears.paper_teeth import ToothForm, check_tooth_form, pinion_outline, wheel_outline
-from wheelstep_cli.gears.pitch import CrankLaw
+from wheelstep_cli.gears.laws import CrankLaw
+from wheelstep_cli.mechanism.crank import CrankMechanism
 from wheelstep_cli.gears.sectors import SectorPartition, sector_partition, sectors_per_quarter
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
 from wheelstep_cli.geometry.solids import extrude_plate
@@ -54,8 +55,11 @@ class GearPairSpec:
     def backlash_mm(self) -> float:
         return 0.25 * self.module if self.backlash is None else self.backlash
 
+    def mechanism(self) -> CrankMechanism:
+        return CrankMechanism(self.a, self.b, self.c)
+
     def law(self) -> CrankLaw:
-        return CrankLaw(self.a, self.b, self.c, self.center_distance, self.turns)
+        return CrankLaw(self.mechanism(), self.turns)
 
     def tooth_form(self) -> ToothForm:
         return ToothForm(self.module, self.backlash_mm)
@@ -106,7 +110,7 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
             spec.install_distance,
             f"must be <= center-distance + module = {spec.center_distance + spec.module:g} mm "
             "(farther apart the teeth lose contact)")
-    partition = sector_partition(law, count)
+    partition = sector_partition(law, count, spec.center_distance)
     form = spec.tooth_form()
     check_tooth_form(partition, form)
     p_outline = pinion_outline(partition, form)
@@ -118,15 +122,13 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
 
 
 def generation_law(spec: GearPairSpec):
-    """The law the generated teeth follow (crank law or --law-csv), at the installed distance."""
-    from wheelstep_cli.gears.law import blended_pitch_law, crank_pitch_law, read_law_csv
+    """The law the generated teeth follow (crank law or --law-csv) and its blended form."""
+    from wheelstep_cli.formats.law_csv import read_law_csv
+    from wheelstep_cli.gears.laws import blended_law
 
-    if spec.law_csv is not None:
-        law = read_law_csv(spec.law_csv, spec.install_distance)
-    else:
-        law = crank_pitch_law(CrankLaw(spec.a, spec.b, spec.c, spec.install_distance, spec.turns))
+    law = read_law_csv(spec.law_csv) if spec.law_csv is not None else spec.law()
     require(0.0 <= spec.blend <= 20.0, "blend", spec.blend, "must be 0..20 deg")
-    return law, blended_pitch_law(law, np.radians(spec.blend))
+    return law, blended_law(law, np.radians(spec.blend))
 
 
 def _build_generated(spec: GearPairSpec) -> GearPair:
@@ -137,7 +139,8 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
             f"must be >= center-distance {spec.center_distance:g} mm")
     _, law = generation_law(spec)
     require(0.0 <= spec.tilt <= 1.5, "tilt", spec.tilt, "must be 0..1.5")
-    gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, tilt=spec.tilt)
+    gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, tilt=spec.tilt,
+                        center_distance=spec.install_distance)
     # the pinion is written as it carved the wheel; the wheel's ray map is thinned only by a
     # fraction of a micron (coarser facets make real speed ripple: a 0.2 mm facet on a
     # curved flank kinks the hub speed by about 1 %)
@@ -206,7 +209,7 @@ def generated_report(pair: GearPair) -> dict:
                   "at pitch-curve corners); wheel carved by the pinion moving along the exact law, "
                   "widened by a constant angular backlash",
         "tilt": pair.spec.tilt,
-        "rolling_center_distance_mm": gen.law.center_distance,
+        "rolling_center_distance_mm": gen.curves.center_distance,
         "pitch_mm": gen.pitch,
         "module_mm": gen.module,
         "pinion_teeth": gen.pinion_teeth,

@@ -10,23 +10,18 @@ from typing import Callable
 import numpy as np
 
 from wheelstep_cli.gears.meshing import DEFAULT_SAMPLES, MeshingReport, Transmission, check_meshing
-from wheelstep_cli.gears.pitch import CrankLaw, carrier_angle, hub_speed_analogue
+from wheelstep_cli.gears.transmission import TransmissionLaw
 
 
-def crank_transmission(law: CrankLaw) -> Transmission:
-    """The crank law as a transmission: phi(theta), period n*pi/2 of the pinion, f = dX01/dphi."""
-    return Transmission(
-        driven_angle=lambda theta: carrier_angle(law, theta),
-        period=law.turns * np.pi / 2.0,
-        hub_speed_factor=lambda phi: hub_speed_analogue(law, phi),
-    )
+def _transmission(law: TransmissionLaw) -> Transmission:
+    return Transmission(law.carrier_angle, law.theta_period, law.hub_speed_factor)
 
 
-def check_crank_pair(pinion: np.ndarray, wheel: np.ndarray, law: CrankLaw, distance: float,
+def check_crank_pair(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, distance: float,
                      samples: int = DEFAULT_SAMPLES, window: float | None = None,
                      progress: Callable[[int, int], None] | None = None) -> MeshingReport:
     """Run the meshing check of two outlines (mm, own frames) over one period of the law."""
-    return check_meshing(pinion, wheel, crank_transmission(law), distance, samples=samples,
+    return check_meshing(pinion, wheel, _transmission(law), distance, samples=samples,
                          window=window, progress=progress)
 
 
@@ -35,16 +30,14 @@ def check_gear_pair(pair, samples: int = DEFAULT_SAMPLES,
     """Meshing check of a built :class:`~wheelstep_cli.parts.gear_pair.GearPair` as it will be
     written: both meshes are sectioned at mid-thickness (SPEC §10) and checked at the
     installed centre distance over one period of the law."""
-    from wheelstep_cli.formats.mesh_read import section_outline
+    from wheelstep_cli.geometry.solids import section_outline
 
     pinion = section_outline(pair.pinion.vertices, pair.pinion.faces, "pinion")
     wheel = section_outline(pair.wheel.vertices, pair.wheel.faces, "wheel")
     generated = getattr(pair, "generated", None)
     if generated is not None and pair.law is None:        # a --law-csv pair: its own law
-        law = generated.law
-        return check_meshing(pinion, wheel, Transmission(law.carrier_angle, law.theta_period,
-                                                         law.hub_factor),
-                             pair.spec.install_distance, samples=samples, progress=progress)
+        return check_crank_pair(pinion, wheel, generated.law, pair.spec.install_distance, samples,
+                                progress=progress)
     return check_crank_pair(pinion, wheel, pair.law, pair.spec.install_distance, samples,
                             progress=progress)
 

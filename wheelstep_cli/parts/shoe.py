@@ -10,25 +10,21 @@ open at the top face, centred at x = 0, z = width/2.
 
 from __future__ import annotations
 
-import io
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from wheelstep_cli.errors import DesignError, require
-from wheelstep_cli.geometry.planar import check_outline, signed_area
+from wheelstep_cli.geometry.planar import check_outline, polyline_box_distance, signed_area
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
-from wheelstep_cli.geometry.solids import bore_segments, circle
+from wheelstep_cli.geometry.solids import bore_segments, circle, extrude_with_socket
+from wheelstep_cli.formats.dxf import polyline_dxf_bytes
 from wheelstep_cli.formats.jsonio import csv_bytes, json_bytes
 from wheelstep_cli.formats.stl import stl_bytes
 from wheelstep_cli.formats.threemf import PlateObject, threemf_bytes
-from wheelstep_cli.mechanism.shoe import (
-    ShoeDesign,
-    contact_angles,
-    sole_curvature_radius,
-    sole_profile,
-)
+from wheelstep_cli.mechanism.crank import CrankMechanism
+from wheelstep_cli.mechanism.sole import contact_angles, sole_curvature_radius, sole_profile
 
 #: Hub angles sampled along the sole (JSON, CSV, DXF and the mesh all use these).
 PROFILE_POINTS = 401
@@ -71,16 +67,16 @@ class ShoeSpec:
                 raise DesignError(name.replace("_", "-"), value, "must be a number (mm)") from None
             object.__setattr__(self, name, number)
 
-    def design(self) -> ShoeDesign:
+    def design(self) -> CrankMechanism:
         """The mechanism sizing; raises DesignError for an invalid or inconsistent one."""
         if self.c is None:
             r_min = DEFAULT_R_MIN if self.r_min is None else self.r_min
-            return ShoeDesign.from_r_min(self.a, self.b, r_min)
-        design = ShoeDesign(self.a, self.b, self.c)
+            return CrankMechanism.from_r_min(self.a, self.b, r_min)
+        design = CrankMechanism(self.a, self.b, self.c)
         if self.r_min is not None and not np.isclose(design.r_min, self.r_min, rtol=0, atol=1e-6):
-            raise DesignError("rmin", self.r_min,
+            raise DesignError("r_min", self.r_min,
                               f"contradicts c = {self.c:g} mm (a - 4b + c = {design.r_min:g} mm); "
-                              "give only one of rmin and c")
+                              "give only one of r_min and c")
         return design
 
 
@@ -93,7 +89,7 @@ class Shoe:
     """A built shoe: sizing, the sole (shoe frame), the side outline and the checked part."""
 
     spec: ShoeSpec
-    design: ShoeDesign
+    design: CrankMechanism
     phi: np.ndarray
     profile: np.ndarray   # (N, 2) sole in the shoe frame, mm
     outline: np.ndarray   # closed side outline in the part frame, mm (CCW)
@@ -119,15 +115,6 @@ def side_outline(sole_part: np.ndarray, top: float) -> np.ndarray:
     return np.vstack([sole_part, corners])
 
 
-def socket_wall(sole_part: np.ndarray, radius: float, top: float, depth: float) -> float:
-    """Least plastic between the socket (side view: x in [-radius, radius], y from top - depth
-    to top) and the sole, mm; 0 when they meet. Measured square to the sole, not only below."""
-    import shapely
-
-    socket = shapely.box(-radius, top - depth, radius, top)
-    return float(shapely.LineString(sole_part).distance(socket))
-
-
 def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
     """Check the socket fits in the body; return the wall between it and the sole (mm)."""
     d = spec.strut_diameter
@@ -138,50 +125,28 @@ def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
         raise DesignError("strut-diameter", d,
                           f"must be <= {limit:.2f} mm (socket wider than the body: {across} "
                           f"less {MIN_WALL:g} mm wall each side)")
-    floor = socket_wall(sole_part, d / 2.0, top, spec.socket_depth)
+    floor = polyline_box_distance(sole_part, (-d / 2.0, top - spec.socket_depth, d / 2.0, top))
     if floor < MIN_WALL:
         # deepest socket that keeps the wall (the wall shrinks as the socket deepens): bisection
         lo, hi = 0.0, spec.socket_depth
         for _ in range(40):
             mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if socket_wall(sole_part, d / 2.0, top, mid) >= MIN_WALL else (lo, mid)
+            wall = polyline_box_distance(sole_part, (-d / 2.0, top - mid, d / 2.0, top))
+            lo, hi = (mid, hi) if wall >= MIN_WALL else (lo, mid)
         raise DesignError("socket-depth", spec.socket_depth,
                           f"must be <= {lo:.2f} mm (socket deeper than the body: keep "
                           f"{MIN_WALL:g} mm of plastic between it and the sole)")
     return floor
 
 
-def socket_cutter(spec: ShoeSpec, top: float):
-    """The socket as a manifold3d prism along +y and its volume inside the body (mm^3)."""
-    import manifold3d as m3d
-
+def shoe_solid(spec: ShoeSpec, outline: np.ndarray, top: float) -> Part:
+    """Extrude the checked side outline by the width and cut the strut socket from the top face."""
     segments = bore_segments(spec.strut_diameter)
     # circumscribed polygon: its flats touch the nominal circle, so the strut fits
     ring = circle(spec.strut_diameter / 2.0 / np.cos(np.pi / segments), segments)
-    section = m3d.CrossSection([np.ascontiguousarray(ring)], m3d.FillRule.Positive)
-    prism = m3d.Manifold.extrude(section, spec.socket_depth + CUT_OVERSHOOT)
-    # rotate -90 deg about x: the prism's +z axis becomes +y
-    cutter = prism.rotate([-90.0, 0.0, 0.0]).translate([0.0, top - spec.socket_depth, spec.width / 2.0])
-    return cutter, signed_area(ring) * spec.socket_depth
-
-
-def shoe_solid(spec: ShoeSpec, outline: np.ndarray, top: float) -> Part:
-    """Extrude the checked side outline by the width and cut the strut socket (manifold3d)."""
-    import manifold3d as m3d
-
-    body_section = m3d.CrossSection([np.ascontiguousarray(outline)], m3d.FillRule.Positive)
-    body = m3d.Manifold.extrude(body_section, spec.width)
-    cutter, socket_volume = socket_cutter(spec, top)
-    solid = body - cutter
-    if solid.status() != m3d.Error.NoError:
-        raise DesignError("shoe", "solid", f"manifold3d reports {solid.status().name}")
-    mesh = solid.to_mesh()
-    vertices = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
-    faces = np.asarray(mesh.tri_verts, dtype=np.int64)
-    if len(faces) == 0:
-        raise DesignError("shoe", "solid", "came out empty")
-    expected = signed_area(outline) * spec.width - socket_volume
-    return Part("shoe", vertices, faces, float(expected))
+    expected = signed_area(outline) * spec.width - signed_area(ring) * spec.socket_depth
+    return extrude_with_socket("shoe", outline, spec.width, ring, top - spec.socket_depth,
+                               spec.socket_depth + CUT_OVERSHOOT, expected)
 
 
 def build_shoe(spec: ShoeSpec) -> Shoe:
@@ -199,7 +164,7 @@ def build_shoe(spec: ShoeSpec) -> Shoe:
     return Shoe(spec, design, phi, profile, outline, top, floor, [part], checks)
 
 
-def sizing(design: ShoeDesign) -> dict:
+def sizing(design: CrankMechanism) -> dict:
     """Link sizing and hub motion per shoe cycle (SPEC §2), mm and per cent."""
     return {
         "a_mm": design.a, "b_mm": design.b, "c_mm": design.c, "r_min_mm": design.r_min,
@@ -238,27 +203,6 @@ def shoe_report(shoe: Shoe) -> dict:
     }
 
 
-def profile_dxf_bytes(profile: np.ndarray) -> bytes:
-    """DXF (R2010, mm) holding the sole as one open LWPOLYLINE on layer SOLE; deterministic."""
-    import ezdxf
-
-    fixed = ezdxf.options.write_fixed_meta_data_for_testing
-    ezdxf.options.write_fixed_meta_data_for_testing = True  # fixed dates, GUIDs, ezdxf marker
-    try:
-        doc = ezdxf.new("R2010", units=ezdxf.units.MM)
-        doc.layers.add("SOLE")
-        doc.modelspace().add_lwpolyline(np.asarray(profile, dtype=float).tolist(), format="xy",
-                                        dxfattribs={"layer": "SOLE"})
-        # ezdxf registers CLASS entries from a set (hash-seed order): register them sorted first
-        for dxftype in sorted(doc.entitydb.dxf_types_in_use()):
-            doc.classes.add_class(dxftype)
-        stream = io.StringIO()
-        doc.write(stream)
-    finally:
-        ezdxf.options.write_fixed_meta_data_for_testing = fixed
-    return doc.encode(stream.getvalue())
-
-
 def shoe_files(shoe: Shoe, out: Path, fmt: str = "both") -> dict[Path, bytes]:
     """File name -> contents: shoe.stl / shoe.3mf, shoe.json, shoe-profile.csv and .dxf."""
     require(fmt in FORMATS, "format", fmt, f"must be one of {', '.join(FORMATS)}")
@@ -275,5 +219,5 @@ def shoe_files(shoe: Shoe, out: Path, fmt: str = "both") -> dict[Path, bytes]:
             {"Title": "wheelstep support shoe", "Application": "wheelstep"})
     files[out / "shoe.json"] = json_bytes(shoe_report(shoe))
     files[out / "shoe-profile.csv"] = csv_bytes(["x_mm", "y_mm"], shoe.profile)
-    files[out / "shoe-profile.dxf"] = profile_dxf_bytes(shoe.profile)
+    files[out / "shoe-profile.dxf"] = polyline_dxf_bytes(shoe.profile)
     return files

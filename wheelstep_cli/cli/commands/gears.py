@@ -56,7 +56,7 @@ def pitch(
 
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
     law = spec.law()
-    part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns))
+    part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns), spec.center_distance)
     rows = partition_rows(part)
     if json:
         typer.echo(json_text({"u": law.u, "arc_mm": part.arc, "sectors": rows}), nl=False)
@@ -87,7 +87,7 @@ def teeth(
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                  module=module, backlash=backlash)
     law = spec.law()
-    part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns))
+    part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns), spec.center_distance)
     form = spec.tooth_form()
     check_tooth_form(part, form)
     tables = {"pinion": (pinion_flanks(part, form), "theta"), "wheel": (wheel_flanks(part, form), "phi")}
@@ -179,7 +179,7 @@ def gears(
     if pair.generated is not None:
         gen = pair.generated
         typer.echo(f"generated teeth: z = {gen.pinion_teeth}/{gen.wheel_teeth}, pitch {gen.pitch:.4f} mm, "
-                   f"module {gen.module:.4f} mm, rolling at {gen.law.center_distance:g} mm, "
+                   f"module {gen.module:.4f} mm, rolling at {gen.curves.center_distance:g} mm, "
                    f"backlash j_n = {gen.cutter.backlash:g} mm")
     _echo_meshing(record, spec.install_distance)
     typer.echo("wrote " + ", ".join(str(p) for p in written))

@@ -50,7 +50,8 @@ def mesh_check(
     report = _run_with_progress(check_crank_pair, pinion_outline, wheel_outline, law, dist,
                                 samples, window)
     summary = {"pinion": str(pinion), "wheel": str(wheel),
-               "law": {"a": law.a, "b": law.b, "c": law.c, "turns": law.turns, "u": law.u},
+               "law": {"a": law.mechanism.a, "b": law.mechanism.b, "c": law.mechanism.c,
+                       "turns": law.turns, "u": law.u},
                **report.to_dict()}
     if plot is not None:
         write_bytes_atomic(plot, meshing_plot_png(

@@ -88,7 +88,7 @@ def sole_table(design, count: int = 7):
     """Rows (phi deg, X, Y, rho, alpha deg, R) at ``count`` hub angles over the contact, mm."""
     import numpy as np
 
-    from wheelstep_cli.mechanism.shoe import contact_angles, sole_curvature_radius, sole_polar, sole_profile
+    from wheelstep_cli.mechanism.sole import contact_angles, sole_curvature_radius, sole_polar, sole_profile
 
     phi = contact_angles(count)
     xy = sole_profile(design, phi)
@@ -116,7 +116,7 @@ def kinematics(
 
     from wheelstep_cli.errors import require
     from wheelstep_cli.formats.jsonio import json_text
-    from wheelstep_cli.mechanism.kinematics import hub_kinematics
+    from wheelstep_cli.gears.kinematics import hub_kinematics
 
     require(np.isfinite(motor_rpm) and motor_rpm > 0, "motor-rpm", motor_rpm, "must be > 0")
     require(points >= 3, "points", points, "must be >= 3")
@@ -184,7 +184,7 @@ def kinematics_png(design, kin) -> bytes:
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from wheelstep_cli.mechanism.shoe import contact_angles, sole_profile
+    from wheelstep_cli.mechanism.sole import contact_angles, sole_profile
 
     fig, (ax_v, ax_s) = plt.subplots(1, 2, figsize=(11, 4.5), gridspec_kw={"width_ratios": [3, 2]})
     deg = np.degrees(kin.phi)

@@ -29,7 +29,8 @@ import numpy as np
 from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.gears.generation.envelope import (PolarGrid, miter_offset, offset_polyline, outline_from_radii,
                                          polyline_envelope)
-from wheelstep_cli.gears.law import PitchCurves, PitchLaw, pitch_curves
+from wheelstep_cli.gears.pitch_curves import PitchCurves, pitch_curves
+from wheelstep_cli.gears.transmission import TransmissionLaw
 from wheelstep_cli.gears.threads import thread_map
 
 #: Smallest tip land (mm) before a tooth counts as pointed (same floor as the paper method).
@@ -117,7 +118,7 @@ class GeneratedPair:
     pitch point for carrier angle phi at pinion body angle +theta(phi), wheel -phi).
     """
 
-    law: PitchLaw
+    law: TransmissionLaw
     curves: PitchCurves
     cutter: RackCutter
     pinion_teeth: int
@@ -375,7 +376,7 @@ def _polar_sweep(curve: np.ndarray) -> float:
     return float(np.sum(np.diff(np.unwrap(np.arctan2(curve[:, 1], curve[:, 0])))))
 
 
-def carve_by_pinion(law: PitchLaw, pinion_outline: np.ndarray, wheel_grid: PolarGrid,
+def carve_by_pinion(law: TransmissionLaw, pinion_outline: np.ndarray, wheel_grid: PolarGrid,
                     distance: float, clearance: float, poses: int, window: float,
                     reach: float = np.inf, play: float = 0.0, lead: float = 0.0) -> np.ndarray:
     """Nearest crossing per wheel ray of the pinion moving along the law (one law period).
@@ -400,7 +401,7 @@ def carve_by_pinion(law: PitchLaw, pinion_outline: np.ndarray, wheel_grid: Polar
     n_pts = len(dense)
     angle = np.unwrap(np.arctan2(dense[:, 1], dense[:, 0]))
     reach_angle = np.maximum.accumulate(angle)
-    phi = law.phi[0] + law.phi_period * (np.arange(poses) + 0.5) / poses
+    phi = law.phi_start + law.phi_period * (np.arange(poses) + 0.5) / poses
     if law.corners:
         phi = np.sort(np.append(phi, np.asarray(law.corners)))
     theta = law.pinion_angle(phi)
@@ -539,12 +540,14 @@ def _undercut_remedy(cutter: RackCutter, module: float, rho: float, teeth_per_pe
     return (f"use module <= {module_max:.3f} mm (pinion z >= {z_min}) or {angle_text}")
 
 
-def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: str = "space",
+def generate_pair(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, center_distance: float,
+                  corner: str = "space",
                   poses_per_tooth: int = 48, rays_per_tooth: int = 480,
                   strict: bool = True, tilt: float = DEFAULT_TILT,
                   backlash_mode: str = "angular", carve_poses_per_tooth: int | None = None,
                   wheel_rays_per_tooth: int | None = None) -> GeneratedPair:
-    """Generate both gears for ``law`` with ``pinion_teeth`` teeth on the pinion.
+    """Generate both gears for ``law`` with ``pinion_teeth`` teeth on the pinion, the pitch
+    curves rolling at ``center_distance`` mm.
 
     Raises DesignError (with the remedy) for undercut or pointed teeth and for tooth
     counts that do not divide the law's periods.
@@ -555,7 +558,7 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
             f"must be a multiple of {periods} (law periods per pinion turn) and >= 6")
     per_period = pinion_teeth // periods
     wheel_teeth = per_period * law.wheel_periods
-    curves = pitch_curves(law)
+    curves = pitch_curves(law, center_distance)
     pitch = curves.period_arc / per_period
     module = pitch / np.pi
     h_a = cutter.addendum * module
@@ -620,7 +623,7 @@ def generate_pair(law: PitchLaw, pinion_teeth: int, cutter: RackCutter, corner: 
     # the lead only pays where the law has handover corners (the hub speed factor kinks there);
     # a smooth law keeps the play split evenly, as ordinary spur gears are thinned
     lead = LEAD if (law.corners or law.blended_corners) else 0.0
-    carved = carve_by_pinion(law, pinion_outline, wheel_grid, law.center_distance, clearance,
+    carved = carve_by_pinion(law, pinion_outline, wheel_grid, center_distance, clearance,
                              per_period * (carve_poses_per_tooth or CARVE_POSES_PER_TOOTH), window,
                              float(wheel_blank.max()), play, lead)
     wheel_radii = np.minimum(wheel_blank, carved)

@@ -14,11 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from wheelstep_cli.gears.pitch import CrankLaw, ratio
-from wheelstep_cli.mechanism.shoe import ShoeDesign, contact_angles, hub_speed_analogue, speed_ripple
-
-#: Centre distance for the law, mm: the ratio U(phi) does not depend on it.
-ANY_CENTER_DISTANCE = 143.5
+from wheelstep_cli.gears.laws import CrankLaw
+from wheelstep_cli.mechanism.crank import CrankMechanism
+from wheelstep_cli.mechanism.sole import contact_angles, speed_ripple
 
 
 @dataclass(frozen=True)
@@ -48,13 +46,13 @@ class HubKinematics:
         return self.turns * (np.pi / 2.0) / self.motor_speed
 
 
-def hub_kinematics(design: ShoeDesign, motor_speed: float, turns: int = 2,
+def hub_kinematics(design: CrankMechanism, motor_speed: float, turns: int = 2,
                    count: int = 361) -> HubKinematics:
     """Hub speed over one shoe cycle at pinion (motor) speed ``motor_speed`` rad/s."""
-    law = CrankLaw(design.a, design.b, design.c, ANY_CENTER_DISTANCE, turns)
+    law = CrankLaw(design, turns)
     phi = contact_angles(count)
-    analogue = hub_speed_analogue(design, phi)
-    u_phi = ratio(law, phi)
+    analogue = design.speed_analogue(phi)
+    u_phi = law.ratio(phi)
     return HubKinematics(
         phi=phi,
         speed_plain=motor_speed / turns * analogue,

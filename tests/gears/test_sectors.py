@@ -5,10 +5,10 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.gears.pitch import CrankLaw, wheel_radius
+from wheelstep_cli.gears.pitch_curves import wheel_radius
 from wheelstep_cli.gears.sectors import sector_partition, sectors_per_quarter
 
-from tests.helpers.strategies import crank_laws
+from tests.helpers.strategies import center_distances, crank_laws
 
 REF_ROWS = {  # i: phi_i, dphi_i, r_Hi, theta_i, dtheta_i, r_i (deg, mm) from SPEC §4
     1: (-45.00, 4.33, 82.20, -90.00, 5.81, 61.30),
@@ -43,17 +43,17 @@ def test_table_output_lists_every_sector(cli):
 
 
 @settings(max_examples=40, deadline=None)
-@given(crank_laws(), st.integers(4, 40))
-def test_partition_properties(law, count):
-    part = sector_partition(law, count)
+@given(crank_laws(), center_distances(), st.integers(4, 40))
+def test_partition_properties(law, L, count):
+    part = sector_partition(law, count, L)
     assert part.dphi.sum() == pytest.approx(np.pi / 2, abs=1e-9)
     assert part.dtheta.sum() == pytest.approx(law.turns * np.pi / 2, abs=1e-9)
-    np.testing.assert_allclose(part.r_pinion + part.r_wheel, law.center_distance)
+    np.testing.assert_allclose(part.r_pinion + part.r_wheel, L)
     # equal arcs on both gears
     np.testing.assert_allclose(part.r_wheel * part.dphi, part.arc, rtol=1e-9)
     np.testing.assert_allclose(part.r_pinion * part.dtheta, part.arc, rtol=1e-9)
     # step 1: equal arcs on the exact curve at the sector middles
-    mid = wheel_radius(law, part.phi + part.dphi / 2) * part.dphi
+    mid = wheel_radius(law, part.phi + part.dphi / 2, L) * part.dphi
     np.testing.assert_allclose(mid, part.carrier_arc, rtol=1e-9)
     # mirror symmetry
     np.testing.assert_allclose(part.dphi, part.dphi[::-1], rtol=1e-7)

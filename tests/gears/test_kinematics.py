@@ -8,8 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from wheelstep_cli.mechanism.kinematics import hub_kinematics
-from wheelstep_cli.mechanism.shoe import ShoeDesign
+from wheelstep_cli.gears.kinematics import hub_kinematics
+from wheelstep_cli.mechanism.crank import CrankMechanism
 
 from tests.helpers.clicheck import error_line
 
@@ -42,7 +42,7 @@ def test_reference_ripple_and_constant_speed(cli):
 @given(designs, st.sampled_from([2, 4]), st.floats(1.0, 3000.0))
 def test_geared_speed_is_constant_and_plain_follows_dx01(design_args, turns, rpm):
     a, b, r_min = design_args
-    design = ShoeDesign.from_r_min(a, b, r_min)
+    design = CrankMechanism.from_r_min(a, b, r_min)
     omega = rpm * 2 * math.pi / 60
     kin = hub_kinematics(design, omega, turns, count=181)
     k = a - b + design.c
@@ -72,7 +72,7 @@ def test_plot_shows_both_curves_and_the_sole(cli, tmp_path):
 
 
 @pytest.mark.parametrize("args, param", [
-    (["--rmin", "-1"], "rmin ="),
+    (["--rmin", "-1"], "r_min ="),
     (["--b", "-5"], "b ="),
     (["--motor-rpm", "0"], "motor-rpm ="),
     (["--turns", "3"], "turns ="),

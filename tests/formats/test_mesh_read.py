@@ -5,7 +5,8 @@ import pytest
 import shapely
 
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.formats.mesh_read import read_mesh, read_outline, section_outline, split_mesh_spec
+from wheelstep_cli.formats.mesh_read import read_mesh, read_outline, split_mesh_spec
+from wheelstep_cli.geometry.solids import section_outline
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,9 @@ from hypothesis import given, settings, strategies as st
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.gears.paper_teeth import (ToothForm, check_tooth_form, involute_polar_angle,
                                              pinion_outline, wheel_outline)
-from wheelstep_cli.gears.pitch import CrankLaw, carrier_angle, pinion_radius, wheel_radius
+from wheelstep_cli.gears.laws import CrankLaw
+from wheelstep_cli.gears.pitch_curves import pinion_radius, wheel_radius
+from wheelstep_cli.mechanism.crank import CrankMechanism
 from wheelstep_cli.gears.sectors import sector_partition
 
 
@@ -44,12 +46,12 @@ def count_teeth(outline: np.ndarray, pitch_radius, module: float) -> int:
 
 @pytest.mark.parametrize("z, n, wheel_teeth", [(48, 2, 96), (24, 4, 96), (40, 2, 80)])
 def test_outlines_are_simple_and_have_the_tooth_count(z, n, wheel_teeth):
-    law = CrankLaw(60, 100, 360, 143.5, n)
-    part = sector_partition(law, z * n // 4)
+    law = CrankLaw(CrankMechanism(60, 100, 360), n)
+    part = sector_partition(law, z * n // 4, 143.5)
     form = ToothForm(2.0 * 48 / max(z, wheel_teeth / 2) if n == 2 else 2.0, 0.5)
     check_tooth_form(part, form)
-    pinion_pitch = lambda theta: pinion_radius(law, carrier_angle(law, theta))
-    wheel_pitch = lambda phi: wheel_radius(law, phi)
+    pinion_pitch = lambda theta: pinion_radius(law, law.carrier_angle(theta), 143.5)
+    wheel_pitch = lambda phi: wheel_radius(law, phi, 143.5)
     for outline, pitch, teeth in ((pinion_outline(part, form), pinion_pitch, z),
                                   (wheel_outline(part, form), wheel_pitch, wheel_teeth)):
         ring = shapely.LinearRing(outline)
@@ -59,7 +61,7 @@ def test_outlines_are_simple_and_have_the_tooth_count(z, n, wheel_teeth):
 
 
 def test_pointed_teeth_are_refused():
-    part = sector_partition(CrankLaw(60, 100, 360, 143.5, 2), 24)
+    part = sector_partition(CrankLaw(CrankMechanism(60, 100, 360), 2), 24, 143.5)
     with pytest.raises(DesignError) as err:
         check_tooth_form(part, ToothForm(3.0, 0.75))
     assert err.value.param == "module"
@@ -68,8 +70,8 @@ def test_pointed_teeth_are_refused():
 @settings(max_examples=25, deadline=None)
 @given(st.floats(0, 104), st.sampled_from([32, 40, 48, 56]))
 def test_outline_simple_over_designs(b, z):
-    law = CrankLaw(60, b, 360, 143.5, 2)
-    part = sector_partition(law, z // 2)
+    law = CrankLaw(CrankMechanism(60, b, 360), 2)
+    part = sector_partition(law, z // 2, 143.5)
     form = ToothForm(0.3 * part.arc, 0.075 * part.arc)
     check_tooth_form(part, form)
     assert shapely.LinearRing(pinion_outline(part, form)).is_simple

@@ -1,0 +1,117 @@
+"""The crank mechanism of a wheel-step mover (SPEC §1-§2): one model for every command.
+
+A hub carries four cranks; ``a`` is the distance from the hub axis to the crank axes,
+``b`` the crank length, ``c`` the shoe strut length (mm). One shoe is in contact while
+the hub (carrier) angle ``phi`` runs over [-pi/4, pi/4]; the next shoe repeats the
+motion, so everything periodic here has period pi/2 in ``phi`` (rad).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError, require
+
+#: Carrier angle of one shoe cycle (four shoes per turn), rad.
+SHOE_CYCLE = np.pi / 2.0
+
+
+def local_angle(phi):
+    """Carrier angle folded into one shoe's contact range [-pi/4, pi/4) (rad) and its cycle index."""
+    phi = np.asarray(phi, dtype=float)
+    cycle = np.floor((phi + np.pi / 4.0) / SHOE_CYCLE)
+    return phi - cycle * SHOE_CYCLE, cycle
+
+
+@dataclass(frozen=True)
+class CrankMechanism:
+    """Mechanism lengths in mm: ``a`` hub to crank axes, ``b`` crank, ``c`` strut.
+
+    Valid only with a, c > 0, b >= 0 (b = 0: no cranks, a plain wheel) and
+    R_min = a - 4b + c > 0 (otherwise the sole has a cusp or loop); k = a - b + c
+    then is positive too.
+    """
+
+    a: float
+    b: float
+    c: float
+
+    def __post_init__(self) -> None:
+        _check_lengths(a=self.a, b=self.b, c=self.c)
+        if not self.r_min > 0:
+            why = (f" (sole curvature radius R_min = a - 4b + c = {self.r_min:g} mm must be > 0, "
+                   "else the sole has a cusp or loop)")
+            raise DesignError("c", self.c, f"must be > 4b - a = {4 * self.b - self.a:g} mm" + why, {
+                "b": (self.b, f"must be < (a + c)/4 = {(self.a + self.c) / 4:g} mm" + why),
+                "a": (self.a, f"must be > 4b - c = {4 * self.b - self.c:g} mm" + why)})
+
+    @classmethod
+    def from_r_min(cls, a: float, b: float, r_min: float) -> "CrankMechanism":
+        """Size the strut from the chosen smallest sole curvature radius: c = R_min - a + 4b (mm)."""
+        require(bool(np.isfinite(r_min)) and r_min > 0, "r_min", r_min,
+                "must be > 0 mm (the sole would have a cusp or loop)")
+        _check_lengths(a=a, b=b)
+        c = r_min - a + 4.0 * b
+        require(c > 0, "r_min", r_min,
+                f"must be > a - 4b = {a - 4.0 * b:g} mm (strut length c = R_min - a + 4b must be > 0)")
+        return cls(float(a), float(b), float(c))
+
+    @property
+    def r_min(self) -> float:
+        """Smallest radius of curvature of the sole (at phi = 0), R_min = a - 4b + c, mm."""
+        return self.a - 4.0 * self.b + self.c
+
+    @property
+    def k(self) -> float:
+        """a - b + c in mm: the hub height and the constant of the speed analogue."""
+        return self.a - self.b + self.c
+
+    @property
+    def hub_height(self) -> float:
+        """Hub axis height above the ground during contact, Y01 = a - b + c, mm (constant)."""
+        return self.k
+
+    @property
+    def x_walk(self) -> float:
+        """Walking part of the advance per shoe cycle, X_I = 6b, mm."""
+        return 6.0 * self.b
+
+    @property
+    def x_cycle(self) -> float:
+        """Hub advance per shoe cycle, X01 = (a - b + c) pi/2 + 3b, mm."""
+        return self.k * np.pi / 2.0 + 3.0 * self.b
+
+    @property
+    def x_roll(self) -> float:
+        """Rolling part X_II = X01 - X_I = 3b (pi/2 - 1) + R_min pi/2, mm (the sole's arc length)."""
+        return self.x_cycle - self.x_walk
+
+    @property
+    def roll_share(self) -> float:
+        """Rolling share X_II / X01 (a fraction, not per cent)."""
+        return self.x_roll / self.x_cycle
+
+    @property
+    def mean_speed_analogue(self) -> float:
+        """Mean of dX01/dphi over one shoe cycle, k + 6b/pi in mm/rad (= X01 / (pi/2))."""
+        return self.x_cycle / SHOE_CYCLE
+
+    def speed_analogue(self, phi):
+        """dX01/dphi = k + 3b cos(2 phi_loc) in mm/rad: hub speed per unit carrier speed.
+
+        Periodic over the shoe cycles: the next shoe takes over at phi = +-pi/4, where
+        the analogue has its V-shaped minimum.
+        """
+        phi_loc, _ = local_angle(phi)
+        return self.k + 3.0 * self.b * np.cos(2.0 * phi_loc)
+
+
+def _check_lengths(**lengths: float) -> None:
+    """a and c must be finite and > 0 mm, b finite and >= 0 mm."""
+    for name, value in lengths.items():
+        if name == "b":
+            require(bool(np.isfinite(value)) and value >= 0, name, value, "must be >= 0 mm")
+        else:
+            require(bool(np.isfinite(value)) and value > 0, name, value, "must be > 0 mm")
