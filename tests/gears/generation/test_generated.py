@@ -191,3 +191,17 @@ def test_round_tips_rounds_convex_corners_only():
     # the concave corner stays sharp (to the chord error of the polygonal buffers)
     assert np.min(np.hypot(rounded[:, 0] - 4.0, rounded[:, 1] - 4.0)) < 0.01
     assert not np.any(np.all(np.isclose(rounded, [10.0, 0.0], atol=1e-3), axis=1))  # convex ones cut
+
+
+def test_settings_are_values_changed_with_replace():
+    from dataclasses import FrozenInstanceError, replace
+
+    from wheelstep_cli.gears.generation import GenerationSettings
+
+    base = GenerationSettings()
+    changed = replace(base, tilt=0.3)
+    assert changed.tilt == 0.3 and base.tilt == 0.6 and changed.pivot == base.pivot
+    with pytest.raises(FrozenInstanceError):
+        base.tilt = 0.1
+    with pytest.raises(DesignError, match="backlash_mode"):
+        GenerationSettings(backlash_mode="sideways")
