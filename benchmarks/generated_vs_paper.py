@@ -14,23 +14,25 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from wheelstep_cli.gears import generated as gen  # noqa: E402
-from wheelstep_cli.gears.law import blended_pitch_law, crank_pitch_law  # noqa: E402
+from wheelstep_cli.gears.generation import (GenerationSettings, RackCutter, generate_pair,  # noqa: E402
+                                            simplify_outline)
+from wheelstep_cli.gears.laws import CrankLaw, blended_law  # noqa: E402
 from wheelstep_cli.gears.meshing import Transmission, check_meshing  # noqa: E402
-from wheelstep_cli.gears.pitch import CrankLaw  # noqa: E402
+from wheelstep_cli.mechanism.crank import CrankMechanism  # noqa: E402
 from wheelstep_cli.parts.gear_pair import GearPairSpec, build_gear_pair  # noqa: E402
 
 INSTALL = 144.0
 
 
 def transmission(law):
-    return Transmission(law.carrier_angle, law.theta_period, law.hub_factor)
+    return Transmission(law.carrier_angle, law.theta_period, law.hub_speed_factor)
 
 
 def measure(name, pinion, wheel, law, distance, seconds, samples):
@@ -52,24 +54,20 @@ def built(spec, samples):
     t0 = time.perf_counter()
     pair = build_gear_pair(spec)
     seconds = time.perf_counter() - t0
-    law = crank_pitch_law(CrankLaw(spec.a, spec.b, spec.c, INSTALL, spec.turns))
+    law = CrankLaw(CrankMechanism(spec.a, spec.b, spec.c), spec.turns)
     return pair.pinion_outline, pair.wheel_outline, law, seconds
 
 
-def variant(label, samples, blend=0.0, **kwargs):
-    law = crank_pitch_law(CrankLaw(60, 100, 360, INSTALL, 2))
-    gen_law = blended_pitch_law(law, np.radians(blend))
-    saved = (gen.LEAD, gen.PIVOT)
-    gen.LEAD = kwargs.pop("lead", gen.LEAD)
-    gen.PIVOT = kwargs.pop("pivot", gen.PIVOT)
+def variant(label, samples, blend=0.0, cutter=None, corner="space", **changes):
+    """One alternative: ``changes`` are GenerationSettings fields (lead, pivot, tilt, ...)."""
+    law = CrankLaw(CrankMechanism(60, 100, 360), 2)
+    gen_law = blended_law(law, np.radians(blend))
+    settings = replace(GenerationSettings(), **changes)
     t0 = time.perf_counter()
-    try:
-        pair = gen.generate_pair(gen_law, 48, kwargs.pop("cutter", gen.RackCutter(backlash=0.5)),
-                                 strict=False, **kwargs)
-    finally:
-        (gen.LEAD, gen.PIVOT) = saved
+    pair = generate_pair(gen_law, 48, cutter or RackCutter(backlash=0.5), corner=corner,
+                         settings=settings, strict=False, center_distance=INSTALL)
     seconds = time.perf_counter() - t0
-    p, w = gen.simplify_outline(pair.pinion_outline), gen.simplify_outline(pair.wheel_outline)
+    p, w = simplify_outline(pair.pinion_outline), simplify_outline(pair.wheel_outline)
     return measure(label, p, w, law, INSTALL, seconds, samples)
 
 
@@ -89,9 +87,9 @@ def main() -> None:
             ("rack pinion, wheel carved, normal backlash, no tilt", dict(tilt=0.0, backlash_mode="normal")),
             ("  same, pinion tooth centred on the corner", dict(tilt=0.0, backlash_mode="normal", corner="tooth")),
             ("  same, pressure angle 15", dict(tilt=0.0, backlash_mode="normal",
-                                               cutter=gen.RackCutter(alpha(15), backlash=0.5))),
+                                               cutter=RackCutter(alpha(15), backlash=0.5))),
             ("  same, pressure angle 25", dict(tilt=0.0, backlash_mode="normal",
-                                               cutter=gen.RackCutter(alpha(25), backlash=0.5))),
+                                               cutter=RackCutter(alpha(25), backlash=0.5))),
             ("normal backlash, tilt 0.6", dict(tilt=0.6, backlash_mode="normal")),
             ("angular backlash split, no tilt", dict(tilt=0.0, lead=0.0)),
             ("angular backlash split, tilt 0.6", dict(tilt=0.6, lead=0.0)),
@@ -107,7 +105,7 @@ def main() -> None:
                                                                    wheel_rays_per_tooth=160)),
             ("default, 960 rays per tooth", dict(rays_per_tooth=960, wheel_rays_per_tooth=960)),
             ("default, 192 wheel-carving poses per tooth", dict(carve_poses_per_tooth=192)),
-            ("default, play split evenly (LEAD 0)", dict(lead=0.0)),
+            ("default, play split evenly (lead 0)", dict(lead=0.0)),
         ]
         for label, kw in alternatives:
             blend = kw.pop("blend", 0.0)

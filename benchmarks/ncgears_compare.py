@@ -22,7 +22,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from wheelstep_cli.gears.generation import RackCutter, generate_pair, simplify_outline  # noqa: E402
-from wheelstep_cli.gears.law import center_distance_for_module, law_from_samples  # noqa: E402
+from wheelstep_cli.gears.laws import law_from_samples  # noqa: E402
+from wheelstep_cli.gears.pitch_curves import center_distance_for_module  # noqa: E402
 from wheelstep_cli.gears.meshing import Transmission, check_meshing  # noqa: E402
 from wheelstep_cli.geometry.planar import signed_area  # noqa: E402
 
@@ -31,10 +32,10 @@ CLEARANCE = 0.05            # ncgears: inward offset of each face, x module
 BACKLASH = 4 * CLEARANCE * MODULE   # ncgears thins every flank of both gears: same total play
 
 
-def law(distance: float):
+def law():
     phi = np.linspace(0.0, 360.0, 721)
     psi = np.degrees(np.radians(phi) - AMPLITUDE * np.sin(np.radians(phi)))
-    return law_from_samples(phi, psi, distance)
+    return law_from_samples(phi, psi)
 
 
 def report(name, pinion, wheel, the_law, distance, seconds):
@@ -74,11 +75,11 @@ def best_orientation(pinion, wheel, the_law, distance):
 
 
 def main() -> None:
-    unit = law(1.0)
-    distance = center_distance_for_module(unit, TEETH, MODULE)
-    the_law = law(distance)
+    the_law = law()
+    distance = center_distance_for_module(the_law, TEETH, MODULE)
     t0 = time.perf_counter()
-    pair = generate_pair(the_law, TEETH, RackCutter(np.radians(20.0), 1.0, 1.25, 0.25, BACKLASH))
+    pair = generate_pair(the_law, TEETH, RackCutter(np.radians(20.0), 1.0, 1.25, 0.25, BACKLASH),
+                         center_distance=distance)
     seconds = time.perf_counter() - t0
     report("wheelstep generated", simplify_outline(pair.pinion_outline),
            simplify_outline(pair.wheel_outline), the_law, distance, seconds)
@@ -97,7 +98,7 @@ def main() -> None:
             print(f"ncgears: failed: {type(exc).__name__}: {exc}")
             return
         seconds = time.perf_counter() - t0
-    nc_law = law(theirs.center_distance)
+    nc_law = law()
     # same 1 um simplification as wheelstep's written outlines (the check is O(vertices^2))
     drive = simplify_outline(np.asarray(theirs.drive_outline, dtype=float))
     driven = simplify_outline(np.asarray(theirs.driven_outline, dtype=float))

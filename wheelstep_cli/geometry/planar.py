@@ -79,3 +79,62 @@ def polyline_box_distance(points: np.ndarray, box: tuple[float, float, float, fl
     """Least distance (mm) between an open polyline (N, 2) and the box (xmin, ymin, xmax, ymax);
     0 where they meet."""
     return float(shapely.LineString(points).distance(shapely.box(*box)))
+
+
+# polygon booleans for the gear generator
+#
+# numpy arrays in and out (mm): a closed outline is an (N, 2) array without its closing
+# point; a result is the counter-clockwise exterior of the largest part.
+
+
+def _largest_exterior_ccw(polygon) -> np.ndarray:
+    """Exterior (N, 2) of a shapely polygon, counter-clockwise; of the largest part if it split."""
+    if polygon.geom_type != "Polygon":
+        polygon = max(polygon.geoms, key=lambda g: g.area)
+    outline = np.asarray(polygon.exterior.coords)[:-1]
+    return outline if signed_area(outline) > 0 else outline[::-1]
+
+
+def grown_minus_rotated_union(body: np.ndarray, grow: float, pieces: np.ndarray,
+                              angles: np.ndarray) -> np.ndarray:
+    """The polygon ``body`` (N, 2) grown by ``grow`` mm (bevel joins) minus a cutter region.
+
+    The cutter region is the union of the closed polygons ``pieces`` (P, K, 2), taken
+    once, and its copies rotated about the origin by each of ``angles`` (rad). The
+    zero-area slivers a boolean leaves where pieces just touch are dropped. Returns the
+    CCW outline of the largest part left.
+    """
+    from shapely import affinity
+
+    region = shapely.union_all(shapely.polygons(pieces))
+    cutter = shapely.union_all([affinity.rotate(region, a, origin=(0.0, 0.0), use_radians=True)
+                                for a in angles])
+    blank = shapely.Polygon(body).buffer(grow, join_style="bevel")
+    return _largest_exterior_ccw(blank.difference(cutter).buffer(0))
+
+
+def intersect_outlines(outline: np.ndarray, limit: np.ndarray) -> np.ndarray:
+    """CCW outline (N, 2) of the largest part of two closed outlines' intersection (slivers dropped)."""
+    both = shapely.Polygon(outline).intersection(shapely.Polygon(limit))
+    return _largest_exterior_ccw(both.buffer(0))
+
+
+def open_outline(outline: np.ndarray, radius: float, thin: float, quad_segs: int = 8) -> np.ndarray:
+    """Morphological opening of a closed outline: convex corners rounded to ``radius`` mm.
+
+    The outline is first thinned (Douglas-Peucker, ``thin`` mm); then eroded and dilated
+    by ``radius`` with ``quad_segs`` chords per quarter circle. Concave corners stay sharp.
+    """
+    body = shapely.simplify(shapely.Polygon(outline), thin)
+    return _largest_exterior_ccw(body.buffer(-radius, quad_segs=quad_segs).buffer(radius, quad_segs=quad_segs))
+
+
+def segmentize_ring(outline: np.ndarray, max_length: float) -> np.ndarray:
+    """The closed outline (N, 2) with points added so no segment is longer than ``max_length`` mm."""
+    return np.asarray(shapely.segmentize(shapely.LinearRing(outline), max_length).coords)[:-1]
+
+
+def simplify_ring(outline: np.ndarray, tolerance: float) -> np.ndarray:
+    """The closed outline (N, 2) thinned by Douglas-Peucker to ``tolerance`` mm, topology kept."""
+    ring = shapely.simplify(shapely.LinearRing(outline), tolerance, preserve_topology=True)
+    return np.asarray(ring.coords)[:-1]

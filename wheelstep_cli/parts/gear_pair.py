@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -87,7 +87,7 @@ class GearPair:
     pinion: Part
     wheel: Part
     checks: dict[str, MeshReport] = field(default_factory=dict)
-    generated: object = None   # gears.generated.GeneratedPair for generated teeth
+    generated: object = None   # gears.generation.GeneratedPair for generated teeth
 
     @property
     def wheel_teeth(self) -> int:
@@ -133,19 +133,20 @@ def generation_law(spec: GearPairSpec):
 
 def _build_generated(spec: GearPairSpec) -> GearPair:
     """Generated teeth (SPEC §9): pitch curves rolling at the installed distance."""
-    from wheelstep_cli.gears.generation import WHEEL_TOLERANCE, generate_pair, simplify_outline
+    from wheelstep_cli.gears.generation import GenerationSettings, generate_pair, simplify_outline
 
     require(spec.install_distance >= spec.center_distance, "install-distance", spec.install_distance,
             f"must be >= center-distance {spec.center_distance:g} mm")
     _, law = generation_law(spec)
     require(0.0 <= spec.tilt <= 1.5, "tilt", spec.tilt, "must be 0..1.5")
-    gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, tilt=spec.tilt,
+    settings = replace(GenerationSettings(), tilt=spec.tilt)
+    gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, settings=settings,
                         center_distance=spec.install_distance)
     # the pinion is written as it carved the wheel; the wheel's ray map is thinned only by a
     # fraction of a micron (coarser facets make real speed ripple: a 0.2 mm facet on a
     # curved flank kinks the hub speed by about 1 %)
     p_outline = gen.pinion_outline
-    w_outline = simplify_outline(gen.wheel_outline, WHEEL_TOLERANCE)
+    w_outline = simplify_outline(gen.wheel_outline, settings.wheel_tolerance)
     pinion = extrude_plate("pinion", p_outline, spec.thickness, spec.bore)
     wheel = extrude_plate("wheel", w_outline, spec.thickness, spec.bore)
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
@@ -209,7 +210,7 @@ def generated_report(pair: GearPair) -> dict:
                   "at pitch-curve corners); wheel carved by the pinion moving along the exact law, "
                   "widened by a constant angular backlash",
         "tilt": pair.spec.tilt,
-        "rolling_center_distance_mm": gen.curves.center_distance,
+        "rolling_center_distance_mm": gen.center_distance,
         "pitch_mm": gen.pitch,
         "module_mm": gen.module,
         "pinion_teeth": gen.pinion_teeth,

@@ -38,7 +38,7 @@ def test_constant_ratio_gives_involute_spur_gears(backlash):
     # b = 0: U = n = 2, circles r = L/3 = 48 (z 48, m 2) and r_H = 96 (z 96)
     law, L = CrankLaw(CrankMechanism(60.0, 0.0, 360.0), 2), 144.0
     alpha = np.radians(20.0)
-    pair = generate_pair(law, 48, RackCutter(alpha, 1.0, 1.25, 0.25, backlash), L)
+    pair = generate_pair(law, 48, RackCutter(alpha, 1.0, 1.25, 0.25, backlash), center_distance=L)
     assert pair.module == pytest.approx(2.0, abs=1e-6) and pair.wheel_teeth == 96
     m, p = 2.0, 2.0 * np.pi
     # pinion: a tooth centred half a pitch after the period start (a space at theta = -90 deg)
@@ -57,7 +57,7 @@ def test_reference_design_generates_valid_outlines_with_the_spec_pitch():
     law, L = CrankLaw(CrankMechanism(60, 100, 360), 2), 143.5
     curves = pitch_curves(law, L)
     assert curves.period_arc / 24 == pytest.approx(6.600, abs=5e-4)     # SPEC §9: 6.600 mm
-    pair = generate_pair(law, 48, RackCutter(), L)
+    pair = generate_pair(law, 48, RackCutter(), center_distance=L)
     assert pair.module == pytest.approx(2.1008, abs=1e-4)
     for outline, name in ((pair.pinion_outline, "pinion"), (pair.wheel_outline, "wheel")):
         check_outline(outline, name)
@@ -68,25 +68,25 @@ def test_reference_design_generates_valid_outlines_with_the_spec_pitch():
 def test_undercut_is_refused_with_the_remedy():
     law, L = CrankLaw(CrankMechanism(60, 100, 360), 2), 144
     with pytest.raises(DesignError) as info:
-        generate_pair(law, 48, RackCutter(pressure_angle=np.radians(10.0)), L)
+        generate_pair(law, 48, RackCutter(pressure_angle=np.radians(10.0)), center_distance=L)
     text = str(info.value)
     assert "undercut" in text and "pressure angle >=" in text and "module <=" in text
     # following the remedy's pressure angle makes the same law generate
     needed = float(text.split("pressure angle >= ")[1].split(" deg")[0])
-    generate_pair(law, 48, RackCutter(pressure_angle=np.radians(needed + 0.2)), L)
+    generate_pair(law, 48, RackCutter(pressure_angle=np.radians(needed + 0.2)), center_distance=L)
 
 
 def test_undercut_on_a_small_spur_pinion():
     law, L = CrankLaw(CrankMechanism(60.0, 0.0, 360.0), 2), 144.0
     with pytest.raises(DesignError, match="undercut"):
-        generate_pair(law, 12, RackCutter(), L)       # z = 12 < 17 at 20 deg
+        generate_pair(law, 12, RackCutter(), center_distance=L)       # z = 12 < 17 at 20 deg
 
 
 def test_pointed_teeth_are_refused():
     law, L = CrankLaw(CrankMechanism(60, 100, 360), 2), 144
     with pytest.raises(DesignError, match="come to a point"):
         generate_pair(law, 48, RackCutter(pressure_angle=np.radians(30.0), addendum=1.25,
-                                          dedendum=1.5, fillet=0.1), L)
+                                          dedendum=1.5, fillet=0.1), center_distance=L)
 
 
 def test_cli_reports_undercut_and_pointed_in_one_line(cli, tmp_path):
@@ -169,7 +169,7 @@ def test_blend_keeps_closure_and_is_not_refused_as_undercut():
     assert np.mean(blended.ratio(phi)) == pytest.approx(np.mean(law.ratio(phi)), rel=1e-4)
     far = np.abs(phi) < np.radians(40.0)
     assert np.allclose(blended.ratio(phi[far]), law.ratio(phi[far]), rtol=1e-4)   # ~only near corners
-    pair = generate_pair(blended, 48, RackCutter(), L)       # the blended corner is cut like a pivot
+    pair = generate_pair(blended, 48, RackCutter(), center_distance=L)       # the blended corner is cut like a pivot
     assert pair.corner == "space"
 
 
@@ -189,3 +189,17 @@ def test_round_tips_rounds_convex_corners_only():
     # the concave corner stays sharp (to the chord error of the polygonal buffers)
     assert np.min(np.hypot(rounded[:, 0] - 4.0, rounded[:, 1] - 4.0)) < 0.01
     assert not np.any(np.all(np.isclose(rounded, [10.0, 0.0], atol=1e-3), axis=1))  # convex ones cut
+
+
+def test_settings_are_values_changed_with_replace():
+    from dataclasses import FrozenInstanceError, replace
+
+    from wheelstep_cli.gears.generation import GenerationSettings
+
+    base = GenerationSettings()
+    changed = replace(base, tilt=0.3)
+    assert changed.tilt == 0.3 and base.tilt == 0.6 and changed.pivot == base.pivot
+    with pytest.raises(FrozenInstanceError):
+        base.tilt = 0.1
+    with pytest.raises(DesignError, match="backlash_mode"):
+        GenerationSettings(backlash_mode="sideways")

@@ -1,0 +1,157 @@
+"""Where a rack-cut pair stops being makeable: undercut and pointed teeth (SPEC §9).
+
+The rack undercuts where the convex pitch curve bends tighter than a radius set by
+the cutter; a tooth is pointed where its tip land falls below a floor, and is then
+topped down to where the land is wide enough, or the design refused.
+Angles in radians, lengths in mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.gears.generation.envelope import PolarGrid, polyline_envelope
+from wheelstep_cli.gears.generation.rack import RackCutter
+from wheelstep_cli.gears.pitch_curves import PitchCurves
+from wheelstep_cli.gears.transmission import TransmissionLaw
+
+
+def curvature_radius(points: np.ndarray) -> np.ndarray:
+    """Signed radius of curvature (mm) along a sampled curve; > 0 where convex (seen from outside)."""
+    d1 = np.gradient(points, axis=0)
+    d2 = np.gradient(d1, axis=0)
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    speed = np.hypot(d1[:, 0], d1[:, 1])
+    orient = 1.0 if np.sum(points[:-1, 0] * points[1:, 1] - points[1:, 0] * points[:-1, 1]) > 0 else -1.0
+    with np.errstate(divide="ignore"):
+        return orient * speed**3 / cross
+
+
+def min_convex_radius(law: TransmissionLaw, curves: PitchCurves) -> float:
+    """Smallest convex radius of curvature (mm) of the pinion's pitch curve the rack rolls on.
+
+    Corners are cut by the pivoting rack, and so are blended corners: both are left
+    out. +inf when no part is convex.
+    """
+    rho = curvature_radius(curves.pinion)
+    keep = np.ones(len(rho), dtype=bool)
+    keep[:2] = keep[-2:] = False
+    for smoothed in law.blended_corners:
+        d = np.mod(curves.phi - smoothed + law.phi_period / 2.0, law.phi_period) - law.phi_period / 2.0
+        keep &= np.abs(d) > 1.5 * law.blend_half_width
+    rho = rho[keep]
+    convex = rho[rho > 0]
+    return float(convex.min()) if len(convex) else float("inf")
+
+
+def undercut_limit(cutter: RackCutter, module: float) -> float:
+    """Smallest convex pitch-curve radius of curvature (mm) a rack cuts without undercut."""
+    a = cutter.pressure_angle
+    # the cutter's addendum h_a0 is the gears' dedendum
+    return module * (cutter.dedendum - cutter.fillet * (1.0 - np.sin(a))) / np.sin(a) ** 2
+
+
+def undercut_remedy(cutter: RackCutter, module: float, rho: float, teeth_per_period: int,
+                    pinion_periods: int) -> str:
+    """Remedy text: the tooth count and pressure angle at which the rack stops undercutting.
+
+    ``rho``: the pitch curve's smallest convex radius of curvature (mm).
+    """
+    a = cutter.pressure_angle
+    per_m = (cutter.dedendum - cutter.fillet * (1.0 - np.sin(a))) / np.sin(a) ** 2
+    module_max = rho / per_m
+    z_min = pinion_periods * int(np.ceil(teeth_per_period * module / module_max))
+    lo, hi = a, np.radians(35.0)
+    f = lambda x: (cutter.dedendum - cutter.fillet * (1 - np.sin(x))) / np.sin(x) ** 2 * module - rho
+    if f(hi) > 0:
+        angle_text = "no pressure angle up to 35 deg helps"
+    else:
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if f(mid) > 0 else (lo, mid)
+        angle_text = f"pressure angle >= {np.degrees(hi):.1f} deg"
+    return (f"use module <= {module_max:.3f} mm (pinion z >= {z_min}) or {angle_text}")
+
+
+def top_pointed_teeth(grid: PolarGrid, radii: np.ndarray, pitch_radii: np.ndarray,
+                      blank: np.ndarray, floor: float) -> tuple[np.ndarray, int, float, float]:
+    """Top every tooth whose tip land is below ``floor`` mm down to where it is ``floor`` wide.
+
+    Teeth are the runs of rays whose outline lies above the pitch curve. Returns the
+    new radii, how many teeth were topped, the largest height removed (mm) and the
+    smallest tip land left (mm).
+    """
+    above = radii > pitch_radii
+    if above.all() or not above.any():
+        return radii, 0, 0.0, 0.0
+    first = int(np.argmin(above))
+    order = np.roll(np.arange(len(radii)), -first)
+    a = above[order].astype(np.int8)
+    edges = np.diff(np.concatenate(([0], a, [0])))
+    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    out = radii.copy()
+    topped, worst, thinnest = 0, 0.0, np.inf
+    for lo, hi in zip(starts, ends):                       # one iteration per tooth
+        rays = order[lo:hi]
+        if hi - lo < 3:
+            continue                                        # a sliver above the pitch curve, no tooth
+        uncut = radii[rays] >= blank[rays] - 1e-9
+        land_now = grid.width * float(np.sum(blank[rays][uncut]))
+        if land_now >= floor:
+            thinnest = min(thinnest, land_now)
+            continue
+        r = np.sort(radii[rays])[::-1]
+        land = np.arange(1, len(r) + 1) * grid.width * r    # land width if cut at r[k]
+        k = int(np.argmax(land >= floor)) if np.any(land >= floor) else len(r) - 1
+        out[rays] = np.minimum(out[rays], r[k])
+        topped += 1
+        worst = max(worst, float(r[0] - r[k]))
+        thinnest = min(thinnest, float(land[k]))
+    return out, topped, worst, thinnest
+
+
+@dataclass(frozen=True)
+class GearBody:
+    """One gear's ray map before topping: its rays, pitch curve and blank (mm)."""
+
+    name: str
+    """``"pinion"`` or ``"wheel"`` (named in the refusal)."""
+    grid: PolarGrid
+    """The rays of one period."""
+    curve: np.ndarray
+    """Pitch curve over one period, (N, 2) mm in the gear frame."""
+    blank: np.ndarray
+    """Blank radius per ray, mm."""
+
+
+@dataclass(frozen=True)
+class ToppingLimits:
+    """When a pointed tooth is topped and when the design is refused instead."""
+
+    min_tip_land: float
+    """Tip land floor, mm (GenerationSettings.min_tip_land)."""
+    max_topping: float
+    """Most height topped off, x module (GenerationSettings.max_topping)."""
+    module: float
+    """The pair's module, mm."""
+    strict: bool
+    """Refuse (True) or only top (False) when the topping costs more than ``max_topping``."""
+
+
+def top_or_refuse(body: GearBody, radii: np.ndarray, cutter: RackCutter,
+                  limits: ToppingLimits) -> tuple[np.ndarray, tuple[int, float], float]:
+    """Top the gear's pointed teeth (see :func:`top_pointed_teeth`), or refuse when that costs
+    more than max_topping x module: (new radii mm, (teeth topped, largest drop mm), thinnest land mm)."""
+    pitch_r = polyline_envelope(body.grid, body.curve[None], nearest=False)
+    new, count, drop, land = top_pointed_teeth(body.grid, radii, pitch_r, body.blank, limits.min_tip_land)
+    module = limits.module
+    if drop > limits.max_topping * module and limits.strict:
+        raise DesignError("addendum", cutter.addendum,
+                          f"the {body.name} teeth come to a point (a {limits.min_tip_land} mm tip land "
+                          f"needs {drop:.2f} mm off the tip, > {limits.max_topping} x module "
+                          f"{module:.3f} mm); use a smaller addendum, a smaller pressure angle or more "
+                          "teeth (--z)")
+    return new, (count, drop), land

@@ -1,0 +1,196 @@
+"""Both generated gears of a pair, and what was found about them (SPEC §9).
+
+The pinion is cut by the rack rolling on its pitch curve (see ``rack``, ``pinion``),
+checked for undercut and pointed teeth (``limits``), and its outline as written
+carves the wheel moving along the exact law (``wheel``). Angles in radians, lengths in mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.gears.generation.envelope import PolarGrid, outline_from_radii, polyline_envelope
+from wheelstep_cli.gears.generation.limits import (GearBody, ToppingLimits, min_convex_radius,
+                                                   top_or_refuse, undercut_limit, undercut_remedy)
+from wheelstep_cli.gears.generation.outline import blank_radii, simplify_outline
+from wheelstep_cli.gears.generation.pinion import pinion_by_rack, round_tips, topped_outline
+from wheelstep_cli.gears.generation.rack import RackCutter, RackRolling
+from wheelstep_cli.gears.generation.settings import CORNER_MODES, GenerationSettings
+from wheelstep_cli.gears.generation.wheel import Carving, backlash_split, carve_by_pinion
+from wheelstep_cli.gears.pitch_curves import PitchCurves, pitch_curves
+from wheelstep_cli.gears.transmission import TransmissionLaw
+
+
+@dataclass(frozen=True)
+class GeneratedPair:
+    """Generated outlines and what was found about them.
+
+    ``pinion_outline`` / ``wheel_outline``: closed CCW (N, 2) arrays in mm (own frames,
+    pitch point for carrier angle phi at pinion body angle +theta(phi), wheel -phi).
+    ``center_distance``: the distance (mm) the pair was generated to roll at.
+    """
+
+    law: TransmissionLaw
+    curves: PitchCurves
+    cutter: RackCutter
+    pinion_teeth: int
+    wheel_teeth: int
+    module: float
+    pitch: float
+    corner: str
+    pinion_outline: np.ndarray
+    wheel_outline: np.ndarray
+    pinion_radii: np.ndarray
+    wheel_radii: np.ndarray
+    pinion_grid: PolarGrid
+    wheel_grid: PolarGrid
+    undercut_limit: float
+    min_curvature_radius: float
+    pinion_tip_land: float
+    wheel_tip_land: float
+    topping: dict
+    center_distance: float
+    play: float = 0.0      # rad of wheel angle each side (angular backlash mode)
+    settings: GenerationSettings = field(default_factory=GenerationSettings)
+
+
+@dataclass(frozen=True)
+class _Job:
+    """What every stage of one generation shares (mm, rad)."""
+
+    law: TransmissionLaw
+    curves: PitchCurves
+    cutter: RackCutter
+    pinion_teeth: int
+    per_period: int          # pinion teeth per law period
+    pitch: float             # mm along the pitch curves
+    settings: GenerationSettings
+    strict: bool
+
+    @property
+    def module(self) -> float:
+        return self.pitch / np.pi
+
+    @property
+    def limits(self) -> ToppingLimits:
+        return ToppingLimits(self.settings.min_tip_land, self.settings.max_topping, self.module, self.strict)
+
+
+@dataclass(frozen=True)
+class _GearCut:
+    """One gear as cut: outline (N, 2) mm, radii per ray, rays, (teeth topped, drop mm), land mm."""
+
+    outline: np.ndarray
+    radii: np.ndarray
+    grid: PolarGrid
+    topping: tuple[int, float]
+    land: float
+    play: float = 0.0
+
+
+def generate_pair(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, *, corner: str = "space",
+                  settings: GenerationSettings = GenerationSettings(), strict: bool = True,
+                  center_distance: float) -> GeneratedPair:
+    """Generate both gears for ``law`` with ``pinion_teeth`` teeth on the pinion, the pitch
+    curves rolling at ``center_distance`` mm.
+
+    ``corner``: a pinion tooth ``"space"`` or ``"tooth"`` centred on each pitch-curve
+    corner; ``settings``: how finely and with which corrections; ``strict``: refuse
+    undercut and pointed teeth (False: generate anyway). Raises DesignError (with the remedy)
+    for undercut or pointed teeth and for tooth counts that do not divide the law's periods.
+    """
+    require(corner in CORNER_MODES, "corner", corner, "must be 'space' or 'tooth'")
+    periods = law.pinion_periods
+    require(pinion_teeth >= 6 and pinion_teeth % periods == 0, "z", pinion_teeth,
+            f"must be a multiple of {periods} (law periods per pinion turn) and >= 6")
+    per_period = pinion_teeth // periods
+    curves = pitch_curves(law, center_distance)
+    job = _Job(law, curves, cutter, pinion_teeth, per_period, curves.period_arc / per_period, settings, strict)
+    limit, rho_min = _check_undercut(job)
+    # teeth too thin at the tip (the few next to a pitch-curve corner) are topped to the
+    # land floor when that costs at most max_topping x m of height; otherwise refuse. The
+    # pinion is topped before it carves the wheel, so the wheel is conjugate to the pinion
+    # as written (a tip topped after carving leaves the wheel without contact there).
+    pinion = _cut_pinion(job, corner)
+    wheel = _cut_wheel(job, pinion.outline, center_distance)
+    return GeneratedPair(
+        law=law, curves=curves, cutter=cutter, pinion_teeth=pinion_teeth,
+        wheel_teeth=per_period * law.wheel_periods, module=job.module, pitch=job.pitch, corner=corner,
+        pinion_outline=pinion.outline, wheel_outline=wheel.outline,
+        pinion_radii=pinion.radii, wheel_radii=wheel.radii,
+        pinion_grid=pinion.grid, wheel_grid=wheel.grid,
+        undercut_limit=limit, min_curvature_radius=rho_min,
+        pinion_tip_land=pinion.land, wheel_tip_land=wheel.land,
+        topping={"pinion": pinion.topping, "wheel": wheel.topping},
+        center_distance=float(center_distance), play=wheel.play, settings=settings)
+
+
+def _check_undercut(job: _Job) -> tuple[float, float]:
+    """(undercut limit, smallest convex pitch-curve radius) in mm; refuses undercut when strict.
+
+    The rack undercuts where the convex pitch curve bends tighter than the limit.
+    """
+    module = job.module
+    limit = undercut_limit(job.cutter, module)
+    rho_min = min_convex_radius(job.law, job.curves)
+    if rho_min < limit and job.strict:
+        raise DesignError("z", job.pinion_teeth,
+                          f"the rack undercuts the pinion: pitch-curve radius of curvature "
+                          f"{rho_min:.2f} mm < {limit:.2f} mm at module {module:.3f} mm; "
+                          + undercut_remedy(job.cutter, module, rho_min, job.per_period,
+                                            job.law.pinion_periods))
+    return limit, rho_min
+
+
+def _require_no_gaps(radii: np.ndarray, pinion_teeth: int) -> None:
+    """Refuse a ray map (mm) some ray of which no cut crossed."""
+    require(np.all(np.isfinite(radii)), "z", pinion_teeth,
+            "the generated outline has gaps (pitch curve too tight for the cutter)")
+
+
+def _cut_pinion(job: _Job, corner: str) -> _GearCut:
+    """The pinion cut by the rack, topped, tips rounded: the outline as written (and carving)."""
+    law, curves, s = job.law, job.curves, job.settings
+    theta0 = float(law.pinion_angle(curves.phi[0]))
+    grid = PolarGrid(theta0, law.theta_period, job.per_period * s.rays_per_tooth)
+    offset = job.pitch / 2.0 if corner == "space" else 0.0   # arc of the first pinion tooth centre
+    # no offset fan at the pinion's corners: a chord there relieves the corner teeth's tips
+    blank = blank_radii(curves.pinion, grid, job.cutter.addendum * job.module, fan=False)
+    rolling = RackRolling(curves.pinion, curves.arc, job.pitch, offset + job.pitch / 2.0,
+                          job.per_period * s.poses_per_tooth, 4 * s.poses_per_tooth, law.theta_period,
+                          law.pinion_periods, s.tilt, s.pivot)
+    exact = pinion_by_rack(rolling, job.cutter, job.module)
+    # its ray map (farthest crossing: the tips, also of teeth leaning over a neighbour's space)
+    cut = polyline_envelope(grid, np.vstack([exact, exact[:1]])[None], nearest=False)
+    cut_radii = np.minimum(blank, cut)
+    _require_no_gaps(cut_radii, job.pinion_teeth)
+    radii, topping, land = top_or_refuse(GearBody("pinion", grid, curves.pinion, blank), cut_radii,
+                                         job.cutter, job.limits)
+    # the outline as written (tips rounded; slivers and spikes a boolean can leave removed)
+    # carves the wheel
+    rounded = round_tips(exact, s.tip_round * job.module)
+    outline = simplify_outline(topped_outline(rounded, grid, radii, cut_radii, law.pinion_periods),
+                               s.pinion_tolerance)
+    return _GearCut(outline, radii, grid, topping, land)
+
+
+def _cut_wheel(job: _Job, pinion_outline: np.ndarray, distance: float) -> _GearCut:
+    """The wheel carved by ``pinion_outline`` rolling at ``distance`` mm, widened by the play, topped."""
+    law, curves, s = job.law, job.curves, job.settings
+    grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, job.per_period * 2 * s.wheel_rays_per_tooth)
+    blank = blank_radii(curves.wheel, grid, job.cutter.addendum * job.module)
+    clearance, play = backlash_split(job.cutter, curves.wheel, s)
+    window = s.window_pitches * job.pitch / float(np.min(np.hypot(*curves.pinion.T)))
+    # the lead only pays where the law has handover corners (the hub speed factor kinks there);
+    # a smooth law keeps the play split evenly, as ordinary spur gears are thinned
+    lead = s.lead if (law.corners or law.blended_corners) else 0.0
+    carving = Carving(distance, clearance, job.per_period * s.carve_poses_per_tooth, window,
+                      float(blank.max()), play, lead, s.path_run, s.carve_segment)
+    radii = np.minimum(blank, carve_by_pinion(law, pinion_outline, grid, carving))
+    _require_no_gaps(radii, job.pinion_teeth)
+    radii, topping, land = top_or_refuse(GearBody("wheel", grid, curves.wheel, blank), radii,
+                                         job.cutter, job.limits)
+    return _GearCut(outline_from_radii(grid, radii, law.wheel_periods), radii, grid, topping, land, play)

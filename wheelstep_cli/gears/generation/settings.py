@@ -1,0 +1,95 @@
+"""Tuning values of the tooth generator, as one frozen value passed explicitly.
+
+Change one with ``dataclasses.replace(GenerationSettings(), tilt=0.3)``. How each
+default was chosen (the hub speed ripple measured for its neighbours) is recorded in
+benchmarks/results.md, "Generation settings: how the defaults were chosen".
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from wheelstep_cli.errors import require
+
+#: Pitch-curve corner treatments: a pinion tooth space or a tooth centred on each corner.
+CORNER_MODES = ("space", "tooth")
+#: Backlash modes: a constant angular play of the wheel, or a normal thinning of both flanks.
+BACKLASH_MODES = ("angular", "normal")
+
+
+@dataclass(frozen=True)
+class GenerationSettings:
+    """How finely and with which corrections the pair is generated (mm, rad, counts)."""
+
+    tilt: float = 0.6
+    """Rack-tooth tilt towards the radius, as a fraction (dimensionless) of the pitch curve's
+    normal-to-radius angle mu. Both flanks then meet the direction of motion nearer the
+    pressure angle; the CLI's ``--tilt``."""
+
+    pivot: float = 0.2
+    """Fraction (0..1) of the turn at a pitch-curve corner the rack pivots through from each
+    side (>= 0.5: the whole turn). A partial pivot leaves a ridge in the corner space, so the
+    wheel tooth there takes over the drive before the previous tooth tip lets go."""
+
+    lead: float = 0.8
+    """Where the angular play goes (-1..1): 0 splits it (drive TE = -play), +-1 puts it all on
+    the coast side. Mostly on the coast side, the drive contact lags the law by little, so the
+    hub speed factor is not read at a lagged angle; short of 1 keeps some play on the drive
+    side as margin. Applied only to laws with handover corners."""
+
+    tip_round: float = 0.1
+    """Radius (x module) the pinion's tip corners are rounded to (tip relief; 0: sharp). A sharp
+    tip corner touches the wheel as a point and rides over the flanks near the handovers; a
+    rounded tip carves, and then drives on, a smooth flank."""
+
+    scallop_clearance: float = 0.006
+    """Normal clearance (mm) taken from the backlash budget and added to the angular play, so
+    the scallops the discrete carving leaves never touch."""
+
+    backlash_mode: str = "angular"
+    """``"angular"``: the wheel gets a constant angular play (TE constant along the cycle) plus
+    ``scallop_clearance``; ``"normal"``: the wheel is carved by the pinion dilated by j_n/2."""
+
+    min_tip_land: float = 0.1
+    """Smallest tip land (mm) before a tooth counts as pointed (the paper method's floor)."""
+
+    max_topping: float = 0.35
+    """Most tooth height (x module) that may be topped off a pointed tooth before the design is
+    refused."""
+
+    window_pitches: float = 1.8
+    """Pinion outline taken into each carving pose: this many pitches (dimensionless) either
+    side of the pitch point."""
+
+    poses_per_tooth: int = 48
+    """Rack poses per tooth pitch that cut the pinion (the corner pivot takes 4 x this many)."""
+
+    rays_per_tooth: int = 480
+    """Rays per pinion tooth pitch of the pinion's ray map (its radii, topping and lands)."""
+
+    carve_poses_per_tooth: int = 24
+    """Pinion poses per tooth pitch that carve the wheel. Between poses the carving also follows
+    each outline point's path, so few poses carve as well as many."""
+
+    wheel_rays_per_tooth: int = 960
+    """Wheel ray-map density: the ray map holds 2 x this many rays per wheel tooth. Near the notch
+    the flanks run almost along the rays, and coarser chords between rays stand proud of the
+    carved flank by microns, for a pinion tip to ride over."""
+
+    path_run: int = 64
+    """Carving poses whose outline points are followed as one path (a run of poses shares its
+    last pose with the next)."""
+
+    carve_segment: float = 0.05
+    """Longest piece (mm) the pinion outline is split into for carving: between the outline's
+    points, their paths carve the wheel too."""
+
+    pinion_tolerance: float = 0.0005
+    """Douglas-Peucker tolerance (mm) of the pinion outline that carves the wheel and is written."""
+
+    wheel_tolerance: float = 0.0005
+    """Douglas-Peucker tolerance (mm) of the wheel's ray-map outline as written (by the caller)."""
+
+    def __post_init__(self) -> None:
+        require(self.backlash_mode in BACKLASH_MODES, "backlash_mode", self.backlash_mode,
+                "must be 'angular' or 'normal'")
