@@ -33,7 +33,8 @@ def mesh_check(
     from wheelstep_cli.formats.atomic import write_bytes_atomic
     from wheelstep_cli.formats.jsonio import json_text
     from wheelstep_cli.formats.mesh_read import read_outline
-    from wheelstep_cli.parts.mesh_check import check_crank_pair, meshing_lines, meshing_plot_png
+    from wheelstep_cli.parts.mesh_check import check_crank_pair, meshing_lines
+    from wheelstep_cli.render.meshing_plot import meshing_plot_png
 
     spec = gear_pair_spec(profile, a=a, b=b, c=c, turns=turns, center_distance=center_distance,
                  install_distance=distance)
