@@ -52,6 +52,7 @@ class MeshingReport:
 
     @property
     def interferes(self) -> bool:
+        """True when the outlines overlap at the law's angle at some pose."""
         return bool(np.any(self.interference))
 
     @property
@@ -61,6 +62,7 @@ class MeshingReport:
 
     @property
     def te_peak_to_peak(self) -> float:
+        """Peak-to-peak transmission error (rad at the wheel)."""
         return _peak_to_peak(self.transmission_error)
 
     @property
@@ -129,10 +131,12 @@ class MeshingReport:
 
 
 def _peak_to_peak(values: np.ndarray) -> float:
+    """Greatest minus least value, NaNs ignored (NaN when all are)."""
     if np.all(np.isnan(values)):
         return float("nan")
     return float(np.nanmax(values) - np.nanmin(values))
 
 
 def _nan_none(value: float) -> float | None:
+    """The value as a float, None when not finite (for JSON)."""
     return None if not np.isfinite(value) else float(value)

@@ -14,9 +14,9 @@ import numpy as np
 
 from wheelstep_cli.gears.meshing.contacts import edge_table, gaps, rotations_to_touch
 from wheelstep_cli.gears.meshing.interference import contains, depth, overlap_area
-from wheelstep_cli.gears.meshing.outlines import (MeshWindow, Pose, RadialBand, SortedOutline, Window,
-                                                  near_band, posed_window, radial_band, rotate,
-                                                  sector, sorted_outline)
+from wheelstep_cli.gears.meshing.outlines import (MeshWindow, Pose, RadialBand, SortedOutline,
+                                                  Window, near_band, posed_window, radial_band,
+                                                  rotate, sector, sorted_outline)
 from wheelstep_cli.gears.meshing.settings import MeshingSettings
 from wheelstep_cli.geometry.planar import prepared_polygon
 

@@ -17,7 +17,7 @@ class MeshingSettings:
     """How the meshing check samples, windows and searches the poses of a pair."""
 
     samples: int = 1536
-    """Poses over one period of the law (count): 64 per wheel tooth of the source design."""
+    """Poses over one period of the law (count)."""
 
     window: float | None = None
     """Half-height (mm) of the mesh window round the line of centres; None: ``window_fraction``
