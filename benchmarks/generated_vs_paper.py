@@ -24,20 +24,17 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from wheelstep_cli.gears.generation import (GenerationSettings, RackCutter, generate_pair,  # noqa: E402
                                             simplify_outline)
 from wheelstep_cli.gears.laws import CrankLaw, blended_law  # noqa: E402
-from wheelstep_cli.gears.meshing import Transmission, check_meshing  # noqa: E402
+from wheelstep_cli.gears.meshing import MeshingSettings, check_meshing  # noqa: E402
 from wheelstep_cli.mechanism.crank import CrankMechanism  # noqa: E402
 from wheelstep_cli.parts.gear_pair import GearPairSpec, build_gear_pair  # noqa: E402
 
 INSTALL = 144.0
 
 
-def transmission(law):
-    return Transmission(law.carrier_angle, law.theta_period, law.hub_speed_factor)
-
-
 def measure(name, pinion, wheel, law, distance, seconds, samples):
     t0 = time.perf_counter()
-    rep = check_meshing(pinion, wheel, transmission(law), distance, samples=samples)
+    rep = check_meshing(pinion, wheel, law, distance,
+                        MeshingSettings(samples=samples))
     check_s = time.perf_counter() - t0
     d = rep.to_dict()
     return {

@@ -23,8 +23,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from wheelstep_cli.gears.generation import RackCutter, generate_pair, simplify_outline  # noqa: E402
 from wheelstep_cli.gears.laws import law_from_samples  # noqa: E402
+from wheelstep_cli.gears.meshing import MeshingSettings, check_meshing  # noqa: E402
 from wheelstep_cli.gears.pitch_curves import center_distance_for_module  # noqa: E402
-from wheelstep_cli.gears.meshing import Transmission, check_meshing  # noqa: E402
 from wheelstep_cli.geometry.planar import signed_area  # noqa: E402
 
 AMPLITUDE, TEETH, MODULE = 0.3, 28, 1.5
@@ -40,8 +40,8 @@ def law():
 
 def report(name, pinion, wheel, the_law, distance, seconds):
     t0 = time.perf_counter()
-    rep = check_meshing(pinion, wheel, Transmission(the_law.carrier_angle, the_law.theta_period),
-                        distance, samples=1024)
+    rep = check_meshing(pinion, wheel, the_law, distance,
+                        MeshingSettings(samples=1024))
     d = rep.to_dict()
     print(f"{name:28s} centre {distance:8.4f} mm  generate {seconds:6.2f} s  check "
           f"{time.perf_counter() - t0:5.2f} s  interference {str(d['interference']):5s}  "
@@ -66,8 +66,8 @@ def best_orientation(pinion, wheel, the_law, distance):
     for sx in (1.0, -1.0):
         for turn in (0.0, np.pi):
             p, w2 = orient(pinion, wheel, sx, turn)
-            rep = check_meshing(p, w2, Transmission(the_law.carrier_angle, the_law.theta_period),
-                                distance, samples=64)
+            rep = check_meshing(p, w2, the_law, distance,
+                                MeshingSettings(samples=64))
             score = np.nanmax(np.abs(rep.transmission_error)) + 10 * rep.interference.sum()
             if best is None or score < best[0]:
                 best = (score, p, w2, (sx, turn))

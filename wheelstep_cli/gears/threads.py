@@ -17,7 +17,7 @@ R = TypeVar("R")
 THREADS = max(1, min(4, os.cpu_count() or 1))
 
 
-def thread_map(fn: Callable[[T], R], items: Iterable[T]) -> Iterator[R]:
-    """``fn`` of every item on THREADS threads; the results in the items' order."""
-    with ThreadPoolExecutor(max_workers=THREADS) as pool:
+def thread_map(fn: Callable[[T], R], items: Iterable[T], threads: int = THREADS) -> Iterator[R]:
+    """``fn`` of every item on ``threads`` threads; the results in the items' order."""
+    with ThreadPoolExecutor(max_workers=threads) as pool:
         yield from pool.map(fn, items)

@@ -138,3 +138,28 @@ def simplify_ring(outline: np.ndarray, tolerance: float) -> np.ndarray:
     """The closed outline (N, 2) thinned by Douglas-Peucker to ``tolerance`` mm, topology kept."""
     ring = shapely.simplify(shapely.LinearRing(outline), tolerance, preserve_topology=True)
     return np.asarray(ring.coords)[:-1]
+
+
+# polygon queries for the meshing check
+
+
+def prepared_polygon(outline: np.ndarray):
+    """An opaque handle on the polygon ``outline`` (N, 2) mm, made fast for repeated
+    :func:`points_inside` queries. Not thread-safe: one handle per thread."""
+    polygon = shapely.Polygon(outline)
+    shapely.prepare(polygon)
+    return polygon
+
+
+def points_inside(polygon, points: np.ndarray) -> np.ndarray:
+    """Per point (M, 2) mm, True when it lies strictly inside the :func:`prepared_polygon`."""
+    return shapely.contains_xy(polygon, points[:, 0], points[:, 1])
+
+
+def clipped_overlap_areas(first: np.ndarray, second: np.ndarray,
+                          box: tuple[float, float, float, float]) -> np.ndarray:
+    """Per pair of polygons (K, N, 2) and (K, M, 2) mm: the area (mm^2) they share inside
+    the rectangle ``box`` = (x_lo, y_lo, x_hi, y_hi) mm."""
+    a = shapely.clip_by_rect(shapely.polygons(first), *box)
+    b = shapely.clip_by_rect(shapely.polygons(second), *box)
+    return shapely.area(shapely.intersection(a, b))

@@ -33,7 +33,8 @@ def mesh_check(
     from wheelstep_cli.formats.atomic import write_bytes_atomic
     from wheelstep_cli.formats.jsonio import json_text
     from wheelstep_cli.formats.mesh_read import read_outline
-    from wheelstep_cli.parts.mesh_check import check_crank_pair, meshing_lines, meshing_plot_png
+    from wheelstep_cli.parts.mesh_check import check_outlines, meshing_lines
+    from wheelstep_cli.render.meshing_plot import meshing_plot_png
 
     spec = gear_pair_spec(profile, a=a, b=b, c=c, turns=turns, center_distance=center_distance,
                  install_distance=distance)
@@ -47,7 +48,7 @@ def mesh_check(
     pinion_outline = read_outline(pinion, "pinion", default_name="pinion")
     wheel_outline = read_outline(wheel, "wheel", default_name="wheel")
     require(dist > 0, "distance", dist, "must be > 0 mm")
-    report = _run_with_progress(check_crank_pair, pinion_outline, wheel_outline, law, dist,
+    report = _run_with_progress(check_outlines, pinion_outline, wheel_outline, law, dist,
                                 samples, window)
     summary = {"pinion": str(pinion), "wheel": str(wheel),
                "law": {"a": law.mechanism.a, "b": law.mechanism.b, "c": law.mechanism.c,

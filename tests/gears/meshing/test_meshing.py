@@ -1,12 +1,15 @@
 """Meshing check (SPEC §10) on outlines with known answers: involute spur gears, bars, paper pair."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 import shapely
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from wheelstep_cli.gears.meshing import Transmission, check_meshing
+from tests.helpers.laws import FunctionLaw
+from wheelstep_cli.gears.meshing import MeshingSettings, check_meshing
 
 
 def involute_gear(teeth: int, module: float, thinning: float, space_at_zero: bool,
@@ -32,8 +35,8 @@ def involute_gear(teeth: int, module: float, thinning: float, space_at_zero: boo
     return np.column_stack([radii * np.cos(angles), radii * np.sin(angles)])
 
 
-def spur_transmission(z1: int, z2: int) -> Transmission:
-    return Transmission(lambda t: np.asarray(t) * z1 / z2, 2.0 * np.pi / z1)
+def spur_transmission(z1: int, z2: int) -> FunctionLaw:
+    return FunctionLaw(lambda t: np.asarray(t) * z1 / z2, 2.0 * np.pi / z1)
 
 
 Z1, Z2, M, J = 24, 40, 2.0, 0.2   # teeth, module (mm), circular backlash on the pitch circle (mm)
@@ -51,7 +54,8 @@ def spur_pair():
 def test_involute_spur_pair_has_constant_te_zero_ripple_and_built_in_backlash(spur_pair):
     pinion, wheel = spur_pair
     a = M * (Z1 + Z2) / 2.0
-    report = check_meshing(pinion, wheel, spur_transmission(Z1, Z2), a, samples=100)
+    report = check_meshing(pinion, wheel, spur_transmission(Z1, Z2), a,
+                           MeshingSettings(samples=100))
     r2 = M * Z2 / 2.0
     assert not report.interferes and not report.contact_lost
     # the wheel lags by half the backlash on the drive side, leads by half on the coast side
@@ -70,7 +74,8 @@ def test_opening_the_centre_distance_adds_the_involute_backlash(spur_pair):
     pinion, wheel = spur_pair
     a = M * (Z1 + Z2) / 2.0
     da = 0.3
-    report = check_meshing(pinion, wheel, spur_transmission(Z1, Z2), a + da, samples=60)
+    report = check_meshing(pinion, wheel, spur_transmission(Z1, Z2), a + da,
+                           MeshingSettings(samples=60))
     alpha, alpha_w = np.radians(20.0), np.arccos(a * np.cos(np.radians(20.0)) / (a + da))
     inv = lambda x: np.tan(x) - x
     # circular backlash on the operating pitch circles (standard involute geometry)
@@ -87,7 +92,8 @@ def test_opening_the_centre_distance_adds_the_involute_backlash(spur_pair):
 def test_pair_pushed_too_close_interferes(spur_pair):
     pinion, wheel = spur_pair
     a = M * (Z1 + Z2) / 2.0
-    report = check_meshing(pinion, wheel, spur_transmission(Z1, Z2), a - 0.6, samples=40)
+    report = check_meshing(pinion, wheel, spur_transmission(Z1, Z2), a - 0.6,
+                           MeshingSettings(samples=40))
     assert report.interference.all()
     assert report.overlap_area.max() > 0.01
     assert 0 < report.penetration.max() < 0.6   # mm; cannot exceed the 0.6 mm push
@@ -106,8 +112,8 @@ def test_bar_against_plate_matches_hand_computed_contact_angle():
     bar, plate = _bar_and_plates()
     D = 20.0
     # wheel rotated by pi puts the bar along -x from (20, 0) to (-2, 0), 1 mm either side.
-    still = Transmission(lambda t: np.zeros_like(np.asarray(t, dtype=float)), 1e-3)
-    report = check_meshing(plate, bar, still, D, samples=1, window=40.0)
+    still = FunctionLaw(lambda t: np.zeros_like(np.asarray(t, dtype=float)), 1e-3)
+    report = check_meshing(plate, bar, still, D, MeshingSettings(samples=1, window=40.0))
     # forwards (counter-clockwise about (20, 0)) the bar's far lower corner (-2, -1) swings
     # down onto the plate's top y = -2; the plate's corner (5, -2) reaches the bar's lower
     # edge later (0.0664 rad), so the corner decides.
@@ -171,8 +177,8 @@ def test_contact_angles_match_shapely_bisection(gap, tilt, offset, sides):
                                   shapely.box(14.0, lo_y - 6.0, 30.0, lo_y),
                                   shapely.box(14.0, lo_y - 6.0, 19.0, hi_y + 6.0)])
     pinion = _ccw(pin_poly)
-    still = Transmission(lambda x: np.zeros_like(np.asarray(x, dtype=float)), 1e-3)
-    report = check_meshing(pinion, wheel, still, D, samples=1, window=60.0)
+    still = FunctionLaw(lambda x: np.zeros_like(np.asarray(x, dtype=float)), 1e-3)
+    report = check_meshing(pinion, wheel, still, D, MeshingSettings(samples=1, window=60.0))
     world_wheel = shapely.affinity.translate(
         shapely.affinity.rotate(shapely.Polygon(wheel), np.pi, origin=(0, 0), use_radians=True), D, 0)
     assert not world_wheel.intersects(pin_poly)
@@ -199,9 +205,9 @@ def test_paper_wheel_is_mirror_symmetric_so_it_fits_the_convention(paper_pair):
 
 def test_paper_pair_runs_and_reports_finite_figures(paper_pair):
     law = paper_pair.law
-    transmission = Transmission(law.carrier_angle, law.theta_period, law.hub_speed_factor)
+    transmission = law
     report = check_meshing(paper_pair.pinion_outline, paper_pair.wheel_outline, transmission,
-                           144.0, samples=96)
+                           144.0, MeshingSettings(samples=96))
     summary = report.to_dict()
     assert summary["samples"] == 96 and summary["period_deg"] == pytest.approx(180.0)
     assert not report.contact_lost
@@ -227,40 +233,32 @@ def _case(case, spur_pair, paper_pair):
     if case == "spur":
         return (*spur_pair, (spur_transmission(Z1, Z2), M * (Z1 + Z2) / 2.0))
     law = paper_pair.law
-    transmission = Transmission(law.carrier_angle, law.theta_period)
+    transmission = FunctionLaw(law.carrier_angle, law.theta_period)
     return paper_pair.pinion_outline, paper_pair.wheel_outline, (transmission, 144.0)
 
 
 @pytest.mark.parametrize("case", ["spur", "paper"])
-def test_first_pass_within_reach_and_chunking_change_nothing(case, spur_pair, paper_pair,
-                                                             monkeypatch):
-    """The fast path (contacts within REACH first, far vertices and edges skipped, pairs
+def test_first_pass_within_reach_and_chunking_change_nothing(case, spur_pair, paper_pair):
+    """The fast path (contacts within the reach first, far vertices and edges skipped, pairs
     in chunks) gives exactly what the plain search over all pairs gives, also where the
     teeth interfere (the paper pair) and the first pass must hand poses to the second."""
-    import wheelstep_cli.gears.meshing as meshing
-
     pinion, wheel, args = _case(case, spur_pair, paper_pair)
-    fast = check_meshing(pinion, wheel, *args, samples=48)
-    monkeypatch.setattr(meshing, "REACH", np.inf)
-    monkeypatch.setattr(meshing, "MAX_PAIRS", 997)   # many small chunks
-    plain = check_meshing(pinion, wheel, *args, samples=48)
+    base = MeshingSettings(samples=48)
+    fast = check_meshing(pinion, wheel, *args, base)
+    plain = check_meshing(pinion, wheel, *args,
+                          replace(base, reach=np.inf, max_pairs=997))   # many small chunks
     _reports_equal(fast, plain)
     if case == "paper":
         assert fast.interferes   # the second pass was needed
 
 
 @pytest.mark.parametrize("case", ["spur", "paper"])
-def test_threads_change_nothing(case, spur_pair, paper_pair, monkeypatch):
+def test_threads_change_nothing(case, spur_pair, paper_pair):
     """Poses checked on several threads give bit for bit what one thread gives."""
-    import wheelstep_cli.gears.meshing as meshing
-    import wheelstep_cli.gears.threads as threads
-
     pinion, wheel, args = _case(case, spur_pair, paper_pair)
-    monkeypatch.setattr(meshing, "BATCH", 7)          # many batches to share out
-    monkeypatch.setattr(threads, "THREADS", 1)
-    single = check_meshing(pinion, wheel, *args, samples=96)
-    monkeypatch.setattr(threads, "THREADS", 3)
-    threaded = check_meshing(pinion, wheel, *args, samples=96)
+    base = MeshingSettings(samples=96, batch=7)          # many batches to share out
+    single = check_meshing(pinion, wheel, *args, replace(base, threads=1))
+    threaded = check_meshing(pinion, wheel, *args, replace(base, threads=3))
     _reports_equal(single, threaded)
     assert np.array_equal(single.hub_speed, threaded.hub_speed, equal_nan=True)
 
@@ -278,12 +276,12 @@ def test_large_outlines_bounded_memory_and_same_answer_as_coarse():
     a = M * (Z1 + Z2) / 2.0
     tracemalloc.start()
     try:
-        report = check_meshing(*fine, spur_transmission(Z1, Z2), a, samples=12)
+        report = check_meshing(*fine, spur_transmission(Z1, Z2), a, MeshingSettings(samples=12))
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()
     assert peak < 200e6   # bytes, numpy temporaries included
-    rough = check_meshing(*coarse, spur_transmission(Z1, Z2), a, samples=12)
+    rough = check_meshing(*coarse, spur_transmission(Z1, Z2), a, MeshingSettings(samples=12))
     r2 = M * Z2 / 2.0
     assert not report.interferes and not report.contact_lost
     assert np.allclose(report.transmission_error, -J / 2.0 / r2, rtol=2e-3)
@@ -299,8 +297,6 @@ def test_large_outlines_bounded_memory_and_same_answer_as_coarse():
 def test_fast_path_equals_plain_search_on_coarse_polygons(gap, tilt, offset, sides, swing):
     """Coarse polygons with long edges (the ones the fast path never skips) over a few
     poses of a swinging wheel, near contact and far from it."""
-    import wheelstep_cli.gears.meshing as meshing
-
     t = np.linspace(0, 2 * np.pi, sides, endpoint=False) + tilt
     tooth = shapely.Polygon(np.column_stack([25.0 + 3.0 * np.cos(t), offset + 3.0 * np.sin(t)]))
     wheel = _ccw(shapely.union(tooth, shapely.box(0.0, -0.5, 24.0, 0.5)))
@@ -308,10 +304,9 @@ def test_fast_path_equals_plain_search_on_coarse_polygons(gap, tilt, offset, sid
     pinion = _ccw(shapely.union_all([shapely.box(14.0, hi_y, 30.0, hi_y + 6.0),
                                      shapely.box(14.0, lo_y - 6.0, 30.0, lo_y),
                                      shapely.box(14.0, lo_y - 6.0, 19.0, hi_y + 6.0)]))
-    swinging = Transmission(lambda x: swing * np.sin(np.asarray(x, dtype=float)), 2.0 * np.pi)
+    swinging = FunctionLaw(lambda x: swing * np.sin(np.asarray(x, dtype=float)), 2.0 * np.pi)
     for window in (None, 60.0):
-        fast = check_meshing(pinion, wheel, swinging, 50.0, samples=16, window=window)
-        with pytest.MonkeyPatch.context() as patch:
-            patch.setattr(meshing, "REACH", np.inf)
-            plain = check_meshing(pinion, wheel, swinging, 50.0, samples=16, window=window)
+        base = MeshingSettings(samples=16, window=window)
+        fast = check_meshing(pinion, wheel, swinging, 50.0, base)
+        plain = check_meshing(pinion, wheel, swinging, 50.0, replace(base, reach=np.inf))
         _reports_equal(fast, plain)

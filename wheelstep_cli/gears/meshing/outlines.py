@@ -1,0 +1,260 @@
+"""Outlines prepared for the meshing check: sorted by body angle, cut to the mesh window.
+
+An outline's vertices and edges are ordered by their body angle once, so a pose
+cuts out the parts inside the mesh window's angular sector with a binary search
+instead of posing the whole outline. Radial bands (per body-angle bin, the least
+and greatest distance of the outline from its axis) let the first search pass skip
+vertices and edges that cannot meet the other outline within the reach.
+Angles in radians, lengths in mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class MeshWindow:
+    """The box round the line of centres in which contacts are looked for (mm, world frame).
+
+    Vertices count between ``x_lo`` and ``x_hi`` within ``half_height`` of the line of
+    centres; edges are taken from the box widened by ``margin`` on every side.
+    """
+
+    x_lo: float
+    x_hi: float
+    half_height: float
+    margin: float
+
+
+def rotate(points: np.ndarray, angle) -> np.ndarray:
+    """Rotate (..., 2) points by ``angle`` rad counter-clockwise about the origin.
+
+    ``angle`` is a scalar or broadcasts against ``points[..., 0]``.
+    """
+    c, s = np.cos(angle), np.sin(angle)
+    x, y = points[..., 0], points[..., 1]
+    return np.stack([c * x - s * y, s * x + c * y], axis=-1)
+
+
+def wrap(angle: np.ndarray) -> np.ndarray:
+    """Angles (rad) into (-pi, pi]."""
+    return np.pi - np.mod(np.pi - angle, 2.0 * np.pi)
+
+
+def expand(first: np.ndarray, counts: np.ndarray, table: np.ndarray):
+    """(owner, table[first[owner] + k]) for k < counts[owner], owners in order."""
+    owner = np.repeat(np.arange(len(first)), counts)
+    offsets = np.arange(len(owner)) - np.repeat(np.cumsum(counts) - counts, counts)
+    return owner, table[first[owner] + offsets]
+
+
+@dataclass(frozen=True)
+class Window:
+    """Edges and vertices (mm) of one outline inside the mesh window, for a batch of poses.
+
+    Flat arrays, grouped by pose: every edge (start ``e0``, end ``e1``) and vertex ``v``
+    carries the index of its pose in ``e_pose`` / ``v_pose``.
+    """
+
+    e_pose: np.ndarray
+    e0: np.ndarray
+    e1: np.ndarray
+    v_pose: np.ndarray
+    v: np.ndarray
+
+    def shifted(self, offset: np.ndarray) -> "Window":
+        """The same window with every point moved by ``-offset`` (mm)."""
+        return Window(self.e_pose, self.e0 - offset, self.e1 - offset, self.v_pose,
+                      self.v - offset)
+
+
+@dataclass(frozen=True)
+class SortedOutline:
+    """One outline with its vertices and edges ordered by body angle, to cut windows out fast.
+
+    ``points`` (N, 2) mm. ``v_angle``: the vertices' body angles (rad) sorted, listed
+    twice (the second time + 2 pi) so that an angular range never wraps; ``v_index``
+    their vertices. ``e_angle``, ``e_index``: the same for the start angles of the short
+    edges (edge i runs from vertex i to i + 1), ``e_sweep`` the largest angle (rad) and
+    ``e_length`` the largest length (mm) of a short edge. ``e_always``: the other edges
+    (long, or passing near the axis), tested in every pose.
+    """
+
+    points: np.ndarray
+    v_angle: np.ndarray
+    v_index: np.ndarray
+    e_angle: np.ndarray
+    e_index: np.ndarray
+    e_sweep: float
+    e_length: float
+    e_always: np.ndarray
+
+
+def sorted_outline(points: np.ndarray, long_edge: float) -> SortedOutline:
+    """Prepare an outline (N, 2) mm for :func:`posed_window`; edges over ``long_edge`` mm
+    are always tested."""
+    nxt = np.roll(points, -1, axis=0)
+    a0 = np.arctan2(points[:, 1], points[:, 0])
+    # a segment not through the axis sees its angle change monotonically, by less than pi
+    sweep = wrap(np.arctan2(nxt[:, 1], nxt[:, 0]) - a0)
+    length = np.hypot(nxt[:, 0] - points[:, 0], nxt[:, 1] - points[:, 1])
+    short = (length <= long_edge) & (np.abs(sweep) <= 0.5)
+    v_angle = np.mod(a0, 2.0 * np.pi)
+    v_order = np.argsort(v_angle, kind="stable")
+    e_start = np.mod(np.where(sweep >= 0.0, a0, a0 + sweep), 2.0 * np.pi)
+    idx = np.flatnonzero(short)
+    e_order = idx[np.argsort(e_start[idx], kind="stable")]
+    twice = lambda a: np.concatenate([a, a + 2.0 * np.pi])  # noqa: E731
+    return SortedOutline(points, twice(v_angle[v_order]), np.tile(v_order, 2),
+                         twice(e_start[e_order]), np.tile(e_order, 2),
+                         float(np.abs(sweep[idx]).max(initial=0.0)),
+                         float(length[idx].max(initial=0.0)), np.flatnonzero(~short))
+
+
+def sector(box: MeshWindow, axis: np.ndarray, extra: float) -> tuple[float, float] | None:
+    """World angles (lo, hi) rad, seen from ``axis``, of the edge box widened by ``extra`` mm.
+
+    None when that box holds the axis (then every angle is in view).
+    """
+    grow = box.margin + extra + 1e-9
+    x0, x1, y = box.x_lo - grow, box.x_hi + grow, box.half_height + grow
+    if x0 <= axis[0] <= x1 and -y <= axis[1] <= y:
+        return None
+    centre = np.arctan2(-axis[1], 0.5 * (x0 + x1) - axis[0])
+    corners = np.array([[x0, -y], [x0, y], [x1, -y], [x1, y]]) - axis
+    rel = wrap(np.arctan2(corners[:, 1], corners[:, 0]) - centre)
+    return float(centre + rel.min()), float(centre + rel.max())
+
+
+def _in_sector(angle2: np.ndarray, index2: np.ndarray, lo: np.ndarray, width: float):
+    """(pose, index) of the entries whose sorted, doubled angles lie in [lo[pose], lo + width]."""
+    lo = np.mod(lo - 1e-9, 2.0 * np.pi)
+    first = np.searchsorted(angle2, lo, side="left")
+    last = np.searchsorted(angle2, lo + width + 2e-9, side="right")
+    return expand(first, last - first, index2)
+
+
+@dataclass(frozen=True)
+class Pose:
+    """How a batch of poses places an outline in the world (rad, mm).
+
+    ``angle`` (poses,): rotation about its axis; ``shift``: its axis in the world (None:
+    the origin); ``sector``: world angles seen from the axis holding every window vertex
+    and an end of every short window edge (None: all angles); ``body_offset`` (poses,):
+    body angle minus world angle.
+    """
+
+    angle: np.ndarray
+    shift: np.ndarray | None
+    sector: tuple[float, float] | None
+    body_offset: np.ndarray
+
+
+def _candidates(outline: SortedOutline, pose: Pose):
+    """(pose, index) of the vertices and of the edges in the pose's sector, grouped by pose."""
+    poses, n = len(pose.angle), len(outline.points)
+    if pose.sector is None:
+        v_pose, v_idx = np.repeat(np.arange(poses), n), np.tile(np.arange(n), poses)
+        return v_pose, v_idx, v_pose, v_idx
+    lo = pose.sector[0] + pose.body_offset
+    width = pose.sector[1] - pose.sector[0]
+    v_pose, v_idx = _in_sector(outline.v_angle, outline.v_index, lo, width)
+    e_pose, e_idx = _in_sector(outline.e_angle, outline.e_index, lo - outline.e_sweep,
+                               width + outline.e_sweep)
+    if len(outline.e_always):
+        e_pose = np.concatenate([e_pose, np.repeat(np.arange(poses), len(outline.e_always))])
+        e_idx = np.concatenate([e_idx, np.tile(outline.e_always, poses)])
+        order = np.argsort(e_pose, kind="stable")
+        e_pose, e_idx = e_pose[order], e_idx[order]
+    return v_pose, v_idx, e_pose, e_idx
+
+
+def posed_window(outline: SortedOutline, pose: Pose, box: MeshWindow) -> Window:
+    """Window parts of a closed outline placed by ``pose``.
+
+    Vertices: those inside the box. Edges: those whose bounding box meets the box
+    widened by its margin on every side, so every edge through the box is there,
+    however long, and the outline round a vertex is in view within the margin. Only
+    the candidates of the pose's sector are posed and tested.
+    """
+    n = len(outline.points)
+    v_pose, v_idx, e_pose, e_idx = _candidates(outline, pose)
+    c, s = np.cos(pose.angle), np.sin(pose.angle)
+
+    def pose_points(which, idx):
+        x, y = outline.points[idx, 0], outline.points[idx, 1]
+        world = np.stack([c[which] * x - s[which] * y, s[which] * x + c[which] * y], axis=-1)
+        return world if pose.shift is None else world + pose.shift
+
+    xlo, xhi, half, margin = box.x_lo, box.x_hi, box.half_height, box.margin
+    v = pose_points(v_pose, v_idx)
+    vertex = (v[:, 0] >= xlo) & (v[:, 0] <= xhi) & (np.abs(v[:, 1]) <= half)
+    e0, e1 = pose_points(e_pose, e_idx), pose_points(e_pose, (e_idx + 1) % n)
+    x, y, x1, y1 = e0[:, 0], e0[:, 1], e1[:, 0], e1[:, 1]
+    edge = ((np.minimum(x, x1) <= xhi + margin) & (np.maximum(x, x1) >= xlo - margin)
+            & (np.minimum(y, y1) <= half + margin) & (np.maximum(y, y1) >= -half - margin))
+    return Window(e_pose[edge], e0[edge], e1[edge], v_pose[vertex], v[vertex])
+
+
+@dataclass(frozen=True)
+class RadialBand:
+    """Least (``rmin``) and greatest (``rmax``) distance (mm) from its axis of the outline's
+    edges seen near each body-angle bin (inf / -inf where no edge is that near)."""
+
+    rmin: np.ndarray
+    rmax: np.ndarray
+
+    @property
+    def bins(self) -> int:
+        """Body-angle bins over the full turn (count)."""
+        return len(self.rmin)
+
+
+def radial_band(outline: SortedOutline, half_width: float, bins: int) -> RadialBand | None:
+    """The outline's radial band over ``bins`` body-angle bins, each seeing the edges within
+    ``half_width`` rad of it. None when the bins would not narrow anything down."""
+    if not half_width < 0.5:
+        return None
+    points = outline.points
+    nxt = np.roll(points, -1, axis=0)
+    d = nxt - points
+    dd = np.einsum("ij,ij->i", d, d)
+    t_near = np.clip(-np.einsum("ij,ij->i", points, d) / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
+    lo = np.hypot(points[:, 0] + t_near * d[:, 0], points[:, 1] + t_near * d[:, 1])
+    hi = np.maximum(np.hypot(points[:, 0], points[:, 1]), np.hypot(nxt[:, 0], nxt[:, 1]))
+    a0 = np.arctan2(points[:, 1], points[:, 0])
+    sweep = wrap(np.arctan2(nxt[:, 1], nxt[:, 0]) - a0)
+    start = np.where(sweep >= 0.0, a0, a0 + sweep)
+    sweep = np.where(lo > 1e-9 * np.maximum(hi, 1.0), np.abs(sweep), 2.0 * np.pi)
+    width = 2.0 * np.pi / bins
+    grow = half_width + 1e-6
+    b0 = np.floor(np.mod(start - grow, 2.0 * np.pi) / width).astype(np.intp)
+    count = np.minimum(np.floor((sweep + 2.0 * grow) / width).astype(np.intp) + 2, bins)
+    owner, k = expand(np.zeros(len(points), dtype=np.intp), count, np.arange(int(count.max())))
+    cell = (b0[owner] + k) % bins
+    rmin = np.full(bins, np.inf)
+    rmax = np.full(bins, -np.inf)
+    np.minimum.at(rmin, cell, lo[owner])
+    np.maximum.at(rmax, cell, hi[owner])
+    return RadialBand(rmin, rmax)
+
+
+def band_at(body: np.ndarray, band: RadialBand):
+    """(distance from the axis, rmin, rmax) of the band at points (own frame of the band's
+    outline, mm)."""
+    bins = band.bins
+    r = np.hypot(body[:, 0], body[:, 1])
+    cell = (np.floor(np.mod(np.arctan2(body[:, 1], body[:, 0]), 2.0 * np.pi)
+                     / (2.0 * np.pi / bins)).astype(np.intp)) % bins
+    return r, band.rmin[cell], band.rmax[cell]
+
+
+def near_band(body: np.ndarray, slack: np.ndarray | float, band: RadialBand | None) -> np.ndarray:
+    """Points (own frame of the band's outline, mm) within ``slack`` mm of its radial band."""
+    if band is None:
+        return np.ones(len(body), dtype=bool)
+    r, rmin, rmax = band_at(body, band)
+    return (r + slack >= rmin) & (r - slack <= rmax)

@@ -1,0 +1,60 @@
+"""Settings of the meshing check (SPEC §10): what is measured and how the search runs.
+
+Fields marked *search only* change the speed and memory of the check, never its
+results (tests compare the fast search with the plain one bit for bit). The others
+change what is measured. Change a value with :func:`dataclasses.replace`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from wheelstep_cli.gears.threads import THREADS
+
+
+@dataclass(frozen=True)
+class MeshingSettings:
+    """How the meshing check samples, windows and searches the poses of a pair."""
+
+    samples: int = 1536
+    """Poses over one period of the law (count)."""
+
+    window: float | None = None
+    """Half-height (mm) of the mesh window round the line of centres; None: ``window_fraction``
+    times the smaller gear's outer radius."""
+
+    window_fraction: float = 0.25
+    """Default half-height of the mesh window as a fraction of the smaller outer radius (1)."""
+
+    window_margin: float = 0.25
+    """Margin (fraction of the window's half-height) by which edges are taken from round
+    the window, so the outline round an overlapping vertex stays in view for its depth."""
+
+    long_edge: float = 0.1
+    """Edges longer than this fraction of the window's half-height are tested in every pose
+    instead of being found by angle (1). Search only: speed, not results."""
+
+    batch: int = 64
+    """Poses handled together in one vectorised batch (count; fewer for very large outlines).
+    Search only: speed and memory, not results."""
+
+    batch_points: int = 1_000_000
+    """Most outline points (poses x points of both outlines) in one batch (count); bounds a
+    batch's memory. Search only: memory, not results."""
+
+    max_pairs: int = 1 << 19
+    """Most vertex/edge candidate pairs held at once (count, about 100 bytes each in
+    temporaries). Search only: memory, not results."""
+
+    reach: float = 0.01
+    """First pass (rad of wheel rotation): only contacts this close are looked for; poses
+    with none that close are searched again without the limit. Search only: speed, not
+    results (inf: one plain pass)."""
+
+    band_bins: int = 2048
+    """Body-angle bins (count) of the radial bands that skip vertices and edges far from the
+    other outline in the first pass. Search only: speed, not results."""
+
+    threads: int = THREADS
+    """Threads (count) sharing the batches; each fills its own slice of the result.
+    Search only: speed, not results."""

@@ -1,0 +1,86 @@
+"""The meshing check's plot (SPEC §10): transfer function, its rate, TE and hub speed, as PNG.
+
+matplotlib (Agg) is imported lazily. Angles in the report in radians; degrees and
+arcminutes on the axes.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from wheelstep_cli.gears.meshing import MeshingReport
+
+
+def meshing_plot_png(report: MeshingReport, title: str) -> bytes:
+    """A PNG for people: transfer function (law vs drive contact), its rate, TE, hub speed."""
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    deg = np.degrees
+    arcmin = 60.0 * 180.0 / np.pi
+    theta = deg(report.theta)
+    rate_law = report.hub_speed_law  # shown relative to its mean below
+    fig, axes = plt.subplots(4, 1, figsize=(10, 12), sharex=True)
+    ax = axes[0]
+    ax.plot(theta, deg(report.phi_law), "k-", lw=1.5, label="law phi(theta)")
+    ax.plot(theta, deg(report.phi_drive), "r--", lw=1, label="drive-side contact")
+    ax.set_ylabel("wheel angle phi (deg)")
+    ax.legend(loc="upper left")
+    ax.set_title(title)
+    ax = axes[1]
+    step = np.gradient(report.theta)
+    ax.plot(theta, np.gradient(report.phi_law) / step, "k-", lw=1.5, label="law dphi/dtheta")
+    ax.plot(theta, np.gradient(report.phi_drive) / step, "r-", lw=0.7, label="drive contact")
+    ax.set_ylabel("transfer ratio dphi/dtheta")
+    _clip_axis(ax, np.gradient(report.phi_law) / step)
+    ax.legend(loc="upper left")
+    ax = axes[2]
+    ax.plot(theta, report.transmission_error * arcmin, "r-", lw=0.8, label="drive side (TE)")
+    ax.plot(theta, (report.phi_coast - report.phi_law) * arcmin, "b-", lw=0.8, label="coast side")
+    _shade(ax, theta, report.interference)
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.set_ylabel("contact - law (arcmin)")
+    ax.legend(loc="upper left")
+    ax = axes[3]
+    mean = float(np.mean(rate_law))
+    ax.plot(theta, 100.0 * (rate_law / mean - 1.0), "k-", lw=1.5, label="law")
+    ax.plot(theta, 100.0 * (report.hub_speed / mean - 1.0), "r-", lw=0.7,
+            label=f"drive contact (ripple {100 * report.hub_speed_ripple:.2f} %)")
+    _shade(ax, theta, report.interference)
+    if report.interferes and report.clear.any():
+        clear = 100.0 * (report.hub_speed[report.clear] / mean - 1.0)
+        lo, hi = float(np.min(clear)), float(np.max(clear))
+        pad = max(hi - lo, 1.0)
+        ax.set_ylim(lo - pad, hi + pad)
+        ax.set_title("spikes where the teeth interfere are clipped", fontsize=9)
+    ax.set_ylabel("hub speed - mean (% of mean)")
+    ax.set_xlabel("pinion angle theta (deg)")
+    ax.legend(loc="upper left")
+    for ax in axes:
+        ax.grid(True, lw=0.3)
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=90, metadata={"Software": None})
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def _clip_axis(ax, reference: np.ndarray) -> None:
+    """Keep spikes from flattening the curve: y range = reference range widened 5 times."""
+    lo, hi = float(np.min(reference)), float(np.max(reference))
+    pad = max(2.0 * (hi - lo), 0.05 * abs(hi))
+    ax.set_ylim(lo - pad, hi + pad)
+
+
+def _shade(ax, theta: np.ndarray, mask: np.ndarray) -> None:
+    """Shade interfering poses."""
+    if mask.any():
+        ax.fill_between(theta, 0, 1, where=mask, color="orange", alpha=0.3,
+                        transform=ax.get_xaxis_transform(), label="interference")
