@@ -1,4 +1,10 @@
-"""Atomic file output: a part is either fully written or not there at all."""
+"""Atomic file output: a part is either fully written or not there at all.
+
+Files are staged as hidden temporary files in the target folder and renamed into place,
+so a reader never sees half a file. They get the permissions an ordinary ``open`` would
+give them under the user's umask (0644 under the usual 022), not the owner-only mode of
+a temporary file.
+"""
 
 from __future__ import annotations
 
@@ -8,42 +14,75 @@ from pathlib import Path
 from typing import Mapping
 
 
+def _file_mode() -> int:
+    """Mode a newly created file gets under the process umask (read without changing it for long)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
 def write_bytes_atomic(path: Path, data: bytes) -> None:
     """Write ``data`` to ``path`` through a temporary file in the same folder and a rename."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        _unlink_quietly(Path(tmp))
-        raise
+    write_files_atomic({Path(path): data})
 
 
 def write_files_atomic(files: Mapping[Path, bytes]) -> list[Path]:
     """Write several files so that either all of them land or none does.
 
-    All contents are first written to temporary files; only when every one
-    succeeded are they renamed into place. Returns the written paths.
+    Every target is checked first (a folder in a file's place is refused before anything
+    is written); all contents are staged as temporary files; only then are they renamed
+    into place, each file it replaces kept aside until all renames succeeded, so a
+    failure half-way puts the folder back as it was. Returns the written paths.
     """
+    targets = [Path(p) for p in files]
+    for path in targets:
+        if path.is_dir():
+            raise IsADirectoryError(21, "is a folder, not a file", str(path))
+    mode = _file_mode()
     staged: list[tuple[Path, Path]] = []
     try:
-        for path, data in files.items():
-            path = Path(path)
+        for path, data in zip(targets, files.values()):
             path.parent.mkdir(parents=True, exist_ok=True)
-            fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
-            staged.append((Path(tmp), path))
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(data)
-        for tmp, path in staged:
-            os.replace(tmp, path)
+            staged.append((_staged(path, data, mode, ".part"), path))
+        _rename_all(staged)
     except BaseException:
         for tmp, _ in staged:
             _unlink_quietly(tmp)
         raise
-    return [path for _, path in staged]
+    return targets
+
+
+def _staged(path: Path, data: bytes | None, mode: int, suffix: str) -> Path:
+    """A hidden temporary file beside ``path`` holding ``data`` (None: an empty placeholder)."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
+    os.fchmod(fd, mode)
+    with os.fdopen(fd, "wb") as fh:
+        if data:
+            fh.write(data)
+    return Path(tmp)
+
+
+def _rename_all(staged: list[tuple[Path, Path]]) -> None:
+    """Rename every staged file onto its target; on any failure undo the renames done."""
+    done: list[tuple[Path, Path | None]] = []
+    try:
+        for tmp, path in staged:
+            backup = None
+            if path.exists():
+                backup = _staged(path, None, 0o600, ".old")
+                os.replace(path, backup)
+            done.append((path, backup))
+            os.replace(tmp, path)
+    except BaseException:
+        for path, backup in reversed(done):
+            if backup is not None:
+                os.replace(backup, path)
+            else:
+                _unlink_quietly(path)
+        raise
+    for _, backup in done:
+        if backup is not None:
+            _unlink_quietly(backup)
 
 
 def remove_files(paths) -> None:
