@@ -1,7 +1,9 @@
 """The ``wheelstep`` command line: a Typer app whose commands live in ``commands/``.
 
 Errors a user can fix (bad values, impossible designs) are reported as one line
-on stderr with exit code 2 and nothing written; see :func:`run`.
+on stderr with exit code 2 and nothing written, naming the parameter by its flag; see
+:func:`run`. Every command takes ``-h``/``--help``, ``-q``, ``-v`` and, where it prints
+a report, ``--json``; where it writes files, ``--dry-run``.
 """
 
 from __future__ import annotations
@@ -21,8 +23,9 @@ app = typer.Typer(
     name="wheelstep",
     help="Design parts of wheel-step movers: non-circular gear pairs, support shoes, "
          "linkages; written as printable meshes.",
-    add_completion=False,
+    add_completion=True,
     no_args_is_help=True,
+    context_settings={"help_option_names": ["-h", "--help"]},
     pretty_exceptions_enable=False,
     rich_markup_mode=None,
 )
@@ -51,12 +54,38 @@ def _register_commands() -> None:
 _register_commands()
 
 
+def _flag(param: str) -> str:
+    """The command-line flag of a parameter name: ``install_distance`` -> ``--install-distance``."""
+    return "--" + param.replace("_", "-")
+
+
+def _command_flags(group, argv: list[str]) -> set[str]:
+    """Every option string of the subcommand named in ``argv`` (empty if none is)."""
+    name = next((arg for arg in argv if arg in group.commands), None)
+    if name is None:
+        return set()
+    return {flag for param in group.commands[name].params if param.param_type_name == "option"
+            for flag in (*param.opts, *param.secondary_opts)}
+
+
+def error_text(err: DesignError, flags: set[str]) -> str:
+    """The error with its parameter as the user wrote it: the flag, when the command has one
+    (an argument or a derived quantity such as a crank angle keeps its plain name)."""
+    text = str(err)
+    shown = _flag(err.param)
+    if shown in flags and text.startswith(err.param):
+        return shown + text[len(err.param):]
+    return text
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run the CLI on ``argv`` and return the exit code (0 ok, 1 failed check, 2 bad input)."""
+    args = sys.argv[1:] if argv is None else list(argv)
+    command = typer.main.get_command(app)
     try:
-        result = app(args=argv, prog_name="wheelstep", standalone_mode=False)
+        result = command.main(args=args, prog_name="wheelstep", standalone_mode=False)
     except DesignError as err:
-        typer.echo(f"wheelstep: error: {err}", err=True)
+        typer.echo(f"wheelstep: error: {error_text(err, _command_flags(command, args))}", err=True)
         return 2
     except click_errors.NoArgsIsHelpError as err:
         typer.echo(err.format_message(), err=True)
