@@ -292,19 +292,19 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_sh
 
 
 @pytest.mark.parametrize("args, param", [
-    (["--rmin", "0"], "r_min ="),                          # cusp
-    (["--rmin", "-5"], "r_min ="),                         # loop
-    (["--c", "300"], "c ="),                              # R_min = a - 4b + c < 0
-    (["--a", "-60"], "a ="),
-    (["--b", "-1"], "b ="),
-    (["--rmin", "30", "--c", "360"], "r_min ="),           # contradicts c
-    (["--strut-diameter", "40"], "strut-diameter ="),     # socket wider than the body
-    (["--strut-diameter", "-3"], "strut-diameter ="),
-    (["--socket-depth", "80"], "socket-depth ="),         # deeper than the body
-    (["--width", "0"], "width ="),
-    (["--rim", "-1"], "rim ="),
+    (["--rmin", "0"], "--rmin ="),                          # cusp
+    (["--rmin", "-5"], "--rmin ="),                         # loop
+    (["--c", "300"], "--c ="),                              # R_min = a - 4b + c < 0
+    (["--a", "-60"], "--a ="),
+    (["--b", "-1"], "--b ="),
+    (["--rmin", "30", "--c", "360"], "--rmin ="),           # contradicts c
+    (["--strut-diameter", "40"], "--strut-diameter ="),     # socket wider than the body
+    (["--strut-diameter", "-3"], "--strut-diameter ="),
+    (["--socket-depth", "80"], "--socket-depth ="),         # deeper than the body
+    (["--width", "0"], "--width ="),
+    (["--rim", "-1"], "--rim ="),
     (["--width", "abc"], "'--width'"),
-    (["--profile", "no-such-design"], "profile ="),
+    (["--profile", "no-such-design"], "--profile ="),
 ])
 def test_bad_input_one_line_exit_2_nothing_written(cli, tmp_path, args, param):
     out = tmp_path / "out"

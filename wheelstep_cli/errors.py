@@ -23,6 +23,11 @@ class DesignError(ValueError):
         self.alternatives = dict(alternatives or {})
         super().__init__(f"{param} = {_fmt(value)}: {limit}")
 
+    @property
+    def shown_value(self) -> str:
+        """The value as the messages print it."""
+        return _fmt(self.value)
+
     def for_given(self, given: Iterable[str]) -> "DesignError":
         """This error restated for a parameter the user gave, when it names one they did not."""
         given = set(given)

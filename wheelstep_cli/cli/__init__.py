@@ -1,7 +1,9 @@
 """The ``wheelstep`` command line: a Typer app whose commands live in ``commands/``.
 
 Errors a user can fix (bad values, impossible designs) are reported as one line
-on stderr with exit code 2 and nothing written; see :func:`run`.
+on stderr with exit code 2 and nothing written, naming the parameter by its flag; see
+:func:`run`. Every command takes ``-h``/``--help``, ``-q``, ``-v`` and, where it prints
+a report, ``--json``; where it writes files, ``--dry-run``.
 """
 
 from __future__ import annotations
@@ -21,8 +23,9 @@ app = typer.Typer(
     name="wheelstep",
     help="Design parts of wheel-step movers: non-circular gear pairs, support shoes, "
          "linkages; written as printable meshes.",
-    add_completion=False,
+    add_completion=True,
     no_args_is_help=True,
+    context_settings={"help_option_names": ["-h", "--help"]},
     pretty_exceptions_enable=False,
     rich_markup_mode=None,
 )
@@ -51,12 +54,40 @@ def _register_commands() -> None:
 _register_commands()
 
 
+def _command_options(group, argv: list[str]) -> dict[str, list[str]]:
+    """Parameter name -> option strings of the subcommand named in ``argv`` (empty if none is)."""
+    name = next((arg for arg in argv if arg in group.commands), None)
+    if name is None:
+        return {}
+    return {param.name: [*param.opts, *param.secondary_opts] for param in group.commands[name].params
+            if param.param_type_name == "option"}
+
+
+def _as_typed(param: str, options: dict[str, list[str]], argv: list[str]) -> str:
+    """The parameter as the user wrote it: the spelling of its flag found in ``argv``, else
+    its first long flag; a name the command has no option for (an argument, a derived
+    quantity such as a crank angle, a profile key) stays as it is."""
+    opts = options.get(param) or options.get(param.replace("-", "_"))
+    if not opts:
+        return param
+    typed = {arg.split("=", 1)[0] for arg in argv if arg.startswith("-")}
+    used = [o for o in opts if o in typed]
+    return (used or [o for o in opts if o.startswith("--")] or opts)[0]
+
+
+def error_text(err: DesignError, options: dict[str, list[str]], argv: list[str]) -> str:
+    """One line: the parameter as the user wrote it, the value and the limit."""
+    return f"{_as_typed(err.param, options, argv)} = {err.shown_value}: {err.limit}"
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run the CLI on ``argv`` and return the exit code (0 ok, 1 failed check, 2 bad input)."""
+    args = sys.argv[1:] if argv is None else list(argv)
+    command = typer.main.get_command(app)
     try:
-        result = app(args=argv, prog_name="wheelstep", standalone_mode=False)
+        result = command.main(args=args, prog_name="wheelstep", standalone_mode=False)
     except DesignError as err:
-        typer.echo(f"wheelstep: error: {err}", err=True)
+        typer.echo(f"wheelstep: error: {error_text(err, _command_options(command, args), args)}", err=True)
         return 2
     except click_errors.NoArgsIsHelpError as err:
         typer.echo(err.format_message(), err=True)

@@ -58,3 +58,12 @@ def speed_ripple(speed: np.ndarray) -> float:
     speed = np.asarray(speed, dtype=float)
     mean = (speed.sum() - 0.5 * (speed[0] + speed[-1])) / (len(speed) - 1)
     return float((speed.max() - speed.min()) / mean)
+
+
+def sole_table(design: CrankMechanism, count: int = 7) -> np.ndarray:
+    """Rows (phi deg, X, Y, rho, alpha deg, R) at ``count`` hub angles over the contact, mm."""
+    phi = contact_angles(count)
+    xy = sole_profile(design, phi)
+    rho, alpha = sole_polar(design, phi)
+    return np.column_stack([np.degrees(phi), xy, rho, np.degrees(alpha),
+                            sole_curvature_radius(design, phi)])

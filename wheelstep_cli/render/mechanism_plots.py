@@ -1,4 +1,5 @@
-"""PNG plots and GIF animations of the mechanism analyses (stairs, linkages, trajectories).
+"""PNG plots and GIF animations of the mechanism analyses (hub speed, stairs, linkages,
+trajectories).
 
 Each function takes plain arrays/dataclasses and returns the file's bytes, so the
 command can write every output atomically. matplotlib (Agg) is imported lazily.
@@ -182,3 +183,61 @@ def trajectory_png(path, points: np.ndarray, pieces: np.ndarray, title: str) -> 
     ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
     return _png(fig)
+
+
+def _speed_axes(ax, kin) -> None:
+    """Hub speed (m/s) over the hub angle (deg), without and with the non-circular gears."""
+    deg = np.degrees(kin.phi)
+    ax.plot(deg, kin.speed_plain / 1000, label=f"without non-circular gears (ripple {100 * kin.ripple_plain:.1f} %)")
+    ax.plot(deg, kin.speed_geared / 1000, label=f"with non-circular gears (ripple {100 * kin.ripple_geared:.1f} %)")
+    ax.set_xlabel("hub angle phi, deg (one shoe in contact)")
+    ax.set_ylabel("hub speed, m/s")
+    ax.set_xlim(deg[0], deg[-1])
+    ax.set_ylim(0, None)
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="lower center")
+    ax.set_title(f"constant motor speed {kin.motor_speed * 60 / (2 * np.pi):g} rpm")
+
+
+def _sole_axes(ax, design) -> None:
+    """The sole in the shoe frame (mm), with the strut and its pivot."""
+    from wheelstep_cli.mechanism.sole import contact_angles, sole_profile
+
+    sole = sole_profile(design, contact_angles(201))
+    ax.plot(sole[:, 0], sole[:, 1], lw=2, label="sole")
+    ax.plot([0, 0], [0, design.c], "k--", lw=1, label="strut")
+    ax.plot([0], [0], "ko", label="strut pivot")
+    ax.set_aspect("equal")
+    ax.invert_yaxis()  # Y of the shoe frame points to the ground
+    ax.set_xlabel("X, mm")
+    ax.set_ylabel("Y, mm (shoe frame, along the strut)")
+    ax.set_title(f"shoe sole, R_min = {design.r_min:g} mm")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="center right", fontsize="small")
+
+
+def kinematics_png(design, kin) -> bytes:
+    """PNG: hub speed without/with the gears over one shoe cycle (a ``HubKinematics``), and the
+    sole of ``design`` (a ``CrankMechanism``) in the shoe frame."""
+    plt = _plt()
+    fig, (ax_v, ax_s) = plt.subplots(1, 2, figsize=(11, 4.5), gridspec_kw={"width_ratios": [3, 2]})
+    _speed_axes(ax_v, kin)
+    _sole_axes(ax_s, design)
+    fig.tight_layout()
+    return _png(fig)
+
+
+def stair_study_png(study) -> bytes:
+    """:func:`stairs_png` of a ``StairStudy``: its kinematics and three cycles of hub path up
+    and down, titled with the design and the stair."""
+    from wheelstep_cli.mechanism import stairs as st
+
+    d, req = study.design, study.request
+    what = "check of" if req.checking else "sized"
+    title = (f"{what} a = {d.a:.1f}, b = {d.b:.1f}, Y1 = {d.y1:.1f}, Y2 = {d.y2:.1f} mm; "
+             f"stair {req.run:g} x {req.rise:g} mm, landing {req.landing_angle_deg:g} deg")
+    beta = study.descent_landing
+    return stairs_png(study.climb, study.descent,
+                      st.hub_path(d, study.landing, study.advance, study.rise, 3),
+                      st.hub_path(d, beta, *st.cycle_motion(d, beta), 3), title,
+                      (float(study.advance), float(study.rise)))

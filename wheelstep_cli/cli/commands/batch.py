@@ -3,25 +3,27 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Annotated
 
 import typer
 
-Opt = typer.Option
+from wheelstep_cli.cli.options import DryRun, Json, Out, Quiet, Verbose, opt
+from wheelstep_cli.cli.output import Output
 
 
 def batch(
     file: Path = typer.Argument(..., help="Batch YAML: parts with kind, design, overrides, quantity, printer."),
-    out: Path = Opt(Path("wheelstep-batch"), "--out", "-o", help="Output folder."),
-    jobs: int = Opt(0, "--jobs", "-j", help="Worker processes; 0 = one per CPU core."),
+    out: Out = Path("wheelstep-batch"),
+    jobs: Annotated[int, opt("--jobs", "-j", help="Worker processes; 0 = one per CPU core.")] = 0,
+    json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Build every part of a batch file into packed 3MF plates with PNG previews,
     manifest.json and print-sheet.md. Exit 1 if some parts failed, 2 if the file is invalid."""
-    import os
-
-    from wheelstep_cli.batch import load_batch, run_batch
-    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.batch import load_batch
     from wheelstep_cli.config.schema import InvalidInput
+    from wheelstep_cli.errors import DesignError
 
+    show = Output(json, quiet, verbose)
     if jobs < 0:
         raise DesignError("jobs", jobs, "must be >= 0 (0: one per CPU core)")
     if out.exists() and not out.is_dir():
@@ -30,45 +32,64 @@ def batch(
         plan = load_batch(file, str(file))
     except InvalidInput as err:
         for line in err.lines():
-            typer.echo(f"wheelstep: error: {line}", err=True)
+            show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
-    workers = jobs or os.cpu_count() or 1
-    workers = max(1, min(workers, len(plan.entries)))
-    try:
-        with _progress() as progress:
-            outcome = run_batch(plan, out, workers, progress)
-    except OSError as err:
-        raise DesignError("out", str(out), f"cannot be written ({err.strerror or err})") from None
-    parts = sum(len(p.items) for p in outcome.plates)
-    typer.echo(f"built {len(outcome.built)} of {len(plan.entries)} entries: {parts} parts on "
-               f"{len(outcome.plates)} plate{'' if len(outcome.plates) == 1 else 's'} in {out}")
-    for plate in outcome.plates:
-        typer.echo(f"  {plate.stem}.3mf ({plate.printer.name}): {len(plate.items)} parts")
+    outcome, written = _run(plan, out, jobs, show, dry_run)
+    show.report(_summary(file, out, plan, outcome, [] if dry_run else written),
+                lambda: _lines(out, plan, outcome))
+    if dry_run:
+        show.files(written, dry_run=True)
     if outcome.failed:
-        typer.echo(f"{len(outcome.failed)} entries failed:", err=True)
+        show.error(f"{len(outcome.failed)} entries failed:")
         for entry, where, reason in outcome.failed:
-            typer.echo(f"  {entry.name} ({where}): {reason}", err=True)
+            show.error(f"  {entry.name} ({where}): {reason}")
         raise typer.Exit(1)
 
 
-class _progress:
-    """A rich progress bar on stderr; ``progress(stage, total)`` returns an advance() callable."""
+def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool):
+    """Build the batch into ``out`` (a dry run: into a scratch folder, then discarded);
+    returns the outcome and the files written (or that would be, named inside ``out``)."""
+    import os
+    import tempfile
 
-    def __enter__(self):
-        from rich.console import Console
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+    from wheelstep_cli.batch import run_batch
+    from wheelstep_cli.cli.progress import Progress
+    from wheelstep_cli.errors import DesignError
 
-        self.bar = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-                            TimeElapsedColumn(), console=Console(stderr=True), transient=False)
-        self.bar.__enter__()
-        return self
+    workers = max(1, min(jobs or os.cpu_count() or 1, len(plan.entries)))
+    show.detail(f"  {len(plan.entries)} entries, {workers} worker(s)")
+    try:
+        with Progress(not show.quiet, transient=False) as bars:
+            if not dry_run:
+                outcome = run_batch(plan, out, workers, bars)
+                return outcome, outcome.written
+            with tempfile.TemporaryDirectory(prefix="wheelstep-dry-run-") as scratch:
+                outcome = run_batch(plan, Path(scratch), workers, bars)
+                return outcome, [out / p.relative_to(scratch) for p in outcome.written]
+    except OSError as err:
+        raise DesignError("out", str(out), f"cannot be written ({err.strerror or err})") from None
 
-    def __call__(self, stage: str, total: int):
-        task = self.bar.add_task(stage, total=total)
-        return lambda: self.bar.advance(task)
 
-    def __exit__(self, *exc):
-        return self.bar.__exit__(*exc)
+def _summary(file: Path, out: Path, plan, outcome, written: list[Path]) -> dict:
+    """The batch run as plain data: what was built, on which plates, what failed and why."""
+    return {
+        "batch": str(file), "out": str(out), "entries": len(plan.entries),
+        "built": [entry.name for entry in outcome.built],
+        "parts": sum(len(p.items) for p in outcome.plates),
+        "plates": [{"file": f"{p.stem}.3mf", "printer_profile": p.printer.name,
+                    "parts": len(p.items)} for p in outcome.plates],
+        "failed": [{"entry": entry.name, "where": where, "reason": reason}
+                   for entry, where, reason in outcome.failed],
+        "written": [str(p) for p in written],
+    }
+
+
+def _lines(out: Path, plan, outcome) -> list[str]:
+    parts = sum(len(p.items) for p in outcome.plates)
+    plates = len(outcome.plates)
+    return [f"built {len(outcome.built)} of {len(plan.entries)} entries: {parts} parts on "
+            f"{plates} plate{'' if plates == 1 else 's'} in {out}",
+            *(f"  {p.stem}.3mf ({p.printer.name}): {len(p.items)} parts" for p in outcome.plates)]
 
 
 def register(app: typer.Typer) -> None:

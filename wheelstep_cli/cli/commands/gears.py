@@ -4,13 +4,12 @@ from __future__ import annotations
 
 from enum import Enum
 from pathlib import Path
-from typing import Optional
+from typing import Annotated, Optional
 
-import typer
-
+from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Format, Json, MeshFormat,
+                                       Out, Profile, Quiet, Turns, Verbose, Z, opt)
+from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec
-
-Opt = typer.Option
 
 
 class Teeth(str, Enum):
@@ -23,126 +22,106 @@ class Corner(str, Enum):
     tooth = "tooth"
 
 
-class Format(str, Enum):
-    stl = "stl"
-    threemf = "3mf"
-    both = "both"
+Module = Annotated[Optional[float], opt("--module", "-m", help="Module (tooth height unit), mm.",
+                                        shown="2")]
+Backlash = Annotated[Optional[float], opt("--backlash", help="Normal backlash j_n, mm.",
+                                          shown="0.25 x module")]
 
 
-# Shared option declarations (defaults None so a profile can fill what is not given).
-A = Opt(None, "--a", help="Hub axis to crank axes, mm [60].")
-B = Opt(None, "--b", help="Crank length, mm [100].")
-C = Opt(None, "--c", help="Shoe strut length, mm [360].")
-Z = Opt(None, "--z", help="Pinion tooth count; the wheel gets z*n/2 [48].")
-TURNS = Opt(None, "--turns", "-n", help="Pinion turns per carrier turn, 2 or 4 [2].")
-CENTER = Opt(None, "--center-distance", help="Design centre distance L_p, mm [143.5].")
-INSTALL = Opt(None, "--install-distance", help="Installed centre distance, mm [144].")
-MODULE = Opt(None, "--module", "-m", help="Module (tooth height unit), mm [2].")
-BACKLASH = Opt(None, "--backlash", help="Normal backlash j_n, mm [0.25 x module].")
-PROFILE = Opt(None, "--profile", help="Design preset: a name in profiles/ or a YAML path.")
-JSON = Opt(False, "--json", help="Print JSON instead of a table.")
-
-
-def pitch(
-    a: Optional[float] = A, b: Optional[float] = B, c: Optional[float] = C,
-    z: Optional[int] = Z, turns: Optional[int] = TURNS,
-    center_distance: Optional[float] = CENTER, profile: Optional[str] = PROFILE,
-    json: bool = JSON,
-) -> None:
+def pitch(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = None,
+          center_distance: CenterDistance = None, profile: Profile = None,
+          json: Json = False, quiet: Quiet = False, verbose: Verbose = False) -> None:
     """Print the equal-arc sector partition of one carrier quarter (SPEC §4)."""
-    from wheelstep_cli.gears.sectors import sector_partition, sectors_per_quarter
-    from wheelstep_cli.formats.jsonio import json_text
-    from wheelstep_cli.parts.gear_pair import partition_rows
+    from wheelstep_cli.parts.gear_tables import pitch_report
 
+    out = Output(json, quiet, verbose)
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
-    law = spec.law()
-    part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns), spec.center_distance)
-    rows = partition_rows(part)
-    if json:
-        typer.echo(json_text({"u": law.u, "arc_mm": part.arc, "sectors": rows}), nl=False)
-        return
-    typer.echo(f"u = {law.u:.5f}   common arc l = {part.arc:.4f} mm   "
-               f"{part.count} sectors per carrier quarter")
-    typer.echo(f"{'i':>3} {'phi_i':>8} {'dphi_i':>7} {'r_Hi':>8} {'theta_i':>8} {'dtheta_i':>8} {'r_i':>7}")
-    for row in rows:
-        typer.echo(f"{row['i']:>3} {row['phi_deg']:8.2f} {row['dphi_deg']:7.2f} {row['r_wheel_mm']:8.2f} "
-                   f"{row['theta_deg']:8.2f} {row['dtheta_deg']:8.2f} {row['r_pinion_mm']:7.2f}")
-    typer.echo("(degrees and mm)")
+    out.parameters(vars(spec))
+    report = pitch_report(spec)
+    out.report(report, lambda: _pitch_lines(report))
 
 
-def teeth(
-    a: Optional[float] = A, b: Optional[float] = B, c: Optional[float] = C,
-    z: Optional[int] = Z, turns: Optional[int] = TURNS,
-    center_distance: Optional[float] = CENTER, module: Optional[float] = MODULE,
-    backlash: Optional[float] = BACKLASH, profile: Optional[str] = PROFILE,
-    json: bool = JSON,
-) -> None:
+def _pitch_lines(report: dict) -> list[str]:
+    """The sector table: one row per sector, degrees and mm."""
+    lines = [f"u = {report['u']:.5f}   common arc l = {report['arc_mm']:.4f} mm   "
+             f"{len(report['sectors'])} sectors per carrier quarter",
+             f"{'i':>3} {'phi_i':>8} {'dphi_i':>7} {'r_Hi':>8} {'theta_i':>8} {'dtheta_i':>8} {'r_i':>7}"]
+    for row in report["sectors"]:
+        lines.append(f"{row['i']:>3} {row['phi_deg']:8.2f} {row['dphi_deg']:7.2f} "
+                     f"{row['r_wheel_mm']:8.2f} {row['theta_deg']:8.2f} {row['dtheta_deg']:8.2f} "
+                     f"{row['r_pinion_mm']:7.2f}")
+    return lines + ["(degrees and mm)"]
+
+
+def teeth(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = None,
+          center_distance: CenterDistance = None, module: Module = None,
+          backlash: Backlash = None, profile: Profile = None,
+          json: Json = False, quiet: Quiet = False, verbose: Verbose = False) -> None:
     """Print the sector-involute tooth points of both gears (SPEC §5)."""
-    import numpy as np
+    from wheelstep_cli.parts.gear_tables import teeth_report
 
-    from wheelstep_cli.gears.paper_teeth import check_tooth_form, pinion_flanks, wheel_flanks
-    from wheelstep_cli.gears.sectors import sector_partition, sectors_per_quarter
-    from wheelstep_cli.formats.jsonio import json_text
-
+    out = Output(json, quiet, verbose)
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
-                 module=module, backlash=backlash)
-    law = spec.law()
-    part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns), spec.center_distance)
-    form = spec.tooth_form()
-    check_tooth_form(part, form)
-    tables = {"pinion": (pinion_flanks(part, form), "theta"), "wheel": (wheel_flanks(part, form), "phi")}
-    result = {}
-    for gear, (flanks, angle) in tables.items():
-        result[gear] = [
-            {"i": i + 1, "points": [
-                {"j": j + 1, f"{angle}_deg": np.degrees(flanks.left[i, j]),
-                 f"{angle}_s_deg": np.degrees(flanks.right[i, j]), "r_mm": flanks.radius[i, j]}
-                for j in range(flanks.left.shape[1])]}
-            for i in range(flanks.left.shape[0])
-        ]
-    if json:
-        typer.echo(json_text(result), nl=False)
-        return
-    for gear, (flanks, angle) in tables.items():
-        typer.echo(f"{gear}: flank 1 {angle}_ij / flank 2 {angle}_sij (deg) at r_ij (mm), j = 1..5")
-        for sector in result[gear]:
+                          module=module, backlash=backlash)
+    out.parameters(vars(spec))
+    report = teeth_report(spec)
+    out.report(report, lambda: _teeth_lines(report))
+
+
+def _teeth_lines(report: dict) -> list[str]:
+    """Per gear: one row per sector of ``left/right@radius`` for each tooth point."""
+    from wheelstep_cli.parts.gear_tables import FLANK_ANGLES
+
+    lines = []
+    for gear, angle in FLANK_ANGLES.items():
+        lines.append(f"{gear}: flank 1 {angle}_ij / flank 2 {angle}_sij (deg) at r_ij (mm), j = 1..5")
+        for sector in report[gear]:
             cells = "  ".join(f"{p[f'{angle}_deg']:8.2f}/{p[f'{angle}_s_deg']:8.2f}@{p['r_mm']:.2f}"
                               for p in sector["points"])
-            typer.echo(f"{sector['i']:>3}  {cells}")
+            lines.append(f"{sector['i']:>3}  {cells}")
+    return lines
 
 
 def gears(
-    a: Optional[float] = A, b: Optional[float] = B, c: Optional[float] = C,
-    z: Optional[int] = Z, turns: Optional[int] = TURNS,
-    center_distance: Optional[float] = CENTER, install_distance: Optional[float] = INSTALL,
-    module: Optional[float] = MODULE, backlash: Optional[float] = BACKLASH,
-    thickness: Optional[float] = Opt(None, "--thickness", help="Face width, mm [10]."),
-    bore: Optional[float] = Opt(None, "--bore", help="Shaft bore diameter, mm; 0 for none [8]."),
-    fmt: Format = Opt(Format.both, "--format", help="Mesh files to write."),
-    out: Path = Opt(Path("wheelstep-out"), "--out", "-o", help="Output folder."),
-    profile: Optional[str] = PROFILE,
-    teeth: Optional[Teeth] = Opt(None, "--teeth",
-                                 help="generated: conjugate teeth (SPEC §9, default); "
-                                      "paper: the source's sector involutes (SPEC §5)."),
-    pressure_angle: Optional[float] = Opt(None, "--pressure-angle",
-                                          help="Rack pressure angle, deg (generated) [20]."),
-    addendum: Optional[float] = Opt(None, "--addendum", help="Addendum, x module (generated) [1.0]."),
-    dedendum: Optional[float] = Opt(None, "--dedendum", help="Dedendum, x module (generated) [1.25]."),
-    fillet: Optional[float] = Opt(None, "--fillet", help="Rack tip fillet radius, x module (generated) [0.25]."),
-    blend: Optional[float] = Opt(None, "--blend",
-                                 help="Half-width (carrier deg) of the ratio blend at each handover (generated) [0]."),
-    corner: Optional[Corner] = Opt(None, "--corner",
-                                   help="Centre a pinion space or tooth on each pitch-curve corner (generated) [space]."),
-    tilt: Optional[float] = Opt(None, "--tilt",
-                                help="Tilt of the rack teeth towards the radius, as a fraction of the "
-                                     "pitch-curve slope (generated) [0.6]."),
-    law_csv: Optional[Path] = Opt(None, "--law-csv",
-                                  help="CSV of driving angle, driven angle (deg) over one period: "
-                                       "generate this law instead of the crank law (generated)."),
-    allow_interference: bool = Opt(
-        False, "--allow-interference",
-        help="Write the pair even if the meshing check finds overlapping teeth "
-             "(the paper method's pair does, at the shoe handovers)."),
+    a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = None,
+    center_distance: CenterDistance = None,
+    install_distance: Annotated[Optional[float], opt("--install-distance",
+                                                     help="Installed centre distance, mm.",
+                                                     shown="144")] = None,
+    module: Module = None, backlash: Backlash = None,
+    thickness: Annotated[Optional[float], opt("--thickness", help="Face width, mm.",
+                                              shown="10")] = None,
+    bore: Annotated[Optional[float], opt("--bore", help="Shaft bore diameter, mm; 0 for none.",
+                                         shown="8")] = None,
+    fmt: Format = MeshFormat.both, out: Out = Path("wheelstep-out"), profile: Profile = None,
+    teeth: Annotated[Optional[Teeth], opt(
+        "--teeth", help="generated: conjugate teeth (SPEC §9); paper: the source's sector "
+                        "involutes (SPEC §5).", shown="generated")] = None,
+    pressure_angle: Annotated[Optional[float], opt(
+        "--pressure-angle", help="Rack pressure angle, deg (generated).", shown="20")] = None,
+    addendum: Annotated[Optional[float], opt(
+        "--addendum", help="Addendum, x module (generated).", shown="1.0")] = None,
+    dedendum: Annotated[Optional[float], opt(
+        "--dedendum", help="Dedendum, x module (generated).", shown="1.25")] = None,
+    fillet: Annotated[Optional[float], opt(
+        "--fillet", help="Rack tip fillet radius, x module (generated).", shown="0.25")] = None,
+    blend: Annotated[Optional[float], opt(
+        "--blend", help="Half-width (carrier deg) of the ratio blend at each handover "
+                        "(generated).", shown="0")] = None,
+    corner: Annotated[Optional[Corner], opt(
+        "--corner", help="Centre a pinion space or tooth on each pitch-curve corner "
+                         "(generated).", shown="space")] = None,
+    tilt: Annotated[Optional[float], opt(
+        "--tilt", help="Tilt of the rack teeth towards the radius, as a fraction of the "
+                       "pitch-curve slope (generated).", shown="0.6")] = None,
+    law_csv: Annotated[Optional[Path], opt(
+        "--law-csv", help="CSV of driving angle, driven angle (deg) over one period: generate "
+                          "this law instead of the crank law (generated).")] = None,
+    allow_interference: Annotated[bool, opt(
+        "--allow-interference", help="Write the pair even if the meshing check finds "
+                                     "overlapping teeth (the paper method's pair does, at the "
+                                     "shoe handovers).")] = False,
+    json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Write the non-circular gear pair as printable STL/3MF meshes and gears.json.
 
@@ -150,57 +129,76 @@ def gears(
     refused (exit 1, nothing written) unless --allow-interference. Generated teeth
     (default) roll at the installed distance; the module follows from the pitch-curve
     perimeter and --z (--module applies to --teeth paper only)."""
-    from wheelstep_cli.cli.commands.meshcheck import _run_with_progress
-    from wheelstep_cli.formats.atomic import write_files_atomic
-    from wheelstep_cli.parts.gear_pair import build_gear_pair, gear_pair_files
+    show = Output(json, quiet, verbose)
+    spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
+                          install_distance=install_distance, module=module, backlash=backlash,
+                          thickness=thickness, bore=bore, teeth=teeth.value if teeth else None,
+                          pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
+                          fillet=fillet, blend=blend, corner=corner.value if corner else None,
+                          tilt=tilt, law_csv=str(law_csv) if law_csv else None)
+    show.parameters(vars(spec))
+    _make_gears(spec, show, out, fmt.value, allow_interference, dry_run)
+
+
+def _make_gears(spec, show: Output, out: Path, fmt: str, allow_interference: bool,
+                dry_run: bool) -> None:
+    """Build, check, write (unless refused or a dry run) and report the pair of ``spec``."""
+    import typer
+
+    from wheelstep_cli.cli.progress import with_progress
+    from wheelstep_cli.parts.gear_pair import build_gear_pair, gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
 
-    spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
-                 install_distance=install_distance, module=module, backlash=backlash,
-                 thickness=thickness, bore=bore, teeth=teeth.value if teeth else None,
-                 pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
-                 fillet=fillet, blend=blend, corner=corner.value if corner else None, tilt=tilt,
-                 law_csv=str(law_csv) if law_csv else None)
     pair = build_gear_pair(spec)
-    meshing = _run_with_progress(check_gear_pair, pair)
-    record = meshing_record(meshing)
-    if meshing.interferes and not allow_interference:
-        typer.echo(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
+    record = meshing_record(with_progress(not show.quiet, "meshing check", check_gear_pair, pair))
+    if record["interference"] and not allow_interference:
+        show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
                    f"{record['samples']} poses at {spec.install_distance:g} mm (max overlap "
                    f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
-                   "(--allow-interference writes them anyway)", err=True)
+                   "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
-    written = write_files_atomic(gear_pair_files(pair, out, fmt.value, record))
+    files = gear_pair_files(pair, out, fmt, record)
+    written = show.write(files, dry_run)
+    report = {**gear_pair_report(pair, record), "written": [str(p) for p in written]}
+    show.report(report, lambda: _gears_lines(pair, record))
+    _warn_interference(show, record)
+    show.files(files if dry_run else written, dry_run, joined=True)
+
+
+def _gears_lines(pair, record: dict) -> list[str]:
+    """Both parts, the generated teeth and one line on the meshing check."""
+    lines = []
     for part in (pair.pinion, pair.wheel):
         check = pair.checks[part.name]
         size = part.bounds[1] - part.bounds[0]
-        typer.echo(f"{part.name}: {check.triangles} triangles, {check.volume / 1000:.2f} cm3, "
-                   f"{size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} mm, printable")
+        lines.append(f"{part.name}: {check.triangles} triangles, {check.volume / 1000:.2f} cm3, "
+                     f"{size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} mm, printable")
     if pair.generated is not None:
         gen = pair.generated
-        typer.echo(f"generated teeth: z = {gen.pinion_teeth}/{gen.wheel_teeth}, pitch {gen.pitch:.4f} mm, "
-                   f"module {gen.module:.4f} mm, rolling at {gen.curves.center_distance:g} mm, "
-                   f"backlash j_n = {gen.cutter.backlash:g} mm")
-    _echo_meshing(record, spec.install_distance)
-    typer.echo("wrote " + ", ".join(str(p) for p in written))
+        lines.append(f"generated teeth: z = {gen.pinion_teeth}/{gen.wheel_teeth}, pitch "
+                     f"{gen.pitch:.4f} mm, module {gen.module:.4f} mm, rolling at "
+                     f"{gen.center_distance:g} mm, backlash j_n = {gen.cutter.backlash:g} mm")
+    lines.append(f"meshing at {pair.spec.install_distance:g} mm: hub speed ripple "
+                 f"{_num(record, 'hub_speed_ripple_pct', '.2f')} %, backlash "
+                 f"{_num(record, 'backlash_min_mm', '.3f')}..{_num(record, 'backlash_max_mm', '.3f')}"
+                 f" mm, TE {_num(record, 'te_peak_to_peak_arcmin', '.2f')}' p-p")
+    return lines
 
 
-def _echo_meshing(record: dict, distance: float) -> None:
-    """One line on the meshing check; a warning line when the teeth interfere."""
-    def num(key, fmt):
-        return "n/a" if record[key] is None else format(record[key], fmt)
+def _num(record: dict, key: str, fmt: str) -> str:
+    return "n/a" if record[key] is None else format(record[key], fmt)
 
-    typer.echo(f"meshing at {distance:g} mm: hub speed ripple {num('hub_speed_ripple_pct', '.2f')} %, "
-               f"backlash {num('backlash_min_mm', '.3f')}..{num('backlash_max_mm', '.3f')} mm, "
-               f"TE {num('te_peak_to_peak_arcmin', '.2f')}' p-p")
+
+def _warn_interference(show: Output, record: dict) -> None:
+    """A warning line on stderr when the (allowed) teeth interfere."""
     if record["interference"]:
-        typer.echo(f"WARNING: the teeth interfere at {record['interfering_poses']} of "
-                   f"{record['samples']} poses (max overlap {record['max_overlap_area_mm2']:.3f} "
-                   f"mm2); hub speed ripple where they do not: "
-                   f"{num('hub_speed_ripple_clear_pct', '.2f')} %", err=True)
+        show.warning(f"WARNING: the teeth interfere at {record['interfering_poses']} of "
+                     f"{record['samples']} poses (max overlap {record['max_overlap_area_mm2']:.3f} "
+                     f"mm2); hub speed ripple where they do not: "
+                     f"{_num(record, 'hub_speed_ripple_clear_pct', '.2f')} %")
 
 
-def register(app: typer.Typer) -> None:
+def register(app) -> None:
     app.command("pitch")(pitch)
     app.command("teeth")(teeth)
     app.command("gears")(gears)

@@ -1,6 +1,4 @@
-"""Foot trajectory from a line and three arcs (SPEC §8): SPEC formulas, continuity, clearance, files."""
-
-import json
+"""Foot trajectory from a line and three arcs (SPEC §8): SPEC formulas, continuity, clearance."""
 
 import numpy as np
 import pytest
@@ -9,8 +7,6 @@ from hypothesis import strategies as st_
 
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.mechanism import trajectory as tr
-
-from tests.helpers.clicheck import error_line
 
 
 def _assert_smooth_closed(path, tol=1e-9):
@@ -87,42 +83,3 @@ def test_impossible_tangency_is_refused(kwargs, param):
     with pytest.raises(DesignError) as err:
         tr.foot_path(300.0, 30.0, 30.0, **kwargs)
     assert err.value.param == param
-
-
-def test_cli_files(cli, tmp_path):
-    import ezdxf
-
-    f = {k: tmp_path / f"path.{k}" for k in ("csv", "dxf", "png")}
-    res = cli("trajectory", "-H", "300", "--r1", "20", "--r2", "45", "--h-max", "120", "--json",
-              "--csv", f["csv"], "--dxf", f["dxf"], "--plot", f["png"])
-    assert res.exit_code == 0, res.stderr
-    data = json.loads(res.stdout)
-    assert data["case"] == "general" and data["h_max_mm"] == pytest.approx(120.0)
-    rows = np.loadtxt(f["csv"], delimiter=",", skiprows=1)
-    assert rows[:, 1].max() == pytest.approx(120.0, abs=1e-3) and rows[:, 1].min() == pytest.approx(0.0)
-    doc = ezdxf.readfile(f["dxf"])
-    ents = list(doc.modelspace())
-    assert [e.dxftype() for e in ents] == ["LINE", "ARC", "ARC", "ARC"]
-    top = ents[2]
-    assert top.dxf.radius == pytest.approx(data["r3_mm"]) and top.dxf.center.y + top.dxf.radius == pytest.approx(120.0)
-    assert f["png"].read_bytes()[:4] == b"\x89PNG"
-    again = tmp_path / "again.dxf"
-    cli("trajectory", "-H", "300", "--r1", "20", "--r2", "45", "--h-max", "120", "--dxf", again)
-    assert again.read_bytes() == f["dxf"].read_bytes()
-
-
-def test_cli_polyline_dxf(cli, tmp_path):
-    import ezdxf
-
-    out = tmp_path / "p.dxf"
-    assert cli("trajectory", "--dxf", out, "--dxf-polyline").exit_code == 0
-    (poly,) = list(ezdxf.readfile(out).modelspace())
-    assert poly.dxftype() == "POLYLINE" and poly.is_closed and len(poly.vertices) == 4
-
-
-def test_cli_bad_input_one_line_exit_2(cli, tmp_path):
-    out = tmp_path / "x.dxf"
-    res = cli("trajectory", "--r1", "30", "--h-max", "40", "--dxf", out)
-    assert error_line(res).startswith("wheelstep: error: h-max = 40") and not out.exists()
-    res = cli("trajectory", "--r3", "400", "--h-max", "100")
-    assert res.exit_code == 2 and "either --r3 or --h-max" in res.stderr

@@ -1,6 +1,4 @@
-"""Walking linkages (SPEC §7): Chebyshev reference points, loop closure, branch continuity, errors, CLI."""
-
-import json
+"""Walking linkages (SPEC §7): Chebyshev reference points, loop closure, branch continuity, errors."""
 
 import numpy as np
 import pytest
@@ -9,8 +7,6 @@ from hypothesis import strategies as st_
 
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.mechanism import linkage as lk
-
-from tests.helpers.clicheck import error_line
 
 
 def test_chebyshev_lambda_reference_points():
@@ -135,36 +131,3 @@ def test_gait_of_chebyshev_lambda():
     assert np.allclose(g.velocity, sol.rates["F"] * 2 * np.pi, rtol=1e-12)   # 60 rpm = 2 pi rad/s
     # the foot moves backwards while it stands, so the body moves forward (+x)
     assert np.all(g.body_speed[g.support] > 0)
-
-
-def test_cli_json_plot_gif_csv(cli, tmp_path):
-    out = {k: tmp_path / f"leg.{k}" for k in ("png", "gif", "csv")}
-    res = cli("linkage", "--preset", "jansen", "--samples", "360", "--json",
-              "--plot", out["png"], "--gif", out["gif"], "--gif-frames", "6", "--csv", out["csv"])
-    assert res.exit_code == 0, res.stderr
-    data = json.loads(res.stdout)
-    assert data["loop_residual_mm"] < 1e-9
-    assert 0 < data["duty_factor"] < 1 and data["stride_mm"] > 0 and data["lift_mm"] > 0
-    assert data["branches"] == {"U": -1, "W": 1, "R": 1, "K": -1, "F": -1}
-    assert out["png"].read_bytes()[:4] == b"\x89PNG" and out["gif"].read_bytes()[:6] == b"GIF89a"
-    assert len(out["csv"].read_text().splitlines()) == 361
-    from PIL import Image
-
-    assert Image.open(out["gif"]).n_frames == 6
-
-
-def test_cli_chebyshev_scaled(cli):
-    res = cli("linkage", "--preset", "chebyshev", "--scale", "0.02", "--step", "90", "--json")
-    data = json.loads(res.stdout)
-    pts = {round(r["crank_deg"]): (r["x_mm"], r["y_mm"]) for r in data["path"]}
-    assert np.allclose([pts[90], pts[180], pts[270]], [[4, 4], [2, 4], [0, 4]], atol=1e-9)   # unit 50 x 0.02
-
-
-def test_cli_impossible_linkage_one_line_exit_2(cli, tmp_path):
-    png = tmp_path / "x.png"
-    res = cli("linkage", "--l3", "100", "--plot", png)
-    line = error_line(res)
-    assert line.startswith("wheelstep: error: crank-angle = ")
-    assert "cannot close" in line and not png.exists()
-    res = cli("linkage", "--preset", "jansen", "--branch", "Q=+1")
-    assert res.exit_code == 2 and res.stderr.startswith("wheelstep: error: branch = Q")

@@ -1,4 +1,4 @@
-"""Planar walking linkages (SPEC §7) solved as a chain of two-circle (RRR dyad) steps.
+"""Planar linkages solved as a chain of two-circle (RRR dyad) steps (SPEC §7).
 
 A linkage is an ordered tuple of steps, each defining one named joint from joints
 defined before it: a fixed pivot, a crank tip, a dyad (the intersection of two circles
@@ -249,12 +249,12 @@ def _solve_dyad(s: Dyad, joints: dict, theta: np.ndarray) -> np.ndarray:
     mine, other = (left, right) if s.branch == 1 else (right, left)
     if theta.size > 1:
         prev = np.roll(mine, 1, axis=0)
-        if not _is_full_cycle(theta):
+        if not is_full_cycle(theta):
             prev[0] = mine[0]
         step_same = np.hypot(*(mine - prev).T)
         step_other = np.hypot(*(other - prev).T)
         jump = step_other <= step_same
-        jump[0] &= _is_full_cycle(theta)
+        jump[0] &= is_full_cycle(theta)
         if np.any(jump):
             k = int(np.argmax(jump))
             raise DesignError("crank-angle", _deg(theta[k]),
@@ -263,7 +263,7 @@ def _solve_dyad(s: Dyad, joints: dict, theta: np.ndarray) -> np.ndarray:
     return mine
 
 
-def _is_full_cycle(theta: np.ndarray) -> bool:
+def is_full_cycle(theta: np.ndarray) -> bool:
     span = theta[-1] - theta[0] + (theta[1] - theta[0] if theta.size > 1 else 0.0)
     return bool(np.isclose(span, 2 * np.pi))
 
@@ -271,160 +271,3 @@ def _is_full_cycle(theta: np.ndarray) -> bool:
 def cycle_angles(samples: int) -> np.ndarray:
     """``samples`` crank angles evenly over one turn, starting at 0, without repeating 2 pi."""
     return np.arange(samples) * (2 * np.pi / samples)
-
-
-@dataclass(frozen=True)
-class Gait:
-    """Foot path and what it means for walking, at a constant crank speed.
-
-    Lengths mm, speeds mm/s. ``support`` marks the samples of the support phase: the
-    contiguous part of the cycle, around the lowest point, within ``ground_tol`` of the
-    ground line (the lowest level the foot reaches).
-    """
-
-    theta: np.ndarray
-    foot: np.ndarray
-    velocity: np.ndarray
-    speed: np.ndarray
-    support: np.ndarray
-    ground_level: float
-    ground_tol: float
-    stride: float
-    lift: float
-    duty_factor: float
-    body_speed: np.ndarray      # -vx of the foot while it stands, nan elsewhere
-    omega: float
-
-
-def gait(linkage: Linkage, solution: Solution, rpm: float, ground_tol: float | None = None) -> Gait:
-    """Stride, lift, duty factor, foot and body speeds of the linkage's foot over one cycle.
-
-    Velocities are the exact joint rates of :func:`solve` times the crank speed.
-    ``ground_tol`` defaults to 1 % of the lift.
-    """
-    theta = solution.theta
-    if not _is_full_cycle(theta) or theta.size < 8:
-        raise DesignError("samples", theta.size, "gait analysis needs one full crank turn of >= 8 samples")
-    foot = solution.joints[linkage.foot]
-    omega = rpm * 2 * np.pi / 60.0
-    velocity = solution.rates[linkage.foot] * omega
-    speed = np.hypot(velocity[:, 0], velocity[:, 1])
-    depth = linkage.ground * foot[:, 1]          # grows toward the ground
-    ground_level = float(depth.max())
-    lift = float(depth.max() - depth.min())
-    tol = 0.01 * lift if ground_tol is None else float(ground_tol)
-    near = depth >= ground_level - tol
-    support = _run_around(near, int(np.argmax(depth)))
-    xs = foot[support, 0]
-    stride = float(xs.max() - xs.min())
-    body = np.full(theta.size, np.nan)
-    body[support] = -velocity[support, 0]
-    return Gait(theta=theta, foot=foot, velocity=velocity, speed=speed, support=support,
-                ground_level=float(linkage.ground * ground_level), ground_tol=tol, stride=stride,
-                lift=lift, duty_factor=float(support.mean()), body_speed=body, omega=omega)
-
-
-def _run_around(mask: np.ndarray, k: int) -> np.ndarray:
-    """The contiguous (cyclic) run of True in ``mask`` that contains index ``k`` (mask[k] True)."""
-    if mask.all():
-        return mask.copy()
-    m = np.roll(mask, -k)                       # the run now starts at index 0 ...
-    ahead = int(np.argmin(m))                   # ... and ends before the first False
-    behind = int(np.argmin(m[::-1]))            # ... or wraps round from the end
-    run = np.zeros_like(m)
-    run[:ahead] = True
-    if behind:
-        run[-behind:] = True
-    return np.roll(run, k)
-
-
-# ---------------------------------------------------------------- presets
-
-def four_bar_paper() -> Linkage:
-    """SPEC §7's paper four-bar leg, metres converted to mm."""
-    l1, l2, l3, l4, beta = 270.0, 638.0, 650.0, 654.0, np.radians(70.8)
-    return Linkage(
-        name="four-bar",
-        description="source paper four-bar leg (SPEC §7): crank OK 270, rocker O1L 638, coupler KL 650, "
-                    "bent arm LH 654 mm at 70.8 deg to the coupler, O1 = (567, 615) mm, 27 rpm",
-        steps=(Fixed("O", 0.0, 0.0), Fixed("O1", 567.0, 615.0), Crank("K", "O", l1),
-               Dyad("L", "K", l3, "O1", l2, branch=-1),
-               # H = L - l4 (cos(g3 + beta), sin(g3 + beta)), g3 the direction K -> L
-               Attached("H", "L", "K", l4, beta)),
-        foot="H", ground=-1, rpm=27.0,
-        links=(("O", "K"), ("K", "L"), ("O1", "L"), ("L", "H")),
-    )
-
-
-def six_bar_source() -> Linkage:
-    """SPEC §7's six-bar topology with numbers chosen here (SPEC gives none): see description."""
-    beta1, beta2, gamma = np.radians(48.0), np.radians(26.8), np.radians(153.6)
-    return Linkage(
-        name="six-bar",
-        description="six-bar leg with SPEC §7's topology (crank B-O-N, links BM and NA, bent rocker "
-                    "O1-M-D, bent support arm D-A-H). SPEC gives no numbers for it: these were chosen "
-                    "here by a small search for a closed full-turn loop with a flat low stretch, at the "
-                    "four-bar's scale (illustrative, not the source machine): OB = ON = 150 with N "
-                    "lagging B by 48 deg, BM 641, O1 = (-627, 488), O1M 340, MD 135 at 26.8 deg from "
-                    "M->O1, NA 511, DA 467, AH 420 at 153.6 deg from A->D (mm)",
-        steps=(Fixed("O", 0.0, 0.0), Fixed("O1", -627.0, 488.0),
-               Crank("B", "O", 150.0), Crank("N", "O", 150.0, phase=-beta1),
-               Dyad("M", "B", 641.0, "O1", 340.0, branch=1),
-               Attached("D", "M", "O1", 135.0, beta2),
-               Dyad("A", "N", 511.0, "D", 467.0, branch=1),
-               Attached("H", "A", "D", 420.0, gamma)),
-        foot="H", ground=-1, rpm=27.0,
-        links=(("O", "B"), ("O", "N"), ("B", "M"), ("O1", "M"), ("M", "D"), ("N", "A"), ("D", "A"), ("A", "H")),
-    )
-
-
-def chebyshev_lambda(unit: float = 1.0) -> Linkage:
-    """Chebyshev's lambda linkage: crank 1, ground 2, rocker 2.5, coupler 2.5, foot at 5 (x unit).
-
-    Frame: crank pivot A = (0, 0), rocker pivot D = (2, 0) (x unit); the coupler B-C runs
-    from the crank tip B through the rocker joint C (|BC| = 2.5) to the foot F, |BF| = 5.
-    The foot traces its nearly straight segment along y = 4 unit for crank angles
-    90..270 deg and bulges to y = 4.9 unit on the return: the straight segment is the
-    lowest level of the path, so the ground side is -y (as in Chebyshev's plantigrade
-    machine, where the path is carried down to the foot by a parallel linkage).
-    """
-    u = float(unit)
-    return Linkage(
-        name="chebyshev",
-        description=f"Chebyshev lambda linkage, unit {u:g} mm: crank AB 1, ground AD 2, rocker DC 2.5, "
-                    "coupler BC 2.5 extended to foot F at BF 5; A = (0,0), D = (2,0); the straight "
-                    "segment is y = 4 (the path's lowest level)",
-        steps=(Fixed("A", 0.0, 0.0), Fixed("D", 2 * u, 0.0), Crank("B", "A", 1 * u),
-               Dyad("C", "B", 2.5 * u, "D", 2.5 * u, branch=1),
-               Attached("F", "B", "C", 5 * u, 0.0)),
-        foot="F", ground=-1, rpm=60.0,
-        links=(("A", "B"), ("D", "C"), ("B", "F")),
-    )
-
-
-def jansen_leg() -> Linkage:
-    """Theo Jansen's leg with his published "holy numbers" (a..m), lengths as mm.
-
-    Frame: crank axle at (0, 0), crank m = 15; the fixed pivot is at (-a, -l) =
-    (-38, -7.8). The leg hangs toward -y.
-    """
-    a, b, c, d, e, f, g, h, i, j, k, l, m = (38.0, 41.5, 39.3, 40.1, 55.8, 39.4, 36.7, 65.7,
-                                             49.0, 50.0, 61.9, 7.8, 15.0)
-    return Linkage(
-        name="jansen",
-        description="Theo Jansen's leg, holy numbers a=38 b=41.5 c=39.3 d=40.1 e=55.8 f=39.4 g=36.7 "
-                    "h=65.7 i=49 j=50 k=61.9 l=7.8 m=15 (mm); crank at (0,0), pivot at (-a, -l)",
-        steps=(Fixed("O", 0.0, 0.0), Fixed("P", -a, -l), Crank("M", "O", m),
-               Dyad("U", "M", j, "P", b, branch=-1),       # upper joint, above the pivot
-               Dyad("W", "P", d, "U", e, branch=1),        # outer corner of triangle b-d-e
-               Dyad("R", "M", k, "P", c, branch=1),        # lower joint, below the pivot
-               Dyad("K", "W", f, "R", g, branch=-1),       # knee
-               Dyad("F", "K", h, "R", i, branch=-1)),      # foot, corner of triangle g-h-i
-        foot="F", ground=-1, rpm=60.0,
-        links=(("O", "M"), ("M", "U"), ("P", "U"), ("P", "W"), ("U", "W"), ("M", "R"), ("P", "R"),
-               ("W", "K"), ("K", "R"), ("K", "F"), ("R", "F")),
-    )
-
-
-PRESETS = {"four-bar": four_bar_paper, "six-bar": six_bar_source,
-           "chebyshev": lambda: chebyshev_lambda(50.0), "jansen": jansen_leg}

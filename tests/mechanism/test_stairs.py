@@ -1,6 +1,4 @@
-"""Stairs (SPEC §6): reference sizing, one cycle = one step up/down, sweep, design check, CLI."""
-
-import json
+"""Stairs (SPEC §6): reference sizing, one cycle = one step up/down, sweep, design check."""
 
 import numpy as np
 import pytest
@@ -9,8 +7,6 @@ from hypothesis import strategies as st_
 
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.mechanism import stairs as st
-
-from tests.helpers.clicheck import error_line
 
 
 def test_reference_sizing_spec6():
@@ -96,49 +92,3 @@ def test_old_prototype_cannot_climb_but_sized_design_can():
     d = st.size_for_stair(300.0, 150.0, 70.0, np.radians(-90.0))
     good = st.check_climb(d, 300.0, 150.0)
     assert good.climbs and good.best_landing == pytest.approx(-np.pi / 2, abs=1e-4)
-
-
-def test_cli_json_and_plot(cli, tmp_path):
-    png = tmp_path / "stairs.png"
-    res = cli("stairs", "--run", "300", "--rise", "150", "--sole-radius", "70", "--json", "--plot", png)
-    assert res.exit_code == 0, res.stderr
-    data = json.loads(res.stdout)
-    assert data["b_mm"] == pytest.approx(20.0, abs=0.05) and data["y1_mm"] == pytest.approx(150.0, abs=0.05)
-    assert data["a_mm"] == pytest.approx(2 * data["b_mm"])
-    for key in ("climb", "descent"):
-        rows = data[key]
-        assert set(rows[0]) == {"phi", "X01", "dX01", "d2X01", "Y01", "dY01", "d2Y01"}
-        assert rows[-1]["phi"] - rows[0]["phi"] == pytest.approx(90.0)
-        assert rows[-1]["X01"] - rows[0]["X01"] == pytest.approx(300.0, abs=1e-6)
-    assert data["climb"][0]["phi"] == -90.0 and data["descent"][0]["phi"] == 0.0
-    assert data["climb"][-1]["Y01"] - data["climb"][0]["Y01"] == pytest.approx(150.0, abs=1e-6)
-    assert data["descent"][-1]["Y01"] - data["descent"][0]["Y01"] == pytest.approx(-150.0, abs=1e-6)
-    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-
-
-def test_cli_check_old_prototype(cli):
-    res = cli("stairs", "--run", "300", "--rise", "150", "--a", "100", "--b", "50", "--y1", "130", "--y2", "192")
-    assert res.exit_code == 1
-    assert "CANNOT CLIMB" in res.stdout and "advances 494.6 mm" in res.stdout
-
-
-def test_cli_sweep_never_prints_meaningless_numbers(cli):
-    res = cli("stairs", "--sweep", "--sweep-angles", "-120:-30:15", "--sweep-radii", "70")
-    assert res.exit_code == 0
-    lines = {line.split()[0]: line for line in res.stdout.splitlines() if line.strip()[:1] in "-0123456789"}
-    assert "singular" in lines["-45.0"] and "singular" in lines["-105.0"]
-    assert "n/a (negative b)" in lines["-60.0"]
-    assert "20.0 / 150.0" in lines["-90.0"]
-
-
-@pytest.mark.parametrize("args, param", [
-    (("--landing-angle", "-45"), "landing-angle"),
-    (("--landing-angle", "-60"), "landing-angle"),
-    (("--run", "-3"), "run"),
-    (("--a", "100", "--b", "50"), "y1"),
-])
-def test_cli_bad_input_one_line_exit_2(cli, tmp_path, args, param):
-    png = tmp_path / "x.png"
-    res = cli("stairs", *args, "--plot", png)
-    assert error_line(res).startswith(f"wheelstep: error: {param} =")
-    assert not png.exists()

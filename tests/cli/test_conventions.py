@@ -1,0 +1,120 @@
+"""CLI conventions on every command: -h, --json (one JSON document on stdout), --dry-run
+(nothing written, what would be said), -q (nothing printed on success), errors naming the
+parameter by its flag."""
+
+import json
+from pathlib import Path
+
+import pytest
+
+from tests.helpers.clicheck import error_line
+
+COMMANDS = ["pitch", "teeth", "gears", "mesh-check", "shoe", "kinematics", "stairs", "linkage",
+            "trajectory", "batch"]
+WRITERS = ["gears", "mesh-check", "shoe", "kinematics", "stairs", "linkage", "trajectory", "batch"]
+
+SHOE_BATCH = "parts:\n  - name: sole\n    kind: shoe\n    printer: fdm-0.4-pla\n"
+
+
+@pytest.fixture(scope="module")
+def pair(tmp_path_factory):
+    """A gear pair that meshes, written as STL (mesh-check's input)."""
+    from wheelstep_cli.cli import run
+
+    out = tmp_path_factory.mktemp("pair")
+    assert run(["gears", "--z", "24", "--format", "stl", "--out", str(out)]) == 0
+    return out
+
+
+def report_args(command: str, folder: Path, pair: Path) -> list[str]:
+    """Quick arguments printing ``command``'s report; files (if any) go below ``folder``."""
+    if command == "mesh-check":
+        return [command, str(pair / "pinion.stl"), str(pair / "wheel.stl"), "--plot",
+                str(folder / "mesh.png")]
+    if command == "batch":
+        batch = folder.parent / f"{folder.name}-shoe.yaml"
+        batch.write_text(SHOE_BATCH)
+        return [command, str(batch), "--out", str(folder / "batch"), "--jobs", "1"]
+    files = {"gears": ["--z", "24", "--format", "stl", "--out", str(folder / "gears")],
+             "shoe": ["--out", str(folder / "shoe")],
+             "kinematics": ["--plot", str(folder / "k.png")],
+             "stairs": ["--plot", str(folder / "s.png")],
+             "linkage": ["--preset", "jansen", "--samples", "360", "--csv", str(folder / "l.csv"),
+                         "--plot", str(folder / "l.png"), "--gif", str(folder / "l.gif"),
+                         "--gif-frames", "4"],
+             "trajectory": ["--csv", str(folder / "t.csv"), "--dxf", str(folder / "t.dxf"),
+                            "--plot", str(folder / "t.png")]}
+    return [command, *files.get(command, [])]
+
+
+def files_below(folder: Path) -> list[Path]:
+    return sorted(p for p in folder.rglob("*") if p.is_file())
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_short_and_long_help(cli, command):
+    short, long = cli(command, "-h"), cli(command, "--help")
+    assert short.exit_code == 0 and short.stdout == long.stdout
+    assert "Usage:" in short.stdout
+    for flag in ("-q, --quiet", "-v, --verbose", "--json"):
+        assert flag in short.stdout, flag
+    assert ("--dry-run" in short.stdout) == (command in WRITERS)
+
+
+def test_root_help_and_completion(cli):
+    result = cli("-h")
+    assert result.exit_code == 0
+    assert "--install-completion" in result.stdout and "--show-completion" in result.stdout
+
+
+def test_one_style_for_defaults_in_help(cli):
+    text = " ".join(cli("gears", "-h").stdout.split())
+    assert "[default: 48]" in text and "[default: both]" in text and "[48]" not in text
+    text = " ".join(cli("kinematics", "-h").stdout.split())
+    assert "[default: 60.0]" in text and "[default: 361]" in text
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_json_is_one_document_on_stdout(cli, tmp_path, pair, command):
+    result = cli(*report_args(command, tmp_path / "out", pair), "--json")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert isinstance(data, dict) and data
+
+
+@pytest.mark.parametrize("command", WRITERS)
+def test_dry_run_writes_nothing_and_says_what_it_would(cli, tmp_path, pair, command):
+    folder = tmp_path / "out"
+    result = cli(*report_args(command, folder, pair), "--dry-run")
+    assert result.exit_code == 0, result.stderr
+    assert not folder.exists() or not files_below(folder)
+    assert "would write" in result.stdout
+    written = cli(*report_args(command, folder, pair))
+    assert written.exit_code == 0, written.stderr
+    for path in files_below(folder):
+        assert str(path) in result.stdout or path.name in result.stdout, path
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_quiet_prints_nothing_on_success(cli, tmp_path, pair, command):
+    result = cli(*report_args(command, tmp_path / "out", pair), "-q")
+    assert result.exit_code == 0, result.stderr
+    assert result.stdout == "" and result.stderr == ""
+
+
+def test_verbose_adds_detail_on_stderr_only(cli):
+    plain, verbose = cli("stairs"), cli("stairs", "-v")
+    assert verbose.stdout == plain.stdout
+    assert "b = " in verbose.stderr and plain.stderr == ""
+
+
+@pytest.mark.parametrize("args, shown", [
+    (["gears", "--install-distance", "140"], "--install-distance = 140"),
+    (["shoe", "--rmin", "-1"], "--rmin = -1"),
+    (["kinematics", "--motor-rpm", "0"], "--motor-rpm = 0"),
+    (["stairs", "--sweep", "--sweep-radii", "0"], "--sweep-radii = 0"),
+    (["mesh-check", "missing.stl", "missing.stl"], "pinion = missing.stl"),   # an argument
+    (["linkage", "--l3", "100"], "crank-angle = "),                            # not an option
+])
+def test_errors_name_the_parameter_as_written(cli, tmp_path, args, shown):
+    assert error_line(cli(*args)).startswith(f"wheelstep: error: {shown}")

@@ -1,0 +1,108 @@
+"""Option declarations shared by the commands, and parsers of option text.
+
+Each option is declared once here as an ``Annotated`` type; a command names it in its
+signature (``a: A = None``). Defaults are shown in one style everywhere,
+``[default: 48]``: Typer prints it for options with a concrete default, and
+:func:`opt` appends it to the help of options whose default is ``None`` (filled from a
+profile or the built-in design).
+"""
+
+from __future__ import annotations
+
+from enum import Enum
+from pathlib import Path
+from typing import Annotated, Optional
+
+import numpy as np
+import typer
+
+from wheelstep_cli.errors import DesignError, require
+
+
+def opt(*names: str, help: str, shown: str | None = None, **kwargs):
+    """A ``typer.Option``; ``shown`` is the default to print for an option defaulting to None."""
+    text = help if shown is None else f"{help}  [default: {shown}]"
+    return typer.Option(*names, help=text, **kwargs)
+
+
+class MeshFormat(str, Enum):
+    """Which mesh files a part command writes."""
+
+    stl = "stl"
+    threemf = "3mf"
+    both = "both"
+
+
+# --- the crank mechanism (SPEC §2), mm
+A = Annotated[Optional[float], opt("--a", help="Hub axis to crank axes, mm.", shown="60")]
+B = Annotated[Optional[float], opt("--b", help="Crank length, mm.", shown="100")]
+C = Annotated[Optional[float], opt("--c", help="Shoe strut length, mm.",
+                                   shown="R_min - a + 4b = 360")]
+RMin = Annotated[Optional[float], opt("--rmin", "--r-min",
+                                      help="Smallest sole curvature radius R_min = a - 4b + c, "
+                                           "mm; sizes c.", shown="20")]
+# --- the gear pair
+Z = Annotated[Optional[int], opt("--z", help="Pinion tooth count; the wheel gets z*n/2.",
+                                 shown="48")]
+Turns = Annotated[Optional[int], opt("--turns", "-n", help="Pinion turns per carrier turn, 2 or 4.",
+                                     shown="the profile's gears.turns, else 2")]
+CenterDistance = Annotated[Optional[float], opt("--center-distance",
+                                                help="Design centre distance L_p, mm.",
+                                                shown="143.5")]
+# --- where values and files come from and go
+Profile = Annotated[Optional[str], opt("--profile",
+                                       help="Design preset: a name in profiles/ or a YAML path.")]
+Out = Annotated[Path, opt("--out", "-o", help="Output folder.")]
+Format = Annotated[MeshFormat, opt("--format", help="Mesh files to write.")]
+# --- conventions of every command
+Json = Annotated[bool, opt("--json", help="Print the report as one JSON document on stdout "
+                                          "(nothing else goes to stdout).")]
+DryRun = Annotated[bool, opt("--dry-run", help="Compute and check, write nothing; say what "
+                                               "would be written.")]
+Quiet = Annotated[bool, opt("--quiet", "-q", help="Print nothing but errors (and the --json "
+                                                  "document when asked for).")]
+Verbose = Annotated[bool, opt("--verbose", "-v", help="Print more detail (on stderr): the "
+                                                      "resolved parameters and every file.")]
+
+
+def plot_option(what: str):
+    """A ``--plot PNG`` option: ``what`` the picture shows."""
+    return Annotated[Optional[Path], opt("--plot", help=f"Write {what} (PNG).")]
+
+
+def csv_option(what: str):
+    """A ``--csv FILE`` option: ``what`` the table holds."""
+    return Annotated[Optional[Path], opt("--csv", help=f"Write {what} (CSV).")]
+
+
+def number_list(text: str, param: str) -> list[float]:
+    """``"a,b,c"`` or ``"start:stop:step"`` (inclusive) to floats."""
+    try:
+        if ":" in text:
+            start, stop, step = (float(v) for v in text.split(":"))
+            require(step > 0, param, text, "step must be > 0")
+            n = int(np.floor((stop - start) / step + 1e-9)) + 1
+            require(1 <= n <= 10000, param, text, "must give 1 to 10000 values")
+            return [start + i * step for i in range(n)]
+        return [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise DesignError(param, text, "must be numbers 'a,b,c' or 'start:stop:step'") from None
+
+
+def point(text: str, param: str) -> tuple[float, float]:
+    """``"x,y"`` (mm) to a pair of floats."""
+    try:
+        x, y = (float(v) for v in text.split(","))
+    except ValueError:
+        raise DesignError(param, text, "must be 'x,y' in mm") from None
+    return x, y
+
+
+def signs(items: list[str], param: str) -> dict[str, int]:
+    """``["NAME=+1", "OTHER=-1"]`` to ``{"NAME": 1, "OTHER": -1}``."""
+    out = {}
+    for item in items:
+        name, _, sign = item.partition("=")
+        require(sign in ("+1", "1", "-1"), param, item, "must be NAME=+1 or NAME=-1")
+        out[name] = int(sign)
+    return out

@@ -1,0 +1,81 @@
+"""What a command prints: its report as a table or, with ``--json``, as one JSON document.
+
+stdout carries the report only (with ``--json``, nothing but the document); warnings,
+details (``-v``) and errors go to stderr. ``-q`` leaves errors and the requested JSON.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Iterable, Mapping
+
+import typer
+
+from wheelstep_cli.formats.jsonio import json_text
+
+
+@dataclass(frozen=True)
+class Output:
+    """How a command prints, from its ``--json``, ``-q`` and ``-v`` flags."""
+
+    json: bool = False
+    quiet: bool = False
+    verbose: bool = False
+
+    def report(self, report: Mapping, table: Callable[[], Iterable[str]]) -> None:
+        """Print ``report`` as JSON (``--json``) or the lines of ``table()`` (none with -q)."""
+        if self.json:
+            typer.echo(json_text(report), nl=False)
+        elif not self.quiet:
+            for line in table():
+                typer.echo(line)
+
+    def line(self, text: str) -> None:
+        """One line of the table report (not with --json or -q)."""
+        if not (self.json or self.quiet):
+            typer.echo(text)
+
+    def detail(self, text: str) -> None:
+        """A line of detail on stderr, with -v only."""
+        if self.verbose and not self.quiet:
+            typer.echo(text, err=True)
+
+    def warning(self, text: str) -> None:
+        """A warning on stderr (not with -q)."""
+        if not self.quiet:
+            typer.echo(text, err=True)
+
+    def error(self, text: str) -> None:
+        """An error on stderr, always."""
+        typer.echo(text, err=True)
+
+    def parameters(self, values: Mapping) -> None:
+        """The resolved parameters, one ``name = value`` per line (with -v)."""
+        for name, value in values.items():
+            self.detail(f"  {name} = {value}")
+
+    def write(self, files: Mapping[Path, bytes], dry_run: bool) -> list[Path]:
+        """Write ``files`` atomically, or nothing with ``dry_run``; the paths written."""
+        from wheelstep_cli.formats.atomic import write_files_atomic
+
+        if dry_run or not files:
+            return []
+        written = write_files_atomic(files)
+        for path in written:
+            self.detail(f"  {path}: {len(files[path])} bytes")
+        return written
+
+    def files(self, paths: Iterable[Path], dry_run: bool, joined: bool = False) -> None:
+        """Say which files were written (or would be, with ``dry_run``): one line each, or
+        one ``joined`` line. In table mode on stdout; with --json on stderr for a dry run."""
+        verb = "would write" if dry_run else "wrote"
+        names = [str(p) for p in paths]
+        if not names:
+            return
+        lines = [f"{verb} " + ", ".join(names)] if joined else [f"{verb} {n}" for n in names]
+        for text in lines:
+            if not self.json:
+                self.line(text)
+            elif dry_run:
+                self.warning(text)

@@ -1,0 +1,122 @@
+"""What ``wheelstep linkage`` computes and reports: a leg (a preset, or the paper four-bar
+with replaced numbers), re-branched and scaled, solved over one crank turn, and its gait.
+
+Lengths mm, speeds mm/s, angles rad inside; the report gives crank angles in degrees.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from wheelstep_cli.errors import require
+from wheelstep_cli.mechanism.linkage.gait import Gait, gait
+from wheelstep_cli.mechanism.linkage.presets import PRESETS, four_bar
+from wheelstep_cli.mechanism.linkage.solver import Dyad, Linkage, Solution, cycle_angles, solve
+
+#: The numbers of the paper four-bar a request may replace (see :func:`four_bar`).
+FOUR_BAR_KEYS = ("l1", "l2", "l3", "l4", "beta_deg", "o1")
+
+
+@dataclass(frozen=True)
+class LinkageRequest:
+    """Which leg and how to run it: ``preset`` name, crank speed (rpm; None: the preset's),
+    samples per turn, length ``scale``, dyad ``branches`` (name -> +1/-1), support tolerance
+    (mm; None: 2 % of the lift), replaced four-bar numbers (:data:`FOUR_BAR_KEYS`) and the
+    crank-angle step of the printed path (deg, as given)."""
+
+    preset: str = "four-bar"
+    rpm: float | None = None
+    samples: int = 720
+    scale: float = 1.0
+    branches: dict = field(default_factory=dict)
+    ground_tol: float | None = None
+    four_bar: dict = field(default_factory=dict)
+    step_deg: float = 15.0
+
+
+def check_sampling(samples: int, scale: float, gif_frames: int, step_deg: float) -> None:
+    """Raise DesignError for a sample count, scale, GIF frame count or table step out of range."""
+    require(36 <= samples <= 100000, "samples", samples, "must be in [36, 100000]")
+    require(scale > 0, "scale", scale, "must be > 0")
+    require(2 <= gif_frames <= 720, "gif-frames", gif_frames, "must be in [2, 720]")
+    require(0 < step_deg <= 180, "step", step_deg, "must be in (0, 180] deg")
+
+
+def build_leg(request: LinkageRequest) -> Linkage:
+    """The leg of ``request``: preset or custom four-bar, its branches set, scaled."""
+    custom = {k: v for k, v in request.four_bar.items() if v is not None}
+    if custom:
+        require(request.preset == "four-bar", "preset", request.preset,
+                "--l1..--l4, --beta, --o1 apply to four-bar only")
+        leg = four_bar(**custom)
+    else:
+        leg = PRESETS[request.preset]()
+    dyads = {s.name for s in leg.steps if isinstance(s, Dyad)}
+    for name in request.branches:
+        require(name in dyads, "branch", name,
+                f"not a dyad joint of {leg.name} (those are {', '.join(sorted(dyads))})")
+    leg = leg.with_branches(request.branches)
+    return leg.scaled(request.scale) if request.scale != 1.0 else leg
+
+
+@dataclass(frozen=True)
+class LinkageStudy:
+    """A solved leg at ``rpm``: its solution over one turn and its gait."""
+
+    request: LinkageRequest
+    leg: Linkage
+    rpm: float
+    solution: Solution
+    gait: Gait
+
+
+def linkage_study(request: LinkageRequest) -> LinkageStudy:
+    """Build, solve and analyse the leg of ``request``; DesignError names what is impossible."""
+    leg = build_leg(request)
+    rpm = leg.rpm if request.rpm is None else request.rpm
+    require(rpm > 0, "rpm", rpm, "must be > 0")
+    if request.ground_tol is not None:
+        require(request.ground_tol >= 0, "ground-tol", request.ground_tol, "must be >= 0 mm")
+    theta = cycle_angles(request.samples)
+    sol = solve(leg, theta)
+    probe = gait(leg, sol, rpm)
+    tol = 0.02 * probe.lift if request.ground_tol is None else request.ground_tol
+    return LinkageStudy(request, leg, rpm, sol, gait(leg, sol, rpm, tol))
+
+
+def _stats(values: np.ndarray) -> dict:
+    return {"min": values.min(), "mean": values.mean(), "max": values.max()}
+
+
+def path_rows(study: LinkageStudy) -> list[dict]:
+    """The foot path every ``step_deg`` of crank angle: position, velocity, speed, phase."""
+    g, theta = study.gait, study.solution.theta
+    every = max(1, int(round(np.radians(study.request.step_deg) / (theta[1] - theta[0]))))
+    return [{"crank_deg": float(np.degrees(theta[k])), "x_mm": g.foot[k, 0], "y_mm": g.foot[k, 1],
+             "vx_mm_s": g.velocity[k, 0], "vy_mm_s": g.velocity[k, 1], "speed_mm_s": g.speed[k],
+             "support": bool(g.support[k])} for k in range(0, study.request.samples, every)]
+
+
+def linkage_report(study: LinkageStudy) -> dict:
+    """Leg, branches, loop residual, stride, lift, duty factor, speeds and the sampled path."""
+    g, sol = study.gait, study.solution
+    return {
+        "preset": study.leg.name, "description": study.leg.description, "rpm": study.rpm,
+        "samples": study.request.samples,
+        "branches": sol.branches, "loop_residual_mm": sol.residual,
+        "stride_mm": g.stride, "lift_mm": g.lift, "duty_factor": g.duty_factor,
+        "ground_level_mm": g.ground_level, "ground_tol_mm": g.ground_tol,
+        "foot_speed_mm_s": _stats(g.speed),
+        "body_speed_mm_s": _stats(g.body_speed[g.support]),
+        "path": path_rows(study),
+    }
+
+
+def path_table(study: LinkageStudy) -> tuple[list[str], np.ndarray]:
+    """Header and rows of the foot path at every sample (deg, mm, mm/s, support 0/1)."""
+    g = study.gait
+    header = ["crank_deg", "x_mm", "y_mm", "vx_mm_s", "vy_mm_s", "speed_mm_s", "support"]
+    return header, np.column_stack([np.degrees(study.solution.theta), g.foot, g.velocity, g.speed,
+                                    g.support])
