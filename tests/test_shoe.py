@@ -296,7 +296,7 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_sh
     (["--c", "300"], "c ="),                              # R_min = a - 4b + c < 0
     (["--a", "-60"], "a ="),
     (["--b", "-1"], "b ="),
-    (["--rmin", "30", "--c", "360"], "rmin ="),           # contradicts c
+    (["--rmin", "30", "--c", "360"], "r-min ="),          # contradicts c
     (["--strut-diameter", "40"], "strut-diameter ="),     # socket wider than the body
     (["--strut-diameter", "-3"], "strut-diameter ="),
     (["--socket-depth", "80"], "socket-depth ="),         # deeper than the body

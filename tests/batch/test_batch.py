@@ -17,7 +17,7 @@ import pytest
 from tests.helpers.clicheck import error_line
 from tests.helpers.meshcheck import read_3mf_strict
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "shop-floor.yaml"
 
 

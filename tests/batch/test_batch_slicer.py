@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SLICER = shutil.which("prusa-slicer")
 pytestmark = pytest.mark.skipif(SLICER is None, reason="prusa-slicer is not installed")
 
