@@ -8,11 +8,11 @@ from typing import Iterable
 class DesignError(ValueError):
     """An input that cannot give a valid part.
 
-    ``param`` is the parameter's snake_case name (the YAML key; the CLI shows it as its
-    flag), ``value`` what was given, ``limit`` what it must satisfy. A rule that ties
-    several parameters (R_min = a - 4b + c > 0) states itself for each of them in
-    ``alternatives`` (name -> (value, limit)), so the error can name the one the user
-    gave (:meth:`for_given`).
+    ``param`` is the parameter's one snake_case name (the YAML key; the command line shows
+    it as the flag the user typed), ``value`` what was given, ``limit`` what it must
+    satisfy. A rule that ties several parameters (R_min = a - 4b + c > 0) states itself
+    for each of them in ``alternatives`` (name -> (value, limit)), so the error can name
+    the one the user gave (:meth:`for_given`).
     """
 
     def __init__(self, param: str, value: object, limit: str,
@@ -21,12 +21,12 @@ class DesignError(ValueError):
         self.value = value
         self.limit = limit
         self.alternatives = dict(alternatives or {})
-        super().__init__(f"{param} = {_fmt(value)}: {limit}")
+        super().__init__(f"{param} = {format_value(value)}: {limit}")
 
     @property
     def shown_value(self) -> str:
         """The value as the messages print it."""
-        return _fmt(self.value)
+        return format_value(self.value)
 
     def for_given(self, given: Iterable[str]) -> "DesignError":
         """This error restated for a parameter the user gave, when it names one they did not."""
@@ -39,7 +39,8 @@ class DesignError(ValueError):
         return self
 
 
-def _fmt(value: object) -> str:
+def format_value(value: object) -> str:
+    """A value as an error shows it (floats in the shortest form)."""
     if isinstance(value, float):
         return f"{value:g}"
     return str(value)

@@ -17,6 +17,8 @@ try:  # typer >= 0.2x ships its own copy of click
 except ImportError:  # pragma: no cover - older typer uses click itself
     from click import exceptions as click_errors
 
+from wheelstep_cli.config.names import flag_name
+from wheelstep_cli.config.schema import InvalidInput
 from wheelstep_cli.errors import DesignError
 
 app = typer.Typer(
@@ -72,7 +74,7 @@ def _as_typed(param: str, options: dict[str, list[str]], argv: list[str]) -> str
         return param
     typed = {arg.split("=", 1)[0] for arg in argv if arg.startswith("-")}
     used = [o for o in opts if o in typed]
-    return (used or [o for o in opts if o.startswith("--")] or opts)[0]
+    return (used or [o for o in opts if o == flag_name(param)] or opts)[0]
 
 
 def error_text(err: DesignError, options: dict[str, list[str]], argv: list[str]) -> str:
@@ -86,6 +88,10 @@ def run(argv: list[str] | None = None) -> int:
     command = typer.main.get_command(app)
     try:
         result = command.main(args=args, prog_name="wheelstep", standalone_mode=False)
+    except InvalidInput as err:               # a file's problems, each with its file:line
+        for line in err.lines():
+            typer.echo(f"wheelstep: error: {line}", err=True)
+        return 2
     except DesignError as err:
         typer.echo(f"wheelstep: error: {error_text(err, _command_options(command, args), args)}", err=True)
         return 2

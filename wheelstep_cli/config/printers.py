@@ -8,45 +8,85 @@ which are only passed on to the print sheet.
 from __future__ import annotations
 
 import hashlib
-import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from enum import Enum
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any, Optional
 
-from wheelstep_cli.config.located_yaml import LocatedYaml, read_located_yaml
-from wheelstep_cli.config.schema import InvalidInput, Issue, check_mapping, dotted, show
+from pydantic import AfterValidator, BaseModel, Field
+from pydantic_core import PydanticCustomError
 
-TECHNOLOGIES = ("fdm", "resin")
-#: printer key -> (smallest, largest) allowed value in mm
-PRINTER_LIMITS = {
-    "margin": (0.0, 50.0),
-    "hole_compensation": (-1.0, 1.0),
-    "tooth_clearance": (0.0, 1.0),
-    "elephant_foot_height": (0.0, 2.0),
-    "elephant_foot_inset": (0.0, 1.0),
-}
-PRINTER_KEYS = ("technology", "bed", *PRINTER_LIMITS)
-MATERIAL_KEYS = ("name", "density")
+from wheelstep_cli.config.fields import STRICT, Real, length, quantity
+from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
+from wheelstep_cli.config.schema import InvalidInput, Issue, validate_file
+
+
+class Technology(str, Enum):
+    fdm = "fdm"
+    resin = "resin"
+
+
+def _single(value: Any) -> Any:
+    if isinstance(value, (dict, list)):
+        raise PydanticCustomError("single_value", "must be a single value (number or text)")
+    return value
+
+
+BedSize = Annotated[Real, Field(gt=0, le=2000)]
+SlicerValue = Annotated[Any, AfterValidator(_single)]
+
+
+class PrinterSection(BaseModel):
+    """The printer: technology, usable bed (X, Y) and the geometry compensations, mm."""
+
+    model_config = STRICT
+
+    technology: Technology
+    bed: tuple[BedSize, BedSize] = Field(json_schema_extra={
+        "limit": "must be [X, Y] in mm, each > 0 and <= 2000"})
+    margin: Real = length(5.0, ge=0, le=50)
+    hole_compensation: Real = length(0.0, ge=-1, le=1)
+    tooth_clearance: Real = length(0.0, ge=0, le=1)
+    elephant_foot_height: Real = length(0.0, ge=0, le=2)
+    elephant_foot_inset: Real = length(0.0, ge=0, le=1)
+
+
+class MaterialSection(BaseModel):
+    model_config = STRICT
+
+    name: str = Field("", strict=True)
+    density: Real = quantity(unit="g/cm3", gt=0, le=25)
+
+
+class PrinterProfile(BaseModel):
+    """A printer profile file."""
+
+    model_config = STRICT
+
+    description: Optional[str] = Field(None, strict=True)
+    printer: PrinterSection
+    material: MaterialSection
+    slicer: dict[str, SlicerValue] = {}
 
 
 @dataclass(frozen=True)
 class Printer:
-    """A printer + material preset. Lengths in mm, density in g/cm3."""
+    """A checked printer + material preset. Lengths in mm, density in g/cm3."""
 
     name: str
     description: str
     technology: str
     bed: tuple[float, float]
-    margin: float = 5.0
-    hole_compensation: float = 0.0
-    tooth_clearance: float = 0.0
-    elephant_foot_height: float = 0.0
-    elephant_foot_inset: float = 0.0
-    material: str = ""
-    density: float = 1.0
-    slicer: dict[str, Any] = field(default_factory=dict)
-    file_name: str = ""
-    sha256: str = ""
+    margin: float
+    hole_compensation: float
+    tooth_clearance: float
+    elephant_foot_height: float
+    elephant_foot_inset: float
+    material: str
+    density: float
+    slicer: dict[str, Any]
+    file_name: str
+    sha256: str
 
     def geometry(self) -> dict[str, float]:
         """The settings that change the printed geometry (for reports and 3MF metadata)."""
@@ -64,66 +104,18 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
 
     ``doc`` is the profile already parsed (as :func:`read_located_yaml` gives it), if it was.
     """
-    from wheelstep_cli.config.located_yaml import YamlSyntaxError
-
     if doc is None:
         try:
             doc = read_located_yaml(path, label)
         except YamlSyntaxError as err:
             raise InvalidInput([Issue(err.where, "", err.limit)]) from None
-    issues: list[Issue] = []
-    printer = _parse_printer(name, doc, issues)
-    if issues:
-        raise InvalidInput(issues)
+    profile = validate_file(PrinterProfile, doc)
+    section, material = profile.printer, profile.material
     raw = Path(path).read_bytes()
-    return Printer(**printer, file_name=Path(path).name, sha256=hashlib.sha256(raw).hexdigest())
-
-
-def _number(doc: LocatedYaml, path: tuple, value: Any, lo: float, hi: float,
-            issues: list[Issue], lo_open: bool = False) -> float | None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        issues.append(Issue(doc.where(path), dotted(path), f"= {show(value)}: must be a number (mm)"))
-        return None
-    if (value <= lo if lo_open else value < lo) or value > hi:
-        low = f"> {lo:g}" if lo_open else f">= {lo:g}"
-        issues.append(Issue(doc.where(path), dotted(path), f"= {show(value)}: must be {low} and <= {hi:g}"))
-        return None
-    return float(value)
-
-
-def _parse_printer(name: str, doc: LocatedYaml, issues: list[Issue]) -> dict:
-    top = check_mapping(doc, (), doc.data, ("description", "printer", "material", "slicer"), issues,
-                        required=("printer", "material"))
-    section = check_mapping(doc, ("printer",), top.get("printer"), PRINTER_KEYS, issues,
-                            required=("technology", "bed"))
-    out: dict[str, Any] = {"name": name, "description": str(top.get("description", name))}
-    tech = section.get("technology")
-    if "technology" in section and tech not in TECHNOLOGIES:
-        issues.append(Issue(doc.where(("printer", "technology")), "printer.technology",
-                            f"= {show(tech)}: must be one of: {', '.join(TECHNOLOGIES)}"))
-    out["technology"] = tech
-    bed = section.get("bed")
-    if "bed" in section:
-        if not (isinstance(bed, list) and len(bed) == 2):
-            issues.append(Issue(doc.where(("printer", "bed")), "printer.bed",
-                                f"= {show(bed)}: must be [X, Y] in mm"))
-        else:
-            sizes = [_number(doc, ("printer", "bed", i), v, 0.0, 2000.0, issues, lo_open=True)
-                     for i, v in enumerate(bed)]
-            out["bed"] = tuple(sizes)
-    for key, (lo, hi) in PRINTER_LIMITS.items():
-        if key in section:
-            out[key] = _number(doc, ("printer", key), section[key], lo, hi, issues)
-    material = check_mapping(doc, ("material",), top.get("material"), MATERIAL_KEYS, issues,
-                             required=("density",))
-    if "density" in material:
-        out["density"] = _number(doc, ("material", "density"), material["density"], 0.0, 25.0,
-                                 issues, lo_open=True)
-    out["material"] = str(material.get("name", ""))
-    slicer = check_mapping(doc, ("slicer",), top.get("slicer"), list(top.get("slicer") or {}), issues)
-    for key, value in slicer.items():
-        if isinstance(value, (dict, list)):
-            issues.append(Issue(doc.where(("slicer", key)), f"slicer.{key}",
-                                "must be a single value (number or text)"))
-    out["slicer"] = dict(slicer) if isinstance(slicer, dict) else {}
-    return out
+    return Printer(name=name, description=profile.description or name, technology=section.technology,
+                   bed=tuple(section.bed), margin=section.margin,
+                   hole_compensation=section.hole_compensation, tooth_clearance=section.tooth_clearance,
+                   elephant_foot_height=section.elephant_foot_height,
+                   elephant_foot_inset=section.elephant_foot_inset, material=material.name,
+                   density=material.density, slicer=dict(profile.slicer),
+                   file_name=Path(path).name, sha256=hashlib.sha256(raw).hexdigest())

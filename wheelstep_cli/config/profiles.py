@@ -2,17 +2,21 @@
 
 A profile is looked up as a path, then as ``NAME.yaml`` in ``./profiles`` and among
 the presets shipped with the package (``wheelstep_cli.profiles``, read with
-importlib.resources, so they are there after a normal install too). Keys are checked against what the
-command knows; an unknown key is an error naming the file and the allowed keys.
+importlib.resources, so they are there after a normal install too). A design profile is
+checked by its model (:mod:`wheelstep_cli.config.design`); every problem of the file is
+reported at once with its ``file:line``.
 """
 
 from __future__ import annotations
 
 import importlib.resources
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
+from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
+from wheelstep_cli.config.schema import InvalidInput, Issue
 from wheelstep_cli.errors import DesignError
+
 
 def shipped_profiles() -> Path:
     """Folder of the presets installed with the package."""
@@ -52,27 +56,50 @@ def load_profile(name_or_path: str) -> tuple[Path, dict[str, Any]]:
     return path, data
 
 
-def profile_section(path: Path, data: dict[str, Any], section: str,
-                    allowed: Iterable[str]) -> dict[str, Any]:
-    """One section of a profile, keys checked against ``allowed`` (dashes read as underscores)."""
-    raw = data.get(section) or {}
-    if not isinstance(raw, dict):
-        raise DesignError("profile", f"{path}:{section}", "must be a mapping")
-    allowed = list(allowed)
-    values = {}
-    for key, value in raw.items():
-        name = str(key).replace("-", "_")
-        if name not in allowed:
-            raise DesignError("profile", f"{path}:{section}.{key}",
-                              f"unknown key; allowed: {', '.join(allowed)}")
-        values[name] = value
-    return values
+def profile_label(file: Path) -> str:
+    """A profile's path as shown in messages: relative to the working folder when inside it."""
+    try:
+        return str(Path(file).resolve().relative_to(Path.cwd().resolve()))
+    except ValueError:
+        return str(file)
 
 
-def merge_options(cli: dict[str, Any], *layers: dict[str, Any]) -> dict[str, Any]:
-    """Command-line values that were given (not None) override profile layers, first layer wins."""
-    merged: dict[str, Any] = {}
-    for layer in reversed(layers):
-        merged.update({k: v for k, v in layer.items() if v is not None})
-    merged.update({k: v for k, v in cli.items() if v is not None})
-    return merged
+def profile_names(printer: bool) -> list[str]:
+    """Names of the known printer profiles (``printer``) or design profiles (not)."""
+    import yaml
+
+    from wheelstep_cli.config.printers import is_printer_profile
+
+    names = set()
+    for folder in profile_dirs():
+        for file in folder.glob("*.yaml") if folder.is_dir() else []:
+            try:
+                data = yaml.safe_load(file.read_text(encoding="utf-8"))
+            except yaml.YAMLError:
+                continue
+            if is_printer_profile(data) == printer:
+                names.add(file.stem)
+    return sorted(names)
+
+
+def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
+    """The checked design profile in ``file`` (``doc``: the file already parsed); every
+    problem raised at once as InvalidInput with ``file:line``."""
+    from wheelstep_cli.config.design import DesignProfile
+    from wheelstep_cli.config.printers import is_printer_profile
+    from wheelstep_cli.config.schema import validate_file
+
+    if doc is None:
+        try:
+            doc = read_located_yaml(file, profile_label(file))
+        except YamlSyntaxError as err:
+            raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+    if is_printer_profile(doc.data) or not isinstance(doc.data, dict):
+        raise DesignError("design", name, "is not a design profile; design profiles: "
+                          + ", ".join(profile_names(printer=False)))
+    return validate_file(DesignProfile, doc)
+
+
+def load_design_profile(name_or_path: str):
+    """Find and check a design profile (a name or a path), see :func:`design_from_file`."""
+    return design_from_file(name_or_path, find_profile(name_or_path))

@@ -1,50 +1,93 @@
-"""Resolution of a part's parameters: command line over design profile over built-in defaults.
+"""Resolution of a part's parameters: command line (or batch overrides) over the design
+profile's part section over its mechanism section over the spec's defaults.
 
-The one place where the CLI's options and a design profile's sections meet.
+The one place where the CLI's options, a batch entry and a design profile meet.
 """
 
 from __future__ import annotations
 
+from typing import Any
+
+from pydantic import BaseModel, ValidationError
+
+from wheelstep_cli.config.schema import build, design_errors
+from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
 from wheelstep_cli.errors import DesignError
 
+STRUT = ("c", "r_min")
 
-def gear_pair_spec(profile, **cli):
-    """Resolve a GearPairSpec: command line over profile over built-in defaults."""
-    from wheelstep_cli.config.profiles import load_profile, merge_options, profile_section
-    from wheelstep_cli.parts.gear_pair import SPEC_KEYS, GearPairSpec
 
-    layers = []
-    if profile:
-        path, data = load_profile(profile)
-        layers.append(profile_section(path, data, "gears", SPEC_KEYS))
-        mechanism = profile_section(path, data, "mechanism", ("a", "b", "c", "r_min"))
-        if "c" not in mechanism and "r_min" in mechanism:
-            a, b = cli.get("a") or mechanism.get("a", 60.0), cli.get("b") or mechanism.get("b", 100.0)
-            mechanism["c"] = mechanism["r_min"] - a + 4 * b
-        mechanism.pop("r_min", None)
-        layers.append(mechanism)
-    spec = GearPairSpec(**merge_options(cli, *layers))
+def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any]) -> dict[str, Any]:
+    """The values of a ``spec`` from the layers, higher layers winning (None: not given).
+
+    A strut given in a layer (as ``c`` or ``r_min``) replaces the strut of the layers below,
+    in either form. A spec without ``r_min`` (the gear pair) gets c = R_min - a + 4b.
+    """
+    layers = [top] if profile is None else [profile.values("mechanism"), profile.values(section), top]
+    merged: dict[str, Any] = {}
+    for layer in layers:
+        given = {k: v for k, v in layer.items() if v is not None}
+        if any(k in given for k in STRUT):
+            for key in STRUT:
+                merged.pop(key, None)
+        merged.update(given)
+    fields = spec.model_fields
+    if "r_min" in merged and "r_min" not in fields:
+        r_min = merged.pop("r_min")
+        if "c" not in merged:
+            merged["c"] = strut_length(merged.get("a", fields["a"].default),
+                                       merged.get("b", fields["b"].default), r_min)
+    return {k: v for k, v in merged.items() if k in fields}
+
+
+def strut_length(a: float, b: float, r_min: float) -> float:
+    """c from the smallest sole curvature radius (the mechanism's sizing rule), mm."""
+    from wheelstep_cli.mechanism.crank import CrankMechanism
+
+    return CrankMechanism.from_r_min(a, b, r_min).c
+
+
+def spec_problems(spec: type[BaseModel], values: dict[str, Any]):
+    """(spec, []) or (None, every problem) of building ``spec`` from ``values``."""
     try:
-        spec.mechanism()
-    except DesignError as err:
-        raise err.for_given(k for k, v in cli.items() if v is not None) from None
+        return spec.model_validate(values), []
+    except ValidationError as err:
+        return None, design_errors(spec, err)
+
+
+def updated(spec: BaseModel, **changes: Any) -> BaseModel:
+    """The spec with some values changed, checked again (DesignError naming the first problem)."""
+    return build(type(spec), {**spec.model_dump(), **changes})
+
+
+def _profile(name: str | None):
+    from wheelstep_cli.config.profiles import load_design_profile
+
+    return load_design_profile(name) if name else None
+
+
+def gear_pair_spec(profile, **cli) -> GearPairSpec:
+    """Resolve a GearPairSpec: command line over profile over built-in defaults.
+
+    Raises InvalidInput (every problem of the profile, with ``file:line``) or DesignError
+    (a value that breaks a rule, named by its parameter).
+    """
+    spec = build(GearPairSpec, spec_values(GearPairSpec, "gears", _profile(profile), cli))
+    _check_mechanism(spec.mechanism, cli)
     return spec
 
 
-def shoe_spec(profile, **cli):
+def shoe_spec(profile, **cli) -> ShoeSpec:
     """Resolve a ShoeSpec: command line over profile (``shoe:``, ``mechanism:``) over defaults."""
-    from wheelstep_cli.config.profiles import load_profile, merge_options, profile_section
-    from wheelstep_cli.parts.shoe import SPEC_KEYS, ShoeSpec
+    spec = build(ShoeSpec, spec_values(ShoeSpec, "shoe", _profile(profile), cli))
+    _check_mechanism(spec.design, cli)
+    return spec
 
-    layers = []
-    if profile:
-        path, data = load_profile(profile)
-        part_keys = tuple(k for k in SPEC_KEYS if k not in ("a", "b", "c", "r_min"))
-        layers.append(profile_section(path, data, "shoe", part_keys))
-        mechanism = profile_section(path, data, "mechanism", ("a", "b", "c", "r_min"))
-        if cli.get("c") is not None or cli.get("r_min") is not None:
-            # the strut given on the command line replaces the profile's, in either form
-            mechanism.pop("c", None)
-            mechanism.pop("r_min", None)
-        layers.append(mechanism)
-    return ShoeSpec(**merge_options(cli, *layers))
+
+def _check_mechanism(size, cli: dict[str, Any]) -> None:
+    """Size the mechanism now, so an impossible one is named by a parameter the user gave."""
+    try:
+        size()
+    except DesignError as err:
+        raise err.for_given(k for k, v in cli.items() if v is not None) from None
+

@@ -1,15 +1,28 @@
-"""Small checks of YAML values against Python type annotations, with ``file:line`` issues."""
+"""Problems of input files as ``file:line: name = value: limit``, from the models' validation.
+
+The configuration models (pydantic) check types, bounds, choices and unknown keys; this
+module words each of their errors the way the user wrote the input: the dotted path of
+the YAML key (``parts[1].overrides.z``) at its line, or the parameter's snake_case name
+for values given in code or on the command line.
+"""
 
 from __future__ import annotations
 
-import math
+import functools
 import types
 import typing
 from dataclasses import dataclass
-from typing import Any, Iterable
+from enum import Enum
+from typing import Any, Iterable, Optional
 
-from wheelstep_cli.errors import DesignError
+import annotated_types
+from pydantic import BaseModel, ValidationError, create_model
+from pydantic.fields import FieldInfo
+
+from wheelstep_cli.config.fields import STRICT
 from wheelstep_cli.config.located_yaml import LocatedYaml
+from wheelstep_cli.config.names import yaml_message
+from wheelstep_cli.errors import DesignError
 
 
 @dataclass(frozen=True)
@@ -38,6 +51,9 @@ class InvalidInput(DesignError):
     def lines(self) -> list[str]:
         return [str(issue) for issue in self.issues]
 
+    def __str__(self) -> str:
+        return "\n".join(self.lines())
+
 
 def dotted(path: Iterable) -> str:
     """("parts", 1, "overrides", "z") -> "parts[1].overrides.z"."""
@@ -51,48 +67,167 @@ def show(value: Any) -> str:
     return repr(value) if isinstance(value, str) else f"{value:g}" if isinstance(value, float) else str(value)
 
 
-def type_problem(value: Any, annotation: Any) -> str | None:
-    """Why ``value`` (from YAML) does not fit ``annotation``; None when it does."""
-    origin = typing.get_origin(annotation)
-    if origin in (typing.Union, types.UnionType):
-        options = typing.get_args(annotation)
-        if value is None and type(None) in options:
-            return None
-        problems = [type_problem(value, a) for a in options if a is not type(None)]
-        return None if any(p is None for p in problems) else problems[0]
-    if origin is typing.Literal:
-        allowed = typing.get_args(annotation)
-        return None if value in allowed else "must be one of: " + ", ".join(map(str, allowed))
-    if annotation is float:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            return "must be a number"
-        return None if math.isfinite(value) else "must be a finite number"
-    if annotation is int:
-        return None if isinstance(value, int) and not isinstance(value, bool) else "must be a whole number"
-    if annotation is bool:
-        return None if isinstance(value, bool) else "must be true or false"
-    if annotation is str:
-        return None if isinstance(value, str) else "must be text"
-    return None
+# ----------------------------------------------------------------------------- models
+def _unwrap(tp: Any) -> Any:
+    """Optional[X] -> X."""
+    args = [a for a in typing.get_args(tp) if a is not type(None)]
+    if typing.get_origin(tp) in (typing.Union, types.UnionType) and len(args) == 1:
+        return args[0]
+    return tp
 
 
-def check_mapping(doc: LocatedYaml, path: tuple, value: Any, allowed: Iterable[str],
-                  issues: list[Issue], required: Iterable[str] = ()) -> dict:
-    """Check ``value`` is a mapping with only ``allowed`` keys (and the ``required`` ones).
+def _walk(model: type[BaseModel], loc: tuple) -> tuple[Any, FieldInfo | None]:
+    """(type, field) found at ``loc`` inside ``model``; the field is the last named one."""
+    tp, info = model, None
+    for key in loc:
+        tp = _unwrap(tp)
+        if isinstance(tp, type) and issubclass(tp, BaseModel):
+            info = tp.model_fields.get(key) if isinstance(key, str) else None
+            if info is None:
+                return None, None
+            tp = info.annotation
+        elif typing.get_origin(tp) is dict:
+            tp = typing.get_args(tp)[1]
+        elif typing.get_origin(tp) in (list, tuple):
+            args = typing.get_args(tp)
+            tp = args[0] if args else Any
+        else:
+            return None, info
+    return _unwrap(tp), info
 
-    Returns the mapping (empty when it is not one). Issues are appended.
-    """
-    allowed = list(allowed)
-    if value is None:
-        value = {}
-    if not isinstance(value, dict):
-        issues.append(Issue(doc.where(path), dotted(path), "must be a mapping of keys"))
-        return {}
-    for key in value:
-        if key not in allowed:
-            issues.append(Issue(doc.where(path + (key,)), dotted(path + (key,)),
-                                "unknown key; allowed: " + ", ".join(allowed)))
-    for key in required:
-        if key not in value:
-            issues.append(Issue(doc.where(path), dotted(path), f"needs the key '{key}'"))
-    return value
+
+def allowed_keys(model: type[BaseModel], loc: tuple) -> list[str]:
+    """Keys of the mapping at ``loc`` (the model's fields, in their order)."""
+    tp, _ = _walk(model, loc)
+    return list(tp.model_fields) if isinstance(tp, type) and issubclass(tp, BaseModel) else []
+
+
+@functools.cache
+def section_model(spec: type[BaseModel]) -> type[BaseModel]:
+    """The model of a partial spec (a profile section, batch overrides): every field of
+    ``spec`` with its checks, none required, no cross-field rules (they need all values)."""
+    fields = {name: (Optional[info.annotation], FieldInfo.merge_field_infos(info, default=None))
+              for name, info in spec.model_fields.items()}
+    return create_model(f"{spec.__name__}Section", __config__=STRICT, **fields)
+
+
+# ----------------------------------------------------------------------------- wording
+_TYPES = {
+    "number": "must be a number", "float_type": "must be a number", "float_parsing": "must be a number",
+    "finite_number": "must be a finite number",
+    "int_type": "must be a whole number", "int_from_float": "must be a whole number",
+    "int_parsing": "must be a whole number",
+    "bool_type": "must be true or false", "bool_parsing": "must be true or false",
+    "string_type": "must be text",
+    "model_type": "must be a mapping of keys", "dict_type": "must be a mapping of keys",
+    "model_attributes_type": "must be a mapping of keys",
+}
+_BOUNDS = {annotated_types.Gt: (">", "gt"), annotated_types.Ge: (">=", "ge"),
+           annotated_types.Lt: ("<", "lt"), annotated_types.Le: ("<=", "le")}
+
+
+def _choices(tp: Any) -> list[str]:
+    if isinstance(tp, type) and issubclass(tp, Enum):
+        return [str(m.value) for m in tp]
+    return [str(a) for a in typing.get_args(tp)] if typing.get_origin(tp) is typing.Literal else []
+
+
+def _range(info: FieldInfo | None, error: dict) -> str:
+    parts = []
+    for item in info.metadata if info is not None else []:
+        if type(item) in _BOUNDS:
+            sign, attr = _BOUNDS[type(item)]
+            parts.append(f"{sign} {getattr(item, attr):g}")
+    if not parts:  # a bound of an item (e.g. of a list), not of the field
+        ctx = error.get("ctx", {})
+        parts = [f"{sign} {ctx[attr]:g}" for sign, attr in _BOUNDS.values() if attr in ctx]
+    return " and ".join(parts)
+
+
+def limit_text(model: type[BaseModel], error: dict) -> str:
+    """What the value at the error's location must be, in the words of the errors."""
+    tp, info = _walk(model, tuple(error["loc"]))
+    extra = (info.json_schema_extra if info is not None else None) or {}
+    kind = error["type"]
+    if kind in _TYPES:
+        return _TYPES[kind]
+    if "limit" in extra:
+        return extra["limit"]
+    if kind in ("enum", "literal_error"):
+        return "must be one of: " + ", ".join(_choices(tp) or [str(error.get("ctx", {}).get("expected"))])
+    if kind in ("greater_than", "greater_than_equal", "less_than", "less_than_equal"):
+        unit = f" {extra['unit']}" if extra.get("unit") else ""
+        return f"must be {_range(info, error)}{unit}"
+    return error["msg"]
+
+
+def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) -> Issue:
+    kind = error["type"]
+    if kind == "missing":
+        return Issue(doc.where(loc[:-1]), dotted(loc[:-1]), f"needs the key '{loc[-1]}'")
+    if kind == "extra_forbidden":
+        allowed = allowed_keys(model, tuple(error["loc"][:-1]))
+        return Issue(doc.where(loc), dotted(loc), "unknown key; allowed: " + ", ".join(allowed))
+    cause = error.get("ctx", {}).get("error")
+    if isinstance(cause, DesignError):
+        return Issue(doc.where(loc), dotted(loc), yaml_message(cause))
+    if _TYPES.get(kind) == "must be a mapping of keys":
+        return Issue(doc.where(loc), dotted(loc), _TYPES[kind])
+    return Issue(doc.where(loc), dotted(loc), f"= {show(error['input'])}: {limit_text(model, error)}")
+
+
+def located_issues(model: type[BaseModel], doc: LocatedYaml, path: tuple,
+                   err: ValidationError) -> list[tuple[tuple, Issue]]:
+    """(path in the file, issue) of every error of validating ``doc``'s value at ``path``."""
+    out = []
+    for error in err.errors():
+        loc = path + tuple(error["loc"])
+        out.append((loc, _issue(model, doc, loc, error)))
+    return out
+
+
+def file_issues(model: type[BaseModel], doc: LocatedYaml, path: tuple,
+                err: ValidationError) -> list[Issue]:
+    """Every error of validating ``doc``'s value at ``path`` with ``model``, at its line."""
+    return [issue for _, issue in located_issues(model, doc, path, err)]
+
+
+def validate_file(model: type[BaseModel], doc: LocatedYaml, path: tuple = (),
+                  issues: list[Issue] | None = None):
+    """``doc``'s value at ``path`` as a ``model`` (an empty value as an empty mapping);
+    None when it has problems, which are appended to ``issues``."""
+    value = doc.data
+    for key in path:
+        value = value.get(key) if isinstance(value, dict) else None
+    try:
+        return model.model_validate({} if value is None else value)
+    except ValidationError as err:
+        if issues is None:
+            raise InvalidInput(file_issues(model, doc, path, err)) from None
+        issues.extend(file_issues(model, doc, path, err))
+        return None
+
+
+def design_errors(model: type[BaseModel], err: ValidationError) -> list[DesignError]:
+    """The errors of building ``model`` from values given by name (code, command line)."""
+    out = []
+    for error in err.errors():
+        cause = error.get("ctx", {}).get("error")
+        if isinstance(cause, DesignError):
+            out.append(cause)
+            continue
+        param = ".".join(str(k) for k in error["loc"]) or model.__name__
+        if error["type"] == "extra_forbidden":
+            limit = "unknown parameter; allowed: " + ", ".join(model.model_fields)
+        else:
+            limit = limit_text(model, error)
+        out.append(DesignError(param, error.get("input"), limit))
+    return out
+
+
+def build(model: type[BaseModel], values: dict[str, Any]):
+    """``model(**values)``; the first problem raised as a DesignError naming the parameter."""
+    try:
+        return model.model_validate(values)
+    except ValidationError as err:
+        raise design_errors(model, err)[0] from None

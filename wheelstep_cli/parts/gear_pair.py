@@ -2,15 +2,14 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
-from wheelstep_cli.errors import require
-from wheelstep_cli.gears.paper_teeth import ToothForm, check_tooth_form, pinion_outline, wheel_outline
+from wheelstep_cli.config.specs import GearPairSpec
+from wheelstep_cli.gears.paper_teeth import check_tooth_form, pinion_outline, wheel_outline
 from wheelstep_cli.gears.laws import CrankLaw
-from wheelstep_cli.mechanism.crank import CrankMechanism
 from wheelstep_cli.gears.sectors import SectorPartition, sector_partition, sectors_per_quarter
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
 from wheelstep_cli.geometry.solids import extrude_plate
@@ -23,56 +22,8 @@ PLATE_GAP = 5.0
 FORMATS = ("stl", "3mf", "both")
 
 
-@dataclass(frozen=True)
-class GearPairSpec:
-    """Everything that defines a printed gear pair. Lengths in mm.
-
-    Defaults are the source design (BNTU prototype, profiles/bntu-2024.yaml).
-    """
-
-    a: float = 60.0
-    b: float = 100.0
-    c: float = 360.0
-    z: int = 48
-    turns: int = 2
-    center_distance: float = 143.5
-    install_distance: float = 144.0
-    module: float = 2.0
-    backlash: float | None = None  # None: 0.25 * module
-    thickness: float = 10.0
-    bore: float = 8.0
-    teeth: str = "generated"         # "generated" (SPEC §9) or "paper" (SPEC §5)
-    pressure_angle: float = 20.0     # deg, generated teeth
-    addendum: float = 1.0            # x module, generated teeth
-    dedendum: float = 1.25           # x module, generated teeth
-    fillet: float = 0.25             # cutter tip radius x module, generated teeth
-    blend: float = 0.0               # deg of carrier angle: ratio blend half-width at handovers
-    corner: str = "space"            # pinion "space" or "tooth" centred on each pitch-curve corner
-    tilt: float = 0.6                # rack-tooth tilt towards the radius (fraction of mu), generated
-    law_csv: str | None = None       # driving/driven angle samples (deg) replacing the crank law
-
-    @property
-    def backlash_mm(self) -> float:
-        return 0.25 * self.module if self.backlash is None else self.backlash
-
-    def mechanism(self) -> CrankMechanism:
-        return CrankMechanism(self.a, self.b, self.c)
-
-    def law(self) -> CrankLaw:
-        return CrankLaw(self.mechanism(), self.turns)
-
-    def tooth_form(self) -> ToothForm:
-        return ToothForm(self.module, self.backlash_mm)
-
-    def cutter(self):
-        from wheelstep_cli.gears.generation import RackCutter
-
-        return RackCutter(np.radians(self.pressure_angle), self.addendum, self.dedendum,
-                          self.fillet, self.backlash_mm)
-
-
 #: Option names a gear-pair profile section or batch entry may set.
-SPEC_KEYS = tuple(GearPairSpec.__dataclass_fields__)
+SPEC_KEYS = tuple(GearPairSpec.model_fields)
 
 
 @dataclass(frozen=True)
@@ -87,7 +38,7 @@ class GearPair:
     pinion: Part
     wheel: Part
     checks: dict[str, MeshReport] = field(default_factory=dict)
-    generated: object = None   # gears.generation.GeneratedPair for generated teeth
+    generated: object = None   # gears.generated.GeneratedPair for generated teeth
 
     @property
     def wheel_teeth(self) -> int:
@@ -98,18 +49,10 @@ class GearPair:
 
 def build_gear_pair(spec: GearPairSpec) -> GearPair:
     """Compute, extrude and check both gears; raises DesignError for impossible designs."""
-    require(spec.teeth in ("generated", "paper"), "teeth", spec.teeth, "must be 'generated' or 'paper'")
     if spec.teeth == "generated":
         return _build_generated(spec)
-    require(spec.law_csv is None, "law-csv", spec.law_csv, "needs --teeth generated")
     law = spec.law()
     count = sectors_per_quarter(spec.z, spec.turns)
-    require(spec.install_distance >= spec.center_distance, "install-distance", spec.install_distance,
-            f"must be >= center-distance {spec.center_distance:g} mm")
-    require(spec.install_distance <= spec.center_distance + spec.module, "install-distance",
-            spec.install_distance,
-            f"must be <= center-distance + module = {spec.center_distance + spec.module:g} mm "
-            "(farther apart the teeth lose contact)")
     partition = sector_partition(law, count, spec.center_distance)
     form = spec.tooth_form()
     check_tooth_form(partition, form)
@@ -127,7 +70,6 @@ def generation_law(spec: GearPairSpec):
     from wheelstep_cli.gears.laws import blended_law
 
     law = read_law_csv(spec.law_csv) if spec.law_csv is not None else spec.law()
-    require(0.0 <= spec.blend <= 20.0, "blend", spec.blend, "must be 0..20 deg")
     return law, blended_law(law, np.radians(spec.blend))
 
 
@@ -135,10 +77,7 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     """Generated teeth (SPEC §9): pitch curves rolling at the installed distance."""
     from wheelstep_cli.gears.generation import GenerationSettings, generate_pair, simplify_outline
 
-    require(spec.install_distance >= spec.center_distance, "install-distance", spec.install_distance,
-            f"must be >= center-distance {spec.center_distance:g} mm")
     _, law = generation_law(spec)
-    require(0.0 <= spec.tilt <= 1.5, "tilt", spec.tilt, "must be 0..1.5")
     settings = replace(GenerationSettings(), tilt=spec.tilt)
     gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, settings=settings,
                         center_distance=spec.install_distance)
@@ -180,7 +119,7 @@ def partition_rows(partition: SectorPartition) -> list[dict]:
 def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
     """Everything about the pair a person or a machine may want: inputs, partition, parts,
     and the meshing check of the written meshes when given."""
-    spec = asdict(pair.spec)
+    spec = pair.spec.model_dump()
     spec["backlash"] = pair.spec.backlash_mm
     parts = {}
     for part in (pair.pinion, pair.wheel):
@@ -245,7 +184,7 @@ def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both",
             files[out / f"{part.name}.stl"] = stl_bytes(part.vertices, part.faces, f"wheelstep {part.name}")
     if fmt in ("3mf", "both"):
         meta = {k: f"{v:g}" if isinstance(v, float) else str(v)
-                for k, v in asdict(pair.spec).items() if v is not None}
+                for k, v in pair.spec.model_dump().items() if v is not None}
         objects = [PlateObject(part.name, part.vertices, part.faces, shift, meta)
                    for part, shift in zip(parts, plate_layout(parts))]
         files[out / "gears.3mf"] = threemf_bytes(

@@ -10,11 +10,12 @@ open at the top face, centred at x = 0, z = width/2.
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from wheelstep_cli.config.specs import ShoeSpec
 from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.geometry.planar import check_outline, polyline_box_distance, signed_area
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
@@ -32,56 +33,9 @@ PROFILE_POINTS = 401
 MIN_WALL = 2.0
 #: The socket cutter sticks out of the top face by this much, so no skin is left, mm.
 CUT_OVERSHOOT = 1.0
-#: Source design's strut length when neither c nor R_min is given: R_min = 20 mm.
-DEFAULT_R_MIN = 20.0
 FORMATS = ("stl", "3mf", "both")
 PLATE_GAP = 5.0
-
-
-@dataclass(frozen=True)
-class ShoeSpec:
-    """Everything that defines a printed shoe. Lengths in mm.
-
-    Mechanism defaults are the source design (a = 60, b = 100, R_min = 20 -> c = 360).
-    Give the strut as ``c`` or as the sole's smallest curvature radius ``r_min``
-    (both: they must agree). Part defaults suit a plastic prototype at full scale.
-    """
-
-    a: float = 60.0
-    b: float = 100.0
-    c: float | None = None
-    r_min: float | None = None
-    width: float = 40.0           # across the track
-    strut_diameter: float = 12.0  # socket bore (circumscribed polygon, the strut fits)
-    socket_depth: float = 25.0
-    rim: float = 15.0             # body height above the sole's ends
-
-    def __post_init__(self) -> None:
-        # profiles and batch files give ints or strings: store floats, so equal designs give equal files
-        for name, value in asdict(self).items():
-            if value is None:
-                continue
-            try:
-                number = float(value)
-            except (TypeError, ValueError):
-                raise DesignError(name.replace("_", "-"), value, "must be a number (mm)") from None
-            object.__setattr__(self, name, number)
-
-    def design(self) -> CrankMechanism:
-        """The mechanism sizing; raises DesignError for an invalid or inconsistent one."""
-        if self.c is None:
-            r_min = DEFAULT_R_MIN if self.r_min is None else self.r_min
-            return CrankMechanism.from_r_min(self.a, self.b, r_min)
-        design = CrankMechanism(self.a, self.b, self.c)
-        if self.r_min is not None and not np.isclose(design.r_min, self.r_min, rtol=0, atol=1e-6):
-            raise DesignError("r_min", self.r_min,
-                              f"contradicts c = {self.c:g} mm (a - 4b + c = {design.r_min:g} mm); "
-                              "give only one of r_min and c")
-        return design
-
-
-#: Option names a shoe profile section or batch entry may set.
-SPEC_KEYS = tuple(ShoeSpec.__dataclass_fields__)
+SPEC_KEYS = tuple(ShoeSpec.model_fields)
 
 
 @dataclass(frozen=True)
@@ -103,12 +57,6 @@ class Shoe:
         return self.parts[0]
 
 
-def _check_sizes(spec: ShoeSpec) -> None:
-    for name in ("width", "strut_diameter", "socket_depth", "rim"):
-        value = getattr(spec, name)
-        require(bool(np.isfinite(value)) and value > 0, name.replace("_", "-"), value, "must be > 0 mm")
-
-
 def side_outline(sole_part: np.ndarray, top: float) -> np.ndarray:
     """Closed side outline: the sole (part frame, x increasing) then up to a flat top at y = ``top``."""
     corners = np.array([[sole_part[-1, 0], top], [sole_part[0, 0], top]])
@@ -122,7 +70,7 @@ def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
     limit = min(spec.width, length) - 2.0 * MIN_WALL
     if d > limit:
         across = "width" if spec.width <= length else f"sole length {length:.1f} mm"
-        raise DesignError("strut-diameter", d,
+        raise DesignError("strut_diameter", d,
                           f"must be <= {limit:.2f} mm (socket wider than the body: {across} "
                           f"less {MIN_WALL:g} mm wall each side)")
     floor = polyline_box_distance(sole_part, (-d / 2.0, top - spec.socket_depth, d / 2.0, top))
@@ -133,7 +81,7 @@ def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
             mid = 0.5 * (lo + hi)
             wall = polyline_box_distance(sole_part, (-d / 2.0, top - mid, d / 2.0, top))
             lo, hi = (mid, hi) if wall >= MIN_WALL else (lo, mid)
-        raise DesignError("socket-depth", spec.socket_depth,
+        raise DesignError("socket_depth", spec.socket_depth,
                           f"must be <= {lo:.2f} mm (socket deeper than the body: keep "
                           f"{MIN_WALL:g} mm of plastic between it and the sole)")
     return floor
@@ -152,7 +100,6 @@ def shoe_solid(spec: ShoeSpec, outline: np.ndarray, top: float) -> Part:
 def build_shoe(spec: ShoeSpec) -> Shoe:
     """Size the mechanism, build and check the shoe; raises DesignError for impossible designs."""
     design = spec.design()
-    _check_sizes(spec)
     phi = contact_angles(PROFILE_POINTS)
     profile = sole_profile(design, phi)
     sole_part = np.column_stack([profile[:, 0], design.c - profile[:, 1]])
@@ -177,7 +124,7 @@ def sizing(design: CrankMechanism) -> dict:
 
 def resolved_parameters(shoe: Shoe) -> dict[str, float]:
     """The spec with the strut resolved (both c and r_min given), all as floats in mm."""
-    values = asdict(shoe.spec)
+    values = shoe.spec.model_dump()
     values["c"], values["r_min"] = shoe.design.c, shoe.design.r_min
     return {k: float(v) for k, v in values.items()}
 

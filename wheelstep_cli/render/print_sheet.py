@@ -1,56 +1,18 @@
-"""``print-sheet.md``: what the person at the printer needs, in one page of Markdown."""
+"""``print-sheet.md``: what the person at the printer needs, in one page of Markdown.
+
+Only formatting: the figures (volumes, masses) are computed by the batch and passed in.
+"""
 
 from __future__ import annotations
 
 from collections import Counter
 
-#: extrusion width as a multiple of the nozzle diameter (PrusaSlicer's default is about 1.125)
-LINE_WIDTH_FACTOR = 1.125
 
+def print_sheet_bytes(plan, plates, built, results, failed, masses) -> bytes:
+    """The print sheet: parts and quantities, volumes and masses, plates, slicer settings, failures.
 
-def _fraction(value, default: float) -> float:
-    """'30%' or 0.3 or 30 -> 0.3."""
-    if value is None:
-        return default
-    text = str(value).strip()
-    try:
-        number = float(text.rstrip("%"))
-    except ValueError:
-        return default
-    return number / 100.0 if text.endswith("%") or number > 1 else number
-
-
-def _number(value, default: float) -> float:
-    try:
-        return float(str(value).split()[0])
-    except (ValueError, IndexError):
-        return default
-
-
-def estimated_mass(part, printer) -> float:
-    """Printed mass in g: solid shells (perimeters, top/bottom layers) plus infill of the rest.
-
-    For a plate-like part of height H, mean section A = V/H and footprint perimeter P:
-    shell = P * perimeters * line width * H + A * (top + bottom layers) * layer height,
-    capped at V; mass = density * (shell + infill * (V - shell)). Resin parts print solid.
+    ``masses`` maps (entry index, part name) to (solid, estimated printed) mass in g.
     """
-    volume = part.volume
-    settings = printer.slicer
-    if printer.technology != "fdm":
-        return volume / 1000.0 * printer.density * _fraction(settings.get("fill_density"), 1.0)
-    height = float(part.bounds[1, 2] - part.bounds[0, 2])
-    area = volume / height
-    width = _number(settings.get("nozzle_diameter"), 0.4) * LINE_WIDTH_FACTOR
-    layer = _number(settings.get("layer_height"), 0.2)
-    layers = _number(settings.get("top_solid_layers"), 4) + _number(settings.get("bottom_solid_layers"), 4)
-    shell = min(volume, part.perimeter * _number(settings.get("perimeters"), 2) * width * height
-                + area * layers * layer)
-    infill = _fraction(settings.get("fill_density"), 0.2)
-    return (shell + infill * (volume - shell)) / 1000.0 * printer.density
-
-
-def print_sheet_bytes(plan, plates, built, results, failed) -> bytes:
-    """The print sheet: parts and quantities, volumes and masses, plates, slicer settings, failures."""
     lines = [f"# Print sheet: {plan.file.name}", ""]
     if plan.description:
         lines += [plan.description, ""]
@@ -62,17 +24,22 @@ def print_sheet_bytes(plan, plates, built, results, failed) -> bytes:
         for entry, where, reason in failed:
             lines.append(f"| {entry.name} | {plan.file.name}:{where.rsplit(':', 1)[1]} | {reason} |")
         lines.append("")
+    lines += _parts(plates, built, results, masses)
+    lines += _plates(plates)
+    lines += _printers(plan)
+    return "\n".join(lines).encode("utf-8")
 
-    lines += ["## Parts", "",
-              "| entry | part | design | printer | qty | volume (cm3) | solid mass (g) | est. printed mass (g) "
-              "| size X x Y x Z (mm) | checks |",
-              "| --- | --- | --- | --- | ---: | ---: | ---: | ---: | --- | --- |"]
+
+def _parts(plates, built, results, masses) -> list[str]:
+    lines = ["## Parts", "",
+             "| entry | part | design | printer | qty | volume (cm3) | solid mass (g) | est. printed mass (g) "
+             "| size X x Y x Z (mm) | checks |",
+             "| --- | --- | --- | --- | ---: | ---: | ---: | ---: | --- | --- |"]
     totals: Counter = Counter()
     for entry in built:
         for part in results[entry.index].parts:
             size = part.bounds[1] - part.bounds[0]
-            solid = part.volume / 1000.0 * entry.printer.density
-            mass = estimated_mass(part, entry.printer)
+            solid, mass = masses[entry.index, part.name]
             totals[entry.printer.name, "solid"] += solid * entry.quantity
             totals[entry.printer.name, "mass"] += mass * entry.quantity
             ok = "printable" if all(part.checks.values()) else "FAILED"
@@ -85,10 +52,12 @@ def print_sheet_bytes(plan, plates, built, results, failed) -> bytes:
         printer = next(p.printer for p in plates if p.printer.name == name)
         lines.append(f"Total for {name} ({printer.material}, {printer.density:g} g/cm3): "
                      f"{totals[name, 'mass']:.0f} g estimated printed, {totals[name, 'solid']:.0f} g if solid.")
-    lines += ["", "Masses: solid = volume x density; estimated = perimeters and top/bottom layers "
-              "solid, the rest at the profile's infill.", ""]
+    return lines + ["", "Masses: solid = volume x density; estimated = perimeters and top/bottom layers "
+                    "solid, the rest at the profile's infill.", ""]
 
-    lines += ["## Plates", ""]
+
+def _plates(plates) -> list[str]:
+    lines = ["## Plates", ""]
     for plate in plates:
         printer = plate.printer
         lines += [f"### {plate.stem}.3mf: {printer.name} ({printer.material}, bed "
@@ -98,8 +67,11 @@ def print_sheet_bytes(plan, plates, built, results, failed) -> bytes:
         for label, count in counts.items():
             lines.append(f"- {count} x {label}")
         lines.append("")
+    return lines
 
-    lines += ["## Printer profiles and recommended slicer settings", ""]
+
+def _printers(plan) -> list[str]:
+    lines = ["## Printer profiles and recommended slicer settings", ""]
     seen = []
     for entry in plan.entries:
         if entry.printer.name in seen:
@@ -114,4 +86,4 @@ def print_sheet_bytes(plan, plates, built, results, failed) -> bytes:
                   "| setting | value |", "| --- | --- |"]
         lines += [f"| {key} | {value} |" for key, value in printer.slicer.items()]
         lines.append("")
-    return "\n".join(lines).encode("utf-8")
+    return lines

@@ -11,24 +11,14 @@ from pathlib import Path
 import pytest
 import yaml
 
-ROOT = Path(__file__).resolve().parents[1]
+from tests.helpers.files import SMALL_BATCH
+
+ROOT = Path(__file__).resolve().parents[2]
 SLICER = shutil.which("prusa-slicer")
 pytestmark = pytest.mark.skipif(SLICER is None, reason="prusa-slicer is not installed")
 
-BATCH = """\
-parts:
-  - name: pair
-    kind: gear-pair
-    design: desk-demo
-    printer: fdm-0.4-pla
-    overrides: {thickness: 2}
-  - name: shoes
-    kind: shoe
-    design: desk-demo
-    printer: fdm-0.4-petg
-    quantity: 2
-    overrides: {width: 12}
-"""
+BATCH = SMALL_BATCH.replace("printer: resin-0.05-standard", "printer: fdm-0.4-petg").replace(
+    "quantity: 3", "quantity: 2")
 
 
 def slicer(*args: str, timeout: float = 300) -> subprocess.CompletedProcess:

@@ -15,23 +15,11 @@ import numpy as np
 import pytest
 
 from tests.helpers.clicheck import error_line
+from tests.helpers.files import SMALL_BATCH as SMALL, line_of, write
 from tests.helpers.meshcheck import read_3mf_strict
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "shop-floor.yaml"
-
-
-def write(path: Path, text: str) -> Path:
-    path.write_text(text, encoding="utf-8")
-    return path
-
-
-def line_of(path: Path, needle: str) -> int:
-    """1-based line of the first line containing ``needle`` (independent of the tool)."""
-    for number, line in enumerate(path.read_text().splitlines(), start=1):
-        if needle in line:
-            return number
-    raise AssertionError(needle)
 
 
 def object_metadata(path: Path) -> dict[str, dict[str, str]]:
@@ -212,22 +200,6 @@ def test_bad_parts_fail_alone_named_with_their_line(cli, tmp_path):
     assert "## Not built" in (out / "print-sheet.md").read_text()
 
 
-SMALL = """\
-parts:
-  - name: pair
-    kind: gear-pair
-    design: desk-demo
-    printer: fdm-0.4-pla
-    overrides: {thickness: 2}
-  - name: shoes
-    kind: shoe
-    design: desk-demo
-    printer: resin-0.05-standard
-    quantity: 3
-    overrides: {width: 12}
-"""
-
-
 def test_same_batch_twice_identical_bytes_serial_and_parallel(cli, tmp_path):
     """In-process --jobs 1 and a separate process with --jobs 2 (spawned workers) agree byte for byte."""
     batch = write(tmp_path / "small.yaml", SMALL)
@@ -308,22 +280,20 @@ def test_all_problems_reported_together(cli, tmp_path):
     assert "needs a printer" in lines[2]
 
 
-def test_bad_printer_profile_is_located_in_the_profile(cli, tmp_path):
-    profile = write(tmp_path / "wobbly.yaml", "printer:\n  technology: fdm\n  bed: [200, 200]\n"
-                    "  tooth_clearance: -0.1\nmaterial:\n  density: 1.2\n")
-    batch = write(tmp_path / "b.yaml", VALID_ENTRY.replace("fdm-0.4-pla", str(profile)))
+@pytest.mark.parametrize("file, text, replaced, expect", [
+    ("wobbly.yaml", "printer:\n  technology: fdm\n  bed: [200, 200]\n  tooth_clearance: -0.1\n"
+     "material:\n  density: 1.2\n", "fdm-0.4-pla",
+     "{profile}:4: printer.tooth_clearance = -0.1: must be >= 0"),
+    ("mine.yaml", "mechanism: {a: 30, b: 50, r_min: 10}\ngears:\n  z: 24\n  colour: red\n", "desk-demo",
+     "{profile}:4: gears.colour: unknown key; allowed: a, b, c, z"),
+])
+def test_bad_profile_is_located_in_the_profile(cli, tmp_path, file, text, replaced, expect):
+    """A bad printer or design profile: the problem is reported at its line in the profile."""
+    profile = write(tmp_path / file, text)
+    batch = write(tmp_path / "b.yaml", VALID_ENTRY.replace(replaced, str(profile)))
     result = cli("batch", batch, "--out", tmp_path / "out")
     assert result.exit_code == 2
-    assert f"{profile}:4: printer.tooth_clearance = -0.1: must be >= 0" in result.stderr
-
-
-def test_bad_design_profile_is_located_in_the_profile(cli, tmp_path):
-    design = write(tmp_path / "mine.yaml", "mechanism: {a: 30, b: 50, r_min: 10}\ngears:\n  z: 24\n"
-                   "  colour: red\n")
-    batch = write(tmp_path / "b.yaml", VALID_ENTRY.replace("desk-demo", str(design)))
-    result = cli("batch", batch, "--out", tmp_path / "out")
-    assert result.exit_code == 2
-    assert f"{design}:4: gears.colour: unknown key; allowed: a, b, c, z" in result.stderr
+    assert expect.format(profile=profile) in result.stderr
     assert not (tmp_path / "out").exists()
 
 

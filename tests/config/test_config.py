@@ -1,0 +1,117 @@
+"""Configuration models: every problem of a file reported at once with its line; one
+snake_case name per parameter, the flag derived from it; --profile and batch share the rules."""
+
+from __future__ import annotations
+
+import re
+import pytest
+
+from tests.helpers.clicheck import error_line
+from tests.helpers.files import line_of, write
+
+
+SEVERAL_BAD = """\
+parts:
+  - name: pair
+    kind: gear-pair
+    design: desk-demo
+    printer: fdm-0.4-pla
+    overrides:
+      thickness: -2
+      z: 24.5
+      blend: 40
+      teeth: wooden
+  - name: shoe
+    kind: shoe
+    design: desk-demo
+    printer: fdm-0.4-pla
+    quantity: 500
+    overrides:
+      width: 0
+      rim: thin
+"""
+
+
+def test_batch_reports_every_bad_value_of_an_entry_with_its_line(cli, tmp_path):
+    batch = write(tmp_path / "bad.yaml", SEVERAL_BAD)
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    expected = {
+        "thickness: -2": "parts[0].overrides.thickness = -2: must be > 0 mm",
+        "z: 24.5": "parts[0].overrides.z = 24.5: must be a whole number",
+        "blend: 40": "parts[0].overrides.blend = 40: must be 0..20 deg",
+        "teeth: wooden": "parts[0].overrides.teeth = 'wooden': must be one of: generated, paper",
+        "quantity: 500": "parts[1].quantity = 500: must be between 1 and 200",
+        "width: 0": "parts[1].overrides.width = 0: must be > 0 mm",
+        "rim: thin": "parts[1].overrides.rim = 'thin': must be a number",
+    }
+    assert len(lines) == len(expected), result.stderr
+    for needle, message in expected.items():
+        assert f"wheelstep: error: {batch}:{line_of(batch, needle)}: {message}" in lines, result.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_design_profile_reports_every_bad_value_with_its_line(cli, tmp_path):
+    design = write(tmp_path / "mine.yaml", "mechanism:\n  a: thirty\n  b: 50\ngears:\n  z: 24\n"
+                   "  bore: -1\nshoe:\n  width: -4\n  colour: red\n")
+    result = cli("gears", "--profile", design, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    lines = [re.sub(r"^wheelstep: error: ", "", ln) for ln in result.stderr.strip().splitlines()]
+    assert lines == [
+        f"{design}:2: mechanism.a = 'thirty': must be a number",
+        f"{design}:6: gears.bore = -1: must be >= 0 mm",
+        f"{design}:8: shoe.width = -4: must be > 0 mm",
+        f"{design}:9: shoe.colour: unknown key; allowed: a, b, c, r_min, width, strut_diameter, "
+        "socket_depth, rim",
+    ]
+
+
+@pytest.mark.parametrize("command", ["gears", "shoe"])
+def test_profile_with_a_wrong_typed_value_is_one_line_naming_the_key(cli, tmp_path, command):
+    design = write(tmp_path / "typo.yaml", "mechanism:\n  a: 30\n  b: fifty\n")
+    result = cli(command, "--profile", design, "--out", tmp_path / "out")
+    line = error_line(result)
+    assert line == f"wheelstep: error: {design}:3: mechanism.b = 'fifty': must be a number"
+    assert not (tmp_path / "out").exists()
+
+
+def test_profile_and_batch_share_the_rules(tmp_path):
+    """The same profile value is refused by --profile and by a batch entry, in the same words."""
+    from wheelstep_cli.batch import load_batch
+    from wheelstep_cli.config.resolve import gear_pair_spec
+    from wheelstep_cli.config.schema import InvalidInput
+
+    design = write(tmp_path / "d.yaml", "gears:\n  tilt: 3\n")
+    batch = write(tmp_path / "b.yaml", f"parts:\n  - kind: gear-pair\n    design: {design}\n"
+                  "    printer: fdm-0.4-pla\n")
+    with pytest.raises(InvalidInput) as by_profile:
+        gear_pair_spec(str(design))
+    with pytest.raises(InvalidInput) as by_batch:
+        load_batch(batch)
+    assert by_profile.value.lines()[0].split(": ", 1)[1] == by_batch.value.lines()[0].split(": ", 1)[1] \
+        == "gears.tilt = 3: must be 0..1.5"
+
+
+def test_flag_is_derived_from_the_snake_case_name():
+    from wheelstep_cli.config.names import flag_name, yaml_message
+    from wheelstep_cli.errors import DesignError
+
+    assert flag_name("install_distance") == "--install-distance"
+    assert flag_name("r_min") == "--r-min"
+    err = DesignError("install_distance", 140.0, "must be >= the centre distance 143.5 mm")
+    assert yaml_message(err) == "install_distance = 140: must be >= the centre distance 143.5 mm"
+
+
+def test_specs_refuse_unknown_and_wrong_typed_values_naming_the_parameter():
+    from wheelstep_cli.config.resolve import gear_pair_spec, shoe_spec
+    from wheelstep_cli.errors import DesignError
+
+    with pytest.raises(DesignError) as info:
+        gear_pair_spec(None, install_distance=140.0)
+    assert info.value.param == "install_distance"
+    with pytest.raises(DesignError) as info:
+        shoe_spec(None, strut_diameter=-1.0)
+    assert (info.value.param, info.value.limit) == ("strut_diameter", "must be > 0 mm")
+    assert gear_pair_spec(None, a=80).a == 80 and isinstance(gear_pair_spec(None, a=80).a, int)
+    assert isinstance(shoe_spec(None, a=80).a, float)

@@ -1,0 +1,86 @@
+"""The profiles a batch file names (printers and designs), each found, read and checked once."""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+from typing import Callable
+
+from wheelstep_cli.config.located_yaml import LocatedYaml, read_located_yaml
+from wheelstep_cli.config.printers import Printer, is_printer_profile, printer_from_profile
+from wheelstep_cli.config.profiles import (
+    design_from_file,
+    find_profile,
+    profile_label as file_label,
+    profile_names,
+)
+from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, show
+from wheelstep_cli.errors import DesignError
+
+
+def profile_label(name: str) -> str:
+    """A profile's name as recorded in outputs: bare names as they are, paths by file name only
+    (so no folder, e.g. a temporary one, ends up in the manifest or the 3MF metadata)."""
+    given = Path(name)
+    return given.name if given.suffix in (".yaml", ".yml") or len(given.parts) > 1 else name
+
+
+def _load_printer(name: str, file: Path, located: LocatedYaml) -> Printer:
+    if not is_printer_profile(located.data):
+        raise DesignError("printer", name, "is a design profile, not a printer profile; "
+                          "printer profiles: " + ", ".join(profile_names(printer=True)))
+    return printer_from_profile(profile_label(name), file, file_label(file), located)
+
+
+def _load_design(name: str, file: Path, located: LocatedYaml):
+    return design_from_file(name, file, located), hashlib.sha256(file.read_bytes()).hexdigest()
+
+
+class Profiles:
+    """Printer and design profiles named by one batch file; relative ``.yaml`` paths are
+    looked up next to the batch file first."""
+
+    def __init__(self, batch_file: Path):
+        self.folder = Path(batch_file).parent
+        self.printers: dict[str, Printer | None] = {}
+        self.designs: dict[str, tuple | None] = {}   # name -> (DesignProfile, file, sha256)
+
+    def find(self, name: str) -> Path:
+        given = Path(name)
+        nearby = self.folder / given
+        if given.suffix in (".yaml", ".yml") and not given.is_absolute() and nearby.is_file():
+            return nearby
+        return find_profile(name)
+
+    def _lookup(self, doc: LocatedYaml, path: tuple, name: str, cache: dict, issues: list[Issue],
+                load: Callable):
+        """The profile ``name`` (named at ``path`` of the batch) as ``load`` makes it, read once;
+        its problems become issues (and None is cached)."""
+        if name not in cache:
+            cache[name] = None
+            try:
+                file = self.find(name)
+                cache[name] = (load(name, file, read_located_yaml(file, file_label(file))), file)
+            except InvalidInput as err:
+                issues.extend(err.issues)
+            except DesignError as err:
+                if err.param == "yaml":
+                    issues.append(Issue(str(err.value), "", err.limit))
+                else:
+                    issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: {err.limit}"))
+        return cache[name]
+
+    def printer(self, doc: LocatedYaml, path: tuple, name: str, issues: list[Issue]) -> Printer | None:
+        found = self._lookup(doc, path, name, self.printers, issues, _load_printer)
+        if found is None and not any(i.where == doc.where(path) for i in issues):
+            issues.append(Issue(doc.where(path), dotted(path),
+                                f"= {show(name)}: the printer profile has errors (above)"))
+        return None if found is None else found[0]
+
+    def design(self, doc: LocatedYaml, path: tuple, name: str, issues: list[Issue]):
+        """(DesignProfile, file name, sha256) of the design profile ``name``, or None."""
+        found = self._lookup(doc, path, name, self.designs, issues, _load_design)
+        if found is None:
+            return None
+        (profile, sha), file = found
+        return profile, Path(file).name, sha

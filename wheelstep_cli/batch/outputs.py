@@ -1,0 +1,99 @@
+"""What a batch writes besides the plates: each entry's report, the manifest (inputs and
+every output with SHA-256, checks, tool versions) and the print sheet's figures."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from pathlib import Path
+
+from wheelstep_cli.batch.build import BuiltPart, EntryResult
+from wheelstep_cli.batch.plan import Entry
+from wheelstep_cli.config.printers import Printer
+
+MANIFEST = "manifest.json"
+
+
+def previous_outputs(out: Path) -> set[str]:
+    """Files listed by an earlier batch's manifest in ``out`` (so they can be replaced cleanly)."""
+    try:
+        data = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
+        names = set(data.get("outputs", {})) | {MANIFEST}
+    except (OSError, ValueError, AttributeError):
+        return set()
+    return {n for n in names if isinstance(n, str) and ".." not in Path(n).parts and not Path(n).is_absolute()}
+
+
+def part_summary(part: BuiltPart, printer: Printer) -> dict:
+    """Volume, bounding box, mass estimates and checks of one built part."""
+    from wheelstep_cli.batch.mass import estimated_mass, solid_mass
+
+    lo, hi = part.bounds
+    return {"volume_mm3": part.volume, "bounding_box_mm": [lo, hi], "size_mm": hi - lo,
+            "triangles": part.triangles, "solid_mass_g": solid_mass(part, printer),
+            "estimated_mass_g": estimated_mass(part, printer), "checks": part.checks}
+
+
+def entry_report_bytes(entry: Entry, result: EntryResult) -> bytes:
+    from wheelstep_cli.formats.jsonio import json_bytes
+
+    return json_bytes({
+        "entry": entry.name, "kind": entry.kind, "design_profile": entry.design_label,
+        "printer_profile": entry.printer.name, "quantity": entry.quantity,
+        "parameters": entry.spec.model_dump(),
+        "printed_parameters": entry.printed.model_dump(),
+        "printer_geometry": entry.printer.geometry(),
+        "printed_parts": {p.name: part_summary(p, entry.printer) for p in result.parts},
+        "design_report": result.report,
+    })
+
+
+def tool_versions() -> dict[str, str]:
+    """Versions of the tool, Python and the libraries that shape the output."""
+    import platform
+    from importlib import metadata
+
+    from wheelstep_cli import __version__
+
+    versions = {"wheelstep": __version__, "python": platform.python_version()}
+    for dist in ("numpy", "scipy", "shapely", "manifold3d", "matplotlib", "PyYAML", "pydantic", "typer",
+                 "rich"):
+        try:
+            versions[dist] = metadata.version(dist)
+        except metadata.PackageNotFoundError:
+            versions[dist] = "not installed"
+    return versions
+
+
+def manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
+    from wheelstep_cli.formats.jsonio import json_bytes
+
+    printers = {}
+    for entry in plan.entries:
+        printers[entry.printer.name] = {"file": entry.printer.file_name, "sha256": entry.printer.sha256}
+    checks_ok = all(all(p.checks.values()) for e in built for p in results[e.index].parts)
+    return json_bytes({
+        "tool": "wheelstep batch",
+        "versions": tool_versions(),
+        "inputs": {
+            "batch": {"file": plan.file.name, "sha256": plan.sha256},
+            "design_profiles": {n: {"file": f, "sha256": s} for n, (f, s) in sorted(plan.designs.items())},
+            "printer_profiles": dict(sorted(printers.items())),
+        },
+        "entries": [
+            {"name": e.name, "kind": e.kind, "design_profile": e.design_label, "printer_profile": e.printer.name,
+             "quantity": e.quantity, "overrides": e.overrides, "line": int(e.where.rsplit(":", 1)[1]),
+             "status": "built" if e in built else "failed",
+             **({"parts": {p.name: {"volume_mm3": p.volume, "triangles": p.triangles, "checks": p.checks}
+                           for p in results[e.index].parts}} if e in built else {})}
+            for e in plan.entries],
+        "failed": [{"name": e.name, "where": f"{plan.file.name}:{where.rsplit(':', 1)[1]}", "reason": reason}
+                   for e, where, reason in failed],
+        "plates": [{"file": f"{p.stem}.3mf", "picture": f"{p.stem}.png", "printer_profile": p.printer.name,
+                    "parts": [i.label for i in p.items]} for p in plates],
+        "checks": {"meshes_printable": checks_ok, "every_part_on_a_bed": not any(
+            "does not fit" in reason for _, _, reason in failed),
+            "validated_before_build": True},
+        "outputs": {p.relative_to(out).as_posix(): hashlib.sha256(data).hexdigest()
+                    for p, data in sorted(files.items(), key=lambda kv: kv[0].as_posix())},
+    })

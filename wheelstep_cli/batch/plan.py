@@ -1,0 +1,227 @@
+"""The plan of a batch: the file and every profile it names read and checked before anything
+is built, every problem reported at once as ``file:line``."""
+
+from __future__ import annotations
+
+import hashlib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from pydantic import ValidationError
+
+from wheelstep_cli.batch.lookup import Profiles, profile_label
+from wheelstep_cli.config.batch_file import DEFAULT_DESIGN, KIND_NAMES, BatchDefaults, BatchEntry, BatchFile
+from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
+from wheelstep_cli.config.names import yaml_message
+from wheelstep_cli.config.printers import Printer
+from wheelstep_cli.config.profiles import profile_names
+from wheelstep_cli.config.resolve import spec_problems, spec_values
+from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, located_issues, section_model, show
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.parts.kinds import KINDS, PartKind, printed_spec
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One checked batch entry: a kind built from a design preset with overrides, for a printer."""
+
+    index: int
+    name: str
+    kind: str
+    design: str
+    quantity: int
+    printer: Printer
+    overrides: dict[str, Any]
+    spec: Any            # the design as given (kind's spec model)
+    printed: Any         # the same, compensated for the printer
+    where: str           # batch-file:line of the entry
+    override_where: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def design_label(self) -> str:
+        """The design preset's name for reports (a file path is shown by its file name only)."""
+        return profile_label(self.design)
+
+    def locate(self, param: str) -> str:
+        """file:line of the override named by an error's ``param``, else of the entry."""
+        return self.override_where.get(param.replace("-", "_"), self.where)
+
+
+@dataclass(frozen=True)
+class BatchPlan:
+    file: Path
+    label: str
+    sha256: str
+    description: str
+    entries: list[Entry]
+    designs: dict[str, tuple[str, str]]   # profile name -> (file name, sha256)
+
+
+@dataclass
+class _Check:
+    """What checking the entries of one file shares."""
+
+    doc: LocatedYaml
+    profiles: Profiles
+    defaults: BatchDefaults
+    bad: set = field(default_factory=set)                 # paths (3 keys at most) with problems
+    names: dict[str, str] = field(default_factory=dict)   # entry name -> where first used
+
+    def flawed(self, path: tuple, key: str) -> bool:
+        """Whether ``key`` was given at ``path`` or in the defaults with a problem (reported)."""
+        return (path + (key,))[:3] in self.bad or ("defaults", key) in self.bad
+
+
+def load_batch(path: Path, label: str | None = None) -> BatchPlan:
+    """Read and check a batch file and every profile it names; raise InvalidInput listing all issues."""
+    label = label or str(path)
+    try:
+        doc = read_located_yaml(path, label)
+    except YamlSyntaxError as err:
+        raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+    found = _structure(doc)
+    issues = [issue for loc, issue in found if _entry_index(loc) is None]
+    bad = {loc[:3] for loc, _ in found}
+    check = _Check(doc, Profiles(path), BatchDefaults(**_clean(doc, ("defaults",), BatchDefaults, bad)), bad)
+    raw_parts = doc.data.get("parts") if isinstance(doc.data, dict) else None
+    entries, used = [], {}
+    for index, raw in enumerate(raw_parts if isinstance(raw_parts, list) else []):
+        issues.extend(issue for loc, issue in found if _entry_index(loc) == index)
+        if not isinstance(raw, dict):
+            continue
+        entry = BatchEntry(**_clean(doc, ("parts", index), BatchEntry, bad))
+        checked = _check_entry(check, index, entry, issues)
+        if checked is not None:
+            entries.append(checked)
+            used[checked.design_label] = check.profiles.design(doc, (), checked.design, [])[1:]
+    if issues:
+        raise InvalidInput(issues)
+    return BatchPlan(Path(path), label, hashlib.sha256(Path(path).read_bytes()).hexdigest(),
+                     str(doc.data.get("description") or ""), entries, used)
+
+
+def _structure(doc: LocatedYaml) -> list[tuple[tuple, Issue]]:
+    """(path, issue) of every problem the batch file's model finds."""
+    try:
+        BatchFile.model_validate({} if doc.data is None else doc.data)
+    except ValidationError as err:
+        return located_issues(BatchFile, doc, (), err)
+    return []
+
+
+def _entry_index(loc: tuple) -> int | None:
+    return loc[1] if len(loc) >= 2 and loc[0] == "parts" and isinstance(loc[1], int) else None
+
+
+def _clean(doc: LocatedYaml, path: tuple, model, bad: set) -> dict:
+    """The values at ``path`` the model found no problem with."""
+    value = doc.data
+    for key in path:
+        value = value.get(key) if isinstance(value, dict) else (value[key] if isinstance(value, list) else None)
+    if not isinstance(value, dict):
+        return {}
+    return {k: v for k, v in value.items() if k in model.model_fields and (path + (k,))[:3] not in bad}
+
+
+def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issue]) -> Entry | None:
+    """Check one entry of ``parts`` (with the defaults); returns an Entry or None (issues appended)."""
+    doc, path, before = check.doc, ("parts", index), len(issues)
+
+    def given(key):  # the entry's value, else the default's, and where it was written
+        own = getattr(entry, key)
+        return (own, path + (key,)) if own is not None else (getattr(check.defaults, key), ("defaults", key))
+
+    kind = None if check.flawed(path, "kind") else _kind(doc, path, *given("kind"), issues)
+    name = _name(check, path, index, entry, given("kind")[0], issues)
+    quantity = given("quantity")[0] or 1
+    printer_name, printer_at = given("printer")
+    printer = None
+    if check.flawed(path, "printer"):
+        pass
+    elif printer_name is None:
+        issues.append(Issue(doc.where(path), dotted(path), "needs a printer: a printer profile, one of "
+                            + ", ".join(profile_names(printer=True))))
+    else:
+        printer = check.profiles.printer(doc, printer_at, printer_name, issues)
+    design_name, design_at = given("design")
+    design_name = design_name or DEFAULT_DESIGN
+    design = None if check.flawed(path, "design") else check.profiles.design(doc, design_at, design_name, issues)
+    overrides = dict(entry.overrides or {})
+    override_where: dict[str, str] = {}
+    if kind is not None:
+        override_where = _check_overrides(doc, path, kind, overrides, issues)
+    flawed = any(loc[:2] == path for loc in check.bad)
+    if len(issues) > before or flawed or kind is None or printer is None or design is None:
+        return None
+    spec, printed, problems = _resolve(kind, design[0], overrides, printer)
+    for err in problems:
+        issues.append(_problem(doc, path, err, override_where, design_name, overrides))
+    if problems:
+        return None
+    return Entry(index, name, kind.name, design_name, quantity, printer, overrides, spec, printed,
+                 doc.where(path), override_where)
+
+
+def _kind(doc: LocatedYaml, path: tuple, name, at: tuple, issues: list[Issue]) -> PartKind | None:
+    if name is None:
+        issues.append(Issue(doc.where(path), dotted(path), "needs a kind: " + ", ".join(KIND_NAMES)))
+        return None
+    try:
+        KINDS[name].pipeline()
+    except DesignError as err:
+        issues.append(Issue(doc.where(at), dotted(at), str(err.limit)))
+        return None
+    return KINDS[name]
+
+
+def _name(check: _Check, path: tuple, index: int, entry: BatchEntry, kind_name, issues) -> str:
+    """The entry's name (given, or KIND-N), which no other entry may use."""
+    doc = check.doc
+    name = entry.name or f"{kind_name}-{index + 1}"
+    at = path + ("name",)
+    if name in check.names:
+        issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: already used at {check.names[name]}"))
+    else:
+        check.names[name] = doc.where(path)
+    return name
+
+
+def _check_overrides(doc, path, kind: PartKind, overrides: dict, issues: list[Issue]) -> dict[str, str]:
+    """Check the overrides against the kind's spec; returns the line of each of its keys."""
+    at = path + ("overrides",)
+    model = section_model(kind.spec_type())
+    try:
+        model.model_validate(overrides)
+    except ValidationError as err:
+        issues.extend(issue for _, issue in located_issues(model, doc, at, err))
+    return {key: doc.where(at + (key,)) for key in overrides if key in model.model_fields}
+
+
+def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
+    """(spec, printed spec, problems): overrides over the kind's profile section over the
+    mechanism section, checked by the spec's model and the kind's domain checks."""
+    spec_type = kind.spec_type()
+    try:
+        spec, problems = spec_problems(spec_type, spec_values(spec_type, kind.section, design, overrides))
+        if spec is None or problems:
+            return None, None, problems
+        problems = kind.problems(spec)
+        if problems:
+            return None, None, problems
+        printed = printed_spec(kind, spec, printer.hole_compensation, printer.tooth_clearance)
+        problems = kind.problems(printed)
+    except DesignError as err:
+        return None, None, [err]
+    return (None, None, problems) if problems else (spec, printed, [])
+
+
+def _problem(doc, path, err: DesignError, override_where, design_name, overrides) -> Issue:
+    """An entry's problem at the override it names, else at the entry with where it came from."""
+    err = err.for_given(override_where)
+    param = err.param.replace("-", "_")
+    if param in override_where:
+        return Issue(override_where[param], dotted(path + ("overrides", param)),
+                     f"= {show(err.value)}: {err.limit}")
+    given = f", with overrides {', '.join(overrides)}" if overrides else ""
+    return Issue(doc.where(path), dotted(path), f"{yaml_message(err)} (from design {design_name}{given})")

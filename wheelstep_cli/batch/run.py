@@ -1,0 +1,82 @@
+"""Running a checked batch: build the entries, pack and render the plates, write everything
+in one atomic step."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable
+
+from wheelstep_cli.batch.build import EntryResult, build_entry, executor, map_items
+from wheelstep_cli.batch.outputs import MANIFEST, entry_report_bytes, manifest_bytes, previous_outputs
+from wheelstep_cli.batch.plan import BatchPlan, Entry
+from wheelstep_cli.batch.plates import Plate, plan_plates, plate_picture, plate_threemf
+
+
+@dataclass
+class BatchOutcome:
+    written: list[Path]
+    plates: list[Plate]
+    failed: list[tuple[Entry, str, str]]     # entry, where (file:line), reason
+    built: list[Entry]
+
+
+def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
+              progress: Callable[[str, int], Any] | None = None) -> BatchOutcome:
+    """Build, pack, render and write a checked batch; ``progress(stage, total)`` -> advance()."""
+    from wheelstep_cli.formats.atomic import remove_files, write_files_atomic
+
+    advance = progress or (lambda stage, total: (lambda: None))
+    with executor(jobs) as pool:
+        step = advance("building parts", len(plan.entries))
+        results: dict[int, EntryResult] = {}
+        for result in map_items(pool, build_entry, plan.entries, step):
+            results[result.index] = result
+        plates, dropped = plan_plates(plan.entries, results)
+        step = advance("writing plates", 2 * len(plates))
+        # 3MF files in the workers; meanwhile this (otherwise idle) process draws the pictures,
+        # so matplotlib is imported once, as with --jobs 1
+        threemfs = map_items(pool, plate_threemf, plates, step, lazy=True)
+        pictures = {}
+        for plate in plates:
+            pictures[plate.number] = plate_picture(plate)
+            step()
+        rendered = {number: (data, pictures[number]) for number, data in threemfs}
+    failed, built = _sort_out(plan, results, dropped)
+    files = _files(plan, out, plates, rendered, built, results, failed)
+    stale = previous_outputs(out) - {p.relative_to(out).as_posix() for p in files}
+    written = write_files_atomic(files)
+    remove_files(out / name for name in sorted(stale))
+    return BatchOutcome(written, plates, failed, built)
+
+
+def _sort_out(plan: BatchPlan, results: dict[int, EntryResult], dropped: dict[int, str]):
+    """(failed entries with where and why, built entries), in the batch file's order."""
+    failed, built = [], []
+    for entry in plan.entries:
+        result = results[entry.index]
+        if result.error:
+            failed.append((entry, entry.locate(result.param or ""), result.error))
+        elif entry.index in dropped:
+            failed.append((entry, entry.where, dropped[entry.index]))
+        else:
+            built.append(entry)
+    return failed, built
+
+
+def _files(plan, out: Path, plates, rendered, built, results, failed) -> dict[Path, bytes]:
+    """Every output file: plates, reports, the print sheet and the manifest (listing the rest)."""
+    from wheelstep_cli.batch.mass import masses
+    from wheelstep_cli.render.print_sheet import print_sheet_bytes
+
+    files: dict[Path, bytes] = {}
+    for plate in plates:
+        threemf, png = rendered[plate.number]
+        files[out / f"{plate.stem}.3mf"] = threemf
+        files[out / f"{plate.stem}.png"] = png
+    for entry in built:
+        files[out / "reports" / f"{entry.name}.json"] = entry_report_bytes(entry, results[entry.index])
+    files[out / "print-sheet.md"] = print_sheet_bytes(plan, plates, built, results, failed,
+                                                      masses(built, results))
+    files[out / MANIFEST] = manifest_bytes(plan, out, files, plates, built, results, failed)
+    return files

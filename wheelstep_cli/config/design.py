@@ -1,0 +1,42 @@
+"""A design profile file (``profiles/NAME.yaml``): the mechanism and each part's section.
+
+Sections hold any parameter of their part (the part's own model checks each value);
+the mechanism section holds a, b and the strut as ``c`` or ``r_min``.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Optional
+
+from pydantic import BaseModel, Field
+
+from wheelstep_cli.config.fields import STRICT, Number
+from wheelstep_cli.config.schema import section_model
+from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
+
+
+class MechanismSection(BaseModel):
+    """Crank mechanism lengths in mm: a, b and the strut as c or R_min (= a - 4b + c)."""
+
+    model_config = STRICT
+
+    a: Optional[Number] = None
+    b: Optional[Number] = None
+    c: Optional[Number] = None
+    r_min: Optional[Number] = None
+
+
+class DesignProfile(BaseModel):
+    """A design preset: description, mechanism and the sections of the parts."""
+
+    model_config = STRICT
+
+    description: Optional[str] = Field(None, strict=True)
+    mechanism: Optional[MechanismSection] = None
+    gears: Optional[section_model(GearPairSpec)] = None
+    shoe: Optional[section_model(ShoeSpec)] = None
+
+    def values(self, section: str) -> dict[str, Any]:
+        """The values a section gives (``mechanism``, ``gears``, ``shoe``), without the unset."""
+        given = getattr(self, section)
+        return {} if given is None else given.model_dump(exclude_none=True)

@@ -1,0 +1,142 @@
+"""The user parameters of the printed parts, as models: every type, bound and choice once.
+
+Defaults are the source design (BNTU prototype, profiles/bntu-2024.yaml). Lengths in mm,
+angles in degrees (user-facing values; converted to radians where they are used). The
+mechanism's own rules (R_min = a - 4b + c > 0, k > 0, lengths > 0, turns) stay with the
+mechanism and the law, which raise them when the spec is used.
+"""
+
+from __future__ import annotations
+
+from enum import Enum
+from typing import Optional
+
+import numpy as np
+from pydantic import BaseModel, Field, model_validator
+
+from wheelstep_cli.config.fields import STRICT, Number, Real, length, quantity
+from wheelstep_cli.errors import DesignError, require
+
+#: Mechanism parameters (the ``mechanism:`` section of a design profile).
+MECHANISM_KEYS = ("a", "b", "c", "r_min")
+#: The source design's strut when neither c nor R_min is given: R_min = 20 mm.
+DEFAULT_R_MIN = 20.0
+
+
+class Teeth(str, Enum):
+    """How the teeth are made: generated conjugate teeth (SPEC §9) or the paper's involutes (§5)."""
+
+    generated = "generated"
+    paper = "paper"
+
+
+class Corner(str, Enum):
+    """What the generated pinion centres on each pitch-curve corner."""
+
+    space = "space"
+    tooth = "tooth"
+
+
+class GearPairSpec(BaseModel):
+    """Everything that defines a printed gear pair. Lengths in mm, angles in deg.
+
+    Numbers are kept as given (an int stays an int) so reports repeat the user's figures.
+    """
+
+    model_config = STRICT
+
+    a: Number = 60.0
+    b: Number = 100.0
+    c: Number = 360.0
+    z: int = Field(48, strict=True)
+    turns: int = Field(2, strict=True)
+    center_distance: Number = length(143.5, gt=0)
+    install_distance: Number = length(144.0, gt=0)
+    module: Number = 2.0
+    backlash: Optional[Number] = None   # None: 0.25 * module (bounds: the tooth form's)
+    thickness: Number = length(10.0, gt=0)
+    bore: Number = length(8.0, ge=0)
+    teeth: Teeth = Teeth.generated.value
+    pressure_angle: Number = 20.0    # deg, generated teeth (bounds: the rack cutter's)
+    addendum: Number = 1.0           # x module, generated teeth
+    dedendum: Number = 1.25          # x module, generated teeth
+    fillet: Number = 0.25            # cutter tip radius x module, generated teeth
+    blend: Number = quantity(0.0, unit="deg", limit="must be 0..20 deg", ge=0, le=20)
+    corner: Corner = Corner.space.value
+    tilt: Number = quantity(0.6, limit="must be 0..1.5", ge=0, le=1.5)
+    law_csv: Optional[str] = Field(None, strict=True)  # driving/driven angle samples (deg)
+
+    @model_validator(mode="after")
+    def _distances(self) -> "GearPairSpec":
+        require(self.law_csv is None or self.teeth == Teeth.generated, "law_csv", self.law_csv,
+                "needs generated teeth")
+        require(self.install_distance >= self.center_distance, "install_distance", self.install_distance,
+                f"must be >= the centre distance {self.center_distance:g} mm")
+        if self.teeth == Teeth.paper:
+            require(self.install_distance <= self.center_distance + self.module, "install_distance",
+                    self.install_distance,
+                    f"must be <= the centre distance + module = {self.center_distance + self.module:g} mm "
+                    "(farther apart the teeth lose contact)")
+        return self
+
+    @property
+    def backlash_mm(self) -> float:
+        return 0.25 * self.module if self.backlash is None else self.backlash
+
+    def mechanism(self):
+        """The crank mechanism (mechanism.crank.CrankMechanism); DesignError for an impossible one."""
+        from wheelstep_cli.mechanism.crank import CrankMechanism
+
+        return CrankMechanism(self.a, self.b, self.c)
+
+    def law(self):
+        """The crank law of the pair (gears.laws.CrankLaw)."""
+        from wheelstep_cli.gears.laws import CrankLaw
+
+        return CrankLaw(self.mechanism(), self.turns)
+
+    def tooth_form(self):
+        from wheelstep_cli.gears.paper_teeth import ToothForm
+
+        return ToothForm(self.module, self.backlash_mm)
+
+    def cutter(self):
+        from wheelstep_cli.gears.generation import RackCutter
+
+        return RackCutter(np.radians(self.pressure_angle), self.addendum, self.dedendum,
+                          self.fillet, self.backlash_mm)
+
+
+class ShoeSpec(BaseModel):
+    """Everything that defines a printed shoe. Lengths in mm, stored as floats.
+
+    Mechanism defaults are the source design (a = 60, b = 100, R_min = 20 -> c = 360).
+    Give the strut as ``c`` or as the sole's smallest curvature radius ``r_min``
+    (both: they must agree). Part defaults suit a plastic prototype at full scale.
+    """
+
+    model_config = STRICT
+
+    a: Real = 60.0
+    b: Real = 100.0
+    c: Optional[Real] = None
+    r_min: Optional[Real] = None
+    width: Real = length(40.0, gt=0)            # across the track
+    strut_diameter: Real = length(12.0, gt=0)   # socket bore (circumscribed polygon, the strut fits)
+    socket_depth: Real = length(25.0, gt=0)
+    rim: Real = length(15.0, gt=0)              # body height above the sole's ends
+
+    def design(self):
+        """The mechanism sizing (mechanism.crank.CrankMechanism); DesignError for an invalid or
+        inconsistent one."""
+        from wheelstep_cli.mechanism.crank import CrankMechanism
+
+        if self.c is None:
+            r_min = DEFAULT_R_MIN if self.r_min is None else self.r_min
+            return CrankMechanism.from_r_min(self.a, self.b, r_min)
+        design = CrankMechanism(self.a, self.b, self.c)
+        if self.r_min is not None and not np.isclose(design.r_min, self.r_min, rtol=0, atol=1e-6):
+            raise DesignError("r_min", self.r_min,
+                              f"contradicts c = {self.c:g} mm (a - 4b + c = {design.r_min:g} mm); "
+                              "give only one of c and R_min")
+        return design
