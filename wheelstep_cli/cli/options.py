@@ -50,6 +50,9 @@ CenterDistance = Annotated[Optional[float], opt("--center-distance",
                                                 help="Design centre distance L_p, mm.",
                                                 shown="143.5")]
 # --- where values and files come from and go
+LawCsv = Annotated[Optional[Path], opt(
+    "--law-csv", help="CSV of driving angle, driven angle (deg) over one period: this law instead "
+                      "of the crank law (generated teeth).")]
 Profile = Annotated[Optional[str], opt("--profile",
                                        help="Design preset: a name in profiles/ or a YAML path.")]
 Out = Annotated[Path, opt("--out", "-o", help="Output folder.")]

@@ -66,11 +66,26 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
 
 def generation_law(spec: GearPairSpec):
     """The law the generated teeth follow (crank law or --law-csv) and its blended form."""
-    from wheelstep_cli.formats.law_csv import read_law_csv
     from wheelstep_cli.gears.laws import blended_law
 
-    law = read_law_csv(spec.law_csv) if spec.law_csv is not None else spec.law()
+    law = design_law(spec)
     return law, blended_law(law, np.radians(spec.blend))
+
+
+def design_law(spec: GearPairSpec):
+    """The law the pair is designed for: the design's crank law, or the --law-csv law."""
+    from wheelstep_cli.formats.law_csv import read_law_csv
+
+    return read_law_csv(spec.law_csv) if spec.law_csv is not None else spec.law()
+
+
+def law_record(spec: GearPairSpec, law) -> dict:
+    """What a report says of the law (mm, deg): the mechanism and ratio constant, or the CSV."""
+    if spec.law_csv is not None:
+        return {"csv": spec.law_csv, "driving_period_deg": float(np.degrees(law.theta_period)),
+                "driven_period_deg": float(np.degrees(law.phi_period))}
+    m = law.mechanism
+    return {"a": m.a, "b": m.b, "c": m.c, "turns": law.turns, "u": law.u}
 
 
 def _build_generated(spec: GearPairSpec) -> GearPair:

@@ -11,7 +11,7 @@ import numpy as np
 
 from wheelstep_cli.errors import require
 from wheelstep_cli.gears.meshing import MeshingReport
-from wheelstep_cli.parts.gear_pair import GearPairSpec
+from wheelstep_cli.parts.gear_pair import GearPairSpec, design_law, law_record
 
 
 @dataclass(frozen=True)
@@ -40,7 +40,7 @@ def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
     """Check the inputs and read both meshes' mid-thickness sections (mm, own frames)."""
     from wheelstep_cli.formats.mesh_read import read_outline
 
-    check.spec.law()
+    design_law(check.spec)
     check.validate()
     return (read_outline(check.pinion, "pinion", default_name="pinion"),
             read_outline(check.wheel, "wheel", default_name="wheel"))
@@ -53,12 +53,10 @@ def run_written_pair_check(check: WrittenPairCheck, outlines: tuple[np.ndarray, 
     (files, law, figures)."""
     from wheelstep_cli.parts.mesh_check import check_outlines
 
-    law = check.spec.law()
+    law = design_law(check.spec)
     report = check_outlines(*outlines, law, check.spec.install_distance, check.samples,
-                              check.window, progress=progress)
-    summary = {"pinion": str(check.pinion), "wheel": str(check.wheel),
-               "law": {"a": law.mechanism.a, "b": law.mechanism.b, "c": law.mechanism.c,
-                       "turns": law.turns, "u": law.u},
+                            check.window, progress=progress)
+    summary = {"pinion": str(check.pinion), "wheel": str(check.wheel), "law": law_record(check.spec, law),
                **report.to_dict()}
     return report, summary
 

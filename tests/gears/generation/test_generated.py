@@ -127,6 +127,15 @@ def test_law_csv_generates_a_smooth_published_style_case(cli, tmp_path):
     report = json.loads((out / "gears.json").read_text())
     assert report["generated"]["wheel_teeth"] == 28
     assert report["generated"]["pinion_teeth"] == 28
+    # mesh-check takes the same law from the CSV and reproduces what gears measured
+    check = cli("mesh-check", out / "pinion.stl", out / "wheel.stl", "--law-csv", csv,
+                "--distance", f"{distance:.6f}", "--center-distance", f"{distance:.6f}", "--json")
+    assert check.exit_code == 0, check.stderr
+    summary, written = json.loads(check.stdout), report["meshing"]
+    assert summary["law"]["csv"] == str(csv) and summary["law"]["driving_period_deg"] == pytest.approx(360.0)
+    assert summary["interference"] is written["interference"] is False
+    for key in ("backlash_min_mm", "backlash_max_mm", "te_peak_to_peak_arcmin"):
+        assert summary[key] == pytest.approx(written[key], rel=1e-6), key
 
 
 @settings(max_examples=12, deadline=None)

@@ -6,7 +6,7 @@ from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Format, Json, MeshFormat,
+from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Format, Json, LawCsv, MeshFormat,
                                        Out, Profile, Quiet, Turns, Verbose, Z, opt)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec
@@ -114,9 +114,7 @@ def gears(
     tilt: Annotated[Optional[float], opt(
         "--tilt", help="Tilt of the rack teeth towards the radius, as a fraction of the "
                        "pitch-curve slope (generated).", shown="0.6")] = None,
-    law_csv: Annotated[Optional[Path], opt(
-        "--law-csv", help="CSV of driving angle, driven angle (deg) over one period: generate "
-                          "this law instead of the crank law (generated).")] = None,
+    law_csv: LawCsv = None,
     allow_interference: Annotated[bool, opt(
         "--allow-interference", help="Write the pair even if the meshing check finds "
                                      "overlapping teeth (the paper method's pair does, at the "

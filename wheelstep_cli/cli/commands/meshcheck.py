@@ -6,8 +6,8 @@ from typing import Annotated, Optional
 
 import typer
 
-from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Json, Profile, Quiet, Turns,
-                                       Verbose, opt, plot_option)
+from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Json, LawCsv, Profile, Quiet,
+                                       Turns, Verbose, opt, plot_option)
 from wheelstep_cli.cli.output import Output
 
 Plot = plot_option("the transfer function, TE and hub speed")
@@ -19,7 +19,7 @@ def mesh_check(
     distance: Annotated[Optional[float], opt("--distance", "-d", help="Installed centre distance, mm.",
                                              shown="the design's, 144")] = None,
     a: A = None, b: B = None, c: C = None, turns: Turns = None,
-    center_distance: CenterDistance = None, profile: Profile = None,
+    center_distance: CenterDistance = None, law_csv: LawCsv = None, profile: Profile = None,
     samples: Annotated[int, opt("--samples", help="Poses over one period of the pinion.")] = 1536,
     window: Annotated[Optional[float], opt("--window", help="Half-height of the mesh window round "
                                                             "the line of centres, mm.",
@@ -28,8 +28,9 @@ def mesh_check(
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Section two gear meshes at mid-thickness and check them over one period of the law:
-    interference, backlash, transmission error and hub speed ripple. Exit 1 if they
-    interfere or lose contact."""
+    interference, backlash, transmission error and hub speed ripple. The law is the crank
+    law of the design, or any law given as --law-csv. Exit 1 if they interfere or lose
+    contact."""
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.config.resolve import gear_pair_spec
     from wheelstep_cli.parts.mesh_check_files import (WrittenPairCheck, read_written_pair,
@@ -37,7 +38,7 @@ def mesh_check(
 
     show = Output(json, quiet, verbose)
     spec = gear_pair_spec(profile, a=a, b=b, c=c, turns=turns, center_distance=center_distance,
-                          install_distance=distance)
+                          install_distance=distance, law_csv=str(law_csv) if law_csv else None)
     check = WrittenPairCheck(pinion, wheel, spec, samples, window, plot)
     show.parameters(vars(spec))
     outlines = read_written_pair(check)
