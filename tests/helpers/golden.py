@@ -37,6 +37,7 @@ CASES: dict[str, list[str]] = {
     "shoe-default": ["shoe", "--out", "out"],
     "shoe-desk-demo": ["shoe", "--profile", "desk-demo", "--out", "out"],
     "batch-shop-floor": ["batch", "{examples}/shop-floor.yaml", "--out", "out", "--jobs", "1"],
+    "batch-resin": ["batch", "{golden}/resin-batch.yaml", "--out", "out", "--jobs", "1"],
     "pitch-json": ["pitch", "--json"],
     "teeth-json": ["teeth", "--json"],
     "kinematics-json": ["kinematics", "--json"],
@@ -73,7 +74,7 @@ def run_case(name: str) -> dict:
     """Run one case in a fresh temporary folder and return its record."""
     from wheelstep_cli.cli import run
 
-    args = [a.replace("{examples}", str(EXAMPLES)) for a in CASES[name]]
+    args = [a.replace("{examples}", str(EXAMPLES)).replace("{golden}", str(GOLDEN_DIR)) for a in CASES[name]]
     with tempfile.TemporaryDirectory() as tmp:
         cwd = os.getcwd()
         os.chdir(tmp)

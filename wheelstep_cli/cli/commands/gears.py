@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
 
@@ -10,16 +9,7 @@ from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Format, 
                                        Out, Profile, Quiet, Turns, Verbose, Z, opt)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec
-
-
-class Teeth(str, Enum):
-    generated = "generated"
-    paper = "paper"
-
-
-class Corner(str, Enum):
-    space = "space"
-    tooth = "tooth"
+from wheelstep_cli.config.specs import Corner, Teeth
 
 
 Module = Annotated[Optional[float], opt("--module", "-m", help="Module (tooth height unit), mm.",
