@@ -7,13 +7,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from tests.helpers.strategies import r_min_designs
+
 from wheelstep_cli.gears.kinematics import hub_kinematics
 from wheelstep_cli.mechanism.crank import CrankMechanism
 
 
-# valid designs (a, b, R_min) with a strut c = R_min - a + 4b > 0
-designs = st.tuples(st.floats(0.0, 250.0), st.floats(1.0, 300.0), st.floats(0.02, 0.98)).map(
-    lambda t: (t[2] * (t[1] + 4 * t[0]), t[0], t[1]))
+designs = r_min_designs()
 
 
 @settings(max_examples=60, deadline=None)

@@ -26,3 +26,10 @@ def crank_laws(draw):
 def center_distances():
     """Centre distances a user may choose, mm."""
     return st.floats(40, 400)
+
+
+def r_min_designs(min_b: float = 0.0, min_r_min: float = 1.0):
+    """Valid designs given as (a, b, R_min) in mm: a > 0, b >= min_b, R_min >= min_r_min and a
+    strut c = R_min - a + 4b > 0 (a is a fraction 0.02..0.98 of R_min + 4b)."""
+    return st.tuples(st.floats(min_b, 250.0), st.floats(min_r_min, 300.0), st.floats(0.02, 0.98)).map(
+        lambda t: (t[2] * (t[1] + 4 * t[0]), t[0], t[1]))

@@ -12,6 +12,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from tests.helpers.strategies import r_min_designs
+
 from tests.helpers.clicheck import error_line
 from tests.helpers.meshcheck import assert_printable_stl, read_3mf_strict
 from wheelstep_cli.mechanism.crank import CrankMechanism
@@ -20,9 +22,7 @@ from wheelstep_cli.parts.shoe import ShoeSpec, build_shoe, shoe_files
 
 FILES = ("shoe.stl", "shoe.3mf", "shoe.json", "shoe-profile.csv", "shoe-profile.dxf")
 
-# valid designs (a, b, R_min): a > 0, b >= 0, R_min > 0 and a strut c = R_min - a + 4b > 0
-designs = st.tuples(st.floats(0.0, 250.0), st.floats(1.0, 300.0), st.floats(0.02, 0.98)).map(
-    lambda t: (t[2] * (t[1] + 4 * t[0]), t[0], t[1]))
+designs = r_min_designs()
 
 
 def expected_point(a, b, c, phi):
@@ -150,8 +150,7 @@ def test_sole_arc_length_is_the_rolling_part(design_args):
 
 
 # shoes big enough to hold a 6 mm socket: b >= 5, R_min >= 5 (sole length sqrt(2) (R_min + b))
-part_designs = st.tuples(st.floats(5.0, 250.0), st.floats(5.0, 300.0), st.floats(0.02, 0.98)).map(
-    lambda t: (t[2] * (t[1] + 4 * t[0]), t[0], t[1]))
+part_designs = r_min_designs(min_b=5.0, min_r_min=5.0)
 
 
 @settings(max_examples=12, deadline=None)
