@@ -9,6 +9,7 @@ a report, ``--json``; where it writes files, ``--dry-run``.
 from __future__ import annotations
 
 import sys
+import warnings
 
 import typer
 
@@ -87,7 +88,11 @@ def run(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else list(argv)
     command = typer.main.get_command(app)
     try:
-        result = command.main(args=args, prog_name="wheelstep", standalone_mode=False)
+        with warnings.catch_warnings():
+            # library warnings (numpy floating point, matplotlib layout) are not for the person
+            # at the terminal: every figure that matters is checked before it is written
+            warnings.simplefilter("ignore")
+            result = command.main(args=args, prog_name="wheelstep", standalone_mode=False)
     except InvalidInput as err:               # a file's problems, each with its file:line
         for line in err.lines():
             typer.echo(f"wheelstep: error: {line}", err=True)

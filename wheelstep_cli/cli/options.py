@@ -9,6 +9,7 @@ profile or the built-in design).
 
 from __future__ import annotations
 
+import math
 from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
@@ -19,9 +20,31 @@ import typer
 from wheelstep_cli.errors import DesignError, require
 
 
+#: Largest magnitude any number option takes (mm, m, deg, rpm, ...): far beyond every real
+#: design, and small enough that no computation downstream overflows.
+MAX_MAGNITUDE = 1e6
+
+
+def finite(ctx: typer.Context, param: typer.CallbackParam, value):
+    """Refuse NaN, infinities and absurd magnitudes in any number option, so no rule downstream
+    has to meet them."""
+    numbers = value if isinstance(value, (list, tuple)) else [value]
+    for number in numbers:
+        if isinstance(number, float):
+            _check_number(number, param.name)
+    return value
+
+
+def _check_number(number: float, param: str) -> None:
+    require(math.isfinite(number) and abs(number) <= MAX_MAGNITUDE, param, number,
+            f"must be a finite number of magnitude at most {MAX_MAGNITUDE:g}")
+
+
 def opt(*names: str, help: str, shown: str | None = None, **kwargs):
-    """A ``typer.Option``; ``shown`` is the default to print for an option defaulting to None."""
+    """A ``typer.Option`` whose numbers must be finite; ``shown`` is the default to print for an
+    option defaulting to None."""
     text = help if shown is None else f"{help}  [default: {shown}]"
+    kwargs.setdefault("callback", finite)
     return typer.Option(*names, help=text, **kwargs)
 
 
@@ -42,7 +65,7 @@ RMin = Annotated[Optional[float], opt("--rmin", "--r-min",
                                       help="Smallest sole curvature radius R_min = a - 4b + c, "
                                            "mm; sizes c.", shown="20")]
 # --- the gear pair
-Z = Annotated[Optional[int], opt("--z", help="Pinion tooth count; the wheel gets z*n/2.",
+Z = Annotated[Optional[int], opt("--z", help="Pinion tooth count; the wheel gets z*n.",
                                  shown="48")]
 Turns = Annotated[Optional[int], opt("--turns", "-n", help="Pinion turns per carrier turn, 2 or 4.",
                                      shown="the profile's gears.turns, else 2")]
@@ -83,11 +106,18 @@ def number_list(text: str, param: str) -> list[float]:
     try:
         if ":" in text:
             start, stop, step = (float(v) for v in text.split(":"))
+            for number in (start, stop, step):
+                _check_number(number, param)
             require(step > 0, param, text, "step must be > 0")
             n = int(np.floor((stop - start) / step + 1e-9)) + 1
             require(1 <= n <= 10000, param, text, "must give 1 to 10000 values")
             return [start + i * step for i in range(n)]
-        return [float(v) for v in text.split(",") if v.strip()]
+        values = [float(v) for v in text.split(",") if v.strip()]
+        for number in values:
+            _check_number(number, param)
+        return values
+    except DesignError:
+        raise
     except ValueError:
         raise DesignError(param, text, "must be numbers 'a,b,c' or 'start:stop:step'") from None
 
@@ -98,6 +128,8 @@ def point(text: str, param: str) -> tuple[float, float]:
         x, y = (float(v) for v in text.split(","))
     except ValueError:
         raise DesignError(param, text, "must be 'x,y' in mm") from None
+    _check_number(x, param)
+    _check_number(y, param)
     return x, y
 
 

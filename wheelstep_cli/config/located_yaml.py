@@ -14,6 +14,13 @@ from typing import Any
 from wheelstep_cli.errors import DesignError
 
 PathKey = tuple
+#: Largest YAML file read, bytes (a batch of hundreds of entries is a few tens of kB).
+MAX_BYTES = 1 << 20
+#: Most values a document may expand to (aliases included) and deepest nesting: bounds the
+#: work a small file full of aliases (a "YAML bomb") can ask for.
+MAX_VALUES = 100_000
+MAX_DEPTH = 32
+MERGE_TAG = "tag:yaml.org,2002:merge"
 
 
 @dataclass(frozen=True)
@@ -47,9 +54,15 @@ def read_located_yaml(path: Path, label: str | None = None) -> LocatedYaml:
     """Read ``path`` as YAML (safe tags only); ``label`` is the file name used in messages."""
     label = label or str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as err:
-        raise DesignError("file", label, f"cannot be read ({err})") from None
+        data = Path(path).read_bytes()
+    except OSError as err:
+        raise DesignError("file", label, f"cannot be read ({err.strerror or err})") from None
+    if len(data) > MAX_BYTES:
+        raise DesignError("file", label, f"is {len(data)} bytes; at most {MAX_BYTES} are read")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise DesignError("file", label, f"is not UTF-8 text (byte {err.start})") from None
     return parse_located_yaml(text, label)
 
 
@@ -63,19 +76,31 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
     except yaml.MarkedYAMLError as err:
         mark = err.problem_mark or err.context_mark
         line = mark.line + 1 if mark is not None else 1
-        raise YamlSyntaxError(f"{label}:{line}", f"is not valid YAML ({err.problem})") from None
+        raise YamlSyntaxError(f"{label}:{line}", f"is not valid YAML ({_one_line(err.problem)})") from None
     except yaml.YAMLError as err:
-        raise YamlSyntaxError(f"{label}:1", f"is not valid YAML ({err})") from None
+        raise YamlSyntaxError(f"{label}:1", f"is not valid YAML ({_one_line(err)})") from None
     lines: dict[PathKey, int] = {}
     if root is None:
         return LocatedYaml(label, None, lines)
     constructor = SafeConstructor()
+    count = [0]
 
-    def walk(node, path: PathKey):
+    def walk(node, path: PathKey, ancestors: frozenset = frozenset()):
+        where = f"{label}:{node.start_mark.line + 1}"
+        count[0] += 1
+        if id(node) in ancestors:
+            raise YamlSyntaxError(where, "holds an alias to itself (a recursive structure)")
+        if len(path) > MAX_DEPTH or count[0] > MAX_VALUES:
+            raise YamlSyntaxError(where, f"is too large: more than {MAX_VALUES} values or "
+                                         f"{MAX_DEPTH} levels of nesting (aliases count as copies)")
         lines.setdefault(path, node.start_mark.line + 1)
+        inner = ancestors | {id(node)}
         if isinstance(node, yaml.MappingNode):
             out = {}
             for key_node, value_node in node.value:
+                if key_node.tag == MERGE_TAG:
+                    raise YamlSyntaxError(f"{label}:{key_node.start_mark.line + 1}",
+                                          "merge keys (<<) are not supported: write the keys out")
                 if not isinstance(key_node, yaml.ScalarNode):
                     raise YamlSyntaxError(f"{label}:{key_node.start_mark.line + 1}",
                                           "keys must be plain names")
@@ -84,13 +109,18 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
                     raise YamlSyntaxError(f"{label}:{key_node.start_mark.line + 1}",
                                           f"duplicate key '{key}'")
                 lines[path + (key,)] = key_node.start_mark.line + 1
-                out[key] = walk(value_node, path + (key,))
+                out[key] = walk(value_node, path + (key,), inner)
             return out
         if isinstance(node, yaml.SequenceNode):
-            return [walk(item, path + (i,)) for i, item in enumerate(node.value)]
+            return [walk(item, path + (i,), inner) for i, item in enumerate(node.value)]
         try:
             return constructor.construct_object(node, deep=True)
-        except yaml.YAMLError as err:
-            raise YamlSyntaxError(f"{label}:{node.start_mark.line + 1}", f"bad value ({err})") from None
+        except (yaml.YAMLError, ValueError, TypeError) as err:
+            raise YamlSyntaxError(where, f"bad value ({_one_line(err)})") from None
 
     return LocatedYaml(label, walk(root, ()), lines)
+
+
+def _one_line(err: Exception) -> str:
+    """PyYAML's message folded to one line."""
+    return " ".join(str(err).split())

@@ -10,7 +10,7 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from wheelstep_cli.config.schema import build, design_errors
+from wheelstep_cli.config.schema import InvalidInput, build, design_errors
 from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
 from wheelstep_cli.errors import DesignError
 
@@ -72,22 +72,25 @@ def gear_pair_spec(profile, **cli) -> GearPairSpec:
     Raises InvalidInput (every problem of the profile, with ``file:line``) or DesignError
     (a value that breaks a rule, named by its parameter).
     """
-    spec = build(GearPairSpec, spec_values(GearPairSpec, "gears", _profile(profile), cli))
-    _check_mechanism(spec.mechanism, cli)
+    spec = _named_for(cli, build, GearPairSpec, spec_values(GearPairSpec, "gears", _profile(profile), cli))
+    _named_for(cli, spec.mechanism)
     return spec
 
 
 def shoe_spec(profile, **cli) -> ShoeSpec:
     """Resolve a ShoeSpec: command line over profile (``shoe:``, ``mechanism:``) over defaults."""
-    spec = build(ShoeSpec, spec_values(ShoeSpec, "shoe", _profile(profile), cli))
-    _check_mechanism(spec.design, cli)
+    spec = _named_for(cli, build, ShoeSpec, spec_values(ShoeSpec, "shoe", _profile(profile), cli))
+    _named_for(cli, spec.design)
     return spec
 
 
-def _check_mechanism(size, cli: dict[str, Any]) -> None:
-    """Size the mechanism now, so an impossible one is named by a parameter the user gave."""
+def _named_for(cli: dict[str, Any], step, *args):
+    """``step(*args)``; a rule it breaks is named by a parameter the user gave, where the rule
+    can be stated for one (the mechanism is sized here, so an impossible one is caught now)."""
     try:
-        size()
+        return step(*args)
+    except InvalidInput:
+        raise
     except DesignError as err:
         raise err.for_given(k for k, v in cli.items() if v is not None) from None
 

@@ -21,6 +21,10 @@ from wheelstep_cli.errors import DesignError, require
 MECHANISM_KEYS = ("a", "b", "c", "r_min")
 #: The source design's strut when neither c nor R_min is given: R_min = 20 mm.
 DEFAULT_R_MIN = 20.0
+#: Longest mechanism length taken, mm (a 10 m mover; bounds the work and the part sizes).
+MAX_LENGTH = 10_000.0
+#: Pinion tooth counts taken: the generator's floor, and a ceiling that bounds its work.
+MIN_TEETH, MAX_TEETH = 6, 240
 
 
 class Teeth(str, Enum):
@@ -45,10 +49,11 @@ class GearPairSpec(BaseModel):
 
     model_config = STRICT
 
-    a: Number = 60.0
-    b: Number = 100.0
-    c: Number = 360.0
-    z: int = Field(48, strict=True)
+    a: Number = length(60.0, le=MAX_LENGTH)
+    b: Number = length(100.0, le=MAX_LENGTH)
+    c: Number = length(360.0, le=MAX_LENGTH)
+    z: int = quantity(48, limit=f"must be {MIN_TEETH}..{MAX_TEETH} (pinion teeth)", strict=True,
+                      ge=MIN_TEETH, le=MAX_TEETH)
     turns: int = Field(2, strict=True)
     center_distance: Number = length(143.5, gt=0)
     install_distance: Number = length(144.0, gt=0)
@@ -70,8 +75,11 @@ class GearPairSpec(BaseModel):
     def _distances(self) -> "GearPairSpec":
         require(self.law_csv is None or self.teeth == Teeth.generated, "law_csv", self.law_csv,
                 "needs generated teeth")
-        require(self.install_distance >= self.center_distance, "install_distance", self.install_distance,
-                f"must be >= the centre distance {self.center_distance:g} mm")
+        if not self.install_distance >= self.center_distance:
+            raise DesignError("install_distance", self.install_distance,
+                              f"must be >= the centre distance {self.center_distance:g} mm",
+                              {"center_distance": (self.center_distance, "must be <= the installed "
+                                                   f"distance {self.install_distance:g} mm")})
         if self.teeth == Teeth.paper:
             require(self.install_distance <= self.center_distance + self.module, "install_distance",
                     self.install_distance,
@@ -117,10 +125,10 @@ class ShoeSpec(BaseModel):
 
     model_config = STRICT
 
-    a: Real = 60.0
-    b: Real = 100.0
-    c: Optional[Real] = None
-    r_min: Optional[Real] = None
+    a: Real = length(60.0, le=MAX_LENGTH)
+    b: Real = length(100.0, le=MAX_LENGTH)
+    c: Optional[Real] = length(None, le=MAX_LENGTH)
+    r_min: Optional[Real] = length(None, le=MAX_LENGTH)
     width: Real = length(40.0, gt=0)            # across the track
     strut_diameter: Real = length(12.0, gt=0)   # socket bore (circumscribed polygon, the strut fits)
     socket_depth: Real = length(25.0, gt=0)

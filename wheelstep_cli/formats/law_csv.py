@@ -6,14 +6,22 @@ from pathlib import Path
 
 import numpy as np
 
-from wheelstep_cli.errors import require
+from wheelstep_cli.errors import DesignError, require
 
 
 def read_law_csv(path, param: str = "law_csv"):
     """Read the rows (header lines allowed; ``;`` or ``,``) and build the tabulated law."""
     from wheelstep_cli.gears.laws import law_from_samples
 
-    text = Path(path).read_text()
+    try:
+        data = Path(path).read_bytes()
+    except OSError as err:
+        raise DesignError(param, str(path), f"cannot be read ({err.strerror or err})") from None
+    require(len(data) <= 1 << 22, param, str(path), "is larger than 4 MiB; one period of samples is enough")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise DesignError(param, str(path), "is not UTF-8 text") from None
     rows = []
     for line in text.splitlines():
         cells = [c.strip() for c in line.replace(";", ",").split(",") if c.strip()]

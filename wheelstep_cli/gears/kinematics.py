@@ -66,10 +66,12 @@ def hub_kinematics(design: CrankMechanism, motor_speed: float, turns: int = 2,
 
 
 def check_inputs(motor_rpm: float, points: int, rows: int) -> None:
-    """Raise DesignError unless the motor speed (rpm) is > 0, points >= 3 and rows >= 2."""
-    require(np.isfinite(motor_rpm) and motor_rpm > 0, "motor_rpm", motor_rpm, "must be > 0")
-    require(points >= 3, "points", points, "must be >= 3")
-    require(rows >= 2, "rows", rows, "must be >= 2")
+    """Raise DesignError unless the motor speed is 1e-3..1e6 rpm, points 3..100000 and rows
+    2..10000 (bounds that keep the work and the figures finite)."""
+    require(np.isfinite(motor_rpm) and 1e-3 <= motor_rpm <= 1e6, "motor_rpm", motor_rpm,
+            "must be 0.001..1e6 rpm")
+    require(3 <= points <= 100_000, "points", points, "must be 3..100000")
+    require(2 <= rows <= 10_000, "rows", rows, "must be 2..10000")
 
 
 def hub_speed_study(design: CrankMechanism, turns: int, motor_rpm: float, points: int) -> HubKinematics:

@@ -6,7 +6,7 @@ from typing import Annotated, Optional
 
 from wheelstep_cli.cli.options import DryRun, Json, Quiet, Verbose, number_list, opt, plot_option
 from wheelstep_cli.cli.output import Output
-from wheelstep_cli.errors import require
+from wheelstep_cli.errors import DesignError, require
 
 Plot = plot_option("the climb/descent kinematics plot")
 
@@ -27,10 +27,12 @@ def stairs(
     tol: Annotated[float, opt("--tol", help="Check: allowed miss of run and rise per cycle, mm.")] = 1.0,
     sweep: Annotated[bool, opt("--sweep", help="Print the sizing over landing angles and sole "
                                                "radii instead.")] = False,
-    sweep_angles: Annotated[str, opt("--sweep-angles", help="Sweep landing angles, deg: "
-                                                            "'start:stop:step' or a list.")] = "-180:0:15",
-    sweep_radii: Annotated[str, opt("--sweep-radii", help="Sweep sole radii, mm: a list or "
-                                                          "'start:stop:step'.")] = "40,70,100,150,192",
+    sweep_angles: Annotated[Optional[str], opt("--sweep-angles", help="Sweep landing angles, deg: "
+                                                                      "'start:stop:step' or a list.",
+                                               shown="-180:0:15")] = None,
+    sweep_radii: Annotated[Optional[str], opt("--sweep-radii", help="Sweep sole radii, mm: a list or "
+                                                                    "'start:stop:step'.",
+                                              shown="40,70,100,150,192")] = None,
     plot: Plot = None,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> int:
@@ -44,8 +46,11 @@ def stairs(
 
     show = Output(json, quiet, verbose)
     sr.check_stair(run, rise, step)
+    _only_with(sweep, sweep_angles=sweep_angles, sweep_radii=sweep_radii)
     if sweep:
-        _sweep(show, run, rise, number_list(sweep_angles, "sweep-angles"), sweep_radii)
+        _only_with(False, a=a, b=b, y1=y1, y2=y2, plot=plot)
+        _sweep(show, run, rise, number_list(sweep_angles or "-180:0:15", "sweep_angles"),
+               sweep_radii or "40,70,100,150,192")
         return 0
     request = sr.StairRequest(run, rise, sole_radius, landing_angle, step,
                               sr.given_design(a, b, y1, y2, tol), tol)
@@ -57,6 +62,17 @@ def stairs(
     show.report(report, lambda: _study_lines(study, report))
     show.files(files, dry_run)
     return 1 if study.check is not None and not study.check.climbs else 0
+
+
+def _only_with(used: bool, **given) -> None:
+    """Refuse the options ``given`` unless they are ``used`` in this mode (sweep options
+    without --sweep; the design check and the plot with it)."""
+    if used:
+        return
+    for name, value in given.items():
+        if value is not None:
+            mode = "need --sweep" if name.startswith("sweep") else "do nothing with --sweep"
+            raise DesignError(name, value, f"is not used: such options {mode}")
 
 
 def _sweep(show: Output, run: float, rise: float, angles: list[float], radii_text: str) -> None:

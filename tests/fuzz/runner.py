@@ -1,0 +1,104 @@
+"""Run one fuzz invocation in a subprocess and check what it did."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+from tests.fuzz.cases import Invocation
+
+ROOT = Path(__file__).resolve().parents[2]
+TIMEOUT = 120.0
+MEMORY = 6 << 30            # bytes of address space: a run that needs more is a finding
+USER_TEXT = b"a file of the user's: never to be touched\n"
+
+
+def _limit_memory() -> None:
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY, MEMORY))
+
+
+def _setup(folder: Path, inv: Invocation) -> None:
+    for name, data in inv.files.items():
+        (folder / name).write_bytes(data)
+    (folder / "notes.txt").write_bytes(USER_TEXT)
+    out = folder / "out"
+    if inv.out_setup == "user-file":
+        out.mkdir()
+        (out / "notes.txt").write_bytes(USER_TEXT)
+    elif inv.out_setup == "file-as-folder":
+        out.mkdir()
+        (out / "gears.json").mkdir()
+        (out / "shoe.json").mkdir()
+    elif inv.out_setup == "manifest-claim":
+        out.mkdir()
+        (out / "notes.txt").write_bytes(USER_TEXT)
+        (out / "manifest.json").write_text(json.dumps({"outputs": {"notes.txt": "x"}}))
+
+
+def _snapshot(folder: Path) -> dict[str, str]:
+    return {p.relative_to(folder).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in folder.rglob("*") if p.is_file()}
+
+
+def check(inv: Invocation) -> list[str]:
+    """Run ``inv`` in a fresh folder; return what went wrong (empty: nothing)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        _setup(folder, inv)
+        before = _snapshot(folder)
+        env = dict(os.environ, PYTHONPATH=str(ROOT), COLUMNS="200")
+        try:
+            run = subprocess.run([sys.executable, "-m", "wheelstep_cli", *inv.args], cwd=folder,
+                                 capture_output=True, text=True, timeout=TIMEOUT, env=env,
+                                 preexec_fn=_limit_memory, stdin=subprocess.DEVNULL)
+        except subprocess.TimeoutExpired:
+            return [f"timeout after {TIMEOUT:g} s"]
+        return _findings(inv, run, folder, before)
+
+
+def _findings(inv: Invocation, run, folder: Path, before: dict[str, str]) -> list[str]:
+    found = []
+    after = _snapshot(folder)
+    if "Traceback" in run.stderr or "MemoryError" in run.stderr:
+        found.append("traceback: " + run.stderr.strip().splitlines()[-1][:200])
+    if run.returncode not in (0, 1, 2):
+        found.append(f"exit code {run.returncode}")
+    for name, digest in before.items():
+        if after.get(name) != digest:
+            found.append(f"touched a file it did not write: {name}")
+    if any(name.endswith(".part") for name in after):
+        found.append("left a temporary .part file")
+    if run.returncode == 2:
+        lines = run.stderr.strip().splitlines()
+        if not lines or not all(line.startswith("wheelstep: error") for line in lines):
+            found.append("refusal is not 'wheelstep: error' lines: " + run.stderr.strip()[:200])
+        if set(after) != set(before):
+            found.append("refused but wrote " + ", ".join(sorted(set(after) - set(before))))
+    if run.returncode == 0 and "--json" in inv.args:
+        try:
+            json.loads(run.stdout, parse_constant=_no_constant)
+        except ValueError as err:
+            found.append(f"--json output is not valid JSON ({err})")
+    for name in sorted(set(after) - set(before)):
+        if name.endswith(".stl"):
+            found.extend(_mesh_findings(folder / name))
+    return found
+
+
+def _no_constant(name: str):
+    raise ValueError(f"{name} is not JSON")
+
+
+def _mesh_findings(path: Path) -> list[str]:
+    import trimesh
+
+    mesh = trimesh.load(path, force="mesh", process=True)
+    ok = (mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0
+          and len(mesh.split(only_watertight=False)) == 1)
+    return [] if ok else [f"invalid mesh written: {path.name}"]

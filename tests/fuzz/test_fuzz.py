@@ -1,0 +1,47 @@
+"""A short stability fuzz in CI (the long one: ``python -m tests.fuzz --n 5000``)."""
+
+from __future__ import annotations
+
+import hashlib
+import subprocess
+import time
+
+from tests.fuzz.cases import Invocation, invocations
+from tests.fuzz.runner import _findings, check
+
+SEED, COUNT, BUDGET_S = 20261201, 70, 150.0
+
+
+def test_seeded_invocations_find_nothing():
+    start, failures, ran = time.perf_counter(), [], 0
+    for inv in invocations(SEED, COUNT, slow_share=0.05):
+        if time.perf_counter() - start > BUDGET_S:
+            break
+        ran += 1
+        failures += [f"{' '.join(inv.args)[:160]}: {f}" for f in check(inv)]
+    assert ran >= 20, f"only {ran} invocations fitted the time budget"
+    assert not failures, "\n".join(failures[:30])
+
+
+def test_good_behaviour_passes_the_checker():
+    assert check(Invocation(["pitch", "--json"])) == []
+    assert check(Invocation(["pitch", "--z", "nan"])) == []
+    assert check(Invocation(["mesh-check", "x.stl", "x.stl"], {"x.stl": b"solid x\nendsolid\n"})) == []
+
+
+def test_the_checker_catches_tracebacks_noise_bad_json_and_touched_files(tmp_path):
+    (tmp_path / "notes.txt").write_bytes(b"mine")
+    before = {"notes.txt": "not its digest any more"}
+    run = subprocess.CompletedProcess([], 2, stdout="{nan}", stderr="Traceback (most recent call last):\n"
+                                      "  File x\nValueError: boom\n")
+    found = _findings(Invocation(["pitch", "--json"]), run, tmp_path, before)
+    assert any(f.startswith("traceback") for f in found)
+    assert any(f.startswith("refusal is not") for f in found)
+    assert any(f.startswith("touched a file") for f in found)
+    ok = subprocess.CompletedProcess([], 0, stdout='{"a": NaN}', stderr="")
+    assert any("not valid JSON" in f for f in _findings(Invocation(["pitch", "--json"]), ok, tmp_path,
+                                                        {"notes.txt": _digest(b"mine")}))
+
+
+def _digest(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
