@@ -113,7 +113,7 @@ def run(argv: list[str] | None = None) -> int:
     except OSError as err:
         target = f" {err.filename}" if getattr(err, "filename", None) else ""
         typer.echo(f"wheelstep: error: cannot write{target}: {err.strerror or err}", err=True)
-        return 1
+        return 2
     except typer.Abort:
         typer.echo("wheelstep: aborted", err=True)
         return 130

@@ -52,8 +52,8 @@ class BatchEntry(BaseModel):
 
     model_config = STRICT
 
-    name: Optional[str] = Field(None, strict=True, pattern=NAME_PATTERN, json_schema_extra={
-        "limit": "must be letters, digits, '.', '_' or '-'"})
+    name: Optional[str] = Field(None, strict=True, pattern=NAME_PATTERN, max_length=64, json_schema_extra={
+        "limit": "must be 1..64 letters, digits, '.', '_' or '-' (it names the entry's files)"})
     kind: Kind
     design: ProfileName
     overrides: Optional[dict[str, Any]] = None
