@@ -31,7 +31,7 @@ def test_impossible_designs_name_one_parameter(kwargs, param):
     assert err.value.param == param
 
 
-@pytest.mark.parametrize("r_min", [0.0, -5.0, float("inf")])
+@pytest.mark.parametrize("r_min", [0.0, -5.0, 1e-300, float("inf")])
 def test_r_min_must_be_positive_and_finite(r_min):
     with pytest.raises(DesignError) as err:
         CrankMechanism.from_r_min(60, 100, r_min)

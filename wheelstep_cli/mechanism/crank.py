@@ -16,6 +16,9 @@ from wheelstep_cli.errors import DesignError, require
 
 #: Carrier angle of one shoe cycle (four shoes per turn), rad.
 SHOE_CYCLE = np.pi / 2.0
+#: Smallest sole curvature radius a design may choose, mm: far below any printable sole, and
+#: far above the rounding of c = R_min - a + 4b.
+MIN_R_MIN = 1e-3
 
 
 def local_angle(phi):
@@ -45,13 +48,14 @@ class CrankMechanism:
                    "else the sole has a cusp or loop)")
             raise DesignError("c", self.c, f"must be > 4b - a = {4 * self.b - self.a:g} mm" + why, {
                 "b": (self.b, f"must be < (a + c)/4 = {(self.a + self.c) / 4:g} mm" + why),
-                "a": (self.a, f"must be > 4b - c = {4 * self.b - self.c:g} mm" + why)})
+                "a": (self.a, f"must be > 4b - c = {4 * self.b - self.c:g} mm" + why),
+                "r_min": (self.r_min, "must be > 0 mm" + why)})
 
     @classmethod
     def from_r_min(cls, a: float, b: float, r_min: float) -> "CrankMechanism":
         """Size the strut from the chosen smallest sole curvature radius: c = R_min - a + 4b (mm)."""
-        require(bool(np.isfinite(r_min)) and r_min > 0, "r_min", r_min,
-                "must be > 0 mm (the sole would have a cusp or loop)")
+        require(bool(np.isfinite(r_min)) and r_min >= MIN_R_MIN, "r_min", r_min,
+                f"must be >= {MIN_R_MIN:g} mm (a sole bent tighter has, in effect, a cusp)")
         _check_lengths(a=a, b=b)
         c = r_min - a + 4.0 * b
         require(c > 0, "r_min", r_min,
