@@ -11,7 +11,7 @@ import numpy as np
 from wheelstep_cli.batch.build import BuiltPart, EntryResult
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.printers import Printer
-from wheelstep_cli.parts.plate_layout import design_metadata, size_problem
+from wheelstep_cli.parts.plate_layout import design_metadata, pack_units, size_problem
 
 
 @dataclass
@@ -88,35 +88,32 @@ def _metadata(entry: Entry, part: str, copy: int) -> dict[str, str]:
 
 
 def plan_plates(entries: list[Entry], results: dict[int, EntryResult]) -> tuple[list[Plate], dict[int, str]]:
-    """Pack every built part times its quantity onto beds, per printer.
+    """Pack every built part times its quantity onto beds, per printer (each copy of a gear
+    pair side by side on one bed when it fits there).
 
     Returns the plates (numbered across printers in order of first use) and, per entry
-    index, the reason an entry had to be dropped (a part larger than the bed).
+    index, the reason an entry had to be dropped (a part larger or taller than the bed).
     """
-    from wheelstep_cli.geometry.packing import pack_on_bed
-
     dropped = too_big(entries, results)
     plates: list[Plate] = []
     order = list(dict.fromkeys((e.printer.name, e.printer.sha256) for e in entries))
     for printer_key in order:
-        items: list[tuple[Entry, BuiltPart, int]] = []
-        for entry in entries:
-            result = results[entry.index]
-            if (entry.printer.name, entry.printer.sha256) != printer_key or result.error \
-                    or entry.index in dropped:
-                continue
-            for copy in range(1, entry.quantity + 1):
-                items.extend((entry, part, copy) for part in result.parts)
-        if not items:
+        units: list[tuple[Entry, int]] = [
+            (entry, copy) for entry in entries
+            if (entry.printer.name, entry.printer.sha256) == printer_key
+            and not results[entry.index].error and entry.index not in dropped
+            for copy in range(1, entry.quantity + 1)]
+        if not units:
             continue
-        printer = items[0][0].printer
-        sizes = [tuple(p.bounds[1, :2] - p.bounds[0, :2]) for _, p, _ in items]
-        placements = pack_on_bed(sizes, printer.bed, printer.margin, printer.edge_margin)
+        printer = units[0][0].printer
+        sizes = [[tuple(p.bounds[1, :2] - p.bounds[0, :2]) for p in results[e.index].parts]
+                 for e, _ in units]
         beds: dict[int, list[PlacedPart]] = {}
-        for (entry, part, copy), spot in zip(items, placements):
-            label = f"{entry.name} {part.name}" + (f" #{copy}" if entry.quantity > 1 else "")
-            beds.setdefault(spot.bed, []).append(PlacedPart(
-                label, entry.name, part, spot.x, spot.y, spot.rotated, _metadata(entry, part.name, copy)))
+        for (entry, copy), spots in zip(units, pack_units(sizes, printer)):
+            for part, (bed, x, y, turned) in zip(results[entry.index].parts, spots):
+                label = f"{entry.name} {part.name}" + (f" #{copy}" if entry.quantity > 1 else "")
+                beds.setdefault(bed, []).append(PlacedPart(
+                    label, entry.name, part, x, y, turned, _metadata(entry, part.name, copy)))
         for bed in sorted(beds):
             plates.append(Plate(len(plates) + 1, printer, beds[bed]))
     return plates, dropped

@@ -47,17 +47,46 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float) ->
             raise DesignError("printer", printer.name, problem)
 
 
-def bed_plates(parts, printer: Printer, metadata: list[dict[str, str]]) -> list[list[PlateObject]]:
-    """The parts packed onto as few of the printer's beds as fit, each in its own frame with
-    the build-item transform that places it (checked with :func:`require_on_bed` first)."""
-    from wheelstep_cli.geometry.packing import pack_on_bed
+def pack_units(units: list[list[tuple[float, float]]], printer: Printer
+               ) -> list[list[tuple[int, float, float, bool]]]:
+    """Pack groups of parts (each a list of footprint sizes X, Y in mm) onto the printer's beds,
+    the parts of a group side by side in a row on one bed (a gear pair stays together) when
+    that row fits, else each on its own. Returns per group, per part: (bed, x, y, rotated),
+    (x, y) the lower-left corner of the part's (possibly turned) box."""
+    from wheelstep_cli.geometry.packing import fits_bed, pack_on_bed
 
+    gap, edge = printer.margin, printer.edge_margin
+    boxes, owners = [], []
+    for u, sizes in enumerate(units):
+        row = (sum(w for w, _ in sizes) + gap * (len(sizes) - 1), max(h for _, h in sizes))
+        if len(sizes) > 1 and fits_bed(row, printer.bed, edge) is not None:
+            boxes.append(row)
+            owners.append((u, None))
+        else:
+            boxes.extend(sizes)
+            owners.extend((u, k) for k in range(len(sizes)))
+    placed: list[list] = [[None] * len(sizes) for sizes in units]
+    for (u, k), spot in zip(owners, pack_on_bed(boxes, printer.bed, gap, edge)):
+        if k is not None:
+            placed[u][k] = (spot.bed, spot.x, spot.y, spot.rotated)
+            continue
+        offset, depth = 0.0, max(h for _, h in units[u])
+        for k, (w, h) in enumerate(units[u]):
+            # turned by +90 deg, the row's box (x, y) -> (depth - y, x) goes up instead of right
+            corner = (spot.x + depth - h, spot.y + offset) if spot.rotated else (spot.x + offset, spot.y)
+            placed[u][k] = (spot.bed, *corner, spot.rotated)
+            offset += w + gap
+    return placed
+
+
+def bed_plates(parts, printer: Printer, metadata: list[dict[str, str]]) -> list[list[PlateObject]]:
+    """The parts packed onto as few of the printer's beds as fit, side by side on one when
+    they fit, each in its own frame with the build-item transform that places it."""
     sizes = [tuple(p.bounds[1, :2] - p.bounds[0, :2]) for p in parts]
     plates: dict[int, list[PlateObject]] = {}
-    for part, meta, spot in zip(parts, metadata,
-                                pack_on_bed(sizes, printer.bed, printer.margin, printer.edge_margin)):
-        plates.setdefault(spot.bed, []).append(
-            placed_object(part.name, part.vertices, part.faces, (spot.x, spot.y), spot.rotated, meta))
+    for part, meta, (bed, x, y, turned) in zip(parts, metadata, pack_units([sizes], printer)[0]):
+        plates.setdefault(bed, []).append(
+            placed_object(part.name, part.vertices, part.faces, (x, y), turned, meta))
     return [plates[bed] for bed in sorted(plates)]
 
 
