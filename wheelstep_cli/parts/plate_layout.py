@@ -14,7 +14,7 @@ from wheelstep_cli.formats.threemf import PlateObject, placed_object
 
 def design_metadata(values: dict[str, Any]) -> dict[str, str]:
     """A part's design parameters as 3MF metadata values (None left out, floats as %g)."""
-    return {k: f"{v:g}" if isinstance(v, float) else str(getattr(v, "value", v))
+    return {k: f"{v:.12g}" if isinstance(v, float) else str(getattr(v, "value", v))
             for k, v in values.items() if v is not None}
 
 

@@ -40,8 +40,9 @@ def is_plate_input(pinion: str, wheel: str | None) -> bool:
 
 
 def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePair]:
-    """The gear pairs of the plates ``files`` (each pair once, in file order), or the one
-    named ``pair``; refused (DesignError) when there is none or the meshes are not a pair."""
+    """The gear pairs of the plates ``files`` (each pair once, in file order; of two plates,
+    the pairs with a gear on each), or the one named ``pair``; refused (DesignError) when
+    there is none or the meshes are not a pair."""
     groups: dict[str, dict[str, tuple[str, MeshObject]]] = {}
     for file, param in zip(files, GEARS):
         path = Path(file)
@@ -53,6 +54,8 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
             if part in GEARS and pair_id:
                 groups.setdefault(pair_id, {}).setdefault(part, (file, obj))
     complete = [k for k, g in groups.items() if len(g) == 2]
+    if len(set(files)) == 2:   # two plates name one pair across them: a gear from each
+        complete = [k for k in complete if groups[k]["pinion"][0] != groups[k]["wheel"][0]]
     where = " + ".join(files)
     if not complete:
         what = "are not a gear pair" if len(files) == 2 else "holds no gear pair"
