@@ -158,10 +158,3 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
 #: The printer a command uses when none is named.
 DEFAULT_PRINTER = "fdm-0.4-pla"
 
-
-def load_printer(name: str = DEFAULT_PRINTER) -> Printer:
-    """The printer profile ``name`` (a preset name or a path), checked."""
-    from wheelstep_cli.config.profiles import find_profile, profile_label
-
-    path = find_profile(name)
-    return printer_from_profile(name, path, profile_label(path))

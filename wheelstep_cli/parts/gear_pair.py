@@ -181,7 +181,7 @@ def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both", meshing: dict 
     ``printer``'s bed (a config.printers.Printer; default the fdm-0.4-pla preset) as
     gears.3mf, or gears-1.3mf and gears-2.3mf when both do not fit on one, and gears.json.
     A gear larger or taller than the bed is refused (DesignError) before anything is made."""
-    from wheelstep_cli.config.printers import load_printer
+    from wheelstep_cli.config.profiles import load_printer
 
     printer = printer or load_printer()
     files: dict[Path, bytes] = {}

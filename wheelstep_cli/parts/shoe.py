@@ -153,7 +153,7 @@ def shoe_files(shoe: Shoe, out: Path, fmt: str = "both", printer=None) -> dict[P
     """File name -> contents: shoe.stl / shoe.3mf (on ``printer``'s bed, a config.printers.Printer,
     default the fdm-0.4-pla preset), shoe.json, shoe-profile.csv and .dxf. A shoe larger or
     taller than the bed is refused (DesignError) before anything is made."""
-    from wheelstep_cli.config.printers import load_printer
+    from wheelstep_cli.config.profiles import load_printer
 
     require(fmt in FORMATS, "format", fmt, f"must be one of {', '.join(FORMATS)}")
     printer = printer or load_printer()
