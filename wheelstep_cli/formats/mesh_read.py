@@ -54,19 +54,24 @@ def read_mesh(spec: str, param: str, default_name: str | None = None) -> tuple[n
     if not path.is_file():
         raise DesignError(param, str(spec), "no such file")
     suffix = path.suffix.lower()
+    if suffix == ".3mf":
+        return _read_3mf_object(path, name, default_name, param)
+    if suffix == ".stl":
+        if name is not None:
+            raise DesignError(param, str(spec), "an STL file holds one mesh; drop ':NAME'")
+        return _readable(param, str(spec), "STL", lambda: _read_stl(path))
+    raise DesignError(param, str(spec), "must be an .stl or .3mf file")
+
+
+def _readable(param: str, where: str, kind: str, read):
+    """``read()``, any failure but a DesignError turned into one naming ``param``."""
     try:
-        if suffix == ".3mf":
-            return _read_3mf_object(path, name, default_name, param)
-        if suffix == ".stl":
-            if name is not None:
-                raise DesignError(param, str(spec), "an STL file holds one mesh; drop ':NAME'")
-            return _read_stl(path)
+        return read()
     except DesignError:
         raise
     except Exception as err:  # malformed files of every kind end here
-        raise DesignError(param, str(spec), f"cannot be read as {suffix[1:].upper()} "
+        raise DesignError(param, where, f"cannot be read as {kind} "
                           f"({type(err).__name__}: {str(err)[:80]})") from None
-    raise DesignError(param, str(spec), "must be an .stl or .3mf file")
 
 
 def _read_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
@@ -80,15 +85,12 @@ def _read_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
 
 def read_3mf_objects(path: Path, param: str) -> list[MeshObject]:
     """Every build item of a 3MF package (each object once if it has no build), own frames."""
-    try:
+    def read() -> list[MeshObject]:
         with zipfile.ZipFile(path) as zf:
             root = ET.parse(io.BytesIO(zf.read(_model_part(zf)))).getroot()
         return _objects_of(root)
-    except DesignError:
-        raise
-    except Exception as err:  # malformed files of every kind end here
-        raise DesignError(param, str(path), f"cannot be read as 3MF "
-                          f"({type(err).__name__}: {str(err)[:80]})") from None
+
+    return _readable(param, str(path), "3MF", read)
 
 
 def _objects_of(root) -> list[MeshObject]:
