@@ -131,8 +131,8 @@ def test_printer_compensation_is_in_the_geometry_and_metadata(example):
     manifest = json.loads((example / "manifest.json").read_text())
     plate = next(p for p in manifest["plates"] if "bntu-gears pinion" in p["parts"])
     meta = object_metadata(example / plate["file"])["bntu-gears pinion"]
-    assert meta["wheelstep:design.bore"] == "8.25"
-    assert meta["wheelstep:design.z"] == "48"
+    assert meta["wheelstep:bore"] == "8.25" and meta["wheelstep:part"] == "pinion"
+    assert meta["wheelstep:z"] == "48" and meta["wheelstep:pair"] == "bntu-gears/1"
     assert meta["wheelstep:printer_profile"] == "fdm-0.4-petg"
     sheet = (example / "print-sheet.md").read_text()
     for needle in ("bntu-gears", "demo-shoes", "| 8 |", "plate-1.png", "fill_density", "g/cm3"):

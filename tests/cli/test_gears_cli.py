@@ -23,7 +23,8 @@ def default_pair(tmp_path_factory):
 
 def test_writes_printable_meshes_and_report(default_pair):
     names = sorted(p.name for p in default_pair.iterdir())
-    assert names == ["gears.3mf", "gears.json", "pinion.stl", "wheel.stl"]
+    # the full-scale pair does not fit one 256 mm bed together: one plate per gear
+    assert names == ["gears-1.3mf", "gears-2.3mf", "gears.json", "pinion.stl", "wheel.stl"]
     report = json.loads((default_pair / "gears.json").read_text())
     for name in ("pinion", "wheel"):
         mesh = assert_printable_stl(default_pair / f"{name}.stl")
@@ -46,13 +47,14 @@ def test_paper_method_still_writes_its_sector_table(cli, tmp_path):
     assert report["parts"]["pinion"]["teeth"] == 48 and report["parts"]["wheel"]["teeth"] == 96
 
 
-def test_3mf_reads_back_strict_with_two_named_objects(default_pair):
-    info = read_3mf_strict(default_pair / "gears.3mf")
-    assert info["warnings"] == []
-    assert set(info["objects"]) == {"pinion", "wheel"}
-    assert info["build_items"] == 2
+def test_3mf_plates_read_back_strict_with_the_two_named_objects(default_pair):
+    infos = [read_3mf_strict(default_pair / f"gears-{i}.3mf") for i in (1, 2)]
+    assert [i["warnings"] for i in infos] == [[], []]
+    objects = {name: volume for info in infos for name, volume in info["objects"].items()}
+    assert set(objects) == {"pinion", "wheel"}
+    assert [i["build_items"] for i in infos] == [1, 1]
     report = json.loads((default_pair / "gears.json").read_text())
-    for name, volume in info["objects"].items():
+    for name, volume in objects.items():
         assert volume == pytest.approx(report["parts"][name]["volume_mm3"], rel=1e-4)
 
 
@@ -73,7 +75,7 @@ def test_same_inputs_give_identical_files(default_pair, tmp_path):
     subprocess.run([sys.executable, "-m", "wheelstep_cli", "gears", "--allow-interference",
                     "--out", str(tmp_path)],
                    check=True, capture_output=True)
-    for name in ("pinion.stl", "wheel.stl", "gears.3mf", "gears.json"):
+    for name in ("pinion.stl", "wheel.stl", "gears-1.3mf", "gears-2.3mf", "gears.json"):
         assert (tmp_path / name).read_bytes() == (default_pair / name).read_bytes(), name
 
 

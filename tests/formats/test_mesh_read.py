@@ -14,9 +14,15 @@ def written(tmp_path_factory):
     from wheelstep_cli.formats.atomic import write_files_atomic
     from wheelstep_cli.parts.gear_pair import GearPairSpec, build_gear_pair, gear_pair_files
 
+    from dataclasses import replace
+
+    from wheelstep_cli.config.profiles import load_printer
+
     out = tmp_path_factory.mktemp("pair")
     pair = build_gear_pair(GearPairSpec())
-    write_files_atomic(gear_pair_files(pair, out, "both"))
+    # a bed that takes both full-scale gears, so gears.3mf holds the two objects
+    big_bed = replace(load_printer(), bed=(400.0, 300.0))
+    write_files_atomic(gear_pair_files(pair, out, "both", printer=big_bed))
     return pair, out
 
 

@@ -5,6 +5,7 @@ import json
 import math
 import subprocess
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +17,7 @@ from tests.helpers.strategies import r_min_designs
 
 from tests.helpers.clicheck import error_line
 from tests.helpers.meshcheck import assert_printable_stl, read_3mf_strict
+from wheelstep_cli.config.profiles import load_printer
 from wheelstep_cli.mechanism.crank import CrankMechanism
 from wheelstep_cli.mechanism.sole import contact_angles, sole_polar, sole_profile
 from wheelstep_cli.parts.shoe import ShoeSpec, build_shoe, shoe_files
@@ -160,7 +162,8 @@ def test_written_profile_has_the_spec_curvature_and_the_part_is_printable(design
     spec = ShoeSpec(a=a, b=b, r_min=r_min, strut_diameter=6.0, socket_depth=10.0, rim=15.0)
     shoe = build_shoe(spec)
     assert shoe.checks["shoe"].ok
-    files = shoe_files(shoe, Path("out"), "stl")  # contents in memory, nothing written
+    # contents in memory, nothing written; a bed that takes every drawn size
+    files = shoe_files(shoe, Path("out"), "stl", printer=replace(load_printer(), bed=(2000.0, 2000.0)))
     written = {p.name: data for p, data in files.items()}
     csv = read_csv(written["shoe-profile.csv"])
     report = json.loads(written["shoe.json"])

@@ -1,5 +1,6 @@
 """Plates: every built part times its quantity packed onto the beds of its printer, and each
-plate as 3MF (with the parts' metadata) and as a top-view picture."""
+plate as 3MF (parts in their own frames, placed by build-item transforms, with their design
+in the object metadata and the printer's PrusaSlicer configuration) and as a top-view picture."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import numpy as np
 from wheelstep_cli.batch.build import BuiltPart, EntryResult
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.printers import Printer
+from wheelstep_cli.parts.plate_layout import design_metadata, pack_units, size_problem
 
 
 @dataclass
@@ -22,9 +24,12 @@ class PlacedPart:
     rotated: bool
     metadata: dict[str, str]
 
-    def vertices(self) -> np.ndarray:
-        v = self.part.vertices
-        return np.column_stack([-v[:, 1], v[:, 0], v[:, 2]]) if self.rotated else v
+    def plate_object(self):
+        """The part in its own frame with the build-item transform that places it."""
+        from wheelstep_cli.formats.threemf import placed_object
+
+        return placed_object(self.label, self.part.vertices, self.part.faces, (self.x, self.y),
+                             self.rotated, self.metadata)
 
     def footprint(self) -> list[list[np.ndarray]]:
         turn = (lambda r: np.column_stack([-r[:, 1], r[:, 0]])) if self.rotated else (lambda r: r)
@@ -44,18 +49,14 @@ class Plate:
 
 def plate_threemf(plate: Plate) -> tuple[int, bytes]:
     """(plate number, 3MF bytes) of a packed plate (worker-process entry point)."""
-    from wheelstep_cli.formats.threemf import PlateObject, threemf_bytes
+    from wheelstep_cli.formats.slicer_config import slic3r_config_bytes
+    from wheelstep_cli.formats.threemf import threemf_bytes
 
-    objects = []
-    for item in plate.items:
-        vertices = item.vertices()
-        lo = vertices.min(axis=0)
-        objects.append(PlateObject(item.label, vertices, item.part.faces,
-                                   (item.x - lo[0], item.y - lo[1], -lo[2]), item.metadata))
     printer = plate.printer
-    return plate.number, threemf_bytes(objects, {
+    config = slic3r_config_bytes(printer.slicer_config(), f"wheelstep batch: printer {printer.name}")
+    return plate.number, threemf_bytes([item.plate_object() for item in plate.items], {
         "Title": f"wheelstep {plate.stem} ({printer.name})", "Application": "wheelstep batch",
-        "printer": printer.name, "material": printer.material})
+        "printer": printer.name, "material": printer.material}, config)
 
 
 def plate_picture(plate: Plate) -> bytes:
@@ -69,7 +70,7 @@ def plate_picture(plate: Plate) -> bytes:
         label = item.label.replace(" ", "\n", 1)  # entry name over part name
         shapes.append((label, [[r - lo + (item.x, item.y) for r in p] for p in polygons]))
     printer = plate.printer
-    return plate_png(printer.bed, printer.margin, shapes,
+    return plate_png(printer.bed, printer.edge_margin, shapes,
                      f"{plate.stem}: {printer.name} ({printer.bed[0]:g} x {printer.bed[1]:g} mm), "
                      f"{len(plate.items)} parts")
 
@@ -78,65 +79,56 @@ def _metadata(entry: Entry, part: str, copy: int) -> dict[str, str]:
     """3MF metadata of one placed part: where it comes from and its design parameters."""
     meta = {"entry": entry.name, "kind": entry.kind, "part": part, "copy": f"{copy} of {entry.quantity}",
             "design_profile": entry.design_label, "printer_profile": entry.printer.name}
-    for name, value in entry.printed.model_dump().items():
-        if value is not None:
-            meta[f"design.{name}"] = f"{value:g}" if isinstance(value, float) else str(value)
+    if entry.kind == "gear-pair":
+        meta["pair"] = f"{entry.name}/{copy}"
+    meta.update(design_metadata(entry.printed.model_dump()))
     for name, value in entry.printer.geometry().items():
         meta[f"printer.{name}"] = f"{value:g}"
     return meta
 
 
 def plan_plates(entries: list[Entry], results: dict[int, EntryResult]) -> tuple[list[Plate], dict[int, str]]:
-    """Pack every built part times its quantity onto beds, per printer.
+    """Pack every built part times its quantity onto beds, per printer (each copy of a gear
+    pair side by side on one bed when it fits there).
 
     Returns the plates (numbered across printers in order of first use) and, per entry
-    index, the reason an entry had to be dropped (a part larger than the bed).
+    index, the reason an entry had to be dropped (a part larger or taller than the bed).
     """
-    from wheelstep_cli.geometry.packing import pack_boxes
-
     dropped = too_big(entries, results)
     plates: list[Plate] = []
     order = list(dict.fromkeys((e.printer.name, e.printer.sha256) for e in entries))
     for printer_key in order:
-        items: list[tuple[Entry, BuiltPart, int]] = []
-        for entry in entries:
-            result = results[entry.index]
-            if (entry.printer.name, entry.printer.sha256) != printer_key or result.error \
-                    or entry.index in dropped:
-                continue
-            for copy in range(1, entry.quantity + 1):
-                items.extend((entry, part, copy) for part in result.parts)
-        if not items:
+        units: list[tuple[Entry, int]] = [
+            (entry, copy) for entry in entries
+            if (entry.printer.name, entry.printer.sha256) == printer_key
+            and not results[entry.index].error and entry.index not in dropped
+            for copy in range(1, entry.quantity + 1)]
+        if not units:
             continue
-        printer = items[0][0].printer
-        sizes = [tuple(p.bounds[1, :2] - p.bounds[0, :2]) for _, p, _ in items]
-        placements = pack_boxes(sizes, printer.bed, printer.margin)
+        printer = units[0][0].printer
+        sizes = [[tuple(p.bounds[1, :2] - p.bounds[0, :2]) for p in results[e.index].parts]
+                 for e, _ in units]
         beds: dict[int, list[PlacedPart]] = {}
-        for (entry, part, copy), spot in zip(items, placements):
-            label = f"{entry.name} {part.name}" + (f" #{copy}" if entry.quantity > 1 else "")
-            beds.setdefault(spot.bed, []).append(PlacedPart(
-                label, entry.name, part, spot.x, spot.y, spot.rotated, _metadata(entry, part.name, copy)))
+        for (entry, copy), spots in zip(units, pack_units(sizes, printer)):
+            for part, (bed, x, y, turned) in zip(results[entry.index].parts, spots):
+                label = f"{entry.name} {part.name}" + (f" #{copy}" if entry.quantity > 1 else "")
+                beds.setdefault(bed, []).append(PlacedPart(
+                    label, entry.name, part, x, y, turned, _metadata(entry, part.name, copy)))
         for bed in sorted(beds):
             plates.append(Plate(len(plates) + 1, printer, beds[bed]))
     return plates, dropped
 
 
 def too_big(entries: list[Entry], results: dict[int, EntryResult]) -> dict[int, str]:
-    """Entry index -> why it is left out: a built part larger than its printer's bed."""
-    from wheelstep_cli.geometry.packing import fits_bed
-
+    """Entry index -> why it is left out: a built part larger or taller than its printer's bed."""
     dropped: dict[int, str] = {}
     for entry in entries:
         result = results[entry.index]
         if result.error:
             continue
-        printer = entry.printer
         for part in result.parts:
-            size = part.bounds[1, :2] - part.bounds[0, :2]
-            if fits_bed(tuple(size), printer.bed, printer.margin) is None:
-                dropped[entry.index] = (
-                    f"part '{part.name}' ({size[0]:.1f} x {size[1]:.1f} mm) does not fit the bed of "
-                    f"printer '{printer.name}' ({printer.bed[0]:g} x {printer.bed[1]:g} mm with "
-                    f"{printer.margin:g} mm margins)")
+            problem = size_problem(part.name, part.bounds, entry.printer)
+            if problem is not None:
+                dropped[entry.index] = problem
                 break
     return dropped

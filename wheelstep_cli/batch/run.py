@@ -69,14 +69,29 @@ def _files(plan, out: Path, plates, rendered, built, results, failed) -> dict[Pa
     from wheelstep_cli.batch.mass import masses
     from wheelstep_cli.render.print_sheet import print_sheet_bytes
 
+    from wheelstep_cli.formats.slicer_config import slicer_ini_bytes
+
     files: dict[Path, bytes] = {}
     for plate in plates:
         threemf, png = rendered[plate.number]
         files[out / f"{plate.stem}.3mf"] = threemf
         files[out / f"{plate.stem}.png"] = png
+        printer = plate.printer
+        files[out / f"{_ini_stem(printer.name)}.ini"] = slicer_ini_bytes(
+            printer.slicer_config(), f"wheelstep batch: PrusaSlicer settings of printer {printer.name} "
+                                     "(also inside each of its plates)")
     for entry in built:
         files[out / "reports" / f"{entry.name}.json"] = entry_report_bytes(entry, results[entry.index])
     files[out / "print-sheet.md"] = print_sheet_bytes(plan, plates, built, results, failed,
                                                       masses(built, results))
     files[out / MANIFEST] = manifest_bytes(plan, out, files, plates, built, results, failed)
     return files
+
+
+def _ini_stem(printer: str) -> str:
+    """``fdm-0.4-pla`` -> itself; a profile given as ``my-printer.yaml`` -> ``my-printer``."""
+    name = Path(printer).name
+    for suffix in (".yaml", ".yml"):
+        if name.endswith(suffix):
+            return name[: -len(suffix)]
+    return name

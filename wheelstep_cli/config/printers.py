@@ -1,8 +1,9 @@
 """Printer/material profiles (``profiles/*.yaml`` with a ``printer`` section).
 
-They hold what changes the printed geometry (bed size, hole compensation, extra tooth
-clearance, elephant-foot inset, material density) and the recommended slicer settings,
-which are only passed on to the print sheet.
+They hold what changes the printed geometry (bed size and height, hole compensation, extra
+tooth clearance, elephant-foot inset, material density), the skirt and brim, and the slicer
+settings (PrusaSlicer option names), which every plate carries as PrusaSlicer's
+configuration and the print sheet lists.
 """
 
 from __future__ import annotations
@@ -44,7 +45,11 @@ class PrinterSection(BaseModel):
     technology: Technology
     bed: tuple[BedSize, BedSize] = Field(json_schema_extra={
         "limit": "must be [X, Y] in mm, each > 0 and <= 2000"})
+    max_height: Real = length(..., gt=0, le=2000)
     margin: Real = length(5.0, ge=0, le=50)
+    skirts: int = Field(1, strict=True, ge=0, le=20)
+    skirt_distance: Real = length(6.0, ge=0, le=50)
+    brim_width: Real = length(0.0, ge=0, le=50)
     hole_compensation: Real = length(0.0, ge=-1, le=1)
     tooth_clearance: Real = length(0.0, ge=0, le=1)
     elephant_foot_height: Real = length(0.0, ge=0, le=2)
@@ -77,7 +82,11 @@ class Printer:
     description: str
     technology: str
     bed: tuple[float, float]
+    max_height: float
     margin: float
+    skirts: int
+    skirt_distance: float
+    brim_width: float
     hole_compensation: float
     tooth_clearance: float
     elephant_foot_height: float
@@ -93,6 +102,29 @@ class Printer:
         return {"hole_compensation": self.hole_compensation, "tooth_clearance": self.tooth_clearance,
                 "elephant_foot_height": self.elephant_foot_height,
                 "elephant_foot_inset": self.elephant_foot_inset}
+
+    @property
+    def edge_margin(self) -> float:
+        """Least distance (mm) from a part to a bed edge: the margin, or more when the brim
+        and the skirt (its distance plus its loops, each a first-layer line of twice the
+        nozzle, PrusaSlicer's default width) need it, plus one line to spare."""
+        line = 2.0 * float(self.slicer.get("nozzle_diameter", 0.4))
+        skirt = self.skirt_distance + self.skirts * line if self.skirts else 0.0
+        return max(self.margin, self.brim_width + skirt + line)
+
+    def slicer_config(self) -> dict[str, Any]:
+        """PrusaSlicer's configuration of a plate: the bed (shape and height), skirt, brim,
+        then the profile's slicer settings (PrusaSlicer option names)."""
+        x, y = self.bed
+        config: dict[str, Any] = {"bed_shape": f"0x0,{x:g}x0,{x:g}x{y:g},0x{y:g}",
+                                  "max_print_height": f"{self.max_height:g}"}
+        if self.technology == "resin":
+            config["printer_technology"] = "SLA"
+        else:
+            config.update(skirts=self.skirts, skirt_distance=f"{self.skirt_distance:g}",
+                          brim_width=f"{self.brim_width:g}")
+        config.update(self.slicer)
+        return config
 
 
 def is_printer_profile(data: Any) -> bool:
@@ -113,9 +145,16 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
     section, material = profile.printer, profile.material
     raw = Path(path).read_bytes()
     return Printer(name=name, description=profile.description or name, technology=section.technology,
-                   bed=tuple(section.bed), margin=section.margin,
+                   bed=tuple(section.bed), max_height=section.max_height, margin=section.margin,
+                   skirts=section.skirts, skirt_distance=section.skirt_distance,
+                   brim_width=section.brim_width,
                    hole_compensation=section.hole_compensation, tooth_clearance=section.tooth_clearance,
                    elephant_foot_height=section.elephant_foot_height,
                    elephant_foot_inset=section.elephant_foot_inset, material=material.name,
                    density=material.density, slicer=dict(profile.slicer),
                    file_name=Path(path).name, sha256=hashlib.sha256(raw).hexdigest())
+
+
+#: The printer a command uses when none is named.
+DEFAULT_PRINTER = "fdm-0.4-pla"
+

@@ -14,12 +14,18 @@ from pathlib import Path
 from typing import Any
 
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
+from wheelstep_cli.config.printers import DEFAULT_PRINTER, Printer, printer_from_profile
 from wheelstep_cli.config.schema import InvalidInput, Issue
 from wheelstep_cli.errors import DesignError
 
 
 def shipped_profiles() -> Path:
-    """Folder of the presets installed with the package."""
+    """Folder of the presets installed with the package: in a source checkout the
+    ``profiles/`` folder beside the package (an editable install may map the package data to
+    another checkout), else the installed package data."""
+    source = Path(__file__).resolve().parents[2] / "profiles"
+    if (source / "fdm-0.4-pla.yaml").is_file():
+        return source
     return Path(str(importlib.resources.files("wheelstep_cli.profiles")))
 
 
@@ -103,3 +109,9 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
 def load_design_profile(name_or_path: str):
     """Find and check a design profile (a name or a path), see :func:`design_from_file`."""
     return design_from_file(name_or_path, find_profile(name_or_path))
+
+
+def load_printer(name: str = DEFAULT_PRINTER) -> Printer:
+    """The printer profile ``name`` (a preset name or a path), checked."""
+    path = find_profile(name)
+    return printer_from_profile(name, path, profile_label(path))

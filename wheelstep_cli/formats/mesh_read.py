@@ -2,7 +2,7 @@
 
 The part's own frame is kept: its rotation axis is the mesh's z axis through
 x = y = 0, as ``wheelstep gears`` writes them (3MF build-item transforms, which only
-place parts on the plate, are ignored). Lengths in mm.
+place parts on the plate, are read but not applied). Lengths in mm.
 """
 
 from __future__ import annotations
@@ -10,6 +10,7 @@ from __future__ import annotations
 import io
 import zipfile
 import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -20,6 +21,19 @@ from wheelstep_cli.geometry.solids import section_outline
 _CORE_NS = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
 _UNITS_MM = {"micron": 1e-3, "millimeter": 1.0, "centimeter": 10.0, "inch": 25.4,
              "foot": 304.8, "meter": 1000.0}
+
+
+@dataclass(frozen=True)
+class MeshObject:
+    """One build item of a 3MF: the object's mesh in its own frame (mm), the item's transform
+    (4 x 3, row vectors: placed = [x y z 1] @ transform) and the object's metadata (names
+    without the ``wheelstep:`` prefix)."""
+
+    name: str
+    vertices: np.ndarray
+    faces: np.ndarray
+    transform: np.ndarray
+    metadata: dict[str, str] = field(default_factory=dict)
 
 
 def split_mesh_spec(spec: str) -> tuple[Path, str | None]:
@@ -40,19 +54,24 @@ def read_mesh(spec: str, param: str, default_name: str | None = None) -> tuple[n
     if not path.is_file():
         raise DesignError(param, str(spec), "no such file")
     suffix = path.suffix.lower()
+    if suffix == ".3mf":
+        return _read_3mf_object(path, name, default_name, param)
+    if suffix == ".stl":
+        if name is not None:
+            raise DesignError(param, str(spec), "an STL file holds one mesh; drop ':NAME'")
+        return _readable(param, str(spec), "STL", lambda: _read_stl(path))
+    raise DesignError(param, str(spec), "must be an .stl or .3mf file")
+
+
+def _readable(param: str, where: str, kind: str, read):
+    """``read()``, any failure but a DesignError turned into one naming ``param``."""
     try:
-        if suffix == ".3mf":
-            return _read_3mf_object(path, name, default_name, param)
-        if suffix == ".stl":
-            if name is not None:
-                raise DesignError(param, str(spec), "an STL file holds one mesh; drop ':NAME'")
-            return _read_stl(path)
+        return read()
     except DesignError:
         raise
     except Exception as err:  # malformed files of every kind end here
-        raise DesignError(param, str(spec), f"cannot be read as {suffix[1:].upper()} "
+        raise DesignError(param, where, f"cannot be read as {kind} "
                           f"({type(err).__name__}: {str(err)[:80]})") from None
-    raise DesignError(param, str(spec), "must be an .stl or .3mf file")
 
 
 def _read_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
@@ -64,21 +83,54 @@ def _read_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64)
 
 
-def _read_3mf_object(path: Path, name: str | None, default_name: str | None,
-                     param: str) -> tuple[np.ndarray, np.ndarray]:
-    """Mesh of one named object of a 3MF package, in its own frame (mm)."""
-    with zipfile.ZipFile(path) as zf:
-        model_name = _model_part(zf)
-        root = ET.parse(io.BytesIO(zf.read(model_name))).getroot()
+def read_3mf_objects(path: Path, param: str) -> list[MeshObject]:
+    """Every build item of a 3MF package (each object once if it has no build), own frames."""
+    def read() -> list[MeshObject]:
+        with zipfile.ZipFile(path) as zf:
+            root = ET.parse(io.BytesIO(zf.read(_model_part(zf)))).getroot()
+        return _objects_of(root)
+
+    return _readable(param, str(path), "3MF", read)
+
+
+def _objects_of(root) -> list[MeshObject]:
     scale = _UNITS_MM.get(root.get("unit", "millimeter"))
     if scale is None:
         raise ValueError(f"unknown unit {root.get('unit')!r}")
     ns = {"m": _CORE_NS}
-    objects = {}
+    meshes = {}
     for obj in root.iterfind("m:resources/m:object", ns):
         mesh = obj.find("m:mesh", ns)
         if mesh is not None:
-            objects[obj.get("name") or f"object {obj.get('id')}"] = mesh
+            meta = {m.get("name", "").removeprefix("wheelstep:"): (m.text or "")
+                    for m in obj.iterfind("m:metadatagroup/m:metadata", ns)}
+            meshes[obj.get("id")] = (obj.get("name") or f"object {obj.get('id')}", mesh, meta)
+    items = [(i.get("objectid"), i.get("transform")) for i in root.iterfind("m:build/m:item", ns)]
+    items = [i for i in items if i[0] in meshes] or [(oid, None) for oid in meshes]
+    objects = []
+    for oid, transform in items:
+        name, mesh, meta = meshes[oid]
+        vertices, faces = _mesh_arrays(mesh, ns, name)
+        matrix = np.vstack([np.eye(3), np.zeros(3)]) if not transform else \
+            np.array([float(t) for t in transform.split()]).reshape(4, 3)
+        objects.append(MeshObject(name, vertices * scale, faces, matrix, meta))
+    return objects
+
+
+def _mesh_arrays(mesh, ns, name: str) -> tuple[np.ndarray, np.ndarray]:
+    vertices = np.array([[float(v.get(k)) for k in "xyz"]
+                         for v in mesh.iterfind("m:vertices/m:vertex", ns)], dtype=float)
+    faces = np.array([[int(t.get(k)) for k in ("v1", "v2", "v3")]
+                      for t in mesh.iterfind("m:triangles/m:triangle", ns)], dtype=np.int64)
+    if len(faces) == 0 or faces.min() < 0 or faces.max() >= len(vertices):
+        raise ValueError(f"object {name!r} has no valid triangles")
+    return vertices, faces
+
+
+def _read_3mf_object(path: Path, name: str | None, default_name: str | None,
+                     param: str) -> tuple[np.ndarray, np.ndarray]:
+    """Mesh of one named object of a 3MF package, in its own frame (mm)."""
+    objects = {o.name: o for o in read_3mf_objects(path, param)}
     if not objects:
         raise DesignError(param, str(path), "holds no mesh object")
     wanted = name
@@ -88,14 +140,7 @@ def _read_3mf_object(path: Path, name: str | None, default_name: str | None,
         names = ", ".join(sorted(objects))
         raise DesignError(param, f"{path}:{wanted}" if wanted else str(path),
                           f"name one of its objects as FILE.3mf:NAME ({names})")
-    mesh = objects[wanted]
-    vertices = np.array([[float(v.get(k)) for k in "xyz"]
-                         for v in mesh.iterfind("m:vertices/m:vertex", ns)], dtype=float)
-    faces = np.array([[int(t.get(k)) for k in ("v1", "v2", "v3")]
-                      for t in mesh.iterfind("m:triangles/m:triangle", ns)], dtype=np.int64)
-    if len(faces) == 0 or faces.min() < 0 or faces.max() >= len(vertices):
-        raise ValueError(f"object {wanted!r} has no valid triangles")
-    return vertices * scale, faces
+    return objects[wanted].vertices, objects[wanted].faces
 
 
 def _model_part(zf: zipfile.ZipFile) -> str:

@@ -9,7 +9,7 @@ All in mm; ``margin`` is kept between boxes and to the bed edges.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 
 @dataclass(frozen=True)
@@ -86,6 +86,15 @@ def pack_boxes(sizes: list[tuple[float, float]], bed: tuple[float, float],
         _raise_skyline(bed.skyline, x, bw + margin, y + bh + margin)
         placed.append(Placement(key, index, margin + x, margin + y, turned))
     return sorted(placed, key=lambda p: p.key)
+
+
+def pack_on_bed(sizes: list[tuple[float, float]], bed: tuple[float, float], gap: float,
+                edge: float) -> list[Placement]:
+    """:func:`pack_boxes` with ``gap`` mm between boxes and ``edge`` mm (at least ``gap``) from
+    the bed edges, e.g. room for a skirt."""
+    extra = max(0.0, edge - gap)
+    inner = (bed[0] - 2.0 * extra, bed[1] - 2.0 * extra)
+    return [replace(p, x=p.x + extra, y=p.y + extra) for p in pack_boxes(sizes, inner, gap)]
 
 
 def _lowest_spot(skyline: list[list[float]], w: float, h: float, width: float, depth: float):

@@ -15,10 +15,8 @@ from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, re
 from wheelstep_cli.geometry.solids import extrude_plate
 from wheelstep_cli.formats.jsonio import json_bytes
 from wheelstep_cli.formats.stl import stl_bytes
-from wheelstep_cli.formats.threemf import PlateObject, threemf_bytes
+from wheelstep_cli.parts.plate_layout import bed_plates, design_metadata, plate_files, require_on_bed
 
-#: Gap between parts on the plate, mm.
-PLATE_GAP = 5.0
 FORMATS = ("stl", "3mf", "both")
 
 
@@ -108,18 +106,6 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen)
 
 
-def plate_layout(parts: list[Part]) -> list[tuple[float, float, float]]:
-    """Translations (mm) putting parts side by side along X on the bed, all at z >= 0."""
-    shifts = []
-    x = PLATE_GAP
-    height = max(p.bounds[1, 1] - p.bounds[0, 1] for p in parts)
-    for part in parts:
-        lo, hi = part.bounds
-        shifts.append((x - lo[0], PLATE_GAP + (height - (hi[1] - lo[1])) / 2 - lo[1], -lo[2]))
-        x += hi[0] - lo[0] + PLATE_GAP
-    return shifts
-
-
 def partition_rows(partition: SectorPartition) -> list[dict]:
     """The sector table in degrees and mm, one dict per sector."""
     deg = np.degrees
@@ -189,20 +175,25 @@ def generated_report(pair: GearPair) -> dict:
     }
 
 
-def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both",
-                    meshing: dict | None = None) -> dict[Path, bytes]:
-    """File name -> contents for the pair: STL per gear, a 3MF plate, and gears.json."""
+def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both", meshing: dict | None = None,
+                    printer=None) -> dict[Path, bytes]:
+    """File name -> contents for the pair: STL per gear, the 3MF plate(s) laid out on
+    ``printer``'s bed (a config.printers.Printer; default the fdm-0.4-pla preset) as
+    gears.3mf, or gears-1.3mf and gears-2.3mf when both do not fit on one, and gears.json.
+    A gear larger or taller than the bed is refused (DesignError) before anything is made."""
+    from wheelstep_cli.config.profiles import load_printer
+
+    printer = printer or load_printer()
     files: dict[Path, bytes] = {}
     parts = [pair.pinion, pair.wheel]
+    require_on_bed(parts, printer, "thickness", pair.spec.thickness)
     if fmt in ("stl", "both"):
         for part in parts:
             files[out / f"{part.name}.stl"] = stl_bytes(part.vertices, part.faces, f"wheelstep {part.name}")
     if fmt in ("3mf", "both"):
-        meta = {k: f"{v:g}" if isinstance(v, float) else str(v)
-                for k, v in pair.spec.model_dump().items() if v is not None}
-        objects = [PlateObject(part.name, part.vertices, part.faces, shift, meta)
-                   for part, shift in zip(parts, plate_layout(parts))]
-        files[out / "gears.3mf"] = threemf_bytes(
-            objects, {"Title": "wheelstep gear pair", "Application": "wheelstep"})
+        meta = design_metadata(pair.spec.model_dump())
+        plates = bed_plates(parts, printer, [{"part": p.name, "pair": "gears", **meta} for p in parts])
+        for name, data in plate_files("gears", plates, printer, "wheelstep gear pair").items():
+            files[out / name] = data
     files[out / "gears.json"] = json_bytes(gear_pair_report(pair, meshing))
     return files

@@ -69,3 +69,25 @@ def written_pair_files(check: WrittenPairCheck, report: MeshingReport) -> dict[P
         return {}
     title = f"{Path(check.pinion).name} + {Path(check.wheel).name} at {check.spec.install_distance:g} mm"
     return {check.plot: meshing_plot_png(report, title)}
+
+
+def plate_pair_outlines(pair) -> tuple[np.ndarray, np.ndarray]:
+    """Mid-thickness sections (mm) of a plate pair's gears, each in its own object frame
+    (the build-item transform only placed it on the plate)."""
+    from wheelstep_cli.geometry.solids import section_outline
+
+    return (section_outline(pair.pinion.vertices, pair.pinion.faces, "pinion"),
+            section_outline(pair.wheel.vertices, pair.wheel.faces, "wheel"))
+
+
+def run_plate_pair_check(pair, samples: int, window: float | None,
+                         progress: Callable[[int, int], None] | None = None
+                         ) -> tuple[MeshingReport, dict]:
+    """Check a pair found on plates (parts.plate_pairs.PlatePair) with the law and installed
+    distance of the design in its metadata; returns the report and its summary."""
+    check = WrittenPairCheck(f"{pair.files[0]}:{pair.pinion.name}", f"{pair.files[1]}:{pair.wheel.name}",
+                             pair.spec, samples, window)
+    design_law(pair.spec)
+    check.validate()
+    report, summary = run_written_pair_check(check, plate_pair_outlines(pair), progress)
+    return report, {"pair": pair.pair, "distance_mm": pair.spec.install_distance, **summary}

@@ -23,7 +23,7 @@ from wheelstep_cli.geometry.solids import bore_segments, circle, extrude_with_so
 from wheelstep_cli.formats.dxf import polyline_dxf_bytes
 from wheelstep_cli.formats.jsonio import csv_bytes, json_bytes
 from wheelstep_cli.formats.stl import stl_bytes
-from wheelstep_cli.formats.threemf import PlateObject, threemf_bytes
+from wheelstep_cli.parts.plate_layout import bed_plates, design_metadata, plate_files, require_on_bed
 from wheelstep_cli.mechanism.crank import CrankMechanism
 from wheelstep_cli.mechanism.sole import contact_angles, sole_curvature_radius, sole_profile
 
@@ -34,7 +34,6 @@ MIN_WALL = 2.0
 #: The socket cutter sticks out of the top face by this much, so no skin is left, mm.
 CUT_OVERSHOOT = 1.0
 FORMATS = ("stl", "3mf", "both")
-PLATE_GAP = 5.0
 SPEC_KEYS = tuple(ShoeSpec.model_fields)
 
 
@@ -150,20 +149,24 @@ def shoe_report(shoe: Shoe) -> dict:
     }
 
 
-def shoe_files(shoe: Shoe, out: Path, fmt: str = "both") -> dict[Path, bytes]:
-    """File name -> contents: shoe.stl / shoe.3mf, shoe.json, shoe-profile.csv and .dxf."""
+def shoe_files(shoe: Shoe, out: Path, fmt: str = "both", printer=None) -> dict[Path, bytes]:
+    """File name -> contents: shoe.stl / shoe.3mf (on ``printer``'s bed, a config.printers.Printer,
+    default the fdm-0.4-pla preset), shoe.json, shoe-profile.csv and .dxf. A shoe larger or
+    taller than the bed is refused (DesignError) before anything is made."""
+    from wheelstep_cli.config.profiles import load_printer
+
     require(fmt in FORMATS, "format", fmt, f"must be one of {', '.join(FORMATS)}")
+    printer = printer or load_printer()
     part = shoe.part
+    require_on_bed([part], printer, "width", shoe.spec.width)
     files: dict[Path, bytes] = {}
     if fmt in ("stl", "both"):
         files[out / "shoe.stl"] = stl_bytes(part.vertices, part.faces, "wheelstep shoe")
     if fmt in ("3mf", "both"):
-        meta = {k: f"{v:g}" for k, v in resolved_parameters(shoe).items()}
-        lo = part.bounds[0]
-        shift = (PLATE_GAP - lo[0], PLATE_GAP - lo[1], -lo[2])
-        files[out / "shoe.3mf"] = threemf_bytes(
-            [PlateObject(part.name, part.vertices, part.faces, shift, meta)],
-            {"Title": "wheelstep support shoe", "Application": "wheelstep"})
+        meta = {"part": "shoe", **design_metadata(resolved_parameters(shoe))}
+        plates = bed_plates([part], printer, [meta])
+        for name, data in plate_files("shoe", plates, printer, "wheelstep support shoe").items():
+            files[out / name] = data
     files[out / "shoe.json"] = json_bytes(shoe_report(shoe))
     files[out / "shoe-profile.csv"] = csv_bytes(["x_mm", "y_mm"], shoe.profile)
     files[out / "shoe-profile.dxf"] = polyline_dxf_bytes(shoe.profile)

@@ -50,8 +50,9 @@ def test_mesh_check_on_the_written_files_agrees_with_gears_json(paper_pair, cli,
         assert measured[key] == pytest.approx(stored[key], rel=0.02), key
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # the 3MF objects, by default name and by explicit name, give the same answer
-    three = cli("mesh-check", paper_pair / "gears.3mf", f"{paper_pair / 'gears.3mf'}:wheel",
-                "--json", "--samples", "384")
+    # (the full-scale pair is on two plates, one gear each: gears-1.3mf holds the wheel)
+    three = cli("mesh-check", paper_pair / "gears-2.3mf", f"{paper_pair / 'gears-1.3mf'}:wheel",
+                "--distance", "144", "--json", "--samples", "384")
     stl = cli("mesh-check", paper_pair / "pinion.stl", paper_pair / "wheel.stl",
               "--json", "--samples", "384")
     a, b = json.loads(three.stdout), json.loads(stl.stdout)

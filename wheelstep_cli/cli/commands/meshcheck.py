@@ -14,12 +14,17 @@ Plot = plot_option("the transfer function, TE and hub speed")
 
 
 def mesh_check(
-    pinion: str = typer.Argument(..., help="Pinion mesh: FILE.stl, FILE.3mf or FILE.3mf:NAME."),
-    wheel: str = typer.Argument(..., help="Wheel mesh: FILE.stl, FILE.3mf or FILE.3mf:NAME."),
+    pinion: str = typer.Argument(..., help="Pinion mesh: FILE.stl, FILE.3mf or FILE.3mf:NAME; "
+                                           "alone, a plate (3MF) whose gear pairs are found by "
+                                           "their metadata."),
+    wheel: Optional[str] = typer.Argument(None, help="Wheel mesh: FILE.stl, FILE.3mf or "
+                                                     "FILE.3mf:NAME; or a second plate."),
     distance: Annotated[Optional[float], opt("--distance", "-d", help="Installed centre distance, mm.",
                                              shown="the design's, 144")] = None,
     a: A = None, b: B = None, c: C = None, turns: Turns = None,
     center_distance: CenterDistance = None, law_csv: LawCsv = None, profile: Profile = None,
+    pair: Annotated[Optional[str], opt("--pair", help="On plates: the pair to check (its "
+                                                      "wheelstep:pair id).", shown="every pair")] = None,
     samples: Annotated[int, opt("--samples", help="Poses over one period of the pinion.")] = 1536,
     window: Annotated[Optional[float], opt("--window", help="Half-height of the mesh window round "
                                                             "the line of centres, mm.",
@@ -29,16 +34,38 @@ def mesh_check(
 ) -> None:
     """Section two gear meshes at mid-thickness and check them over one period of the law:
     interference, backlash, transmission error and hub speed ripple. The law is the crank
-    law of the design, or any law given as --law-csv. Exit 1 if they interfere or lose
-    contact."""
+    law of the design, or any law given as --law-csv. Given plates (3MF written by wheelstep),
+    the pinion and wheel of each pair are found by their metadata and checked with the law and
+    installed distance stored there. Exit 1 if they interfere or lose contact."""
+    from wheelstep_cli.parts.plate_pairs import is_plate_input
+
+    show = Output(json, quiet, verbose)
+    design = {"distance": distance, "a": a, "b": b, "c": c, "turns": turns,
+              "center_distance": center_distance, "law_csv": law_csv, "profile": profile}
+    if is_plate_input(pinion, wheel):
+        failed = _check_plates(show, [pinion] + ([wheel] if wheel else []), pair, design, samples,
+                               window, plot, dry_run, quiet)
+    else:
+        failed = _check_meshes(show, pinion, wheel, pair, design, samples, window, plot, dry_run, quiet)
+    if failed:
+        raise typer.Exit(1)
+
+
+def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, samples: int, window,
+                  plot, dry_run: bool, quiet: bool) -> bool:
+    """Two meshes named on the command line, the design from the options."""
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.config.resolve import gear_pair_spec
+    from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.mesh_check_files import (WrittenPairCheck, read_written_pair,
                                                       run_written_pair_check, written_pair_files)
 
-    show = Output(json, quiet, verbose)
-    spec = gear_pair_spec(profile, a=a, b=b, c=c, turns=turns, center_distance=center_distance,
-                          install_distance=distance, law_csv=str(law_csv) if law_csv else None)
+    if pair is not None:
+        raise DesignError("pair", pair, "picks a pair on plates; give one or two 3MF plates")
+    law_csv = design["law_csv"]
+    spec = gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
+                          turns=design["turns"], center_distance=design["center_distance"],
+                          install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None)
     check = WrittenPairCheck(pinion, wheel, spec, samples, window, plot)
     show.parameters(vars(spec))
     outlines = read_written_pair(check)
@@ -48,14 +75,47 @@ def mesh_check(
     show.write(files, dry_run)
     show.report(summary, lambda: _lines(summary, spec.install_distance, samples))
     show.files(files, dry_run)
-    if report.interferes or report.contact_lost:
-        raise typer.Exit(1)
+    return report.interferes or report.contact_lost
+
+
+def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: int, window, plot,
+                  dry_run: bool, quiet: bool) -> bool:
+    """Every gear pair of the plates (or the one --pair names), designs from their metadata."""
+    from wheelstep_cli.cli.progress import with_progress
+    from wheelstep_cli.errors import DesignError, require
+    from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, run_plate_pair_check, written_pair_files
+    from wheelstep_cli.parts.plate_pairs import find_plate_pairs
+
+    for name, value in design.items():
+        if value is not None:
+            raise DesignError(name, value, "comes from the plate's metadata; to give it, name the "
+                                           "two meshes (PINION WHEEL) instead of plates")
+    pairs = find_plate_pairs(plates, pair)
+    require(plot is None or len(pairs) == 1, "plot", str(plot), "draws one pair: add --pair ID")
+    summaries, failed, files = [], False, {}
+    for found in pairs:
+        report, summary = with_progress(not quiet, f"meshing check {found.pair}", run_plate_pair_check,
+                                        found, samples, window)
+        summaries.append(summary)
+        failed = failed or report.interferes or report.contact_lost
+        files.update(written_pair_files(WrittenPairCheck(*summary_files(summary), found.spec, samples,
+                                                         window, plot), report))
+    show.write(files, dry_run)
+    show.report({"pairs": summaries}, lambda: [line for s in summaries
+                                               for line in _lines(s, s["distance_mm"], samples)])
+    show.files(files, dry_run)
+    return failed
+
+
+def summary_files(summary: dict) -> tuple[str, str]:
+    return summary["pinion"], summary["wheel"]
 
 
 def _lines(summary: dict, distance: float, samples: int) -> list[str]:
     from wheelstep_cli.parts.mesh_check import meshing_lines
 
-    return [f"meshing check: {summary['pinion']} + {summary['wheel']} at {distance:g} mm, "
+    pair = f"pair {summary['pair']}: " if "pair" in summary else ""
+    return [f"meshing check: {pair}{summary['pinion']} + {summary['wheel']} at {distance:g} mm, "
             f"{samples} poses over {summary['period_deg']:g} deg of pinion", *meshing_lines(summary)]
 
 

@@ -1,0 +1,97 @@
+"""`gears` lays the pair out on the printer's bed; `mesh-check PLATE.3mf` finds the pair by its
+metadata and reproduces what `gears` measured; parts too large or tall are refused."""
+
+import json
+
+import numpy as np
+import pytest
+
+from wheelstep_cli.formats.mesh_read import read_3mf_objects
+
+
+@pytest.fixture(scope="module")
+def desk_pair(tmp_path_factory):
+    from wheelstep_cli.cli import run
+
+    out = tmp_path_factory.mktemp("desk")
+    assert run(["gears", "--profile", "desk-demo", "--out", str(out), "-q"]) == 0
+    return out
+
+
+def _placed(obj) -> np.ndarray:
+    return np.column_stack([obj.vertices, np.ones(len(obj.vertices))]) @ obj.transform
+
+
+def test_mesh_check_on_gears_3mf_reproduces_the_gears_figures(desk_pair, cli):
+    stored = json.loads((desk_pair / "gears.json").read_text())["meshing"]
+    result = cli("mesh-check", desk_pair / "gears.3mf", "--json")
+    assert result.exit_code == 0, result.stderr
+    (measured,) = json.loads(result.stdout)["pairs"]
+    assert measured["pair"] == "gears" and measured["interference"] == stored["interference"]
+    for key in ("backlash_min_mm", "backlash_max_mm"):
+        assert measured[key] == pytest.approx(stored[key], rel=0.01), key
+    text = cli("mesh-check", desk_pair / "gears.3mf", "--pair", "gears", "--samples", "64")
+    assert text.exit_code == 0 and "pair gears" in text.stdout
+
+
+def test_gears_3mf_objects_keep_their_frame_and_lie_inside_the_bed(desk_pair):
+    objects = {o.metadata["part"]: o for o in read_3mf_objects(desk_pair / "gears.3mf", "x")}
+    assert set(objects) == {"pinion", "wheel"}
+    for obj in objects.values():
+        # the axis stays at the frame's origin: the bore is centred there
+        assert np.hypot(*obj.vertices[:, :2].mean(axis=0)) < 0.2 * np.ptp(obj.vertices[:, 0])
+        placed = _placed(obj)
+        assert placed[:, :2].min() >= 5.0 - 1e-6 and placed[:, :2].max() <= 256 - 5.0 + 1e-6
+        assert placed[:, 2].min() == pytest.approx(0.0, abs=1e-6)
+        assert obj.metadata["install_distance"] and obj.metadata["z"]
+
+
+@pytest.mark.parametrize("args, param", [
+    (["--distance", "70"], "--distance"), (["--a", "30"], "--a"), (["--pair", "nope"], "--pair")])
+def test_plate_mode_refuses_design_options_and_unknown_pairs(desk_pair, cli, args, param):
+    result = cli("mesh-check", desk_pair / "gears.3mf", *args)
+    assert result.exit_code == 2 and param in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1
+
+
+def test_two_meshes_that_are_not_a_pair_are_refused(desk_pair, cli, tmp_path):
+    other = tmp_path / "other"
+    assert cli("shoe", "--profile", "desk-demo", "--out", other, "-q").exit_code == 0
+    for args in ([other / "shoe.3mf"], [desk_pair / "gears.3mf", other / "shoe.3mf"]):
+        result = cli("mesh-check", *args)
+        assert result.exit_code == 2, result.stderr
+        assert len(result.stderr.strip().splitlines()) == 1
+        assert "gear pair" in result.stderr
+
+
+def test_two_mesh_form_still_works(desk_pair, cli):
+    result = cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile",
+                 "desk-demo", "--samples", "64", "--pair", "x")
+    assert result.exit_code == 2 and "--pair" in result.stderr
+
+
+@pytest.mark.parametrize("command, args, param", [
+    ("gears", ["--profile", "desk-demo", "--thickness", "300"], "--thickness"),
+    ("shoe", ["--profile", "desk-demo", "--width", "300"], "--width")])
+def test_part_taller_than_the_printer_prints_is_refused(cli, tmp_path, command, args, param):
+    result = cli(command, *args, "--out", tmp_path / "out")
+    assert result.exit_code == 2 and param in result.stderr and "250" in result.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_full_scale_pair_goes_on_two_plates_and_checks_as_a_pair(cli, tmp_path):
+    out = tmp_path / "big"
+    result = cli("gears", "--z", "48", "--out", out, "-q", "--json")
+    assert result.exit_code == 0, result.stderr
+    stored = json.loads(result.stdout)["meshing"]
+    assert not (out / "gears.3mf").exists()
+    plates = [out / "gears-1.3mf", out / "gears-2.3mf"]
+    for plate in plates:
+        (obj,) = read_3mf_objects(plate, "x")
+        placed = _placed(obj)
+        assert placed[:, :2].min() >= 5.0 - 1e-6 and placed[:, :2].max() <= 251.0 + 1e-6
+    check = cli("mesh-check", *plates, "--json", "--samples", "768")
+    assert check.exit_code == 0, check.stderr
+    (measured,) = json.loads(check.stdout)["pairs"]
+    assert measured["interference"] == stored["interference"]
+    assert measured["backlash_max_mm"] == pytest.approx(stored["backlash_max_mm"], rel=0.01)

@@ -1,0 +1,104 @@
+"""Parts laid out on a printer's bed: the size check (footprint and height against the bed),
+the packing onto as few plates as fit, and the design as 3MF object metadata. Lengths in mm."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from wheelstep_cli.config.printers import Printer
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.formats.threemf import PlateObject, placed_object
+
+
+def design_metadata(values: dict[str, Any]) -> dict[str, str]:
+    """A part's design parameters as 3MF metadata values (None left out, floats as %g)."""
+    return {k: f"{v:.12g}" if isinstance(v, float) else str(getattr(v, "value", v))
+            for k, v in values.items() if v is not None}
+
+
+def size_problem(name: str, bounds: np.ndarray, printer: Printer) -> str | None:
+    """Why a part of these bounds (2 x 3, mm) cannot go on the printer's bed, or None."""
+    from wheelstep_cli.geometry.packing import fits_bed
+
+    size = bounds[1] - bounds[0]
+    edge = printer.edge_margin
+    if fits_bed((size[0], size[1]), printer.bed, edge) is None:
+        return (f"part '{name}' ({size[0]:.1f} x {size[1]:.1f} mm) does not fit the bed of printer "
+                f"'{printer.name}' ({printer.bed[0]:g} x {printer.bed[1]:g} mm with {edge:g} mm "
+                f"margins: at most {printer.bed[0] - 2 * edge:g} x {printer.bed[1] - 2 * edge:g} mm)")
+    if size[2] > printer.max_height:
+        return (f"part '{name}' is {size[2]:.1f} mm tall; printer '{printer.name}' prints at most "
+                f"{printer.max_height:g} mm")
+    return None
+
+
+def require_on_bed(parts, printer: Printer, height_param: str, height: float) -> None:
+    """Refuse (DesignError) a part taller than the printer prints (named by ``height_param``,
+    the option that sets it) or larger than its bed (named ``printer``)."""
+    for part in parts:
+        size = part.bounds[1] - part.bounds[0]
+        if size[2] > printer.max_height:
+            raise DesignError(height_param, height, f"must be <= {printer.max_height:g} mm, the "
+                              f"greatest height printer '{printer.name}' prints")
+        problem = size_problem(part.name, part.bounds, printer)
+        if problem is not None:
+            raise DesignError("printer", printer.name, problem)
+
+
+def pack_units(units: list[list[tuple[float, float]]], printer: Printer
+               ) -> list[list[tuple[int, float, float, bool]]]:
+    """Pack groups of parts (each a list of footprint sizes X, Y in mm) onto the printer's beds,
+    the parts of a group side by side in a row on one bed (a gear pair stays together) when
+    that row fits, else each on its own. Returns per group, per part: (bed, x, y, rotated),
+    (x, y) the lower-left corner of the part's (possibly turned) box."""
+    from wheelstep_cli.geometry.packing import fits_bed, pack_on_bed
+
+    gap, edge = printer.margin, printer.edge_margin
+    boxes, owners = [], []
+    for u, sizes in enumerate(units):
+        row = (sum(w for w, _ in sizes) + gap * (len(sizes) - 1), max(h for _, h in sizes))
+        if len(sizes) > 1 and fits_bed(row, printer.bed, edge) is not None:
+            boxes.append(row)
+            owners.append((u, None))
+        else:
+            boxes.extend(sizes)
+            owners.extend((u, k) for k in range(len(sizes)))
+    placed: list[list] = [[None] * len(sizes) for sizes in units]
+    for (u, k), spot in zip(owners, pack_on_bed(boxes, printer.bed, gap, edge)):
+        if k is not None:
+            placed[u][k] = (spot.bed, spot.x, spot.y, spot.rotated)
+            continue
+        offset, depth = 0.0, max(h for _, h in units[u])
+        for k, (w, h) in enumerate(units[u]):
+            # turned by +90 deg, the row's box (x, y) -> (depth - y, x) goes up instead of right
+            corner = (spot.x + depth - h, spot.y + offset) if spot.rotated else (spot.x + offset, spot.y)
+            placed[u][k] = (spot.bed, *corner, spot.rotated)
+            offset += w + gap
+    return placed
+
+
+def bed_plates(parts, printer: Printer, metadata: list[dict[str, str]]) -> list[list[PlateObject]]:
+    """The parts packed onto as few of the printer's beds as fit, side by side on one when
+    they fit, each in its own frame with the build-item transform that places it."""
+    sizes = [tuple(p.bounds[1, :2] - p.bounds[0, :2]) for p in parts]
+    plates: dict[int, list[PlateObject]] = {}
+    for part, meta, (bed, x, y, turned) in zip(parts, metadata, pack_units([sizes], printer)[0]):
+        plates.setdefault(bed, []).append(
+            placed_object(part.name, part.vertices, part.faces, (x, y), turned, meta))
+    return [plates[bed] for bed in sorted(plates)]
+
+
+def plate_files(stem: str, plates: list[list[PlateObject]], printer: Printer,
+                title: str) -> dict[str, bytes]:
+    """File name -> 3MF bytes: ``STEM.3mf`` for one plate, ``STEM-1.3mf``, ``STEM-2.3mf``, ...
+    for more; each carries the printer's PrusaSlicer configuration."""
+    from wheelstep_cli.formats.slicer_config import slic3r_config_bytes
+    from wheelstep_cli.formats.threemf import threemf_bytes
+
+    config = slic3r_config_bytes(printer.slicer_config(), f"wheelstep: printer {printer.name}")
+    names = [f"{stem}.3mf"] if len(plates) == 1 else [f"{stem}-{i}.3mf" for i in range(1, len(plates) + 1)]
+    return {name: threemf_bytes(objects, {"Title": title, "Application": "wheelstep",
+                                          "printer": printer.name}, config)
+            for name, objects in zip(names, plates)}

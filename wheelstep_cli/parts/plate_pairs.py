@@ -1,0 +1,100 @@
+"""Gear pairs found on written plates (3MF) by their object metadata: ``wheelstep:part``
+(pinion, wheel) and ``wheelstep:pair`` (the same id on both gears of a pair), each object
+read in its own frame, its design rebuilt from the metadata. Lengths in mm."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from wheelstep_cli.config.specs import GearPairSpec
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.formats.mesh_read import MeshObject, read_3mf_objects, split_mesh_spec
+
+GEARS = ("pinion", "wheel")
+
+
+@dataclass(frozen=True)
+class PlatePair:
+    """A pinion and a wheel sharing a ``wheelstep:pair`` id, with the design they carry."""
+
+    pair: str
+    pinion: MeshObject
+    wheel: MeshObject
+    files: tuple[str, str]     # the files holding the pinion and the wheel
+    spec: GearPairSpec
+
+
+def is_plate_input(pinion: str, wheel: str | None) -> bool:
+    """Whether mesh-check finds the pair by metadata: one 3MF file, or two 3MF files (no
+    ``:NAME``) whose objects carry ``wheelstep:part``."""
+    specs = [pinion] if wheel is None else [pinion, wheel]
+    paths = [split_mesh_spec(s) for s in specs]
+    if wheel is None:
+        return True
+    if any(name is not None or path.suffix.lower() != ".3mf" or not path.is_file()
+           for path, name in paths):
+        return False
+    return all(any("part" in o.metadata for o in read_3mf_objects(path, param))
+               for (path, _), param in zip(paths, GEARS))
+
+
+def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePair]:
+    """The gear pairs of the plates ``files`` (each pair once, in file order; of two plates,
+    the pairs with a gear on each), or the one named ``pair``; refused (DesignError) when
+    there is none or the meshes are not a pair."""
+    groups: dict[str, dict[str, tuple[str, MeshObject]]] = {}
+    for file, param in zip(files, GEARS):
+        path = Path(file)
+        if path.suffix.lower() != ".3mf" or not path.is_file():
+            raise DesignError(param, file, "must be a 3MF plate written by wheelstep (or name two "
+                                           "meshes, the pinion and the wheel)")
+        for obj in read_3mf_objects(path, param):
+            part, pair_id = obj.metadata.get("part"), obj.metadata.get("pair")
+            if part in GEARS and pair_id:
+                groups.setdefault(pair_id, {}).setdefault(part, (file, obj))
+    complete = [k for k, g in groups.items() if len(g) == 2]
+    if len(set(files)) == 2:   # two plates name one pair across them: a gear from each
+        complete = [k for k in complete if groups[k]["pinion"][0] != groups[k]["wheel"][0]]
+    where = " + ".join(files)
+    if not complete:
+        what = "are not a gear pair" if len(files) == 2 else "holds no gear pair"
+        raise DesignError(GEARS[len(files) - 1], where, f"{what}: no pinion and wheel share a "
+                          "wheelstep:pair id in the 3MF metadata")
+    if pair is not None:
+        if pair not in complete:
+            raise DesignError("pair", pair, f"must be one of {', '.join(complete)}")
+        complete = [pair]
+    return [_plate_pair(k, groups[k]) for k in complete]
+
+
+def _plate_pair(pair: str, group: dict[str, tuple[str, MeshObject]]) -> PlatePair:
+    (p_file, pinion), (w_file, wheel) = group["pinion"], group["wheel"]
+    keys = set(GearPairSpec.model_fields)
+    design = {k: v for k, v in pinion.metadata.items() if k in keys}
+    if design != {k: v for k, v in wheel.metadata.items() if k in keys}:
+        raise DesignError("wheel", w_file, f"carries another design than the pinion of pair '{pair}'")
+    return PlatePair(pair, pinion, wheel, (p_file, w_file), spec_from_metadata(design, p_file))
+
+
+def spec_from_metadata(values: dict[str, str], file: str) -> GearPairSpec:
+    """The design stored as metadata text (numbers as %g), checked by its model."""
+    from pydantic import ValidationError
+
+    typed = {}
+    for key, text in values.items():
+        typed[key] = text
+        for kind in (int, float):
+            try:
+                typed[key] = kind(text)
+                break
+            except ValueError:
+                continue
+    if isinstance(typed.get("law_csv"), (int, float)):
+        typed["law_csv"] = values["law_csv"]
+    try:
+        return GearPairSpec(**typed)
+    except ValidationError as err:
+        first = err.errors()[0]
+        raise DesignError("pinion", file, f"metadata {'.'.join(map(str, first['loc']))} = "
+                          f"{first.get('input')!r}: {first['msg']}") from None
