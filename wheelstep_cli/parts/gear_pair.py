@@ -39,6 +39,7 @@ class GearPair:
     wheel: Part
     checks: dict[str, MeshReport] = field(default_factory=dict)
     generated: object = None   # gears.generated.GeneratedPair for generated teeth
+    printing: object = None    # parts.kinds.Printing when drawn for a printer (spec: the printed one)
 
     @property
     def wheel_teeth(self) -> int:
@@ -141,7 +142,7 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
         check = pair.checks[part.name]
         parts[part.name] = {"teeth": pair.spec.z if part.name == "pinion" else pair.wheel_teeth,
                             **part_record(part, check)}
-    report = {"tool": "wheelstep gears", "parameters": spec, "parts": parts}
+    report = {"tool": "wheelstep gears", "parameters": spec, **_printing(pair), "parts": parts}
     if pair.law is not None:
         report["u"] = pair.law.u
     if pair.partition is not None:
@@ -152,6 +153,17 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
     if meshing is not None:
         report["meshing"] = meshing
     return report
+
+
+def _printing(pair: GearPair) -> dict:
+    """The printer and the design's parameters (backlash resolved, mm) when drawn for a printer."""
+    from wheelstep_cli.parts.kinds import printing_record
+
+    record = printing_record(pair.printing, pair.spec)
+    if record:
+        record["parameters"]["backlash"] = pair.printing.design.backlash_mm
+        record["printed_parameters"]["backlash"] = pair.spec.backlash_mm
+    return record
 
 
 def generated_report(pair: GearPair) -> dict:

@@ -51,6 +51,7 @@ class Shoe:
     socket_floor: float   # least plastic between the socket and the sole, mm
     parts: list[Part]
     checks: dict[str, MeshReport] = field(default_factory=dict)
+    printing: object = None   # parts.kinds.Printing when drawn for a printer (spec: the printed one)
 
     @property
     def part(self) -> Part:
@@ -130,12 +131,16 @@ def resolved_parameters(shoe: Shoe) -> dict[str, float]:
 
 
 def shoe_report(shoe: Shoe) -> dict:
-    """Inputs, sizing, the sole (shoe frame) and the part with its checks, as plain data."""
+    """Inputs, sizing, the sole (shoe frame) and the part with its checks, as plain data
+    (with the printer and the printed parameters when drawn for one)."""
+    from wheelstep_cli.parts.kinds import printing_record
+
     part = shoe.part
     check = shoe.checks[part.name]
     return {
         "tool": "wheelstep shoe",
         "parameters": resolved_parameters(shoe),
+        **printing_record(shoe.printing, shoe.spec),
         **sizing(shoe.design),
         "profile_frame": "shoe frame: origin at the strut pivot, Y along the strut towards the ground",
         "profile": shoe.profile,
