@@ -102,6 +102,18 @@ def for_printer(kind: PartKind, built, printer, design=None):
     return replace(compensated, printing=Printing(printer, design))
 
 
+def build_for_printer(kind_name: str, spec, printer=None):
+    """Build ``spec``'s part as batch builds it for ``printer`` (compensated by
+    :func:`printed_spec` and :func:`for_printer`); without a printer exactly as designed."""
+    kind = KINDS[kind_name]
+    if printer is None:
+        return kind.build_part(spec)
+    printed = printed_spec(kind, spec, printer.hole_compensation, printer.tooth_clearance)
+    for problem in kind.problems(printed):
+        raise problem
+    return for_printer(kind, kind.build_part(printed), printer, spec)
+
+
 def printing_record(printing: Printing | None, printed) -> dict:
     """What a part report says of its printer: nothing without one; else the design's and the
     printed parameters (mm), the printer profile and the geometry it changed."""

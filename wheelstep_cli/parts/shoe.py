@@ -133,14 +133,12 @@ def resolved_parameters(shoe: Shoe) -> dict[str, float]:
 def shoe_report(shoe: Shoe) -> dict:
     """Inputs, sizing, the sole (shoe frame) and the part with its checks, as plain data
     (with the printer and the printed parameters when drawn for one)."""
-    from wheelstep_cli.parts.kinds import printing_record
-
     part = shoe.part
     check = shoe.checks[part.name]
     return {
         "tool": "wheelstep shoe",
         "parameters": resolved_parameters(shoe),
-        **printing_record(shoe.printing, shoe.spec),
+        **_printing(shoe),
         **sizing(shoe.design),
         "profile_frame": "shoe frame: origin at the strut pivot, Y along the strut towards the ground",
         "profile": shoe.profile,
@@ -153,6 +151,18 @@ def shoe_report(shoe: Shoe) -> dict:
             **part_record(part, check),
         },
     }
+
+
+def _printing(shoe: Shoe) -> dict:
+    """The printer and the design's and printed parameters (strut resolved, mm) when drawn for one."""
+    from wheelstep_cli.parts.kinds import printing_record
+
+    record = printing_record(shoe.printing, shoe.spec)
+    if record:
+        printed = resolved_parameters(shoe)
+        given = {k: float(v) for k, v in record["parameters"].items() if v is not None}
+        record.update(parameters={**printed, **given}, printed_parameters=printed)
+    return record
 
 
 def shoe_files(shoe: Shoe, out: Path, fmt: str = "both") -> dict[Path, bytes]:
