@@ -14,14 +14,19 @@ from wheelstep_cli.config.printers import Printer
 MANIFEST = "manifest.json"
 
 
-def previous_outputs(out: Path) -> set[str]:
-    """Files listed by an earlier batch's manifest in ``out`` (so they can be replaced cleanly)."""
+def previous_record(out: Path) -> tuple[dict[str, str], bool]:
+    """(relative name -> SHA-256 of the outputs listed by an earlier batch's manifest in ``out``,
+    whether that manifest.json is one: written by wheelstep batch, or absent)."""
+    from wheelstep_cli.formats.owned import read_record
+
+    path = out / MANIFEST
+    if not path.exists():
+        return {}, True
     try:
-        data = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
-        names = set(data.get("outputs", {})) | {MANIFEST}
-    except (OSError, ValueError, AttributeError):
-        return set()
-    return {n for n in names if isinstance(n, str) and ".." not in Path(n).parts and not Path(n).is_absolute()}
+        ours = json.loads(path.read_text(encoding="utf-8")).get("tool") == "wheelstep batch"
+    except (OSError, ValueError, AttributeError, UnicodeDecodeError):
+        ours = False
+    return (read_record(path, "outputs"), True) if ours else ({}, False)
 
 
 def part_summary(part: BuiltPart, printer: Printer) -> dict:

@@ -61,6 +61,8 @@ Printer = Annotated[Optional[str], opt(
                       "clearance, elephant-foot inset), as batch does.",
     shown="none: the geometry as designed")]
 Out = Annotated[Path, opt("--out", "-o", help="Output folder.")]
+Force = Annotated[bool, opt("--force", help="Overwrite files in the output folder that this "
+                                            "command did not write (refused otherwise).")]
 Format = Annotated[MeshFormat, opt("--format", help="Mesh files to write.")]
 # --- conventions of every command
 Json = Annotated[bool, opt("--json", help="Print the report as one JSON document on stdout "

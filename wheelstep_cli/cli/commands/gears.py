@@ -6,7 +6,7 @@ from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Format, Json, LawCsv, MeshFormat,
+from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Force, Format, Json, LawCsv, MeshFormat,
                                        Out, Printer, Profile, Quiet, Turns, Verbose, Z, opt)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec
@@ -120,6 +120,7 @@ def gears(
         "--allow-interference", help="Write the pair even if the meshing check finds "
                                      "overlapping teeth (the paper method's pair does, at the "
                                      "shoe handovers).")] = False,
+    force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Write the non-circular gear pair as printable STL/3MF meshes and gears.json.
@@ -136,7 +137,7 @@ def gears(
                           fillet=fillet, blend=blend, corner=corner.value if corner else None,
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
-    _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run)
+    _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force)
 
 
 def _printer(name: str | None):
@@ -147,7 +148,7 @@ def _printer(name: str | None):
 
 
 def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interference: bool,
-                dry_run: bool) -> None:
+                dry_run: bool, force: bool) -> None:
     """Build, check, write (unless refused or a dry run) and report the pair of ``spec``."""
     import typer
 
@@ -165,7 +166,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                    "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
     files = gear_pair_files(pair, out, fmt, record)
-    written = show.write(files, dry_run)
+    written = show.write_owned(out, "gears", files, dry_run, force)
     report = {**gear_pair_report(pair, record), "written": [str(p) for p in written]}
     show.report(report, lambda: _gears_lines(pair, record))
     _warn_interference(show, record)
