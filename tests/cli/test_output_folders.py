@@ -84,3 +84,13 @@ def test_files_of_every_writing_command_follow_the_umask(cli, tmp_path):
     files = [p for p in tmp_path.rglob("*") if p.is_file() and p.suffix != ".yaml"]
     assert len(files) >= 12
     assert {p.name: stat.S_IMODE(p.stat().st_mode) for p in files} == {p.name: 0o644 for p in files}
+
+
+def test_batch_dry_run_refuses_what_the_run_would_refuse(cli, tmp_path):
+    batch = write(tmp_path / "shoe1.yaml", SHOE)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "plate-1.png").write_text("my picture")
+    line = error_line(cli("batch", batch, "--out", out, "--jobs", "1", "--dry-run", "-q"))
+    assert "plate-1.png: exists and was not written by this command" in line
+    assert listing(out) == {"plate-1.png": b"my picture"}

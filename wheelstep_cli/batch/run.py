@@ -52,10 +52,19 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
         rendered = {number: (data, pictures[number]) for number, data in threemfs}
     failed, built = _sort_out(plan, results, dropped)
     files = _files(plan, out, plates, rendered, built, results, failed)
-    check_collisions(out, files, record, force, own=(MANIFEST,) if ours else ())
+    check_folder(out, files, force)
     written = write_files_atomic(files)
     remove_files(stale_files(out, files, record))
     return BatchOutcome(written, plates, failed, built)
+
+
+def check_folder(out: Path, paths, force: bool) -> None:
+    """Refuse (DesignError) writing ``paths`` into ``out`` over files an earlier batch there did
+    not write, as :func:`run_batch` does (for a dry run, built elsewhere)."""
+    from wheelstep_cli.formats.owned import check_collisions
+
+    record, ours = previous_record(out)
+    check_collisions(out, dict.fromkeys(paths, b""), record, force, own=(MANIFEST,) if ours else ())
 
 
 def _sort_out(plan: BatchPlan, results: dict[int, EntryResult], dropped: dict[int, str]):

@@ -54,6 +54,7 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool):
     import tempfile
 
     from wheelstep_cli.batch import run_batch
+    from wheelstep_cli.batch.run import check_folder
     from wheelstep_cli.cli.progress import Progress
     from wheelstep_cli.errors import DesignError
 
@@ -66,7 +67,9 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool):
                 return outcome, outcome.written
             with tempfile.TemporaryDirectory(prefix="wheelstep-dry-run-") as scratch:
                 outcome = run_batch(plan, Path(scratch), workers, bars)
-                return outcome, [out / p.relative_to(scratch) for p in outcome.written]
+                written = [out / p.relative_to(scratch) for p in outcome.written]
+                check_folder(out, written, force)   # what the real run would refuse
+                return outcome, written
     except OSError as err:
         raise DesignError("out", str(out), f"cannot be written ({err.strerror or err})") from None
 
