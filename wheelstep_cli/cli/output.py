@@ -72,7 +72,8 @@ class Output:
         there that this command did not write is refused unless ``force``; the record
         ``.wheelstep-COMMAND.json`` is written with them and the files of the previous run
         that this one does not write (and that are unchanged) are removed. Nothing with
-        ``dry_run`` (the check still runs). Returns the paths written, the record left out."""
+        ``dry_run`` (the check still runs). Returns the paths written (would be, with
+        ``dry_run``), the record last."""
         from wheelstep_cli.formats.atomic import remove_files
         from wheelstep_cli.formats.owned import check_collisions, read_record, record_bytes, stale_files
 
@@ -80,14 +81,14 @@ class Output:
         record = read_record(record_path)
         check_collisions(folder, files, record, force)
         if dry_run:
-            return []
+            return [*files, record_path]
         written = self.write({**files, record_path: record_bytes(f"wheelstep {command}", folder, files)},
                              dry_run)
         stale = stale_files(folder, files, record)
         remove_files(stale)
         for path in stale:
             self.detail(f"  removed {path} (written by an earlier run)")
-        return [p for p in written if p != record_path]
+        return written
 
     def files(self, paths: Iterable[Path], dry_run: bool, joined: bool = False) -> None:
         """Say which files were written (or would be, with ``dry_run``): one line each, or

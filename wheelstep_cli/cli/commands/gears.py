@@ -167,10 +167,10 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
         raise typer.Exit(1)
     files = gear_pair_files(pair, out, fmt, record)
     written = show.write_owned(out, "gears", files, dry_run, force)
-    report = {**gear_pair_report(pair, record), "written": [str(p) for p in written]}
+    report = {**gear_pair_report(pair, record), "written": [] if dry_run else [str(p) for p in written]}
     show.report(report, lambda: _gears_lines(pair, record))
     _warn_interference(show, record)
-    show.files(files if dry_run else written, dry_run, joined=True)
+    show.files(written, dry_run, joined=True)
 
 
 def _gears_lines(pair, record: dict) -> list[str]:

@@ -53,8 +53,9 @@ def shoe(
     files = shoe_files(built, out, fmt.value)
     written = show.write_owned(out, "shoe", files, dry_run, force)
     report = shoe_report(built)
-    show.report({**report, "written": [str(p) for p in written]}, lambda: _shoe_lines(built, report))
-    show.files(files if dry_run else written, dry_run, joined=True)
+    listed = [] if dry_run else [str(p) for p in written]
+    show.report({**report, "written": listed}, lambda: _shoe_lines(built, report))
+    show.files(written, dry_run, joined=True)
 
 
 def _shoe_lines(built, report: dict) -> list[str]:
