@@ -23,7 +23,7 @@ def default_pair(tmp_path_factory):
 
 def test_writes_printable_meshes_and_report(default_pair):
     names = sorted(p.name for p in default_pair.iterdir())
-    assert names == ["gears.3mf", "gears.json", "pinion.stl", "wheel.stl"]
+    assert names == [".wheelstep-gears.json", "gears.3mf", "gears.json", "pinion.stl", "wheel.stl"]
     report = json.loads((default_pair / "gears.json").read_text())
     for name in ("pinion", "wheel"):
         mesh = assert_printable_stl(default_pair / f"{name}.stl")

@@ -60,6 +60,6 @@ def test_gears_for_a_printer_match_the_batch_entry_figures(cli, tmp_path):
     assert cli("batch", batch, "--out", tmp_path / "b", "--jobs", "1").exit_code == 0
     entry = json.loads((tmp_path / "b" / "reports" / "pair.json").read_text())
     assert entry["meshing"] == gears["meshing"]
-    assert entry["printed_parameters"] == {**gears["printed_parameters"], "backlash": entry["printed_parameters"]["backlash"]}
+    assert entry["printed_parameters"] == gears["printed_parameters"]
     for name, part in gears["parts"].items():
         assert part["volume_mm3"] == pytest.approx(entry["printed_parts"][name]["volume_mm3"], rel=1e-12)
