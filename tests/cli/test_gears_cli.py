@@ -23,8 +23,10 @@ def default_pair(tmp_path_factory):
 
 def test_writes_printable_meshes_and_report(default_pair):
     names = sorted(p.name for p in default_pair.iterdir())
-    # the full-scale pair does not fit one 256 mm bed together: one plate per gear
-    assert names == ["gears-1.3mf", "gears-2.3mf", "gears.json", "pinion.stl", "wheel.stl"]
+    # the full-scale pair does not fit one 256 mm bed together: one plate per gear; the record
+    # of what this command wrote (SHA-256 per file) lets a later run clean up only its own files
+    assert names == [".wheelstep-gears.json", "gears-1.3mf", "gears-2.3mf", "gears.json", "pinion.stl",
+                     "wheel.stl"]
     report = json.loads((default_pair / "gears.json").read_text())
     for name in ("pinion", "wheel"):
         mesh = assert_printable_stl(default_pair / f"{name}.stl")

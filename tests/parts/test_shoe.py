@@ -200,7 +200,7 @@ def test_written_profile_has_the_spec_curvature_and_the_part_is_printable(design
 # ---- the written part -----------------------------------------------------------------
 
 def test_writes_printable_shoe_and_report(default_shoe):
-    assert sorted(p.name for p in default_shoe.iterdir()) == sorted(FILES)
+    assert sorted(p.name for p in default_shoe.iterdir()) == sorted(FILES + (".wheelstep-shoe.json",))
     report = json.loads((default_shoe / "shoe.json").read_text())
     mesh = assert_printable_stl(default_shoe / "shoe.stl")
     part = report["part"]

@@ -10,7 +10,7 @@ import numpy as np
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.names import yaml_message
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.parts.kinds import KINDS
+from wheelstep_cli.parts.kinds import KINDS, for_printer
 
 
 @dataclass
@@ -44,34 +44,49 @@ class EntryResult:
     report: dict | None = None
     error: str | None = None
     param: str | None = None
+    mating: dict | None = None   # a gear pair's meshing record (parts.mesh_check.meshing_record)
 
 
 def build_entry(entry: Entry) -> EntryResult:
-    """Build one entry's parts for its printer (worker-process entry point; never raises)."""
-    from wheelstep_cli.geometry.mesh_checks import Part, require_printable
-    from wheelstep_cli.geometry.solids import footprint, inset_bottom
+    """Build one entry's parts for its printer and check them as written, alone and (a gear
+    pair's meshing) together (worker-process entry point; never raises)."""
+    from wheelstep_cli.geometry.solids import footprint
 
     try:
         kind = KINDS[entry.kind]
-        built = kind.build_part(entry.printed)
-        parts = []
-        for part in kind.parts(built):
-            part = inset_bottom(part, entry.printer.elephant_foot_height, entry.printer.elephant_foot_inset)
-            lift = np.array([0.0, 0.0, -part.bounds[0, 2]])
-            part = Part(part.name, part.vertices + lift, part.faces, part.expected_volume)
-            check = require_printable(part)
-            parts.append(BuiltPart(
-                part.name, part.vertices, part.faces, check.volume, check.expected_volume,
-                check.triangles, footprint(part),
-                {"manifold": True, "watertight": check.watertight,
-                 "winding_consistent": check.winding_consistent,
-                 "volume_matches_outline": check.volume_error < 1e-3}))
-        return EntryResult(entry.index, parts, kind.report_of(built))
+        built = for_printer(kind, kind.build_part(entry.printed), entry.printer, entry.spec)
+        mating = kind.mating_check(built) if kind.mating_check is not None else None
+        parts = [BuiltPart(part.name, part.vertices, part.faces, check.volume, check.expected_volume,
+                           check.triangles, footprint(part), _checks(check))
+                 for part, check in ((p, built.checks[p.name]) for p in kind.parts(built))]
+        report = kind.report_of(built)
+        if mating is not None:
+            report["meshing"] = mating
+        result = EntryResult(entry.index, parts, report, mating=mating)
+        return _refused(entry, result) or result
     except DesignError as err:
         return EntryResult(entry.index, error=yaml_message(err), param=err.param)
     except Exception as err:  # an unexpected failure must not stop the other entries
         return EntryResult(entry.index, error=f"internal error: {type(err).__name__}: {err}")
 
+
+def _checks(check) -> dict[str, bool]:
+    return {"manifold": True, "watertight": check.watertight,
+            "winding_consistent": check.winding_consistent,
+            "volume_matches_outline": check.volume_error < 1e-3}
+
+
+def _refused(entry: Entry, result: EntryResult) -> EntryResult | None:
+    """The entry refused (no parts) when its gear teeth interfere, unless it allows it."""
+    mating = result.mating
+    if mating is None or not mating["interference"] or entry.allow_interference:
+        return None
+    printed = entry.printed
+    teeth = getattr(printed.teeth, "value", printed.teeth)
+    reason = (f"teeth = {teeth}: the teeth interfere at {mating['interfering_poses']} of "
+              f"{mating['samples']} poses at {printed.install_distance:g} mm (max overlap "
+              f"{mating['max_overlap_area_mm2']:.3f} mm2); allow_interference: true builds it anyway")
+    return EntryResult(entry.index, report=result.report, error=reason, param="teeth", mating=mating)
 
 
 class _Serial:

@@ -14,14 +14,19 @@ from wheelstep_cli.config.printers import Printer
 MANIFEST = "manifest.json"
 
 
-def previous_outputs(out: Path) -> set[str]:
-    """Files listed by an earlier batch's manifest in ``out`` (so they can be replaced cleanly)."""
+def previous_record(out: Path) -> tuple[dict[str, str], bool]:
+    """(relative name -> SHA-256 of the outputs listed by an earlier batch's manifest in ``out``,
+    whether that manifest.json is one: written by wheelstep batch, or absent)."""
+    from wheelstep_cli.formats.owned import read_record
+
+    path = out / MANIFEST
+    if not path.exists():
+        return {}, True
     try:
-        data = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
-        names = set(data.get("outputs", {})) | {MANIFEST}
-    except (OSError, ValueError, AttributeError):
-        return set()
-    return {n for n in names if isinstance(n, str) and ".." not in Path(n).parts and not Path(n).is_absolute()}
+        ours = json.loads(path.read_text(encoding="utf-8")).get("tool") == "wheelstep batch"
+    except (OSError, ValueError, AttributeError, UnicodeDecodeError):
+        ours = False
+    return (read_record(path, "outputs"), True) if ours else ({}, False)
 
 
 def part_summary(part: BuiltPart, printer: Printer) -> dict:
@@ -44,6 +49,7 @@ def entry_report_bytes(entry: Entry, result: EntryResult) -> bytes:
         "printed_parameters": entry.printed.model_dump(),
         "printer_geometry": entry.printer.geometry(),
         "printed_parts": {p.name: part_summary(p, entry.printer) for p in result.parts},
+        **({"meshing": result.mating} if result.mating is not None else {}),
         "design_report": result.report,
     })
 
@@ -65,6 +71,18 @@ def tool_versions() -> dict[str, str]:
     return versions
 
 
+#: The meshing figures the manifest keeps of each gear pair (the entry's report has them all).
+MESHING_KEYS = ("interference", "interfering_poses", "samples", "distance_mm", "backlash_min_mm",
+                "backlash_max_mm", "te_peak_to_peak_arcmin", "hub_speed_ripple_pct")
+
+
+def _meshing(result: EntryResult) -> dict:
+    """The entry's meshing check in brief (gear pairs, built or refused), else nothing."""
+    if result.mating is None:
+        return {}
+    return {"meshing": {key: result.mating[key] for key in MESHING_KEYS}}
+
+
 def manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
     from wheelstep_cli.formats.jsonio import json_bytes
 
@@ -72,6 +90,7 @@ def manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
     for entry in plan.entries:
         printers[entry.printer.name] = {"file": entry.printer.file_name, "sha256": entry.printer.sha256}
     checks_ok = all(all(p.checks.values()) for e in built for p in results[e.index].parts)
+    meshes = [results[e.index].mating for e in built if results[e.index].mating is not None]
     return json_bytes({
         "tool": "wheelstep batch",
         "versions": tool_versions(),
@@ -85,13 +104,16 @@ def manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
              "quantity": e.quantity, "overrides": e.overrides, "line": int(e.where.rsplit(":", 1)[1]),
              "status": "built" if e in built else "failed",
              **({"parts": {p.name: {"volume_mm3": p.volume, "triangles": p.triangles, "checks": p.checks}
-                           for p in results[e.index].parts}} if e in built else {})}
+                           for p in results[e.index].parts}} if e in built else {}),
+             **_meshing(results[e.index])}
             for e in plan.entries],
         "failed": [{"name": e.name, "where": f"{plan.file.name}:{where.rsplit(':', 1)[1]}", "reason": reason}
                    for e, where, reason in failed],
         "plates": [{"file": f"{p.stem}.3mf", "picture": f"{p.stem}.png", "printer_profile": p.printer.name,
                     "parts": [i.label for i in p.items]} for p in plates],
-        "checks": {"meshes_printable": checks_ok, "every_part_on_a_bed": not any(
+        "checks": {"meshes_printable": checks_ok,
+                   "gear_pairs_without_interference": not any(m["interference"] for m in meshes),
+                   "every_part_on_a_bed": not any(
             "does not fit" in reason for _, _, reason in failed),
             "validated_before_build": True},
         "outputs": {p.relative_to(out).as_posix(): hashlib.sha256(data).hexdigest()

@@ -37,6 +37,7 @@ class Entry:
     printed: Any         # the same, compensated for the printer
     where: str           # batch-file:line of the entry
     override_where: dict[str, str] = field(default_factory=dict)
+    allow_interference: bool = False   # build a gear pair even if its teeth interfere
 
     @property
     def design_label(self) -> str:
@@ -151,6 +152,7 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     override_where: dict[str, str] = {}
     if kind is not None:
         override_where = _check_overrides(doc, path, kind, overrides, issues)
+    allow = _allow_interference(doc, path, kind, entry, issues)
     flawed = any(loc[:2] == path for loc in check.bad)
     if len(issues) > before or flawed or kind is None or printer is None or design is None:
         return None
@@ -160,7 +162,15 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     if problems:
         return None
     return Entry(index, name, kind.name, design_name, quantity, printer, overrides, spec, printed,
-                 doc.where(path), override_where)
+                 doc.where(path), override_where, allow)
+
+
+def _allow_interference(doc, path, kind: PartKind | None, entry: BatchEntry, issues: list[Issue]) -> bool:
+    """The entry's ``allow_interference`` (gear pairs only: other kinds have no teeth to mesh)."""
+    if entry.allow_interference and kind is not None and kind.mating_check is None:
+        at = path + ("allow_interference",)
+        issues.append(Issue(doc.where(at), dotted(at), f"= true: only gear-pair entries have teeth to check, not {kind.name}"))
+    return bool(entry.allow_interference)
 
 
 def _kind(doc: LocatedYaml, path: tuple, name, at: tuple, issues: list[Issue]) -> PartKind | None:

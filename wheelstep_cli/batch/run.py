@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from wheelstep_cli.batch.build import EntryResult, build_entry, executor, map_items
-from wheelstep_cli.batch.outputs import MANIFEST, entry_report_bytes, manifest_bytes, previous_outputs
+from wheelstep_cli.batch.outputs import MANIFEST, entry_report_bytes, manifest_bytes, previous_record
 from wheelstep_cli.batch.plan import BatchPlan, Entry
 from wheelstep_cli.batch.plates import Plate, plan_plates, plate_picture, plate_threemf
 
@@ -22,10 +22,18 @@ class BatchOutcome:
 
 
 def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
-              progress: Callable[[str, int], Any] | None = None) -> BatchOutcome:
-    """Build, pack, render and write a checked batch; ``progress(stage, total)`` -> advance()."""
-    from wheelstep_cli.formats.atomic import remove_files, write_files_atomic
+              progress: Callable[[str, int], Any] | None = None, force: bool = False) -> BatchOutcome:
+    """Build, pack, render and write a checked batch; ``progress(stage, total)`` -> advance().
 
+    Files of an earlier batch in ``out`` (per its manifest, verified by SHA-256) that this one
+    does not write are removed; any other file in the way is refused unless ``force``
+    (DesignError, before anything is written)."""
+    from wheelstep_cli.formats.atomic import remove_files, write_files_atomic
+    from wheelstep_cli.formats.owned import check_collisions, stale_files
+
+    record, ours = previous_record(out)
+    if not ours:  # refused before the build (the names of the other files are known only after)
+        check_collisions(out, {out / MANIFEST: b""}, {}, force)
     advance = progress or (lambda stage, total: (lambda: None))
     with executor(jobs) as pool:
         step = advance("building parts", len(plan.entries))
@@ -44,10 +52,19 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
         rendered = {number: (data, pictures[number]) for number, data in threemfs}
     failed, built = _sort_out(plan, results, dropped)
     files = _files(plan, out, plates, rendered, built, results, failed)
-    stale = previous_outputs(out) - {p.relative_to(out).as_posix() for p in files}
+    check_folder(out, files, force)
     written = write_files_atomic(files)
-    remove_files(out / name for name in sorted(stale))
+    remove_files(stale_files(out, files, record))
     return BatchOutcome(written, plates, failed, built)
+
+
+def check_folder(out: Path, paths, force: bool) -> None:
+    """Refuse (DesignError) writing ``paths`` into ``out`` over files an earlier batch there did
+    not write, as :func:`run_batch` does (for a dry run, built elsewhere)."""
+    from wheelstep_cli.formats.owned import check_collisions
+
+    record, ours = previous_record(out)
+    check_collisions(out, dict.fromkeys(paths, b""), record, force, own=(MANIFEST,) if ours else ())
 
 
 def _sort_out(plan: BatchPlan, results: dict[int, EntryResult], dropped: dict[int, str]):

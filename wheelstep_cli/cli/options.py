@@ -78,7 +78,14 @@ LawCsv = Annotated[Optional[Path], opt(
                       "of the crank law (generated teeth).")]
 Profile = Annotated[Optional[str], opt("--profile",
                                        help="Design preset: a name in profiles/ or a YAML path.")]
+Printer = Annotated[Optional[str], opt(
+    "--printer", help="Printer profile (a name in profiles/ or a YAML path): draw the part as it "
+                      "must be printed there (bores + hole compensation, backlash + tooth "
+                      "clearance, elephant-foot inset), as batch does.",
+    shown="none: the geometry as designed")]
 Out = Annotated[Path, opt("--out", "-o", help="Output folder.")]
+Force = Annotated[bool, opt("--force", help="Overwrite files in the output folder that this "
+                                            "command did not write (refused otherwise).")]
 Format = Annotated[MeshFormat, opt("--format", help="Mesh files to write.")]
 # --- conventions of every command
 Json = Annotated[bool, opt("--json", help="Print the report as one JSON document on stdout "

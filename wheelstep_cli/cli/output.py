@@ -66,6 +66,30 @@ class Output:
             self.detail(f"  {path}: {len(files[path])} bytes")
         return written
 
+    def write_owned(self, folder: Path, command: str, files: Mapping[Path, bytes], dry_run: bool,
+                    force: bool) -> list[Path]:
+        """Write ``files`` into ``folder`` as ``command``'s output (see formats.owned): a file
+        there that this command did not write is refused unless ``force``; the record
+        ``.wheelstep-COMMAND.json`` is written with them and the files of the previous run
+        that this one does not write (and that are unchanged) are removed. Nothing with
+        ``dry_run`` (the check still runs). Returns the paths written (would be, with
+        ``dry_run``), the record last."""
+        from wheelstep_cli.formats.atomic import remove_files
+        from wheelstep_cli.formats.owned import check_collisions, read_record, record_bytes, stale_files
+
+        record_path = folder / f".wheelstep-{command}.json"
+        record = read_record(record_path)
+        check_collisions(folder, files, record, force)
+        if dry_run:
+            return [*files, record_path]
+        written = self.write({**files, record_path: record_bytes(f"wheelstep {command}", folder, files)},
+                             dry_run)
+        stale = stale_files(folder, files, record)
+        remove_files(stale)
+        for path in stale:
+            self.detail(f"  removed {path} (written by an earlier run)")
+        return written
+
     def files(self, paths: Iterable[Path], dry_run: bool, joined: bool = False) -> None:
         """Say which files were written (or would be, with ``dry_run``): one line each, or
         one ``joined`` line. In table mode on stdout; with --json on stderr for a dry run."""

@@ -59,6 +59,8 @@ class BatchEntry(BaseModel):
     overrides: Optional[dict[str, Any]] = None
     quantity: Quantity
     printer: ProfileName
+    allow_interference: Optional[bool] = Field(None, strict=True, json_schema_extra={
+        "limit": "must be true or false (gear-pair entries: build a pair whose teeth interfere)"})
 
 
 class BatchFile(BaseModel):

@@ -107,11 +107,42 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
 
 
 def load_design_profile(name_or_path: str):
-    """Find and check a design profile (a name or a path), see :func:`design_from_file`."""
-    return design_from_file(name_or_path, find_profile(name_or_path))
+    """Find and check a design profile (a name or a path) given as a command's ``--profile``,
+    see :func:`design_from_file`; a printer profile is refused naming the option it belongs to."""
+    file = find_profile(name_or_path)
+    try:
+        return design_from_file(name_or_path, file)
+    except DesignError as err:
+        if err.param != "design":
+            raise
+        raise DesignError("profile", name_or_path, "is a printer profile, not a design profile (a "
+                          "printer profile goes in --printer); design profiles: "
+                          + ", ".join(profile_names(printer=False))) from None
 
 
-def load_printer(name: str = DEFAULT_PRINTER) -> Printer:
-    """The printer profile ``name`` (a preset name or a path), checked."""
-    path = find_profile(name)
-    return printer_from_profile(name, path, profile_label(path))
+def load_printer_profile(name_or_path: str):
+    """Find and check a printer profile (a name or a path) given as a command's ``--printer``;
+    a design profile is refused naming the option it belongs to. Returns a Printer."""
+    from wheelstep_cli.config.printers import is_printer_profile
+
+    try:
+        file = find_profile(name_or_path)
+    except DesignError as err:
+        raise DesignError("printer", name_or_path, err.limit) from None
+    label = profile_label(file)
+    try:
+        doc = read_located_yaml(file, label)
+    except YamlSyntaxError as err:
+        raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+    if not is_printer_profile(doc.data):
+        raise DesignError("printer", name_or_path, "is a design profile, not a printer profile (a "
+                          "design profile goes in --profile); printer profiles: "
+                          + ", ".join(profile_names(printer=True)))
+    name = Path(name_or_path).name if Path(name_or_path).suffix in (".yaml", ".yml") else name_or_path
+    return printer_from_profile(name, file, label, doc)
+
+
+def load_printer(name: str = DEFAULT_PRINTER):
+    """The printer profile ``name`` (a preset name or a path), checked; see
+    :func:`load_printer_profile`."""
+    return load_printer_profile(name)

@@ -37,6 +37,7 @@ class GearPair:
     wheel: Part
     checks: dict[str, MeshReport] = field(default_factory=dict)
     generated: object = None   # gears.generated.GeneratedPair for generated teeth
+    printing: object = None    # parts.kinds.Printing when drawn for a printer (spec: the printed one)
 
     @property
     def wheel_teeth(self) -> int:
@@ -127,7 +128,7 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
         check = pair.checks[part.name]
         parts[part.name] = {"teeth": pair.spec.z if part.name == "pinion" else pair.wheel_teeth,
                             **part_record(part, check)}
-    report = {"tool": "wheelstep gears", "parameters": spec, "parts": parts}
+    report = {"tool": "wheelstep gears", "parameters": spec, **_printing(pair), "parts": parts}
     if pair.law is not None:
         report["u"] = pair.law.u
     if pair.partition is not None:
@@ -138,6 +139,17 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
     if meshing is not None:
         report["meshing"] = meshing
     return report
+
+
+def _printing(pair: GearPair) -> dict:
+    """The printer and the design's parameters (backlash resolved, mm) when drawn for a printer."""
+    from wheelstep_cli.parts.kinds import printing_record
+
+    record = printing_record(pair.printing, pair.spec)
+    if record:
+        record["parameters"]["backlash"] = pair.printing.design.backlash_mm
+        record["printed_parameters"]["backlash"] = pair.spec.backlash_mm
+    return record
 
 
 def generated_report(pair: GearPair) -> dict:
@@ -178,12 +190,13 @@ def generated_report(pair: GearPair) -> dict:
 def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both", meshing: dict | None = None,
                     printer=None) -> dict[Path, bytes]:
     """File name -> contents for the pair: STL per gear, the 3MF plate(s) laid out on
-    ``printer``'s bed (a config.printers.Printer; default the fdm-0.4-pla preset) as
+    ``printer``'s bed (a config.printers.Printer; default the printer the pair was drawn for,
+    else the fdm-0.4-pla preset) as
     gears.3mf, or gears-1.3mf and gears-2.3mf when both do not fit on one, and gears.json.
     A gear larger or taller than the bed is refused (DesignError) before anything is made."""
     from wheelstep_cli.config.profiles import load_printer
 
-    printer = printer or load_printer()
+    printer = printer or (pair.printing.printer if pair.printing is not None else None) or load_printer()
     files: dict[Path, bytes] = {}
     parts = [pair.pinion, pair.wheel]
     require_on_bed(parts, printer, "thickness", pair.spec.thickness)

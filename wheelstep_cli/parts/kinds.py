@@ -11,7 +11,7 @@ Pipelines are imported lazily, so a kind whose module is missing is reported as
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Callable
 
 from wheelstep_cli.config.batch_file import KindName
@@ -33,6 +33,8 @@ class PartKind:
     hole_fields: tuple[str, ...] = ()              # bore diameters (mm), enlarged when > 0
     clearance: Callable[[Any, float], dict] = lambda spec, extra: {}  # spec field updates
     checks: tuple[Callable[[Any], object], ...] = ()  # cheap domain checks, before building
+    with_parts: Callable[[Any, list, dict], Any] = lambda built, parts, checks: built  # swap parts in
+    mating_check: Callable[[Any], dict] | None = None  # check of the parts together, as written
 
     def pipeline(self):
         """The kind's module; DesignError 'not available' if it is not installed."""
@@ -75,6 +77,63 @@ def printed_spec(kind: PartKind, spec, hole_compensation: float, tooth_clearance
     return updated(spec, **changes)
 
 
+@dataclass(frozen=True)
+class Printing:
+    """A part drawn for a printer: the printer and the spec as designed (before compensation)."""
+
+    printer: Any                # wheelstep_cli.config.printers.Printer
+    design: Any                 # the kind's spec model, as given
+
+
+def for_printer(kind: PartKind, built, printer, design=None):
+    """``built`` as it is printed on ``printer``: each part's bed-side edges compensated for
+    the elephant foot, the part lifted onto z = 0 and checked again (DesignError if it fails).
+    ``design`` (the spec before :func:`printed_spec`) is kept with the printer for reports."""
+    from wheelstep_cli.geometry.mesh_checks import Part, require_printable
+    from wheelstep_cli.geometry.solids import inset_bottom
+
+    parts = []
+    for part in kind.parts(built):
+        part = inset_bottom(part, printer.elephant_foot_height, printer.elephant_foot_inset)
+        lift = [0.0, 0.0, -float(part.bounds[0, 2])]
+        parts.append(Part(part.name, part.vertices + lift, part.faces, part.expected_volume))
+    checks = {part.name: require_printable(part) for part in parts}
+    compensated = kind.with_parts(built, parts, checks)
+    return replace(compensated, printing=Printing(printer, design))
+
+
+def build_for_printer(kind_name: str, spec, printer=None):
+    """Build ``spec``'s part as batch builds it for ``printer`` (compensated by
+    :func:`printed_spec` and :func:`for_printer`); without a printer exactly as designed."""
+    kind = KINDS[kind_name]
+    if printer is None:
+        return kind.build_part(spec)
+    printed = printed_spec(kind, spec, printer.hole_compensation, printer.tooth_clearance)
+    for problem in kind.problems(printed):
+        raise problem
+    return for_printer(kind, kind.build_part(printed), printer, spec)
+
+
+def printing_record(printing: Printing | None, printed) -> dict:
+    """What a part report says of its printer: nothing without one; else the design's and the
+    printed parameters (mm), the printer profile and the geometry it changed."""
+    if printing is None:
+        return {}
+    printer = printing.printer
+    return {"parameters": printing.design.model_dump() if printing.design is not None else None,
+            "printed_parameters": printed.model_dump(),
+            "printer_profile": printer.name,
+            "printer_file": {"file": printer.file_name, "sha256": printer.sha256},
+            "printer_geometry": printer.geometry()}
+
+
+def _gear_pair_meshing(pair) -> dict:
+    """The meshing check ``wheelstep gears`` runs, on the pair's meshes as written."""
+    from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+
+    return meshing_record(check_gear_pair(pair))
+
+
 def _gear_pair_clearance(spec, extra: float) -> dict:
     return {"backlash": spec.backlash_mm + extra} if extra else {}
 
@@ -90,10 +149,12 @@ KINDS: dict[str, PartKind] = {
         name=KindName.gear_pair.value, module="wheelstep_cli.parts.gear_pair", spec_class="GearPairSpec",
         build="build_gear_pair", report="gear_pair_report", section="gears",
         parts=lambda pair: [pair.pinion, pair.wheel], hole_fields=("bore",),
-        clearance=_gear_pair_clearance,
+        clearance=_gear_pair_clearance, mating_check=_gear_pair_meshing,
+        with_parts=lambda pair, parts, checks: replace(pair, pinion=parts[0], wheel=parts[1], checks=checks),
         checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _sectors)),
     KindName.shoe.value: PartKind(
         name=KindName.shoe.value, module="wheelstep_cli.parts.shoe", spec_class="ShoeSpec",
         build="build_shoe", report="shoe_report", section="shoe", parts=lambda shoe: list(shoe.parts),
-        hole_fields=("strut_diameter",), checks=(lambda spec: spec.design(),)),
+        hole_fields=("strut_diameter",), checks=(lambda spec: spec.design(),),
+        with_parts=lambda shoe, parts, checks: replace(shoe, parts=parts, checks=checks)),
 }

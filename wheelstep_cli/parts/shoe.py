@@ -50,6 +50,7 @@ class Shoe:
     socket_floor: float   # least plastic between the socket and the sole, mm
     parts: list[Part]
     checks: dict[str, MeshReport] = field(default_factory=dict)
+    printing: object = None   # parts.kinds.Printing when drawn for a printer (spec: the printed one)
 
     @property
     def part(self) -> Part:
@@ -129,12 +130,14 @@ def resolved_parameters(shoe: Shoe) -> dict[str, float]:
 
 
 def shoe_report(shoe: Shoe) -> dict:
-    """Inputs, sizing, the sole (shoe frame) and the part with its checks, as plain data."""
+    """Inputs, sizing, the sole (shoe frame) and the part with its checks, as plain data
+    (with the printer and the printed parameters when drawn for one)."""
     part = shoe.part
     check = shoe.checks[part.name]
     return {
         "tool": "wheelstep shoe",
         "parameters": resolved_parameters(shoe),
+        **_printing(shoe),
         **sizing(shoe.design),
         "profile_frame": "shoe frame: origin at the strut pivot, Y along the strut towards the ground",
         "profile": shoe.profile,
@@ -149,14 +152,27 @@ def shoe_report(shoe: Shoe) -> dict:
     }
 
 
+def _printing(shoe: Shoe) -> dict:
+    """The printer and the design's and printed parameters (strut resolved, mm) when drawn for one."""
+    from wheelstep_cli.parts.kinds import printing_record
+
+    record = printing_record(shoe.printing, shoe.spec)
+    if record:
+        printed = resolved_parameters(shoe)
+        given = {k: float(v) for k, v in record["parameters"].items() if v is not None}
+        record.update(parameters={**printed, **given}, printed_parameters=printed)
+    return record
+
+
 def shoe_files(shoe: Shoe, out: Path, fmt: str = "both", printer=None) -> dict[Path, bytes]:
-    """File name -> contents: shoe.stl / shoe.3mf (on ``printer``'s bed, a config.printers.Printer,
-    default the fdm-0.4-pla preset), shoe.json, shoe-profile.csv and .dxf. A shoe larger or
-    taller than the bed is refused (DesignError) before anything is made."""
+    """File name -> contents: shoe.stl / shoe.3mf (on ``printer``'s bed, a config.printers.Printer;
+    default the printer the shoe was drawn for, else the fdm-0.4-pla preset), shoe.json,
+    shoe-profile.csv and .dxf. A shoe larger or taller than the bed is refused (DesignError)
+    before anything is made."""
     from wheelstep_cli.config.profiles import load_printer
 
     require(fmt in FORMATS, "format", fmt, f"must be one of {', '.join(FORMATS)}")
-    printer = printer or load_printer()
+    printer = printer or (shoe.printing.printer if shoe.printing is not None else None) or load_printer()
     part = shoe.part
     require_on_bed([part], printer, "width", shoe.spec.width)
     files: dict[Path, bytes] = {}

@@ -25,6 +25,7 @@ def print_sheet_bytes(plan, plates, built, results, failed, masses) -> bytes:
             lines.append(f"| {entry.name} | {plan.file.name}:{where.rsplit(':', 1)[1]} | {reason} |")
         lines.append("")
     lines += _parts(plates, built, results, masses)
+    lines += _meshing(built, results)
     lines += _plates(plates)
     lines += _printers(plan)
     return "\n".join(lines).encode("utf-8")
@@ -54,6 +55,28 @@ def _parts(plates, built, results, masses) -> list[str]:
                      f"{totals[name, 'mass']:.0f} g estimated printed, {totals[name, 'solid']:.0f} g if solid.")
     return lines + ["", "Masses: solid = volume x density; estimated = perimeters and top/bottom layers "
                     "solid, the rest at the profile's infill.", ""]
+
+
+def _meshing(built, results) -> list[str]:
+    """The meshing check of every built gear pair (on its meshes as written), one row each."""
+    rows = [(entry, results[entry.index].mating) for entry in built
+            if getattr(results[entry.index], "mating", None) is not None]
+    if not rows:
+        return []
+    lines = ["## Gear meshing (checked on the printed meshes)", "",
+             "| entry | at (mm) | interference | backlash (mm) | TE p-p (arcmin) | hub speed ripple (%) |",
+             "| --- | ---: | --- | --- | ---: | ---: |"]
+    for entry, m in rows:
+        verdict = (f"YES at {m['interfering_poses']} of {m['samples']} poses (allowed)"
+                   if m["interference"] else f"none ({m['samples']} poses)")
+        lines.append(f"| {entry.name} | {m['distance_mm']:g} | {verdict} | {_fmt(m['backlash_min_mm'], '.3f')}"
+                     f" .. {_fmt(m['backlash_max_mm'], '.3f')} | {_fmt(m['te_peak_to_peak_arcmin'], '.2f')} | "
+                     f"{_fmt(m['hub_speed_ripple_pct'], '.2f')} |")
+    return lines + [""]
+
+
+def _fmt(value, spec: str) -> str:
+    return "n/a" if value is None else format(value, spec)
 
 
 def _plates(plates) -> list[str]:

@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from wheelstep_cli.cli.options import DryRun, Json, Out, Quiet, Verbose, opt
+from wheelstep_cli.cli.options import DryRun, Force, Json, Out, Quiet, Verbose, opt
 from wheelstep_cli.cli.output import Output
 
 
@@ -15,6 +15,7 @@ def batch(
     file: Path = typer.Argument(..., help="Batch YAML: parts with kind, design, overrides, quantity, printer."),
     out: Out = Path("wheelstep-batch"),
     jobs: Annotated[int, opt("--jobs", "-j", help="Worker processes; 0 = one per CPU core.")] = 0,
+    force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Build every part of a batch file into packed 3MF plates with PNG previews,
@@ -34,7 +35,7 @@ def batch(
         for line in err.lines():
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
-    outcome, written = _run(plan, out, jobs, show, dry_run)
+    outcome, written = _run(plan, out, jobs, show, dry_run, force)
     show.report(_summary(file, out, plan, outcome, [] if dry_run else written),
                 lambda: _lines(out, plan, outcome))
     if dry_run:
@@ -46,13 +47,14 @@ def batch(
         raise typer.Exit(1)
 
 
-def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool):
+def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool):
     """Build the batch into ``out`` (a dry run: into a scratch folder, then discarded);
     returns the outcome and the files written (or that would be, named inside ``out``)."""
     import os
     import tempfile
 
     from wheelstep_cli.batch import run_batch
+    from wheelstep_cli.batch.run import check_folder
     from wheelstep_cli.cli.progress import Progress
     from wheelstep_cli.errors import DesignError
 
@@ -61,11 +63,13 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool):
     try:
         with Progress(not show.quiet, transient=False) as bars:
             if not dry_run:
-                outcome = run_batch(plan, out, workers, bars)
+                outcome = run_batch(plan, out, workers, bars, force)
                 return outcome, outcome.written
             with tempfile.TemporaryDirectory(prefix="wheelstep-dry-run-") as scratch:
                 outcome = run_batch(plan, Path(scratch), workers, bars)
-                return outcome, [out / p.relative_to(scratch) for p in outcome.written]
+                written = [out / p.relative_to(scratch) for p in outcome.written]
+                check_folder(out, written, force)   # what the real run would refuse
+                return outcome, written
     except OSError as err:
         raise DesignError("out", str(out), f"cannot be written ({err.strerror or err})") from None
 

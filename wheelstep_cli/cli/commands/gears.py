@@ -5,8 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Format, Json, LawCsv, MeshFormat,
-                                       Out, Profile, Quiet, Turns, Verbose, Z, opt)
+from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Force, Format, Json, LawCsv, MeshFormat,
+                                       Out, Printer, Profile, Quiet, Turns, Verbose, Z, opt)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec
 from wheelstep_cli.config.specs import Corner, Teeth
@@ -84,6 +84,7 @@ def gears(
     bore: Annotated[Optional[float], opt("--bore", help="Shaft bore diameter, mm; 0 for none.",
                                          shown="8")] = None,
     fmt: Format = MeshFormat.both, out: Out = Path("wheelstep-out"), profile: Profile = None,
+    printer: Printer = None,
     teeth: Annotated[Optional[Teeth], opt(
         "--teeth", help="generated: conjugate teeth (SPEC §9); paper: the source's sector "
                         "involutes (SPEC §5).", shown="generated")] = None,
@@ -109,6 +110,7 @@ def gears(
         "--allow-interference", help="Write the pair even if the meshing check finds "
                                      "overlapping teeth (the paper method's pair does, at the "
                                      "shoe handovers).")] = False,
+    force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Write the non-circular gear pair as printable STL/3MF meshes and gears.json.
@@ -125,19 +127,27 @@ def gears(
                           fillet=fillet, blend=blend, corner=corner.value if corner else None,
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
-    _make_gears(spec, show, out, fmt.value, allow_interference, dry_run)
+    _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force)
 
 
-def _make_gears(spec, show: Output, out: Path, fmt: str, allow_interference: bool,
-                dry_run: bool) -> None:
+def _printer(name: str | None):
+    """The ``--printer`` profile (None: none given)."""
+    from wheelstep_cli.config.profiles import load_printer_profile
+
+    return load_printer_profile(name) if name else None
+
+
+def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interference: bool,
+                dry_run: bool, force: bool) -> None:
     """Build, check, write (unless refused or a dry run) and report the pair of ``spec``."""
     import typer
 
     from wheelstep_cli.cli.progress import with_progress
-    from wheelstep_cli.parts.gear_pair import build_gear_pair, gear_pair_files, gear_pair_report
+    from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
+    from wheelstep_cli.parts.kinds import build_for_printer
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
 
-    pair = build_gear_pair(spec)
+    pair = build_for_printer("gear-pair", spec, printer)
     record = meshing_record(with_progress(not show.quiet, "meshing check", check_gear_pair, pair))
     if record["interference"] and not allow_interference:
         show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
@@ -146,11 +156,11 @@ def _make_gears(spec, show: Output, out: Path, fmt: str, allow_interference: boo
                    "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
     files = gear_pair_files(pair, out, fmt, record)
-    written = show.write(files, dry_run)
-    report = {**gear_pair_report(pair, record), "written": [str(p) for p in written]}
+    written = show.write_owned(out, "gears", files, dry_run, force)
+    report = {**gear_pair_report(pair, record), "written": [] if dry_run else [str(p) for p in written]}
     show.report(report, lambda: _gears_lines(pair, record))
     _warn_interference(show, record)
-    show.files(files if dry_run else written, dry_run, joined=True)
+    show.files(written, dry_run, joined=True)
 
 
 def _gears_lines(pair, record: dict) -> list[str]:

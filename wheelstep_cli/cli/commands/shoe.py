@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (A, B, C, DryRun, Format, Json, MeshFormat, Out, Profile,
+from wheelstep_cli.cli.options import (A, B, C, DryRun, Force, Format, Json, MeshFormat, Out, Printer, Profile,
                                        Quiet, RMin, Turns, Verbose, opt, plot_option)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import shoe_spec
@@ -26,6 +26,7 @@ def shoe(
     rim: Annotated[Optional[float], opt("--rim", help="Body height above the sole's ends (top "
                                                       "face above them), mm.", shown="15")] = None,
     fmt: Format = MeshFormat.both, out: Out = Path("wheelstep-out"), profile: Profile = None,
+    printer: Printer = None, force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Size the crank mechanism and write the printable support shoe (SPEC §2).
@@ -40,18 +41,21 @@ def shoe(
     ream or drill for a press fit), a flat top 15 mm above the sole's ends; at least 2 mm
     of plastic is kept around and under the socket.
     """
-    from wheelstep_cli.parts.shoe import build_shoe, shoe_files, shoe_report
+    from wheelstep_cli.config.profiles import load_printer_profile
+    from wheelstep_cli.parts.kinds import build_for_printer
+    from wheelstep_cli.parts.shoe import shoe_files, shoe_report
 
     show = Output(json, quiet, verbose)
     spec = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min, width=width,
                      strut_diameter=strut_diameter, socket_depth=socket_depth, rim=rim)
     show.parameters(vars(spec))
-    built = build_shoe(spec)
+    built = build_for_printer("shoe", spec, load_printer_profile(printer) if printer else None)
     files = shoe_files(built, out, fmt.value)
-    written = show.write(files, dry_run)
+    written = show.write_owned(out, "shoe", files, dry_run, force)
     report = shoe_report(built)
-    show.report({**report, "written": [str(p) for p in written]}, lambda: _shoe_lines(built, report))
-    show.files(files if dry_run else written, dry_run, joined=True)
+    listed = [] if dry_run else [str(p) for p in written]
+    show.report({**report, "written": listed}, lambda: _shoe_lines(built, report))
+    show.files(written, dry_run, joined=True)
 
 
 def _shoe_lines(built, report: dict) -> list[str]:

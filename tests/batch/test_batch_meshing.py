@@ -1,0 +1,61 @@
+"""`wheelstep batch` runs the meshing check of `wheelstep gears` on every gear pair it builds,
+on the meshes as written, and refuses an interfering pair like any failing entry."""
+
+from __future__ import annotations
+
+import json
+
+from tests.helpers.files import SMALL_BATCH, line_of, write
+
+PAPER = """\
+  - name: paper
+    kind: gear-pair
+    design: desk-demo
+    printer: fdm-0.4-pla
+    overrides:
+      teeth: paper
+"""
+
+
+def test_paper_teeth_entry_is_refused_with_its_line_the_good_entries_are_written(cli, tmp_path):
+    batch = write(tmp_path / "paper.yaml", SMALL_BATCH + PAPER)
+    out = tmp_path / "out"
+    result = cli("batch", batch, "--out", out, "--jobs", "1")
+    assert result.exit_code == 1
+    line = line_of(batch, "teeth: paper")
+    assert f"paper ({batch}:{line}): teeth = paper: the teeth interfere at " in result.stderr
+    assert "allow_interference: true builds it anyway" in result.stderr
+    assert sorted(p.name for p in (out / "reports").iterdir()) == ["pair.json", "shoes.json"]
+    report = json.loads((out / "reports" / "pair.json").read_text())
+    assert report["meshing"]["interference"] is False and report["meshing"]["samples"] == 1536
+    assert report["meshing"] == report["design_report"]["meshing"]
+    manifest = json.loads((out / "manifest.json").read_text())
+    entries = {e["name"]: e for e in manifest["entries"]}
+    assert entries["pair"]["meshing"]["interference"] is False
+    assert entries["paper"]["status"] == "failed" and entries["paper"]["meshing"]["interference"] is True
+    assert manifest["failed"][0]["where"] == f"paper.yaml:{line}"
+    assert manifest["checks"]["gear_pairs_without_interference"] is True
+    sheet = (out / "print-sheet.md").read_text()
+    assert "## Gear meshing" in sheet and "| pair | 72.125 | none (1536 poses) |" in sheet
+    assert "| paper |" in sheet.split("## Parts")[0]  # under "Not built" only
+
+
+def test_allow_interference_builds_the_paper_pair_and_reports_the_interference(cli, tmp_path):
+    batch = write(tmp_path / "paper.yaml", PAPER.replace("  - name", "parts:\n  - name", 1)
+                  + "    allow_interference: true\n")
+    out = tmp_path / "out"
+    assert cli("batch", batch, "--out", out, "--jobs", "1").exit_code == 0
+    report = json.loads((out / "reports" / "paper.json").read_text())
+    assert report["meshing"]["interference"] is True and report["meshing"]["interfering_poses"] > 0
+    assert json.loads((out / "manifest.json").read_text())["checks"]["gear_pairs_without_interference"] is False
+    assert "(allowed)" in (out / "print-sheet.md").read_text()
+
+
+def test_allow_interference_is_refused_on_an_entry_without_teeth(cli, tmp_path):
+    batch = write(tmp_path / "shoe.yaml", "parts:\n  - kind: shoe\n    printer: fdm-0.4-pla\n"
+                                          "    allow_interference: true\n")
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    assert (f"{batch}:{line_of(batch, 'allow_interference')}: parts[0].allow_interference = true: "
+            "only gear-pair entries have teeth to check, not shoe") in result.stderr
+    assert not (tmp_path / "out").exists()

@@ -1,0 +1,96 @@
+"""Output folders: a rerun removes what the previous run of the same command wrote and this one
+does not; a file the command did not write is never removed or overwritten (refused, exit 2,
+unless --force); files follow the user's umask."""
+
+from __future__ import annotations
+
+import json
+import os
+import stat
+
+from tests.helpers.clicheck import error_line
+from tests.helpers.files import write
+
+SHOE = "parts:\n  - kind: shoe\n    design: desk-demo\n    printer: fdm-0.4-pla\n"
+
+
+def listing(folder) -> dict[str, bytes]:
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in folder.rglob("*") if p.is_file()}
+
+
+def test_gears_stl_after_both_leaves_no_gears_3mf(cli, tmp_path):
+    out = tmp_path / "out"
+    assert cli("gears", "--profile", "desk-demo", "--out", out, "-q").exit_code == 0
+    assert (out / "gears.3mf").exists()
+    assert cli("gears", "--profile", "desk-demo", "--format", "stl", "--out", out, "-q").exit_code == 0
+    assert sorted(p.name for p in out.iterdir()) == [".wheelstep-gears.json", "gears.json", "pinion.stl",
+                                                     "wheel.stl"]
+
+
+def test_a_rerun_keeps_another_commands_files_and_files_changed_since(cli, tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "notes.txt").write_text("mine")
+    assert cli("shoe", "--out", out, "-q").exit_code == 0
+    (out / "shoe.3mf").write_bytes(b"edited by the user")
+    assert cli("shoe", "--format", "stl", "--out", out, "-q").exit_code == 0
+    assert (out / "shoe.3mf").read_bytes() == b"edited by the user"   # changed since: not ours
+    assert (out / "notes.txt").read_text() == "mine"
+    assert "not written by this command" in error_line(cli("shoe", "--format", "3mf", "--out", out))
+    (out / "shoe.stl").write_bytes(b"edited too")
+    assert "shoe.stl: exists and was changed since this command wrote it" in error_line(
+        cli("shoe", "--format", "stl", "--out", out))
+    assert (out / "shoe.stl").read_bytes() == b"edited too"
+
+
+def test_a_users_file_of_the_same_name_is_refused_and_nothing_is_written(cli, tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "shoe.stl").write_text("my own shoe")
+    line = error_line(cli("shoe", "--out", out))
+    assert line == (f"wheelstep: error: --out = {out / 'shoe.stl'}: exists and was not written by this "
+                    "command: it is kept; move it away or give --force to overwrite it")
+    assert listing(out) == {"shoe.stl": b"my own shoe"}
+    assert cli("shoe", "--out", out, "--force", "-q").exit_code == 0
+    assert (out / "shoe.stl").read_bytes() != b"my own shoe" and (out / "shoe.3mf").exists()
+
+
+def test_batch_keeps_a_file_a_forged_manifest_lists(cli, tmp_path):
+    """Issue 16: a manifest.json listing other files must not make batch delete them."""
+    batch = write(tmp_path / "shoe1.yaml", SHOE)
+    out = tmp_path / "fm"
+    out.mkdir()
+    (out / "notes.txt").write_text("x\n")
+    (out / "manifest.json").write_text('{"outputs":{"notes.txt":"x"}}\n')
+    assert "fm/manifest.json: exists and was not written by this command" in error_line(
+        cli("batch", batch, "--out", out, "--jobs", "1"))
+    assert listing(out) == {"notes.txt": b"x\n", "manifest.json": b'{"outputs":{"notes.txt":"x"}}\n'}
+    assert cli("batch", batch, "--out", out, "--jobs", "1", "--force", "-q").exit_code == 0
+    assert (out / "notes.txt").read_text() == "x\n"
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert "notes.txt" not in manifest["outputs"]
+
+
+def test_files_of_every_writing_command_follow_the_umask(cli, tmp_path):
+    old = os.umask(0o022)
+    try:
+        assert cli("shoe", "--out", tmp_path / "shoe", "-q").exit_code == 0
+        assert cli("batch", write(tmp_path / "b.yaml", SHOE), "--out", tmp_path / "batch", "-q",
+                   "--jobs", "1").exit_code == 0
+        assert cli("kinematics", "--plot", tmp_path / "k.png", "-q").exit_code == 0
+        assert cli("trajectory", "--plot", tmp_path / "t.png", "-q").exit_code == 0
+    finally:
+        os.umask(old)
+    files = [p for p in tmp_path.rglob("*") if p.is_file() and p.suffix != ".yaml"]
+    assert len(files) >= 12
+    assert {p.name: stat.S_IMODE(p.stat().st_mode) for p in files} == {p.name: 0o644 for p in files}
+
+
+def test_batch_dry_run_refuses_what_the_run_would_refuse(cli, tmp_path):
+    batch = write(tmp_path / "shoe1.yaml", SHOE)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "plate-1.png").write_text("my picture")
+    line = error_line(cli("batch", batch, "--out", out, "--jobs", "1", "--dry-run", "-q"))
+    assert "plate-1.png: exists and was not written by this command" in line
+    assert listing(out) == {"plate-1.png": b"my picture"}

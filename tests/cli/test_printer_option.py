@@ -1,0 +1,65 @@
+"""`gears` and `shoe --printer NAME`: the part drawn for a printer as batch draws it; design and
+printer profiles are kept apart, the wrong kind named with the option it belongs to."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+import trimesh
+
+from tests.helpers.clicheck import error_line
+from tests.helpers.files import write
+
+
+@pytest.mark.parametrize("command", ["gears", "shoe"])
+@pytest.mark.parametrize("option, name, expect", [
+    ("--profile", "fdm-0.4-pla", "--profile = fdm-0.4-pla: is a printer profile, not a design "
+                                 "profile (a printer profile goes in --printer)"),
+    ("--printer", "desk-demo", "--printer = desk-demo: is a design profile, not a printer "
+                               "profile (a design profile goes in --profile)"),
+    ("--printer", "fdm-0.6-abs", "--printer = fdm-0.6-abs: not found; known profiles:"),
+])
+def test_the_wrong_kind_of_profile_is_refused_naming_the_right_option(cli, tmp_path, command, option,
+                                                                    name, expect):
+    result = cli(command, option, name, "--out", tmp_path / "out")
+    assert expect in error_line(result)
+    assert not (tmp_path / "out").exists()
+
+
+def test_shoe_for_a_printer_has_the_bore_enlarged_the_foot_inset_and_says_so(cli, tmp_path):
+    assert cli("shoe", "--out", tmp_path / "plain", "-q").exit_code == 0
+    assert cli("shoe", "--printer", "fdm-0.4-pla", "--out", tmp_path / "pla", "-q").exit_code == 0
+    report = json.loads((tmp_path / "pla" / "shoe.json").read_text())
+    assert report["printer_profile"] == "fdm-0.4-pla"
+    assert report["parameters"]["strut_diameter"] == 12.0
+    assert report["printed_parameters"]["strut_diameter"] == pytest.approx(12.2)
+    assert report["printer_geometry"]["elephant_foot_inset"] == 0.2
+    assert "printer_profile" not in json.loads((tmp_path / "plain" / "shoe.json").read_text())
+    plain = trimesh.load(tmp_path / "plain" / "shoe.stl")
+    pla = trimesh.load(tmp_path / "pla" / "shoe.stl")
+    assert pla.volume < plain.volume  # (one closed body: the elephant-foot rework of issue 11.5)
+    bottom = pla.vertices[np.isclose(pla.vertices[:, 2], 0.0)]
+    # the bed-side face is drawn 0.2 mm smaller all round (elephant foot)
+    assert bottom[:, 0].min() == pytest.approx(plain.bounds[0, 0] + 0.2, abs=1e-4)  # float32 STL
+    assert pla.bounds[0, 2] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_gears_for_a_printer_match_the_batch_entry_figures(cli, tmp_path):
+    """Same compensation and the same meshing check as a batch entry for that printer."""
+    result = cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--out", tmp_path / "g",
+                 "--json", "-q")
+    assert result.exit_code == 0
+    gears = json.loads(result.stdout)
+    assert gears == {**json.loads((tmp_path / "g" / "gears.json").read_text()), "written": gears["written"]}
+    assert gears["printed_parameters"]["backlash"] == pytest.approx(gears["parameters"]["backlash"] + 0.15)
+    assert gears["printed_parameters"]["bore"] == pytest.approx(gears["parameters"]["bore"] + 0.2)
+    batch = write(tmp_path / "pair.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"
+                                          "    design: desk-demo\n    printer: fdm-0.4-pla\n")
+    assert cli("batch", batch, "--out", tmp_path / "b", "--jobs", "1").exit_code == 0
+    entry = json.loads((tmp_path / "b" / "reports" / "pair.json").read_text())
+    assert entry["meshing"] == gears["meshing"]
+    assert entry["printed_parameters"] == gears["printed_parameters"]
+    for name, part in gears["parts"].items():
+        assert part["volume_mm3"] == pytest.approx(entry["printed_parts"][name]["volume_mm3"], rel=1e-12)
