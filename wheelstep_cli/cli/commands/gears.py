@@ -164,7 +164,9 @@ def _make_gears(spec, show: Output, out: Path, fmt: str, allow_interference: boo
 
 
 def _gears_lines(pair, record: dict) -> list[str]:
-    """Both parts, the generated teeth and one line on the meshing check."""
+    """Both parts, the generated teeth and the meshing check's figures of both flanks."""
+    from wheelstep_cli.parts.mesh_check import flank_line
+
     lines = []
     for part in (pair.pinion, pair.wheel):
         check = pair.checks[part.name]
@@ -176,10 +178,10 @@ def _gears_lines(pair, record: dict) -> list[str]:
         lines.append(f"generated teeth: z = {gen.pinion_teeth}/{gen.wheel_teeth}, pitch "
                      f"{gen.pitch:.4f} mm, module {gen.module:.4f} mm, rolling at "
                      f"{gen.center_distance:g} mm, backlash j_n = {gen.cutter.backlash:g} mm")
-    lines.append(f"meshing at {pair.spec.install_distance:g} mm: hub speed ripple "
-                 f"{_num(record, 'hub_speed_ripple_pct', '.2f')} %, backlash "
+    lines.append(f"meshing at {pair.spec.install_distance:g} mm: backlash "
                  f"{_num(record, 'backlash_min_mm', '.3f')}..{_num(record, 'backlash_max_mm', '.3f')}"
-                 f" mm, TE {_num(record, 'te_peak_to_peak_arcmin', '.2f')}' p-p")
+                 f" mm, interference depth {record['max_penetration_mm']:.3f} mm")
+    lines.extend(f"  {flank_line(side, record[side])}" for side in ("drive", "coast"))
     return lines
 
 
@@ -192,8 +194,8 @@ def _warn_interference(show: Output, record: dict) -> None:
     if record["interference"]:
         show.warning(f"WARNING: the teeth interfere at {record['interfering_poses']} of "
                      f"{record['samples']} poses (max overlap {record['max_overlap_area_mm2']:.3f} "
-                     f"mm2); hub speed ripple where they do not: "
-                     f"{_num(record, 'hub_speed_ripple_clear_pct', '.2f')} %")
+                     f"mm2); pointwise hub speed ripple where they do not (diagnostic): "
+                     f"{_num(record, 'diagnostic_pointwise_ripple_clear_pct', '.2f')} %")
 
 
 def register(app) -> None:
