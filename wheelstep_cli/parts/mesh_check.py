@@ -28,13 +28,15 @@ def check_gear_pair(pair, settings: MeshingSettings = MeshingSettings(),
                     progress: Callable[[int, int], None] | None = None) -> MeshingReport:
     """Meshing check of a built :class:`~wheelstep_cli.parts.gear_pair.GearPair` as it will be
     written: both meshes are sectioned at mid-thickness (SPEC §10) and checked at the
-    installed centre distance over one period of the law the teeth were generated for."""
+    installed centre distance over one period of the law the teeth were generated for (the
+    blended law with ``--blend``)."""
     from wheelstep_cli.geometry.solids import section_outline
 
     pinion = section_outline(pair.pinion.vertices, pair.pinion.faces, "pinion")
     wheel = section_outline(pair.wheel.vertices, pair.wheel.faces, "wheel")
+    # generated teeth are checked against the law they were cut for (blended when --blend)
     generated = getattr(pair, "generated", None)
-    law = generated.law if generated is not None and pair.law is None else pair.law
+    law = generated.law if generated is not None else pair.law
     return check_meshing(pinion, wheel, law, pair.spec.install_distance, settings, progress=progress,
                          teeth=pair.spec.z)
 

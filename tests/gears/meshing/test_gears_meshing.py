@@ -88,3 +88,26 @@ def test_mesh_check_bad_input_one_line_exit_2(paper_pair, cli, tmp_path, args, p
                                  else a for a in args])
     assert param in error_line(result), result.stderr
     assert not (tmp_path / "x.pdf").exists()
+
+
+def test_blend_10_is_checked_against_the_blended_law_and_written(cli, tmp_path):
+    # the pair is cut for the blended law: checked against it, it meshes (issue 13)
+    result = cli("gears", "--blend", "10", "--format", "stl", "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((tmp_path / "gears.json").read_text())
+    meshing = report["meshing"]
+    assert report["generated"]["blend_deg"] == 10 and meshing["interference"] is False
+    assert "drive flank" in result.stdout and "coast flank" in result.stdout
+    for side in ("drive", "coast"):
+        assert meshing[side]["F_i_total_um"] < 30.0
+    # the blend itself makes most of the hub speed ripple: the law alone has it too
+    assert meshing["law_hub_speed_ripple_pct"] > 5.0
+    pin, wheel = tmp_path / "pinion.stl", tmp_path / "wheel.stl"
+    same = cli("mesh-check", pin, wheel, "--blend", "10", "--json")
+    assert same.exit_code == 0, same.stderr
+    measured = json.loads(same.stdout)
+    assert measured["law"]["blend_deg"] == 10
+    assert measured["drive"]["F_i_total_um"] == pytest.approx(meshing["drive"]["F_i_total_um"],
+                                                              rel=1e-6)
+    # against the unblended law the same files jam at the handovers
+    assert cli("mesh-check", pin, wheel, "--samples", "384").exit_code == 1

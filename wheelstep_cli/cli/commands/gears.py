@@ -180,7 +180,8 @@ def _gears_lines(pair, record: dict) -> list[str]:
                      f"{gen.center_distance:g} mm, backlash j_n = {gen.cutter.backlash:g} mm")
     lines.append(f"meshing at {pair.spec.install_distance:g} mm: backlash "
                  f"{_num(record, 'backlash_min_mm', '.3f')}..{_num(record, 'backlash_max_mm', '.3f')}"
-                 f" mm, interference depth {record['max_penetration_mm']:.3f} mm")
+                 f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
+                 f"hub speed ripple {record['law_hub_speed_ripple_pct']:.2f} %")
     lines.extend(f"  {flank_line(side, record[side])}" for side in ("drive", "coast"))
     return lines
 
