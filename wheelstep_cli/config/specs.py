@@ -61,6 +61,7 @@ class GearPairSpec(BaseModel):
     addendum: Number = 1.0           # x module, generated teeth
     dedendum: Number = 1.25          # x module, generated teeth
     fillet: Number = 0.25            # cutter tip radius x module, generated teeth
+    clearance: Number = 0.25         # wheel spaces below the pinion tips x module, generated
     blend: Number = quantity(0.0, unit="deg", limit="must be 0..20 deg", ge=0, le=20)
     corner: Corner = Corner.space.value
     tilt: Number = quantity(0.6, limit="must be 0..1.5", ge=0, le=1.5)
@@ -104,7 +105,7 @@ class GearPairSpec(BaseModel):
         from wheelstep_cli.gears.generation import RackCutter
 
         return RackCutter(np.radians(self.pressure_angle), self.addendum, self.dedendum,
-                          self.fillet, self.backlash_mm)
+                          self.fillet, self.backlash_mm, self.clearance)
 
 
 class ShoeSpec(BaseModel):

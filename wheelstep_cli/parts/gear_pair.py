@@ -180,6 +180,12 @@ def generated_report(pair: GearPair) -> dict:
                     "teeth by j_n/2, wheel by a constant angular play worth j_n/2 at its mean "
                     "pitch radius), none by opening the centre distance",
         },
+        "tip_clearance": {
+            "pinion_spaces_mm": (gen.cutter.dedendum - gen.cutter.addendum) * gen.module,
+            "wheel_spaces_mm": gen.cutter.clearance * gen.module,
+            "note": "below the other gear's tips on the line of centres; the wheel's spaces are "
+                    "carved by the pinion's tips and then deepened by the clearance",
+        },
         "undercut_limit_mm": gen.undercut_limit,
         "pitch_curve_min_convex_radius_mm": gen.min_curvature_radius,
         "pinion_min_tip_land_mm": gen.pinion_tip_land,

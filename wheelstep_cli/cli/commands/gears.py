@@ -105,6 +105,9 @@ def gears(
         "--dedendum", help="Dedendum, x module (generated).", shown="1.25")] = None,
     fillet: Annotated[Optional[float], opt(
         "--fillet", help="Rack tip fillet radius, x module (generated).", shown="0.25")] = None,
+    clearance: Annotated[Optional[float], opt(
+        "--clearance", help="Tip clearance of the wheel's spaces below the pinion's tips, "
+                            "x module (generated).", shown="0.25")] = None,
     blend: Annotated[Optional[float], opt(
         "--blend", help="Half-width (carrier deg) of the ratio blend at each handover "
                         "(generated).", shown="0")] = None,
@@ -132,7 +135,8 @@ def gears(
                           install_distance=install_distance, module=module, backlash=backlash,
                           thickness=thickness, bore=bore, teeth=teeth.value if teeth else None,
                           pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
-                          fillet=fillet, blend=blend, corner=corner.value if corner else None,
+                          fillet=fillet, clearance=clearance, blend=blend,
+                          corner=corner.value if corner else None,
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
     _make_gears(spec, show, out, fmt.value, allow_interference, dry_run)

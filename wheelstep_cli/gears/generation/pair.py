@@ -7,7 +7,7 @@ carves the wheel moving along the exact law (``wheel``). Angles in radians, leng
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -19,7 +19,8 @@ from wheelstep_cli.gears.generation.outline import blank_radii, simplify_outline
 from wheelstep_cli.gears.generation.pinion import pinion_by_rack, round_tips, topped_outline
 from wheelstep_cli.gears.generation.rack import RackCutter, RackRolling
 from wheelstep_cli.gears.generation.settings import CORNER_MODES, GenerationSettings
-from wheelstep_cli.gears.generation.wheel import Carving, backlash_split, carve_by_pinion
+from wheelstep_cli.gears.generation.wheel import (Carving, backlash_split, carve_by_pinion,
+                                                  deepened_spaces)
 from wheelstep_cli.gears.pitch_curves import PitchCurves, pitch_curves
 from wheelstep_cli.gears.transmission import TransmissionLaw
 
@@ -190,7 +191,15 @@ def _cut_wheel(job: _Job, pinion_outline: np.ndarray, distance: float) -> _GearC
     carving = Carving(distance, clearance, job.per_period * s.carve_poses_per_tooth, window,
                       float(blank.max()), play, lead, s.path_run, s.carve_segment)
     radii = np.minimum(blank, carve_by_pinion(law, pinion_outline, grid, carving))
+    if s.mount_tolerance > 0:
+        # carved again rolling that much closer: mounted closer by up to it, the pair still
+        # clears (the tips' paths and the corner teeth), at the cost of a little backlash
+        closer = replace(carving, distance=distance - s.mount_tolerance)
+        radii = np.minimum(radii, carve_by_pinion(law, pinion_outline, grid, closer))
     _require_no_gaps(radii, job.pinion_teeth)
+    # carved by the pinion's tips the spaces end microns below them: deepen their bottoms
+    radii = deepened_spaces(radii, job.per_period, job.cutter.clearance * job.module,
+                            s.clearance_band * job.cutter.clearance * job.module)
     radii, topping, land = top_or_refuse(GearBody("wheel", grid, curves.wheel, blank), radii,
                                          job.cutter, job.limits)
     return _GearCut(outline_from_radii(grid, radii, law.wheel_periods), radii, grid, topping, land, play)

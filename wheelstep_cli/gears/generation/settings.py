@@ -57,6 +57,16 @@ class GenerationSettings:
     """Most tooth height (x module) that may be topped off a pointed tooth before the design is
     refused."""
 
+    mount_tolerance: float = 0.0
+    """The wheel is carved also with the pinion rolling this much closer (mm): mounted up to
+    that much closer than designed, the pair still clears (0: carved at the distance only).
+    Off by default: the flanks carved closer make the pair's TE at its own distance as bad
+    as being mounted that far off (benchmarks/results.md, issue 13)."""
+
+    clearance_band: float = 0.1
+    """Height (x the tip clearance) above a wheel space's bottom over which the bottom is
+    lowered by the clearance, fading to nothing (the rest of the fillet stays as carved)."""
+
     window_pitches: float = 1.8
     """Pinion outline taken into each carving pose: this many pitches (dimensionless) either
     side of the pitch point."""

@@ -1,0 +1,47 @@
+"""Tip clearance in the wheel (issue 13): the spaces are deepened below the pinion's tips."""
+
+import json
+
+import numpy as np
+import pytest
+
+from wheelstep_cli.gears.generation.wheel import deepened_spaces
+
+
+def test_space_bottoms_drop_by_the_clearance_and_the_flanks_stay():
+    teeth, rays = 8, 800
+    j = np.arange(rays)
+    # trapezoid teeth: bottom 90 mm, tips 95 mm, straight flanks between
+    phase = np.mod(j, rays // teeth) / (rays // teeth)
+    radii = 90.0 + 5.0 * np.clip(4.0 * np.minimum(phase, 1.0 - phase) * 2.0 - 1.0, 0.0, 1.0)
+    out = deepened_spaces(radii, teeth, 0.5, 0.25)
+    bottom = radii == radii.min()
+    assert np.allclose(out[bottom], 89.5)
+    assert np.array_equal(out[radii > 90.25], radii[radii > 90.25])   # above the band: as carved
+    assert np.all(out <= radii) and np.all(np.diff(out[: rays // teeth // 2]) >= -1e-12)
+    assert np.array_equal(deepened_spaces(radii, teeth, 0.0, 0.25), radii)
+
+
+def test_clearance_option_deepens_the_written_wheel_and_is_reported(cli, tmp_path):
+    from wheelstep_cli.formats.mesh_read import read_outline
+
+    roots = {}
+    for clearance in ("0", "0.25"):
+        out = tmp_path / clearance
+        result = cli("gears", "--clearance", clearance, "--format", "stl", "--out", out)
+        assert result.exit_code == 0, result.stderr
+        report = json.loads((out / "gears.json").read_text())
+        gen = report["generated"]
+        assert gen["tip_clearance"]["wheel_spaces_mm"] == pytest.approx(
+            float(clearance) * gen["module_mm"])
+        assert report["meshing"]["interference"] is False
+        wheel = read_outline(str(out / "wheel.stl"), "wheel", default_name="wheel")
+        roots[clearance] = float(np.hypot(*wheel.T).min())
+        module = gen["module_mm"]
+    assert roots["0"] - roots["0.25"] == pytest.approx(0.25 * module, abs=0.01)
+
+
+def test_clearance_out_of_bounds_is_refused(cli, tmp_path):
+    result = cli("gears", "--clearance", "2", "--out", tmp_path / "out")
+    assert result.exit_code == 2 and "clearance" in result.stderr
+    assert not (tmp_path / "out").exists()
