@@ -52,8 +52,10 @@ class GearPairSpec(BaseModel):
     turns: int = Field(2, strict=True)
     center_distance: Number = length(143.5, gt=0)
     install_distance: Number = length(144.0, gt=0)
-    module: Number = 2.0
-    backlash: Optional[Number] = None   # None: 0.25 * module (bounds: the tooth form's)
+    # generated teeth: None takes the module from the pitch curves at the distance; a module
+    # solves the design centre distance for it (SPEC §9). Paper teeth: None is 2 mm.
+    module: Optional[Number] = None
+    backlash: Optional[Number] = None   # None: 0.25 * module (2 mm when none; bounds: the tooth form's)
     thickness: Number = length(10.0, gt=0)
     bore: Number = length(8.0, ge=0)
     teeth: Teeth = Teeth.generated.value
@@ -74,15 +76,21 @@ class GearPairSpec(BaseModel):
         require(self.install_distance >= self.center_distance, "install_distance", self.install_distance,
                 f"must be >= the centre distance {self.center_distance:g} mm")
         if self.teeth == Teeth.paper:
-            require(self.install_distance <= self.center_distance + self.module, "install_distance",
+            require(self.install_distance <= self.center_distance + self.paper_module, "install_distance",
                     self.install_distance,
-                    f"must be <= the centre distance + module = {self.center_distance + self.module:g} mm "
+                    f"must be <= the centre distance + module = "
+                    f"{self.center_distance + self.paper_module:g} mm "
                     "(farther apart the teeth lose contact)")
         return self
 
     @property
     def backlash_mm(self) -> float:
-        return 0.25 * self.module if self.backlash is None else self.backlash
+        return 0.25 * self.paper_module if self.backlash is None else self.backlash
+
+    @property
+    def paper_module(self) -> float:
+        """The module (mm) the paper teeth and the default backlash use: 2 when none is given."""
+        return 2.0 if self.module is None else self.module
 
     def mechanism(self):
         """The crank mechanism (mechanism.crank.CrankMechanism); DesignError for an impossible one."""
@@ -99,7 +107,7 @@ class GearPairSpec(BaseModel):
     def tooth_form(self):
         from wheelstep_cli.gears.paper_teeth import ToothForm
 
-        return ToothForm(self.module, self.backlash_mm)
+        return ToothForm(self.paper_module, self.backlash_mm)
 
     def cutter(self):
         from wheelstep_cli.gears.generation import RackCutter

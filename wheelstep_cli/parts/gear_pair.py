@@ -41,6 +41,14 @@ class GearPair:
     generated: object = None   # gears.generated.GeneratedPair for generated teeth
 
     @property
+    def mounted_distance(self) -> float:
+        """Centre distance (mm) the pair is mounted and checked at: generated teeth where they
+        roll (the module's distance when a module is given), paper teeth the installed one."""
+        if self.generated is not None:
+            return float(self.generated.center_distance)
+        return float(self.spec.install_distance)
+
+    @property
     def wheel_teeth(self) -> int:
         if self.generated is not None:
             return self.generated.wheel_teeth
@@ -95,7 +103,7 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     _, law = generation_law(spec)
     settings = replace(GenerationSettings(), tilt=spec.tilt)
     gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, settings=settings,
-                        center_distance=spec.install_distance)
+                        center_distance=rolling_distance(spec, law))
     # the pinion is written as it carved the wheel; the wheel's ray map is thinned only by a
     # fraction of a micron (coarser facets make real speed ripple: a 0.2 mm facet on a
     # curved flank kinks the hub speed by about 1 %)
@@ -106,6 +114,20 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     crank = spec.law() if spec.law_csv is None else None
     return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen)
+
+
+def rolling_distance(spec: GearPairSpec, law) -> float:
+    """The distance (mm) generated teeth roll and are mounted at: the one a given module
+    fits (SPEC §9: the pitch curves' perimeter is proportional to it), else the installed
+    distance."""
+    from wheelstep_cli.errors import require
+    from wheelstep_cli.gears.pitch_curves import center_distance_for_module
+
+    if spec.module is None:
+        return float(spec.install_distance)
+    require(spec.module > 0, "module", spec.module, "must be > 0 mm")
+    per_period = max(1, spec.z // law.pinion_periods)
+    return float(center_distance_for_module(law, per_period, spec.module))
 
 
 def plate_layout(parts: list[Part]) -> list[tuple[float, float, float]]:
@@ -165,6 +187,8 @@ def generated_report(pair: GearPair) -> dict:
                   "widened by a constant angular backlash",
         "tilt": pair.spec.tilt,
         "rolling_center_distance_mm": gen.center_distance,
+        "center_distance_chosen_by": ("the module (SPEC §9)" if pair.spec.module is not None
+                                      else "the installed distance"),
         "pitch_mm": gen.pitch,
         "module_mm": gen.module,
         "pinion_teeth": gen.pinion_teeth,

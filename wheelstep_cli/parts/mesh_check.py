@@ -37,7 +37,7 @@ def check_gear_pair(pair, settings: MeshingSettings = MeshingSettings(),
     # generated teeth are checked against the law they were cut for (blended when --blend)
     generated = getattr(pair, "generated", None)
     law = generated.law if generated is not None else pair.law
-    return check_meshing(pinion, wheel, law, pair.spec.install_distance, settings, progress=progress,
+    return check_meshing(pinion, wheel, law, pair.mounted_distance, settings, progress=progress,
                          teeth=pair.spec.z)
 
 

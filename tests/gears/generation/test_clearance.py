@@ -45,3 +45,19 @@ def test_clearance_out_of_bounds_is_refused(cli, tmp_path):
     result = cli("gears", "--clearance", "2", "--out", tmp_path / "out")
     assert result.exit_code == 2 and "clearance" in result.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_module_solves_the_centre_distance_and_changes_the_teeth(cli, tmp_path):
+    # SPEC §9: the pitch-curve perimeter grows with the distance; a module picks the distance
+    result = cli("gears", "--module", "2.5", "--format", "stl", "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((tmp_path / "gears.json").read_text())
+    gen, meshing = report["generated"], report["meshing"]
+    assert gen["module_mm"] == pytest.approx(2.5, rel=1e-6)
+    # the default's 144 mm carries module 2.1082: the distance scales with the module
+    assert gen["rolling_center_distance_mm"] == pytest.approx(144.0 * 2.5 / 2.1082, rel=1e-3)
+    assert gen["center_distance_chosen_by"].startswith("the module")
+    assert meshing["distance_mm"] == pytest.approx(gen["rolling_center_distance_mm"])
+    assert meshing["interference"] is False
+    assert f"rolling at {gen['rolling_center_distance_mm']:g} mm (the centre distance module 2.5" \
+        in result.stdout

@@ -129,7 +129,8 @@ def gears(
     The written meshes are checked first (SPEC §10); a pair whose teeth overlap is
     refused (exit 1, nothing written) unless --allow-interference. Generated teeth
     (default) roll at the installed distance; the module follows from the pitch-curve
-    perimeter and --z (--module applies to --teeth paper only)."""
+    perimeter and --z; a --module solves the centre distance it fits (SPEC §9), and the pair
+    rolls and is mounted there."""
     show = Output(json, quiet, verbose)
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                           install_distance=install_distance, module=module, backlash=backlash,
@@ -155,7 +156,7 @@ def _make_gears(spec, show: Output, out: Path, fmt: str, allow_interference: boo
     record = meshing_record(with_progress(not show.quiet, "meshing check", check_gear_pair, pair))
     if record["interference"] and not allow_interference:
         show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
-                   f"{record['samples']} poses at {spec.install_distance:g} mm (max overlap "
+                   f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
                    f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
                    "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
@@ -181,8 +182,11 @@ def _gears_lines(pair, record: dict) -> list[str]:
         gen = pair.generated
         lines.append(f"generated teeth: z = {gen.pinion_teeth}/{gen.wheel_teeth}, pitch "
                      f"{gen.pitch:.4f} mm, module {gen.module:.4f} mm, rolling at "
-                     f"{gen.center_distance:g} mm, backlash j_n = {gen.cutter.backlash:g} mm")
-    lines.append(f"meshing at {pair.spec.install_distance:g} mm: backlash "
+                     f"{gen.center_distance:g} mm"
+                     + (f" (the centre distance module {pair.spec.module:g} mm fits)"
+                        if pair.spec.module is not None else "")
+                     + f", backlash j_n = {gen.cutter.backlash:g} mm")
+    lines.append(f"meshing at {pair.mounted_distance:g} mm: backlash "
                  f"{_num(record, 'backlash_min_mm', '.3f')}..{_num(record, 'backlash_max_mm', '.3f')}"
                  f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
                  f"hub speed ripple {record['law_hub_speed_ripple_pct']:.2f} %")
