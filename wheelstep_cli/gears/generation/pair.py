@@ -146,6 +146,20 @@ def _check_undercut(job: _Job) -> tuple[float, float]:
     return limit, rho_min
 
 
+def contact_window(curves: PitchCurves, distance: float, addendum: float) -> float:
+    """Body angle (rad) either side of the pitch point within which a pinion point can meet
+    the wheel: where the pinion's tip curve crosses the wheel's (their local pitch radii
+    plus the ``addendum`` mm, centres ``distance`` mm apart), the largest over the period.
+
+    A pinion tip corner touches the wheel that far off the line of centres just after a
+    handover; a fixed number of pitches is too narrow for small pitches (issue 13).
+    """
+    r_tip = np.hypot(*curves.pinion.T) + addendum
+    w_tip = distance - np.hypot(*curves.pinion.T) + addendum
+    cos = (r_tip ** 2 + distance ** 2 - w_tip ** 2) / (2.0 * r_tip * distance)
+    return float(np.arccos(np.clip(cos, -1.0, 1.0)).max())
+
+
 def _require_no_gaps(radii: np.ndarray, pinion_teeth: int) -> None:
     """Refuse a ray map (mm) some ray of which no cut crossed."""
     require(np.all(np.isfinite(radii)), "z", pinion_teeth,
@@ -184,7 +198,11 @@ def _cut_wheel(job: _Job, pinion_outline: np.ndarray, distance: float) -> _GearC
     grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, job.per_period * 2 * s.wheel_rays_per_tooth)
     blank = blank_radii(curves.wheel, grid, job.cutter.addendum * job.module)
     clearance, play = backlash_split(job.cutter, curves.wheel, s)
-    window = s.window_pitches * job.pitch / float(np.min(np.hypot(*curves.pinion.T)))
+    # a pitch beyond where the tip curves cross: the crossing is found at the pitch point's
+    # own radii, the tip that meets the wheel there sits up to a pitch away
+    pitch_angle = job.pitch / float(np.min(np.hypot(*curves.pinion.T)))
+    window = max(s.window_pitches * pitch_angle,
+                 contact_window(curves, distance, job.cutter.addendum * job.module) + pitch_angle)
     # the lead only pays where the law has handover corners (the hub speed factor kinks there);
     # a smooth law keeps the play split evenly, as ordinary spur gears are thinned
     lead = s.lead if (law.corners or law.blended_corners) else 0.0
