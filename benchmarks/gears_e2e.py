@@ -41,8 +41,9 @@ def time_check(runs: int) -> None:
     summary = report.to_dict()
     print(f"meshing check of the written meshes (section + {summary['samples']} poses): median "
           f"{statistics.median(times):.3f} s (min {min(times):.3f}, max {max(times):.3f}, "
-          f"{runs} runs); ripple {summary['hub_speed_ripple_pct']:.4f} %, "
-          f"TE {summary['te_peak_to_peak_arcmin']:.4f}' p-p, backlash "
+          f"{runs} runs); drive F'i {summary['drive']['F_i_total_um']:.2f} um, f'i "
+          f"{summary['drive']['f_i_tooth_um']:.2f} um, ripple "
+          f"{summary['drive']['hub_speed_ripple_pct']:.3f} % (3 tooth harmonics), backlash "
           f"{summary['backlash_min_mm']:.4f}..{summary['backlash_max_mm']:.4f} mm")
 
 

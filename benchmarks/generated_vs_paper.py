@@ -38,9 +38,9 @@ def measure(name, pinion, wheel, law, distance, seconds, samples):
     check_s = time.perf_counter() - t0
     d = rep.to_dict()
     return {
-        "pair": name, "ripple_pct": d["hub_speed_ripple_pct"],
-        "te_pp_arcmin": d["te_peak_to_peak_arcmin"],
-        "te_arcmin": (d["te_min_arcmin"], d["te_max_arcmin"]),
+        "pair": name, "ripple_pct": d["drive"]["hub_speed_ripple_pct"],
+        "te_pp_arcmin": d["drive"]["te_max_arcmin"] - d["drive"]["te_min_arcmin"],
+        "te_arcmin": (d["drive"]["te_min_arcmin"], d["drive"]["te_max_arcmin"]),
         "backlash_mm": (d["backlash_min_mm"], d["backlash_max_mm"]),
         "interference": d["interference"], "contact_lost": d["contact_lost"],
         "generate_s": seconds, "check_s": check_s,

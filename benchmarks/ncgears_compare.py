@@ -45,8 +45,9 @@ def report(name, pinion, wheel, the_law, distance, seconds):
     d = rep.to_dict()
     print(f"{name:28s} centre {distance:8.4f} mm  generate {seconds:6.2f} s  check "
           f"{time.perf_counter() - t0:5.2f} s  interference {str(d['interference']):5s}  "
-          f"TE {d['te_min_arcmin']:7.2f}..{d['te_max_arcmin']:<7.2f}' (p-p {d['te_peak_to_peak_arcmin']:.3f}')  "
-          f"largest TE step {d['te_max_step_arcmin']:.3f}'  "
+          f"TE {d['drive']['te_min_arcmin']:7.2f}..{d['drive']['te_max_arcmin']:<7.2f}'  "
+          f"F'i {d['drive']['F_i_total_um']:.1f} um  f'i {d['drive']['f_i_tooth_um']:.1f} um  "
+          f"largest TE step {d['drive']['te_max_step_um']:.1f} um  "
           f"backlash {d['backlash_min_mm']:.3f}..{d['backlash_max_mm']:.3f} mm")
     return rep
 

@@ -347,7 +347,7 @@ def test_demo_pinion_teeth_keep_two_extrusion_lines(demo_pair):
     loses at most 0.1 mm of height; at most 8 teeth (two beside each of the 4 pitch-curve corners
     of SPEC §3) lose more than 0.2 mm."""
     spec, pair = demo_pair
-    lost = tooth_heights_lost(pair.pinion_outline, spec.module, 0.8)
+    lost = tooth_heights_lost(pair.pinion_outline, pair.generated.module, 0.8)
     assert len(lost) == spec.z
     assert np.median(lost) <= 0.1 and (lost > 0.2).sum() <= 8
 
@@ -356,7 +356,7 @@ def test_demo_wheel_teeth_keep_two_extrusion_lines(demo_pair):
     """As for the pinion. (The paper method's sector-involute wheel teeth fail this: most come
     to sharp points; the generated teeth, now the default, keep their tips.)"""
     spec, pair = demo_pair
-    lost = tooth_heights_lost(pair.wheel_outline, spec.module, 0.8)
+    lost = tooth_heights_lost(pair.wheel_outline, pair.generated.module, 0.8)
     assert len(lost) == spec.z * spec.turns
     assert np.median(lost) <= 0.1 and (lost > 0.2).sum() <= 8
 

@@ -73,7 +73,7 @@ def tool_versions() -> dict[str, str]:
 
 #: The meshing figures the manifest keeps of each gear pair (the entry's report has them all).
 MESHING_KEYS = ("interference", "interfering_poses", "samples", "distance_mm", "backlash_min_mm",
-                "backlash_max_mm", "te_peak_to_peak_arcmin", "hub_speed_ripple_pct")
+                "backlash_max_mm", "drive", "coast")
 
 
 def _meshing(result: EntryResult) -> dict:

@@ -57,8 +57,10 @@ class GearPairSpec(BaseModel):
     turns: int = Field(2, strict=True)
     center_distance: Number = length(143.5, gt=0)
     install_distance: Number = length(144.0, gt=0)
-    module: Number = 2.0
-    backlash: Optional[Number] = None   # None: 0.25 * module (bounds: the tooth form's)
+    # generated teeth: None takes the module from the pitch curves at the distance; a module
+    # solves the design centre distance for it (SPEC §9). Paper teeth: None is 2 mm.
+    module: Optional[Number] = None
+    backlash: Optional[Number] = None   # None: 0.25 * module (2 mm when none; bounds: the tooth form's)
     thickness: Number = length(10.0, gt=0)
     bore: Number = length(8.0, ge=0)
     teeth: Teeth = Teeth.generated.value
@@ -66,6 +68,7 @@ class GearPairSpec(BaseModel):
     addendum: Number = 1.0           # x module, generated teeth
     dedendum: Number = 1.25          # x module, generated teeth
     fillet: Number = 0.25            # cutter tip radius x module, generated teeth
+    clearance: Number = 0.25         # wheel spaces below the pinion tips x module, generated
     blend: Number = quantity(0.0, unit="deg", limit="must be 0..20 deg", ge=0, le=20)
     corner: Corner = Corner.space.value
     tilt: Number = quantity(0.6, limit="must be 0..1.5", ge=0, le=1.5)
@@ -81,15 +84,21 @@ class GearPairSpec(BaseModel):
                               {"center_distance": (self.center_distance, "must be <= the installed "
                                                    f"distance {self.install_distance:g} mm")})
         if self.teeth == Teeth.paper:
-            require(self.install_distance <= self.center_distance + self.module, "install_distance",
+            require(self.install_distance <= self.center_distance + self.paper_module, "install_distance",
                     self.install_distance,
-                    f"must be <= the centre distance + module = {self.center_distance + self.module:g} mm "
+                    f"must be <= the centre distance + module = "
+                    f"{self.center_distance + self.paper_module:g} mm "
                     "(farther apart the teeth lose contact)")
         return self
 
     @property
     def backlash_mm(self) -> float:
-        return 0.25 * self.module if self.backlash is None else self.backlash
+        return 0.25 * self.paper_module if self.backlash is None else self.backlash
+
+    @property
+    def paper_module(self) -> float:
+        """The module (mm) the paper teeth and the default backlash use: 2 when none is given."""
+        return 2.0 if self.module is None else self.module
 
     def mechanism(self):
         """The crank mechanism (mechanism.crank.CrankMechanism); DesignError for an impossible one."""
@@ -106,13 +115,13 @@ class GearPairSpec(BaseModel):
     def tooth_form(self):
         from wheelstep_cli.gears.paper_teeth import ToothForm
 
-        return ToothForm(self.module, self.backlash_mm)
+        return ToothForm(self.paper_module, self.backlash_mm)
 
     def cutter(self):
         from wheelstep_cli.gears.generation import RackCutter
 
         return RackCutter(np.radians(self.pressure_angle), self.addendum, self.dedendum,
-                          self.fillet, self.backlash_mm)
+                          self.fillet, self.backlash_mm, self.clearance)
 
 
 class ShoeSpec(BaseModel):

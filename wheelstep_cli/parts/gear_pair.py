@@ -40,6 +40,14 @@ class GearPair:
     printing: object = None    # parts.kinds.Printing when drawn for a printer (spec: the printed one)
 
     @property
+    def mounted_distance(self) -> float:
+        """Centre distance (mm) the pair is mounted and checked at: generated teeth where they
+        roll (the module's distance when a module is given), paper teeth the installed one."""
+        if self.generated is not None:
+            return float(self.generated.center_distance)
+        return float(self.spec.install_distance)
+
+    @property
     def wheel_teeth(self) -> int:
         if self.generated is not None:
             return self.generated.wheel_teeth
@@ -94,7 +102,7 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     _, law = generation_law(spec)
     settings = replace(GenerationSettings(), tilt=spec.tilt)
     gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, settings=settings,
-                        center_distance=spec.install_distance)
+                        center_distance=rolling_distance(spec, law))
     # the pinion is written as it carved the wheel; the wheel's ray map is thinned only by a
     # fraction of a micron (coarser facets make real speed ripple: a 0.2 mm facet on a
     # curved flank kinks the hub speed by about 1 %)
@@ -105,6 +113,20 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     crank = spec.law() if spec.law_csv is None else None
     return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen)
+
+
+def rolling_distance(spec: GearPairSpec, law) -> float:
+    """The distance (mm) generated teeth roll and are mounted at: the one a given module
+    fits (SPEC §9: the pitch curves' perimeter is proportional to it), else the installed
+    distance."""
+    from wheelstep_cli.errors import require
+    from wheelstep_cli.gears.pitch_curves import center_distance_for_module
+
+    if spec.module is None:
+        return float(spec.install_distance)
+    require(spec.module > 0, "module", spec.module, "must be > 0 mm")
+    per_period = max(1, spec.z // law.pinion_periods)
+    return float(center_distance_for_module(law, per_period, spec.module))
 
 
 def partition_rows(partition: SectorPartition) -> list[dict]:
@@ -163,6 +185,8 @@ def generated_report(pair: GearPair) -> dict:
                   "widened by a constant angular backlash",
         "tilt": pair.spec.tilt,
         "rolling_center_distance_mm": gen.center_distance,
+        "center_distance_chosen_by": ("the module (SPEC §9)" if pair.spec.module is not None
+                                      else "the installed distance"),
         "pitch_mm": gen.pitch,
         "module_mm": gen.module,
         "pinion_teeth": gen.pinion_teeth,
@@ -177,6 +201,12 @@ def generated_report(pair: GearPair) -> dict:
             "note": "teeth generated for the installed distance; backlash by thinning (pinion "
                     "teeth by j_n/2, wheel by a constant angular play worth j_n/2 at its mean "
                     "pitch radius), none by opening the centre distance",
+        },
+        "tip_clearance": {
+            "pinion_spaces_mm": (gen.cutter.dedendum - gen.cutter.addendum) * gen.module,
+            "wheel_spaces_mm": gen.cutter.clearance * gen.module,
+            "note": "below the other gear's tips on the line of centres; the wheel's spaces are "
+                    "carved by the pinion's tips and then deepened by the clearance",
         },
         "undercut_limit_mm": gen.undercut_limit,
         "pitch_curve_min_convex_radius_mm": gen.min_curvature_radius,

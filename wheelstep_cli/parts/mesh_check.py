@@ -28,14 +28,17 @@ def check_gear_pair(pair, settings: MeshingSettings = MeshingSettings(),
                     progress: Callable[[int, int], None] | None = None) -> MeshingReport:
     """Meshing check of a built :class:`~wheelstep_cli.parts.gear_pair.GearPair` as it will be
     written: both meshes are sectioned at mid-thickness (SPEC §10) and checked at the
-    installed centre distance over one period of the law the teeth were generated for."""
+    installed centre distance over one period of the law the teeth were generated for (the
+    blended law with ``--blend``)."""
     from wheelstep_cli.geometry.solids import section_outline
 
     pinion = section_outline(pair.pinion.vertices, pair.pinion.faces, "pinion")
     wheel = section_outline(pair.wheel.vertices, pair.wheel.faces, "wheel")
+    # generated teeth are checked against the law they were cut for (blended when --blend)
     generated = getattr(pair, "generated", None)
-    law = generated.law if generated is not None and pair.law is None else pair.law
-    return check_meshing(pinion, wheel, law, pair.spec.install_distance, settings, progress=progress)
+    law = generated.law if generated is not None else pair.law
+    return check_meshing(pinion, wheel, law, pair.mounted_distance, settings, progress=progress,
+                         teeth=pair.spec.z)
 
 
 def meshing_record(report: MeshingReport) -> dict:
@@ -46,6 +49,14 @@ def meshing_record(report: MeshingReport) -> dict:
 
 def _fmt(value, spec: str) -> str:
     return "n/a" if value is None else format(value, spec)
+
+
+def flank_line(side: str, flank: dict) -> str:
+    """One line of a flank side's figures of merit (SPEC §10), ``flank`` from ``to_dict``."""
+    return (f"{side} flank: F'i {_fmt(flank['F_i_total_um'], '.1f')} um, "
+            f"f'i {_fmt(flank['f_i_tooth_um'], '.1f')} um, hub speed ripple "
+            f"{_fmt(flank['hub_speed_ripple_pct'], '.2f')} % (3 tooth harmonics), "
+            f"largest TE step {_fmt(flank['te_max_step_um'], '.1f')} um")
 
 
 def meshing_lines(summary: dict) -> list[str]:
@@ -63,13 +74,13 @@ def meshing_lines(summary: dict) -> list[str]:
                  f"{_fmt(summary['backlash_max_mm'], '.3f')} mm on the wheel pitch curve "
                  f"({_fmt(summary['backlash_min_arcmin'], '.1f')}' .. "
                  f"{_fmt(summary['backlash_max_arcmin'], '.1f')}' at the wheel)")
-    lines.append(f"transmission error: {_fmt(summary['te_peak_to_peak_arcmin'], '.2f')}' "
-                 f"peak-to-peak (largest step between poses "
-                 f"{_fmt(summary['te_max_step_arcmin'], '.2f')}')")
-    lines.append(f"hub speed ripple: {_fmt(summary['hub_speed_ripple_pct'], '.2f')} % "
-                 f"(the law alone, same sampling: {summary['law_hub_speed_ripple_pct']:.2f} %)")
+    for side in ("drive", "coast"):
+        lines.append(flank_line(side, summary[side]))
+    lines.append(f"diagnostic: pointwise hub speed ripple {_fmt(summary['diagnostic_pointwise_ripple_pct'], '.2f')} % "
+                 f"(drive side, grows with the sampling; the law alone: "
+                 f"{summary['law_hub_speed_ripple_pct']:.2f} %)")
     if summary["interference"]:
-        lines.append(f"hub speed ripple where the teeth do not interfere "
+        lines.append(f"diagnostic: pointwise hub speed ripple where the teeth do not interfere "
                      f"({summary['clear_poses']} poses): "
-                     f"{_fmt(summary['hub_speed_ripple_clear_pct'], '.2f')} %")
+                     f"{_fmt(summary['diagnostic_pointwise_ripple_clear_pct'], '.2f')} %")
     return lines

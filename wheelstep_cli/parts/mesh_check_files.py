@@ -11,7 +11,7 @@ import numpy as np
 
 from wheelstep_cli.errors import require
 from wheelstep_cli.gears.meshing import MeshingReport
-from wheelstep_cli.parts.gear_pair import GearPairSpec, design_law, law_record
+from wheelstep_cli.parts.gear_pair import GearPairSpec, design_law, generation_law, law_record
 
 
 @dataclass(frozen=True)
@@ -49,14 +49,15 @@ def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
 def run_written_pair_check(check: WrittenPairCheck, outlines: tuple[np.ndarray, np.ndarray],
                            progress: Callable[[int, int], None] | None = None
                            ) -> tuple[MeshingReport, dict]:
-    """Check both outlines over one period of the law; returns the report and its summary
-    (files, law, figures)."""
+    """Check both outlines over one period of the law (blended by the spec's ``blend``, as
+    the teeth were cut); returns the report and its summary (files, law, figures)."""
     from wheelstep_cli.parts.mesh_check import check_outlines
 
-    law = design_law(check.spec)
-    report = check_outlines(*outlines, law, check.spec.install_distance, check.samples,
+    law, blended = generation_law(check.spec)
+    report = check_outlines(*outlines, blended, check.spec.install_distance, check.samples,
                             check.window, progress=progress)
-    summary = {"pinion": str(check.pinion), "wheel": str(check.wheel), "law": law_record(check.spec, law),
+    record = {**law_record(check.spec, law), "blend_deg": check.spec.blend}
+    summary = {"pinion": str(check.pinion), "wheel": str(check.wheel), "law": record,
                **report.to_dict()}
     return report, summary
 

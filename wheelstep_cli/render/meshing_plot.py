@@ -1,7 +1,8 @@
-"""The meshing check's plot (SPEC §10): transfer function, its rate, TE and hub speed, as PNG.
+"""The meshing check's plot (SPEC §10): transfer function, its rate, the position error
+e(theta) of both flanks (um) and the hub speed, as PNG.
 
-matplotlib (Agg) is imported lazily. Angles in the report in radians; degrees and
-arcminutes on the axes.
+matplotlib (Agg) is imported lazily. Angles in the report in radians; degrees on the axes,
+position errors in micrometres.
 """
 
 from __future__ import annotations
@@ -15,7 +16,8 @@ if TYPE_CHECKING:
 
 
 def meshing_plot_png(report: MeshingReport, title: str) -> bytes:
-    """A PNG for people: transfer function (law vs drive contact), its rate, TE, hub speed."""
+    """A PNG for people: transfer function (law vs drive contact), its rate, e(theta) of both
+    flanks (um, SPEC §10) and the pointwise hub speed (a diagnostic)."""
     import io
 
     import matplotlib
@@ -24,7 +26,6 @@ def meshing_plot_png(report: MeshingReport, title: str) -> bytes:
     import matplotlib.pyplot as plt
 
     deg = np.degrees
-    arcmin = 60.0 * 180.0 / np.pi
     theta = deg(report.theta)
     rate_law = report.hub_speed_law  # shown relative to its mean below
     fig, axes = plt.subplots(4, 1, figsize=(10, 12), sharex=True)
@@ -42,17 +43,20 @@ def meshing_plot_png(report: MeshingReport, title: str) -> bytes:
     _clip_axis(ax, np.gradient(report.phi_law) / step)
     ax.legend(loc="upper left")
     ax = axes[2]
-    ax.plot(theta, report.transmission_error * arcmin, "r-", lw=0.8, label="drive side (TE)")
-    ax.plot(theta, (report.phi_coast - report.phi_law) * arcmin, "b-", lw=0.8, label="coast side")
+    for side, flank, colour in (("drive", report.drive, "r-"), ("coast", report.coast, "b-")):
+        ax.plot(theta, flank.error_um, colour, lw=0.8,
+                label=f"{side} flank: F'i {flank.total_um:.1f} um, f'i {flank.tooth_um:.1f} um, "
+                      f"ripple {100 * flank.ripple:.2f} % (3 tooth harmonics)")
     _shade(ax, theta, report.interference)
     ax.axhline(0.0, color="k", lw=0.5)
-    ax.set_ylabel("contact - law (arcmin)")
-    ax.legend(loc="upper left")
+    ax.set_ylabel("e on wheel pitch curve (um)")
+    ax.legend(loc="upper left", fontsize=8)
     ax = axes[3]
     mean = float(np.mean(rate_law))
     ax.plot(theta, 100.0 * (rate_law / mean - 1.0), "k-", lw=1.5, label="law")
     ax.plot(theta, 100.0 * (report.hub_speed / mean - 1.0), "r-", lw=0.7,
-            label=f"drive contact (ripple {100 * report.hub_speed_ripple:.2f} %)")
+            label=f"drive contact, pointwise (diagnostic: {100 * report.hub_speed_ripple:.2f} %, "
+                  "grows with the sampling)")
     _shade(ax, theta, report.interference)
     if report.interferes and report.clear.any():
         clear = 100.0 * (report.hub_speed[report.clear] / mean - 1.0)

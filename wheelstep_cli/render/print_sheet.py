@@ -64,15 +64,22 @@ def _meshing(built, results) -> list[str]:
     if not rows:
         return []
     lines = ["## Gear meshing (checked on the printed meshes)", "",
-             "| entry | at (mm) | interference | backlash (mm) | TE p-p (arcmin) | hub speed ripple (%) |",
-             "| --- | ---: | --- | --- | ---: | ---: |"]
+             "| entry | at (mm) | interference | backlash (mm) | F'i / f'i drive (um) | "
+             "F'i / f'i coast (um) | hub speed ripple drive / coast (%) |",
+             "| --- | ---: | --- | --- | ---: | ---: | ---: |"]
     for entry, m in rows:
         verdict = (f"YES at {m['interfering_poses']} of {m['samples']} poses (allowed)"
                    if m["interference"] else f"none ({m['samples']} poses)")
         lines.append(f"| {entry.name} | {m['distance_mm']:g} | {verdict} | {_fmt(m['backlash_min_mm'], '.3f')}"
-                     f" .. {_fmt(m['backlash_max_mm'], '.3f')} | {_fmt(m['te_peak_to_peak_arcmin'], '.2f')} | "
-                     f"{_fmt(m['hub_speed_ripple_pct'], '.2f')} |")
+                     f" .. {_fmt(m['backlash_max_mm'], '.3f')} | {_flank(m['drive'])} | {_flank(m['coast'])} | "
+                     f"{_fmt(m['drive']['hub_speed_ripple_pct'], '.2f')} / "
+                     f"{_fmt(m['coast']['hub_speed_ripple_pct'], '.2f')} |")
     return lines + [""]
+
+
+def _flank(flank: dict) -> str:
+    """F'i / f'i of one flank side, um."""
+    return f"{_fmt(flank['F_i_total_um'], '.1f')} / {_fmt(flank['f_i_tooth_um'], '.1f')}"
 
 
 def _fmt(value, spec: str) -> str:

@@ -67,7 +67,10 @@ def test_involute_spur_pair_has_constant_te_zero_ripple_and_built_in_backlash(sp
     summary = report.to_dict()
     assert summary["interference"] is False
     assert summary["backlash_min_mm"] == pytest.approx(J, rel=0.01)
-    assert summary["hub_speed_ripple_pct"] < 0.05
+    assert summary["pinion_teeth"] == Z1   # counted on the outline
+    for side in ("drive", "coast"):
+        assert summary[side]["hub_speed_ripple_pct"] < 0.05
+        assert summary[side]["F_i_total_um"] < 1.0 and summary[side]["f_i_tooth_um"] < 1.0
 
 
 def test_opening_the_centre_distance_adds_the_involute_backlash(spur_pair):
@@ -217,8 +220,11 @@ def test_paper_pair_runs_and_reports_finite_figures(paper_pair):
     assert np.all(report.backlash[middle] > 0)
     # the law itself keeps the hub speed constant (to the finite-difference error)
     assert summary["law_hub_speed_ripple_pct"] < 3.0
-    for key in ("backlash_min_mm", "te_peak_to_peak_arcmin", "hub_speed_ripple_pct"):
+    for key in ("backlash_min_mm", "diagnostic_pointwise_ripple_pct"):
         assert np.isfinite(summary[key])
+    for side in ("drive", "coast"):
+        assert all(np.isfinite(summary[side][key]) for key in
+                   ("F_i_total_um", "f_i_tooth_um", "hub_speed_ripple_pct", "te_max_step_um"))
 
 
 def _reports_equal(a, b, atol=0.0):

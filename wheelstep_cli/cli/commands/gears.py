@@ -96,6 +96,9 @@ def gears(
         "--dedendum", help="Dedendum, x module (generated).", shown="1.25")] = None,
     fillet: Annotated[Optional[float], opt(
         "--fillet", help="Rack tip fillet radius, x module (generated).", shown="0.25")] = None,
+    clearance: Annotated[Optional[float], opt(
+        "--clearance", help="Tip clearance of the wheel's spaces below the pinion's tips, "
+                            "x module (generated).", shown="0.25")] = None,
     blend: Annotated[Optional[float], opt(
         "--blend", help="Half-width (carrier deg) of the ratio blend at each handover "
                         "(generated).", shown="0")] = None,
@@ -118,13 +121,15 @@ def gears(
     The written meshes are checked first (SPEC §10); a pair whose teeth overlap is
     refused (exit 1, nothing written) unless --allow-interference. Generated teeth
     (default) roll at the installed distance; the module follows from the pitch-curve
-    perimeter and --z (--module applies to --teeth paper only)."""
+    perimeter and --z; a --module solves the centre distance it fits (SPEC §9), and the pair
+    rolls and is mounted there."""
     show = Output(json, quiet, verbose)
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                           install_distance=install_distance, module=module, backlash=backlash,
                           thickness=thickness, bore=bore, teeth=teeth.value if teeth else None,
                           pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
-                          fillet=fillet, blend=blend, corner=corner.value if corner else None,
+                          fillet=fillet, clearance=clearance, blend=blend,
+                          corner=corner.value if corner else None,
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
     _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force)
@@ -151,7 +156,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     record = meshing_record(with_progress(not show.quiet, "meshing check", check_gear_pair, pair))
     if record["interference"] and not allow_interference:
         show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
-                   f"{record['samples']} poses at {spec.install_distance:g} mm (max overlap "
+                   f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
                    f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
                    "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
@@ -164,7 +169,9 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
 
 
 def _gears_lines(pair, record: dict) -> list[str]:
-    """Both parts, the generated teeth and one line on the meshing check."""
+    """Both parts, the generated teeth and the meshing check's figures of both flanks."""
+    from wheelstep_cli.parts.mesh_check import flank_line
+
     lines = []
     for part in (pair.pinion, pair.wheel):
         check = pair.checks[part.name]
@@ -175,11 +182,15 @@ def _gears_lines(pair, record: dict) -> list[str]:
         gen = pair.generated
         lines.append(f"generated teeth: z = {gen.pinion_teeth}/{gen.wheel_teeth}, pitch "
                      f"{gen.pitch:.4f} mm, module {gen.module:.4f} mm, rolling at "
-                     f"{gen.center_distance:g} mm, backlash j_n = {gen.cutter.backlash:g} mm")
-    lines.append(f"meshing at {pair.spec.install_distance:g} mm: hub speed ripple "
-                 f"{_num(record, 'hub_speed_ripple_pct', '.2f')} %, backlash "
+                     f"{gen.center_distance:g} mm"
+                     + (f" (the centre distance module {pair.spec.module:g} mm fits)"
+                        if pair.spec.module is not None else "")
+                     + f", backlash j_n = {gen.cutter.backlash:g} mm")
+    lines.append(f"meshing at {pair.mounted_distance:g} mm: backlash "
                  f"{_num(record, 'backlash_min_mm', '.3f')}..{_num(record, 'backlash_max_mm', '.3f')}"
-                 f" mm, TE {_num(record, 'te_peak_to_peak_arcmin', '.2f')}' p-p")
+                 f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
+                 f"hub speed ripple {record['law_hub_speed_ripple_pct']:.2f} %")
+    lines.extend(f"  {flank_line(side, record[side])}" for side in ("drive", "coast"))
     return lines
 
 
@@ -192,8 +203,8 @@ def _warn_interference(show: Output, record: dict) -> None:
     if record["interference"]:
         show.warning(f"WARNING: the teeth interfere at {record['interfering_poses']} of "
                      f"{record['samples']} poses (max overlap {record['max_overlap_area_mm2']:.3f} "
-                     f"mm2); hub speed ripple where they do not: "
-                     f"{_num(record, 'hub_speed_ripple_clear_pct', '.2f')} %")
+                     f"mm2); pointwise hub speed ripple where they do not (diagnostic): "
+                     f"{_num(record, 'diagnostic_pointwise_ripple_clear_pct', '.2f')} %")
 
 
 def register(app) -> None:

@@ -10,7 +10,10 @@ from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Json, La
                                        Turns, Verbose, opt, plot_option)
 from wheelstep_cli.cli.output import Output
 
-Plot = plot_option("the transfer function, TE and hub speed")
+Plot = plot_option("the transfer function, the position error of both flanks and hub speed")
+Blend = Annotated[Optional[float], opt(
+    "--blend", help="Half-width (carrier deg) of the ratio blend the teeth were cut for.",
+    shown="0")]
 
 
 def mesh_check(
@@ -22,7 +25,8 @@ def mesh_check(
     distance: Annotated[Optional[float], opt("--distance", "-d", help="Installed centre distance, mm.",
                                              shown="the design's, 144")] = None,
     a: A = None, b: B = None, c: C = None, turns: Turns = None,
-    center_distance: CenterDistance = None, law_csv: LawCsv = None, profile: Profile = None,
+    center_distance: CenterDistance = None, law_csv: LawCsv = None, blend: Blend = None,
+    profile: Profile = None,
     pair: Annotated[Optional[str], opt("--pair", help="On plates: the pair to check (its "
                                                       "wheelstep:pair id).", shown="every pair")] = None,
     samples: Annotated[int, opt("--samples", help="Poses over one period of the pinion.")] = 1536,
@@ -33,15 +37,16 @@ def mesh_check(
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Section two gear meshes at mid-thickness and check them over one period of the law:
-    interference, backlash, transmission error and hub speed ripple. The law is the crank
-    law of the design, or any law given as --law-csv. Given plates (3MF written by wheelstep),
+    interference, backlash, and per flank F'i, f'i (um along the wheel pitch curve) and
+    the hub speed ripple of 3 tooth harmonics (SPEC §10). The law is the crank law of the
+    design, or any law given as --law-csv, blended by --blend as the teeth were cut. Given plates (3MF written by wheelstep),
     the pinion and wheel of each pair are found by their metadata and checked with the law and
     installed distance stored there. Exit 1 if they interfere or lose contact."""
     from wheelstep_cli.parts.plate_pairs import is_plate_input
 
     show = Output(json, quiet, verbose)
     design = {"distance": distance, "a": a, "b": b, "c": c, "turns": turns,
-              "center_distance": center_distance, "law_csv": law_csv, "profile": profile}
+              "center_distance": center_distance, "law_csv": law_csv, "blend": blend, "profile": profile}
     if is_plate_input(pinion, wheel):
         failed = _check_plates(show, [pinion] + ([wheel] if wheel else []), pair, design, samples,
                                window, plot, dry_run, quiet)
@@ -65,7 +70,8 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     law_csv = design["law_csv"]
     spec = gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
                           turns=design["turns"], center_distance=design["center_distance"],
-                          install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None)
+                          install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
+                          blend=design["blend"])
     check = WrittenPairCheck(pinion, wheel, spec, samples, window, plot)
     show.parameters(vars(spec))
     outlines = read_written_pair(check)

@@ -7,7 +7,7 @@ carves the wheel moving along the exact law (``wheel``). Angles in radians, leng
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -19,7 +19,8 @@ from wheelstep_cli.gears.generation.outline import blank_radii, simplify_outline
 from wheelstep_cli.gears.generation.pinion import pinion_by_rack, round_tips, topped_outline
 from wheelstep_cli.gears.generation.rack import RackCutter, RackRolling
 from wheelstep_cli.gears.generation.settings import CORNER_MODES, GenerationSettings
-from wheelstep_cli.gears.generation.wheel import Carving, backlash_split, carve_by_pinion
+from wheelstep_cli.gears.generation.wheel import (Carving, backlash_split, carve_by_pinion,
+                                                  deepened_spaces)
 from wheelstep_cli.gears.pitch_curves import PitchCurves, pitch_curves
 from wheelstep_cli.gears.transmission import TransmissionLaw
 
@@ -145,6 +146,20 @@ def _check_undercut(job: _Job) -> tuple[float, float]:
     return limit, rho_min
 
 
+def contact_window(curves: PitchCurves, distance: float, addendum: float) -> float:
+    """Body angle (rad) either side of the pitch point within which a pinion point can meet
+    the wheel: where the pinion's tip curve crosses the wheel's (their local pitch radii
+    plus the ``addendum`` mm, centres ``distance`` mm apart), the largest over the period.
+
+    A pinion tip corner touches the wheel that far off the line of centres just after a
+    handover; a fixed number of pitches is too narrow for small pitches (issue 13).
+    """
+    r_tip = np.hypot(*curves.pinion.T) + addendum
+    w_tip = distance - np.hypot(*curves.pinion.T) + addendum
+    cos = (r_tip ** 2 + distance ** 2 - w_tip ** 2) / (2.0 * r_tip * distance)
+    return float(np.arccos(np.clip(cos, -1.0, 1.0)).max())
+
+
 def _require_no_gaps(radii: np.ndarray, pinion_teeth: int) -> None:
     """Refuse a ray map (mm) some ray of which no cut crossed."""
     require(np.all(np.isfinite(radii)), "z", pinion_teeth,
@@ -183,14 +198,26 @@ def _cut_wheel(job: _Job, pinion_outline: np.ndarray, distance: float) -> _GearC
     grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, job.per_period * 2 * s.wheel_rays_per_tooth)
     blank = blank_radii(curves.wheel, grid, job.cutter.addendum * job.module)
     clearance, play = backlash_split(job.cutter, curves.wheel, s)
-    window = s.window_pitches * job.pitch / float(np.min(np.hypot(*curves.pinion.T)))
+    # a pitch beyond where the tip curves cross: the crossing is found at the pitch point's
+    # own radii, the tip that meets the wheel there sits up to a pitch away
+    pitch_angle = job.pitch / float(np.min(np.hypot(*curves.pinion.T)))
+    window = max(s.window_pitches * pitch_angle,
+                 contact_window(curves, distance, job.cutter.addendum * job.module) + pitch_angle)
     # the lead only pays where the law has handover corners (the hub speed factor kinks there);
     # a smooth law keeps the play split evenly, as ordinary spur gears are thinned
     lead = s.lead if (law.corners or law.blended_corners) else 0.0
     carving = Carving(distance, clearance, job.per_period * s.carve_poses_per_tooth, window,
                       float(blank.max()), play, lead, s.path_run, s.carve_segment)
     radii = np.minimum(blank, carve_by_pinion(law, pinion_outline, grid, carving))
+    if s.mount_tolerance > 0:
+        # carved again rolling that much closer: mounted closer by up to it, the pair still
+        # clears (the tips' paths and the corner teeth), at the cost of a little backlash
+        closer = replace(carving, distance=distance - s.mount_tolerance)
+        radii = np.minimum(radii, carve_by_pinion(law, pinion_outline, grid, closer))
     _require_no_gaps(radii, job.pinion_teeth)
+    # carved by the pinion's tips the spaces end microns below them: deepen their bottoms
+    radii = deepened_spaces(radii, job.per_period, job.cutter.clearance * job.module,
+                            s.clearance_band * job.cutter.clearance * job.module)
     radii, topping, land = top_or_refuse(GearBody("wheel", grid, curves.wheel, blank), radii,
                                          job.cutter, job.limits)
     return _GearCut(outline_from_radii(grid, radii, law.wheel_periods), radii, grid, topping, land, play)

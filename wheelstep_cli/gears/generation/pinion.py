@@ -60,3 +60,4 @@ def topped_outline(outline: np.ndarray, grid: PolarGrid, topped: np.ndarray, bef
         return outline
     cap = np.where(lowered, topped, 10.0 * float(before.max()))
     return intersect_outlines(outline, outline_from_radii(grid, cap, copies))
+

@@ -23,7 +23,9 @@ class RackCutter:
 
     ``addendum`` is the gears' tooth height above the pitch curve, ``dedendum`` the
     depth below it (the cutter's tooth height), ``fillet`` the cutter's tip radius.
-    ``backlash`` is the total normal backlash j_n (mm) of the pair.
+    ``backlash`` is the total normal backlash j_n (mm) of the pair. ``clearance`` (x m)
+    is the tip clearance of the wheel's spaces below the pinion's tips (the pinion's own
+    spaces end ``dedendum - addendum`` below the wheel's tips).
     """
 
     pressure_angle: float = np.radians(20.0)
@@ -31,6 +33,7 @@ class RackCutter:
     dedendum: float = 1.25
     fillet: float = 0.25
     backlash: float = 0.5
+    clearance: float = 0.25
 
     def __post_init__(self) -> None:
         require(np.radians(5.0) <= self.pressure_angle <= np.radians(35.0), "pressure-angle",
@@ -41,6 +44,7 @@ class RackCutter:
         require(0.0 <= self.fillet <= 0.45, "fillet", self.fillet, "must be 0..0.45 x module")
         require(np.isfinite(self.backlash) and self.backlash >= 0, "backlash", self.backlash,
                 "must be >= 0 mm")
+        require(0.0 <= self.clearance <= 1.0, "clearance", self.clearance, "must be 0..1 x module")
 
 
 @dataclass(frozen=True)

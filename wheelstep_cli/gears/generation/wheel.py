@@ -160,3 +160,20 @@ def widen(radii: np.ndarray, span: float, lead: float) -> np.ndarray:
         t = (j + lead * span) - lo
         widened = (1 - t) * widened[lo % n] + t * widened[(lo + 1) % n]
     return widened
+
+
+def deepened_spaces(radii: np.ndarray, teeth: int, clearance: float, band: float) -> np.ndarray:
+    """The ray map (mm per ray, one period of ``teeth`` teeth) with its space bottoms
+    lowered by ``clearance`` mm.
+
+    A ray's space bottom is the least radius within half a tooth of it; rays within
+    ``band`` mm above it are lowered by ``clearance`` times (1 - height / band), so the
+    bottom drops by the clearance and the fillet above the band (where the pinion's tip
+    corner passes, and the flank it drives) stays as carved.
+    """
+    if clearance <= 0 or band <= 0:
+        return radii
+    half = max(1, len(radii) // (2 * teeth))
+    padded = np.concatenate([radii[-half:], radii, radii[:half]])
+    bottom = np.lib.stride_tricks.sliding_window_view(padded, 2 * half + 1).min(axis=1)
+    return radii - clearance * np.clip(1.0 - (radii - bottom) / band, 0.0, 1.0)

@@ -11,6 +11,7 @@ from typing import Callable
 
 import numpy as np
 
+from wheelstep_cli.gears.meshing.figures import BAND_HARMONICS, Track, count_teeth, pitch_arc
 from wheelstep_cli.gears.meshing.outlines import MeshWindow
 from wheelstep_cli.gears.meshing.report import MeshingReport
 from wheelstep_cli.gears.meshing.search import Pair, PoseContacts, batch_contacts, prepare
@@ -40,14 +41,17 @@ def mesh_window(pinion: np.ndarray, wheel: np.ndarray, distance: float,
 
 def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, distance: float,
                   settings: MeshingSettings = MeshingSettings(), start: float = 0.0,
-                  progress: Callable[[int, int], None] | None = None) -> MeshingReport:
+                  progress: Callable[[int, int], None] | None = None,
+                  teeth: int | None = None) -> MeshingReport:
     """Run the meshing check (SPEC §10) over one period of ``law``.
 
     ``pinion``, ``wheel``: closed outlines (N, 2) in mm in their own frames (any
     orientation). ``law``: read through ``carrier_angle`` (the wheel angle the pair
     should have), ``theta_period`` and ``hub_speed_factor``. ``distance``: installed
     centre distance (mm). ``settings.samples`` poses over the period, from ``start``
-    (rad). ``progress(done, total)`` is called after every batch of poses.
+    (rad). ``progress(done, total)`` is called after every batch of poses. ``teeth``:
+    the pinion's tooth count (None: counted on its outline), which sets the tooth pitch
+    and the band of the figures of merit.
     """
     pinion = np.asarray(pinion, dtype=float)
     wheel = np.asarray(wheel, dtype=float)
@@ -60,7 +64,24 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, d
     batch = max(1, min(settings.batch, settings.batch_points // (len(pinion) + len(wheel))))
     slices = [slice(lo, min(lo + batch, samples)) for lo in range(0, samples, batch)]
     contacts = _search(make_pair, theta, phi_law, slices, settings, progress)
-    return _report(law, theta, phi_law, contacts, float(distance), start)
+    if teeth is None:
+        teeth = max(1, count_teeth(pinion, lambda a: _pinion_pitch_radius(law, a, float(distance))))
+    return _report(law, theta, phi_law, contacts, float(distance), start, teeth)
+
+
+def _pinion_pitch_radius(law: TransmissionLaw, angle: np.ndarray, distance: float) -> np.ndarray:
+    """The pinion's pitch radius (mm) at body angles ``angle`` (rad) at centre distance
+    ``distance`` mm: the pitch point for theta lies at body angle theta."""
+    rate = _law_rate(law, angle)
+    return distance * rate / (1.0 + rate)
+
+
+def _law_rate(law: TransmissionLaw, theta: np.ndarray, step: float = 1e-6) -> np.ndarray:
+    """dphi/dtheta of the law at pinion angles ``theta`` (rad), by a central difference of
+    ``carrier_angle`` over +-``step`` rad (the check reads the law only through it)."""
+    theta = np.asarray(theta, dtype=float)
+    ahead = np.asarray(law.carrier_angle(theta + step), dtype=float)
+    return (ahead - np.asarray(law.carrier_angle(theta - step), dtype=float)) / (2.0 * step)
 
 
 def _search(make_pair: Callable[[], Pair], theta: np.ndarray, phi_law: np.ndarray,
@@ -97,8 +118,9 @@ def _periodic_derivative(theta: np.ndarray, values: np.ndarray, rise: float, per
 
 
 def _report(law: TransmissionLaw, theta: np.ndarray, phi_law: np.ndarray, contacts: PoseContacts,
-            distance: float, start: float) -> MeshingReport:
-    """The report of the poses ``theta`` (rad) from their contacts."""
+            distance: float, start: float, teeth: int) -> MeshingReport:
+    """The report of the poses ``theta`` (rad) from their contacts, the pinion having
+    ``teeth`` teeth."""
     period = float(law.theta_period)
     rise = float(law.carrier_angle(np.array([start + period]))[0]
                  - law.carrier_angle(np.array([start]))[0])
@@ -109,10 +131,14 @@ def _report(law: TransmissionLaw, theta: np.ndarray, phi_law: np.ndarray, contac
     f_drive = np.asarray(law.hub_speed_factor(phi_drive), dtype=float)
     f_law = np.asarray(law.hub_speed_factor(phi_law), dtype=float)
     hub_speed = f_drive * _periodic_derivative(theta, phi_drive, rise, period)
-    law_rate = _periodic_derivative(theta, phi_law, rise, period)
-    hub_speed_law = f_law * law_rate
+    hub_speed_law = f_law * _periodic_derivative(theta, phi_law, rise, period)
+    law_rate = _law_rate(law, theta)
     # instantaneous centre on the line of centres: r_w / r_p = dtheta/dphi, r_w + r_p = D
     pitch_radius = distance / (1.0 + law_rate)
+    arc, arc_total = pitch_arc(phi_law, pitch_radius, rise)
+    per_period = teeth * period / (2.0 * np.pi)
+    track = Track(period, phi_law, law_rate, pitch_radius, arc, arc_total, arc_total / per_period,
+                  int(np.floor(BAND_HARMONICS * per_period + 1e-9)), law.hub_speed_factor)
     return MeshingReport(theta, phi_law, phi_drive, phi_coast, contacts.interference,
                          contacts.area, contacts.depth, hub_speed, hub_speed_law, pitch_radius,
-                         distance, period)
+                         distance, period, teeth, track)

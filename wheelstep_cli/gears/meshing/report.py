@@ -6,8 +6,11 @@ Angles in radians, lengths in mm; degrees, arcminutes and % only in ``to_dict``.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
+
+from wheelstep_cli.gears.meshing.figures import FlankFigures, Track, flank_figures
 
 
 @dataclass(frozen=True)
@@ -18,8 +21,10 @@ class MeshingReport:
     was found within the mesh window in that direction. ``interference``: per-pose
     overlap at the law's angle. ``overlap_area``: mm^2 per pose. ``penetration``: depth
     (mm) of the deepest vertex inside the other outline (0 when clear).
-    ``hub_speed``: f(phi_drive) dphi_drive/dtheta (relative units), ``pitch_radius``:
-    the wheel's instantaneous pitch radius (mm) at the installed distance.
+    ``hub_speed``: f(phi_drive) dphi_drive/dtheta (relative units), pointwise (a
+    diagnostic: it has no limit as the poses grow), ``pitch_radius``: the wheel's
+    instantaneous pitch radius (mm) at the installed distance. ``teeth``: the pinion's
+    tooth count; ``track``: what the figures of merit of both flanks share (SPEC §10).
     """
 
     theta: np.ndarray
@@ -34,6 +39,18 @@ class MeshingReport:
     pitch_radius: np.ndarray
     distance: float
     period: float
+    teeth: int
+    track: Track
+
+    @cached_property
+    def drive(self) -> FlankFigures:
+        """Figures of merit of the drive flank (SPEC §10): F'i, f'i, band-limited ripple."""
+        return flank_figures(self.transmission_error, self.track)
+
+    @cached_property
+    def coast(self) -> FlankFigures:
+        """Figures of merit of the coast flank (SPEC §10), its TE phi_coast - phi_law."""
+        return flank_figures(self.phi_coast - self.phi_law, self.track)
 
     @property
     def transmission_error(self) -> np.ndarray:
@@ -79,7 +96,8 @@ class MeshingReport:
 
     @property
     def hub_speed_ripple(self) -> float:
-        """Peak-to-peak over mean of the hub speed from the drive-side contact (fraction)."""
+        """Pointwise peak-to-peak over mean of the hub speed from the drive-side contact
+        (fraction): a diagnostic that grows with the sampling (SPEC §10)."""
         return _peak_to_peak(self.hub_speed) / float(np.nanmean(self.hub_speed))
 
     @property
@@ -102,13 +120,18 @@ class MeshingReport:
         return _peak_to_peak(v) / float(np.nanmean(v))
 
     def to_dict(self) -> dict:
-        """Summary in degrees, arcminutes, mm and % for JSON and tables."""
+        """Summary in degrees, arcminutes, mm, um and % for JSON and tables: the figures of
+        merit per flank side (``drive``, ``coast``), backlash band, interference, and the
+        pointwise ripple labelled as a diagnostic."""
         arcmin = 60.0 * 180.0 / np.pi
-        te = self.transmission_error
+        law_ripple = _peak_to_peak(self.hub_speed_law) / float(np.mean(self.hub_speed_law))
         return {
             "distance_mm": self.distance,
             "samples": int(len(self.theta)),
             "period_deg": float(np.degrees(self.period)),
+            "pinion_teeth": int(self.teeth),
+            "tooth_pitch_mm": self.track.pitch,
+            "band_harmonics": self.track.harmonics,
             "interference": self.interferes,
             "interfering_poses": int(np.count_nonzero(self.interference)),
             "max_overlap_area_mm2": float(self.overlap_area.max()),
@@ -118,16 +141,26 @@ class MeshingReport:
             "backlash_max_arcmin": _nan_none(np.nanmax(self.backlash) * arcmin),
             "backlash_min_mm": _nan_none(np.nanmin(self.backlash_mm)),
             "backlash_max_mm": _nan_none(np.nanmax(self.backlash_mm)),
-            "te_min_arcmin": _nan_none(np.nanmin(te) * arcmin),
-            "te_max_arcmin": _nan_none(np.nanmax(te) * arcmin),
-            "te_peak_to_peak_arcmin": _nan_none(self.te_peak_to_peak * arcmin),
-            "te_max_step_arcmin": _nan_none(self.te_max_step * arcmin),
-            "hub_speed_ripple_pct": _nan_none(100.0 * self.hub_speed_ripple),
-            "hub_speed_ripple_clear_pct": _nan_none(100.0 * self.hub_speed_ripple_clear),
+            "drive": _flank_dict(self.drive, self.transmission_error * arcmin),
+            "coast": _flank_dict(self.coast, (self.phi_coast - self.phi_law) * arcmin),
+            "diagnostic_pointwise_ripple_pct": _nan_none(100.0 * self.hub_speed_ripple),
+            "diagnostic_pointwise_ripple_clear_pct": _nan_none(
+                100.0 * self.hub_speed_ripple_clear),
             "clear_poses": int(np.count_nonzero(self.clear)),
-            "law_hub_speed_ripple_pct": float(
-                100.0 * _peak_to_peak(self.hub_speed_law) / np.mean(self.hub_speed_law)),
+            "law_hub_speed_ripple_pct": float(100.0 * law_ripple),
         }
+
+
+def _flank_dict(figures: FlankFigures, te_arcmin: np.ndarray) -> dict:
+    """One flank side's figures (um, %, arcmin) for JSON."""
+    return {
+        "F_i_total_um": _nan_none(figures.total_um),
+        "f_i_tooth_um": _nan_none(figures.tooth_um),
+        "hub_speed_ripple_pct": _nan_none(100.0 * figures.ripple),
+        "te_max_step_um": _nan_none(figures.max_step_um),
+        "te_min_arcmin": _nan_none(np.nanmin(te_arcmin)),
+        "te_max_arcmin": _nan_none(np.nanmax(te_arcmin)),
+    }
 
 
 def _peak_to_peak(values: np.ndarray) -> float:

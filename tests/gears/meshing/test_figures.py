@@ -1,0 +1,98 @@
+"""SPEC §10 figures of merit: the definitions on synthetic TE, the tooth count, and their
+convergence on the default generated pair."""
+
+import numpy as np
+import pytest
+
+from wheelstep_cli.gears.meshing.figures import (Track, count_teeth, flank_figures,
+                                                 window_peak_to_peak)
+
+PERIOD, R, TEETH, N = np.pi, 90.0, 24, 768   # rad of pinion, wheel pitch radius mm, teeth, poses
+
+
+def _track(rate: float = 0.5) -> Track:
+    """A circular wheel: constant pitch radius R, TEETH teeth over the period, unit hub factor."""
+    theta = PERIOD * np.arange(N) / N
+    phi = rate * theta
+    arc = R * phi
+    total = R * rate * PERIOD
+    return Track(PERIOD, phi, np.full(N, rate), np.full(N, R), arc, total, total / TEETH,
+                 3 * TEETH, lambda p: np.ones_like(p))
+
+
+def test_a_known_sine_gives_its_total_and_tooth_to_tooth_deviation():
+    theta = PERIOD * np.arange(N) / N
+    amp = 2e-5   # rad at the wheel: 1.8 um on R = 90 mm
+    # two waves per period (long wave): F'i = 2 A R; one tooth window sees 2 A R sin(pi 2 / 24)
+    long = flank_figures(amp * np.sin(2 * 2 * np.pi * theta / PERIOD), _track())
+    assert long.total_um == pytest.approx(2 * amp * R * 1000, rel=1e-4)
+    assert long.tooth_um == pytest.approx(2 * amp * R * 1000 * np.sin(np.pi * 2 / TEETH), rel=0.02)
+    # one wave per tooth: every tooth window sees the whole wave
+    tooth = flank_figures(amp * np.sin(TEETH * 2 * np.pi * theta / PERIOD), _track())
+    assert tooth.tooth_um == pytest.approx(tooth.total_um, rel=1e-3)
+    assert tooth.total_um == pytest.approx(2 * amp * R * 1000, rel=1e-3)
+
+
+def test_band_limited_ripple_keeps_three_tooth_harmonics_only():
+    theta = PERIOD * np.arange(N) / N
+    amp, rate = 2e-5, 0.5
+    k = 2 * TEETH   # inside the band: v = rate + A k w cos -> ripple 2 A k w / rate
+    inside = flank_figures(amp * np.sin(k * 2 * np.pi * theta / PERIOD), _track(rate))
+    assert inside.ripple == pytest.approx(2 * amp * k * 2 * np.pi / PERIOD / rate, rel=1e-6)
+    # a facet-scale wave above 3 tooth harmonics moves the pointwise speed, not this figure
+    above = flank_figures(amp * np.sin(5 * TEETH * 2 * np.pi * theta / PERIOD), _track(rate))
+    assert above.ripple < 1e-9 and above.total_um == pytest.approx(2 * amp * R * 1000, rel=1e-3)
+    lost = flank_figures(np.full(N, np.nan), _track())
+    assert np.isnan(lost.total_um) and np.isnan(lost.ripple)
+
+
+def test_window_wraps_round_the_period_end():
+    values = np.zeros(100)
+    values[0], values[99] = 1.0, -1.0   # neighbours across the wrap
+    arc = np.arange(100.0)
+    assert window_peak_to_peak(values, arc, 100.0, 2.0) == pytest.approx(2.0)
+    assert window_peak_to_peak(values, arc, 100.0, 50.0) == pytest.approx(2.0)
+    values[99] = 0.0
+    values[50] = -1.0
+    assert window_peak_to_peak(values, arc, 100.0, 10.0) == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("teeth", [18, 24, 97])
+def test_teeth_are_counted_on_a_non_circular_outline(teeth):
+    # tooth bumps equally spaced in angle on an oval pitch curve, with a facet wiggle
+    angle = np.linspace(0.0, 2 * np.pi, 20 * teeth * 8, endpoint=False)
+    pitch = lambda a: 60.0 + 15.0 * np.cos(2 * a)  # noqa: E731
+    radius = pitch(angle) + 2.0 * np.sign(np.sin(teeth * angle)) + 0.05 * np.sin(400 * angle)
+    outline = np.column_stack([radius * np.cos(angle), radius * np.sin(angle)])
+    assert count_teeth(outline, pitch) == teeth
+
+
+@pytest.fixture(scope="module")
+def default_sections():
+    from wheelstep_cli.config.specs import GearPairSpec
+    from wheelstep_cli.geometry.solids import section_outline
+    from wheelstep_cli.parts.gear_pair import build_gear_pair
+
+    pair = build_gear_pair(GearPairSpec())
+    return (section_outline(pair.pinion.vertices, pair.pinion.faces, "pinion"),
+            section_outline(pair.wheel.vertices, pair.wheel.faces, "wheel"), pair)
+
+
+def test_default_pair_figures_converge_with_the_poses_per_tooth(default_sections):
+    from wheelstep_cli.parts.mesh_check import check_outlines
+
+    pinion, wheel, pair = default_sections
+    per_period = pair.spec.z * pair.law.theta_period / (2 * np.pi)
+    figures = []
+    for poses in (8, 16, 32):
+        report = check_outlines(pinion, wheel, pair.law, pair.spec.install_distance,
+                                samples=int(poses * per_period))
+        assert not report.interferes and report.teeth == pair.spec.z
+        figures.append((report.drive.total_um, report.drive.tooth_um, report.drive.ripple))
+        pointwise = report.hub_speed_ripple
+    total, tooth, ripple = np.array(figures).T
+    # the independent check (SPEC §10): F'i 4.5-7 um, f'i 4-6 um, ripple 0.4-0.5 %
+    assert np.all((4.0 < total) & (total < 7.5)) and np.ptp(total) < 2.0
+    assert np.all((3.5 < tooth) & (tooth < 6.5)) and np.ptp(tooth) < 2.0
+    assert np.all((0.004 < ripple) & (ripple < 0.0055)) and np.ptp(ripple) < 0.001
+    assert pointwise > 2 * ripple[-1]   # the diagnostic does not converge to the figure
