@@ -114,3 +114,18 @@ def _pair_ids(plate: str) -> set[str]:
     from wheelstep_cli.formats.mesh_read import read_3mf_objects
 
     return {o.metadata.get("pair") for o in read_3mf_objects(Path(plate), "pinion")}
+
+
+def test_resin_plate_slices_for_sla_with_its_own_settings(tmp_path):
+    from tests.helpers.files import SMALL_BATCH
+    from wheelstep_cli.cli import run
+
+    require_slicer()
+    (tmp_path / "b.yaml").write_text(SMALL_BATCH)
+    out = tmp_path / "out"
+    assert run(["batch", str(tmp_path / "b.yaml"), "--out", str(out), "-q"]) == 0
+    manifest = json.loads((out / "manifest.json").read_text())
+    plate = next(p for p in manifest["plates"] if p["printer_profile"] == "resin-0.05-standard")
+    result = slicer("--export-sla", plate["file"], cwd=out)
+    assert result.returncode == 0, result.stdout[-1500:] + result.stderr[-1500:]
+    assert list(out.glob("*.sl1"))
