@@ -223,13 +223,17 @@ def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both", meshing: dict 
     ``printer``'s bed (a config.printers.Printer; default the printer the pair was drawn for,
     else the fdm-0.4-pla preset) as
     gears.3mf, or gears-1.3mf and gears-2.3mf when both do not fit on one, and gears.json.
-    A gear larger or taller than the bed is refused (DesignError) before anything is made."""
+    A gear larger or taller than the bed is refused (DesignError) before anything is made,
+    when a plate is written or a printer was chosen (plain STL for no printer in particular
+    is not held to the default bed)."""
     from wheelstep_cli.config.profiles import load_printer
 
-    printer = printer or (pair.printing.printer if pair.printing is not None else None) or load_printer()
+    chosen = printer or (pair.printing.printer if pair.printing is not None else None)
+    printer = chosen or load_printer()
     files: dict[Path, bytes] = {}
     parts = [pair.pinion, pair.wheel]
-    require_on_bed(parts, printer, "thickness", pair.spec.thickness)
+    if chosen is not None or fmt in ("3mf", "both"):
+        require_on_bed(parts, printer, "thickness", pair.spec.thickness)
     if fmt in ("stl", "both"):
         for part in parts:
             files[out / f"{part.name}.stl"] = stl_bytes(part.vertices, part.faces, f"wheelstep {part.name}")

@@ -168,13 +168,15 @@ def shoe_files(shoe: Shoe, out: Path, fmt: str = "both", printer=None) -> dict[P
     """File name -> contents: shoe.stl / shoe.3mf (on ``printer``'s bed, a config.printers.Printer;
     default the printer the shoe was drawn for, else the fdm-0.4-pla preset), shoe.json,
     shoe-profile.csv and .dxf. A shoe larger or taller than the bed is refused (DesignError)
-    before anything is made."""
+    before anything is made, when a plate is written or a printer was chosen."""
     from wheelstep_cli.config.profiles import load_printer
 
     require(fmt in FORMATS, "format", fmt, f"must be one of {', '.join(FORMATS)}")
-    printer = printer or (shoe.printing.printer if shoe.printing is not None else None) or load_printer()
+    chosen = printer or (shoe.printing.printer if shoe.printing is not None else None)
+    printer = chosen or load_printer()
     part = shoe.part
-    require_on_bed([part], printer, "width", shoe.spec.width)
+    if chosen is not None or fmt in ("3mf", "both"):
+        require_on_bed([part], printer, "width", shoe.spec.width)
     files: dict[Path, bytes] = {}
     if fmt in ("stl", "both"):
         files[out / "shoe.stl"] = stl_bytes(part.vertices, part.faces, "wheelstep shoe")

@@ -118,11 +118,10 @@ def gears(
 ) -> None:
     """Write the non-circular gear pair as printable STL/3MF meshes and gears.json.
 
-    The written meshes are checked first (SPEC §10); a pair whose teeth overlap is
-    refused (exit 1, nothing written) unless --allow-interference. Generated teeth
-    (default) roll at the installed distance; the module follows from the pitch-curve
-    perimeter and --z; a --module solves the centre distance it fits (SPEC §9), and the pair
-    rolls and is mounted there."""
+    The written meshes are checked first (SPEC §10); overlapping teeth are refused (exit 1,
+    nothing written) unless --allow-interference. Generated teeth roll at the installed
+    distance, their module following from the perimeter and --z; or at the distance a
+    --module fits (SPEC §9)."""
     show = Output(json, quiet, verbose)
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                           install_distance=install_distance, module=module, backlash=backlash,
