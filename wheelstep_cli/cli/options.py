@@ -73,6 +73,9 @@ CenterDistance = Annotated[Optional[float], opt("--center-distance",
                                                 help="Design centre distance L_p, mm.",
                                                 shown="143.5")]
 # --- where values and files come from and go
+Blend = Annotated[Optional[float], opt(
+    "--blend", help="Half-width (carrier deg) of the ratio blend at each handover: the law the "
+                    "teeth are cut for and checked against (generated teeth).", shown="0")]
 LawCsv = Annotated[Optional[Path], opt(
     "--law-csv", help="CSV of driving angle, driven angle (deg) over one period: this law instead "
                       "of the crank law (generated teeth).")]

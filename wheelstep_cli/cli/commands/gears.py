@@ -5,8 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Force, Format, Json, LawCsv, MeshFormat,
-                                       Out, Printer, Profile, Quiet, Turns, Verbose, Z, opt)
+from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Force, Format, Json, LawCsv,
+                                       MeshFormat, Out, Printer, Profile, Quiet, Turns, Verbose, Z, opt)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec
 from wheelstep_cli.config.specs import Corner, Teeth
@@ -99,9 +99,7 @@ def gears(
     clearance: Annotated[Optional[float], opt(
         "--clearance", help="Tip clearance of the wheel's spaces below the pinion's tips, "
                             "x module (generated).", shown="0.25")] = None,
-    blend: Annotated[Optional[float], opt(
-        "--blend", help="Half-width (carrier deg) of the ratio blend at each handover "
-                        "(generated).", shown="0")] = None,
+    blend: Blend = None,
     corner: Annotated[Optional[Corner], opt(
         "--corner", help="Centre a pinion space or tooth on each pitch-curve corner "
                          "(generated).", shown="space")] = None,

@@ -6,14 +6,11 @@ from typing import Annotated, Optional
 
 import typer
 
-from wheelstep_cli.cli.options import (A, B, C, CenterDistance, DryRun, Json, LawCsv, Profile, Quiet,
-                                       Turns, Verbose, opt, plot_option)
+from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Json, LawCsv, Profile,
+                                       Quiet, Turns, Verbose, opt, plot_option)
 from wheelstep_cli.cli.output import Output
 
 Plot = plot_option("the transfer function, the position error of both flanks and hub speed")
-Blend = Annotated[Optional[float], opt(
-    "--blend", help="Half-width (carrier deg) of the ratio blend the teeth were cut for.",
-    shown="0")]
 
 
 def mesh_check(
