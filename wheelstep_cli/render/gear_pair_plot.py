@@ -87,30 +87,60 @@ def _handovers(name: str, law, distance: float) -> np.ndarray:
     return np.column_stack([r * np.cos(angle), r * np.sin(angle)])
 
 
-def draw_pair(ax, drawing: PairDrawing, theta: float, phi: float, pitch: bool = True) -> None:
+def pose_transform(ax, name: str, theta: float, phi: float, distance: float):
+    """The matplotlib transform drawing gear ``name``'s own frame (mm) on ``ax`` at pinion
+    angle ``theta`` and wheel angle ``phi`` (rad), as :func:`posed` places points."""
+    from matplotlib.transforms import Affine2D
+
+    if name == "pinion":
+        return Affine2D().rotate(-theta) + ax.transData
+    return Affine2D().rotate(np.pi + phi).translate(distance, 0.0) + ax.transData
+
+
+def draw_pair(ax, drawing: PairDrawing, theta: float, phi: float, pitch: bool = True) -> dict:
     """Both faces (filled, bores cut, marks drawn) at ``theta``/``phi`` rad on ``ax``, with
-    their pitch curves, handovers and centres when ``pitch``."""
+    their pitch curves and handovers when ``pitch``; each gear drawn in its own frame under
+    a :func:`pose_transform`, so a new pose only sets the transforms. Returns name -> artists."""
     from matplotlib.patches import PathPatch
     from matplotlib.path import Path
 
+    artists = {}
     for name, colour in (("pinion", PINION_COLOUR), ("wheel", WHEEL_COLOUR)):
         face = drawing.faces[name]
-        rings = [face.outline, *face.holes]
-        verts = [posed(name, ring, theta, phi, drawing.distance) for ring in rings]
-        codes = [np.r_[Path.MOVETO, np.full(len(v) - 1, Path.LINETO), Path.CLOSEPOLY] for v in verts]
-        path = Path(np.concatenate([np.vstack([v, v[:1]]) for v in verts]), np.concatenate(codes))
-        ax.add_patch(PathPatch(path, facecolor=colour, edgecolor="k", lw=0.6, label=name))
+        rings = [np.asarray(ring, dtype=float) for ring in (face.outline, *face.holes)]
+        codes = [np.r_[Path.MOVETO, np.full(len(v) - 1, Path.LINETO), Path.CLOSEPOLY] for v in rings]
+        path = Path(np.concatenate([np.vstack([v, v[:1]]) for v in rings]), np.concatenate(codes))
+        own = [ax.add_patch(PathPatch(path, facecolor=colour, edgecolor="k", lw=0.6, label=name))]
         for mark in face.marks:
-            m = posed(name, np.vstack([mark, mark[:1]]), theta, phi, drawing.distance)
-            ax.plot(m[:, 0], m[:, 1], "-", color="darkred", lw=1.0)
+            m = np.vstack([mark, mark[:1]])
+            own += ax.plot(m[:, 0], m[:, 1], "-", color="darkred", lw=1.0)
         if pitch:
             curve, _ = pitch_curve(name, drawing.law, drawing.distance)
-            c = posed(name, curve, theta, phi, drawing.distance)
-            ax.plot(c[:, 0], c[:, 1], "-.", color="tab:green", lw=0.9)
-            h = posed(name, _handovers(name, drawing.law, drawing.distance), theta, phi,
-                      drawing.distance)
-            ax.plot(h[:, 0], h[:, 1], "o", ms=4, mfc="none", mec="purple")
+            own += ax.plot(curve[:, 0], curve[:, 1], "-.", color="tab:green", lw=0.9)
+            h = _handovers(name, drawing.law, drawing.distance)
+            own += ax.plot(h[:, 0], h[:, 1], "o", ms=4, mfc="none", mec="purple")
+        artists[name] = own
+    set_pose(ax, artists, theta, phi, drawing.distance)
     ax.plot([0.0, drawing.distance], [0.0, 0.0], "+", color="k", ms=10)
+    return artists
+
+
+def set_pose(ax, artists: dict, theta: float, phi: float, distance: float) -> None:
+    """Move the artists of :func:`draw_pair` to pinion angle ``theta``, wheel ``phi`` (rad)."""
+    for name, own in artists.items():
+        transform = pose_transform(ax, name, theta, phi, distance)
+        for artist in own:
+            artist.set_transform(transform)
+
+
+def pair_limits(ax, drawing: PairDrawing, pad: float = 0.04) -> None:
+    """Axis limits holding both gears' tip circles (mm), ``pad`` of the width around."""
+    tip_p = _radii(drawing.faces["pinion"])[0]
+    tip_w = _radii(drawing.faces["wheel"])[0]
+    margin = pad * (drawing.distance + tip_p + tip_w)
+    half = max(tip_p, tip_w) + margin
+    ax.set_xlim(-tip_p - margin, drawing.distance + tip_w + margin)
+    ax.set_ylim(-half, half)
 
 
 def _radii(face) -> tuple[float, float]:
@@ -158,8 +188,10 @@ def pair_picture(drawing: PairDrawing, fmt: str) -> bytes:
         try:
             draw_pair(ax, drawing, theta, phi)
             _dimensions(ax, drawing)
-            ax.set_aspect("equal", adjustable="datalim")
-            ax.autoscale_view()
+            pair_limits(ax, drawing)
+            tip = max(_radii(face)[0] for face in drawing.faces.values())
+            ax.set_ylim(-1.15 * tip, 1.3 * tip)  # room for the dimension below, the table above
+            ax.set_aspect("equal", adjustable="box")
             ax.set_xlabel("mm")
             ax.set_ylabel("mm")
             ax.legend(loc="lower right", fontsize=8)
