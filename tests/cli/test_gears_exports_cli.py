@@ -122,3 +122,13 @@ def test_pictures_are_the_same_bytes_on_rerun(faces):
     for fmt in ("png", "svg"):
         assert pair_picture(drawing, fmt) == pair_picture(drawing, fmt)
     assert json.dumps(sorted(drawing.teeth.items())) == '[["pinion", 48], ["wheel", 96]]'
+
+
+def test_paper_pair_is_drawn_with_its_tooth_module():
+    from wheelstep_cli.config.resolve import gear_pair_spec
+    from wheelstep_cli.parts.gear_exports import pair_drawing
+    from wheelstep_cli.parts.gear_pair import build_gear_pair
+
+    drawing = pair_drawing(build_gear_pair(gear_pair_spec(None, teeth="paper")))
+    assert drawing.module == 2.0 and drawing.teeth == {"pinion": 48, "wheel": 96}
+    assert drawing.law.corners == (pytest.approx(np.pi / 4),)

@@ -51,8 +51,9 @@ def pair_drawing(pair):
     if gen is not None:
         law, module, teeth = gen.law, gen.module, {"pinion": gen.pinion_teeth, "wheel": gen.wheel_teeth}
     else:
-        law, module, teeth = pair.law, pair.spec.module, {"pinion": pair.spec.z, "wheel": pair.wheel_teeth}
-    return PairDrawing(gear_faces(pair), law, pair.mounted_distance, float(module or 0.0), teeth,
+        law, module = pair.law, pair.spec.tooth_form().module
+        teeth = {"pinion": pair.spec.z, "wheel": pair.wheel_teeth}
+    return PairDrawing(gear_faces(pair), law, pair.mounted_distance, float(module), teeth,
                        float(pair.spec.thickness))
 
 
