@@ -171,8 +171,10 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                    "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
     files = {**gear_pair_files(pair, out, fmt, record),
-             **with_progress(not show.quiet, "STEP solids", export_files, pair, extras, out)}
-    pictures = with_progress(not show.quiet, "GIF frames", picture_files, pair, extras, check)
+             **with_progress(extras.step and not show.quiet, "STEP solids", export_files, pair,
+                             extras, out)}
+    pictures = with_progress(bool(extras.gif) and not show.quiet, "GIF frames", picture_files, pair,
+                             extras, check)
     written = show.write_owned(out, "gears", files, dry_run, force)
     written += list(pictures) if dry_run else show.write(pictures, dry_run)
     report = {**gear_pair_report(pair, record), "written": [] if dry_run else [str(p) for p in written]}
