@@ -85,8 +85,7 @@ def test_gif_turns_through_a_handover_in_bounded_frames(exported):
     assert not np.array_equal(first, np.asarray(image.convert("RGB")))    # the gears turned
 
 
-def test_svg_plot_is_svg(cli, tmp_path):
-    # a dry run builds, checks and draws nothing to disk: the extension check comes first
+def test_a_dry_run_writes_no_picture(cli, tmp_path):
     result = cli("gears", "--plot", tmp_path / "pair.svg", "--dry-run", "--format", "stl",
                  "--out", tmp_path / "out", "-q")
     assert result.exit_code == 0 and not any(tmp_path.iterdir())
@@ -121,6 +120,11 @@ def test_pictures_are_the_same_bytes_on_rerun(faces):
     drawing = pair_drawing(build_gear_pair(gear_pair_spec(None)))
     for fmt in ("png", "svg"):
         assert pair_picture(drawing, fmt) == pair_picture(drawing, fmt)
+    import xml.etree.ElementTree as ET
+
+    svg = ET.fromstring(pair_picture(drawing, "svg"))
+    assert svg.tag == "{http://www.w3.org/2000/svg}svg"
+    assert "assembly phase" in pair_picture(drawing, "svg").decode()   # text kept as text
     assert json.dumps(sorted(drawing.teeth.items())) == '[["pinion", 48], ["wheel", 96]]'
 
 
