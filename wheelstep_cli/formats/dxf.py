@@ -49,15 +49,31 @@ def path_dxf_bytes(pieces, polyline: bool = False, layer: str = "FOOT_PATH") -> 
 
 def polyline_dxf_bytes(points: np.ndarray, layer: str = "SOLE") -> bytes:
     """DXF (R2010, mm) holding ``points`` as one open LWPOLYLINE on ``layer``; deterministic."""
+    return _r2010_bytes({layer: [(np.asarray(points, dtype=float), False)]})
+
+
+def face_dxf_bytes(face) -> bytes:
+    """DXF (R2010, $INSUNITS = 4: mm) of a gear face (``outline``, ``holes``, ``marks``:
+    (N, 2) mm) as closed LWPOLYLINEs on layers OUTLINE, HOLES and MARKS; deterministic."""
+    return _r2010_bytes({"OUTLINE": [(face.outline, True)],
+                         "HOLES": [(hole, True) for hole in face.holes],
+                         "MARKS": [(mark, True) for mark in face.marks]})
+
+
+def _r2010_bytes(layers: dict[str, list[tuple[np.ndarray, bool]]]) -> bytes:
+    """DXF R2010 in mm of layer -> [(points (N, 2) mm, closed)] as LWPOLYLINEs, fixed metadata."""
     import ezdxf
 
     fixed = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True  # fixed dates, GUIDs, ezdxf marker
     try:
         doc = ezdxf.new("R2010", units=ezdxf.units.MM)
-        doc.layers.add(layer)
-        doc.modelspace().add_lwpolyline(np.asarray(points, dtype=float).tolist(), format="xy",
-                                        dxfattribs={"layer": layer})
+        msp = doc.modelspace()
+        for layer, polylines in layers.items():
+            doc.layers.add(layer)
+            for points, closed in polylines:
+                msp.add_lwpolyline(np.asarray(points, dtype=float).tolist(), format="xy",
+                                   close=closed, dxfattribs={"layer": layer})
         # ezdxf registers CLASS entries from a set (hash-seed order): register them sorted first
         for dxftype in sorted(doc.entitydb.dxf_types_in_use()):
             doc.classes.add_class(dxftype)

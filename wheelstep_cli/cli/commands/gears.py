@@ -10,12 +10,21 @@ from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, F
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec
 from wheelstep_cli.config.specs import Corner, Teeth
+from wheelstep_cli.parts.gear_exports import GearExtras, checked_extras
 
 
 Module = Annotated[Optional[float], opt("--module", "-m", help="Module (tooth height unit), mm.",
                                         shown="2")]
 Backlash = Annotated[Optional[float], opt("--backlash", help="Normal backlash j_n, mm.",
                                           shown="0.25 x module")]
+Plot = Annotated[Optional[Path], opt("--plot", help="Write a picture of the pair in assembly phase "
+                                                    "with its dimensions (PNG or SVG, by the extension).")]
+Gif = Annotated[Optional[Path], opt("--gif", help="Write the pair turning through a shoe handover, "
+                                                  "with contact point, TE and hub speed (GIF).")]
+Dxf = Annotated[bool, opt("--dxf", help="Also write pinion.dxf and wheel.dxf (mm outlines) in --out.")]
+Svg = Annotated[bool, opt("--svg", help="Also write pinion.svg and wheel.svg (mm outlines) in --out.")]
+Step = Annotated[bool, opt("--step", help="Also write pinion.step and wheel.step (solids) in --out; "
+                                          "needs pip install wheelstep[cad].")]
 
 
 def pitch(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = None,
@@ -111,10 +120,11 @@ def gears(
         "--allow-interference", help="Write the pair even if the meshing check finds "
                                      "overlapping teeth (the paper method's pair does, at the "
                                      "shoe handovers).")] = False,
+    plot: Plot = None, gif: Gif = None, dxf: Dxf = False, svg: Svg = False, step: Step = False,
     force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
-    """Write the non-circular gear pair as printable STL/3MF meshes and gears.json.
+    """Write the gear pair as printable STL/3MF meshes, gears.json and the exports asked for.
 
     The written meshes are checked first (SPEC §10); overlapping teeth are refused (exit 1,
     nothing written) unless --allow-interference. Generated teeth roll at the installed
@@ -129,7 +139,8 @@ def gears(
                           corner=corner.value if corner else None,
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
-    _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force)
+    _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force,
+                checked_extras(plot, gif, dxf, svg, step))
 
 
 def _printer(name: str | None):
@@ -140,25 +151,32 @@ def _printer(name: str | None):
 
 
 def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interference: bool,
-                dry_run: bool, force: bool) -> None:
+                dry_run: bool, force: bool, extras: GearExtras = GearExtras()) -> None:
     """Build, check, write (unless refused or a dry run) and report the pair of ``spec``."""
     import typer
 
     from wheelstep_cli.cli.progress import with_progress
+    from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.kinds import build_for_printer
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
 
     pair = build_for_printer("gear-pair", spec, printer)
-    record = meshing_record(with_progress(not show.quiet, "meshing check", check_gear_pair, pair))
+    check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
+    record = meshing_record(check)
     if record["interference"] and not allow_interference:
         show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
                    f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
                    f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
                    "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
-    files = gear_pair_files(pair, out, fmt, record)
+    files = {**gear_pair_files(pair, out, fmt, record),
+             **with_progress(extras.step and not show.quiet, "STEP solids", export_files, pair,
+                             extras, out)}
+    pictures = with_progress(bool(extras.gif) and not show.quiet, "GIF frames", picture_files, pair,
+                             extras, check)
     written = show.write_owned(out, "gears", files, dry_run, force)
+    written += list(pictures) if dry_run else show.write(pictures, dry_run)
     report = {**gear_pair_report(pair, record), "written": [] if dry_run else [str(p) for p in written]}
     show.report(report, lambda: _gears_lines(pair, record))
     _warn_interference(show, record)

@@ -1,0 +1,43 @@
+"""STEP (AP214, mm) of extruded gear faces, through the optional ``cad`` extra (build123d)."""
+
+from __future__ import annotations
+
+import io
+import re
+
+import numpy as np
+
+EXTRA = "pip install wheelstep[cad]"
+#: the header's time stamp, fixed so the same solid gives the same bytes
+TIMESTAMP = "2000-01-01T00:00:00"
+
+
+def step_available() -> bool:
+    """True when build123d (the ``cad`` extra) can be imported."""
+    import importlib.util
+
+    return importlib.util.find_spec("build123d") is not None
+
+
+def face_solid(face, thickness: float):
+    """The build123d solid of a gear face (``outline``, ``holes``: (N, 2) mm) extruded by
+    ``thickness`` mm along +Z. Marks are not cut (they are engraved in the printed meshes)."""
+    from build123d import Face, Wire, extrude
+
+    def wire(ring):
+        return Wire.make_polygon([(float(x), float(y), 0.0) for x, y in np.asarray(ring)], close=True)
+
+    return extrude(Face(wire(face.outline), [wire(h) for h in face.holes]), amount=float(thickness))
+
+
+def face_step_bytes(face, thickness: float) -> bytes:
+    """STEP bytes of :func:`face_solid`, in mm, the header's time stamp fixed."""
+    from build123d import export_step
+
+    solid = face_solid(face, thickness)
+    solid.label = f"wheelstep {face.name}"
+    buf = io.BytesIO()
+    export_step(solid, buf, timestamp=TIMESTAMP)
+    # the writer also names the time of day in FILE_NAME when given a date only: keep it fixed
+    return re.sub(rb"(FILE_NAME\('[^']*',')[^']*'", rb"\g<1>" + TIMESTAMP.encode() + rb"'",
+                  buf.getvalue(), count=1)
