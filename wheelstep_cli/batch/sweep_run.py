@@ -4,22 +4,16 @@ memory), each retried when its worker is lost; every result, failures included, 
 
 from __future__ import annotations
 
-import contextlib
 import json
-import os
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
+from wheelstep_cli.batch.cluster import RETRIES, dask_client  # noqa: F401  (dask_client: for the CLI)
 from wheelstep_cli.batch.sweep_point import Point, evaluate, resolve_point, versions
 from wheelstep_cli.batch.sweep_store import ResultStore, axis_kinds, cell, schema
 from wheelstep_cli.config.sweep_file import SweepPlan
-from wheelstep_cli.errors import DesignError
 
-#: Seconds to reach a scheduler before giving up (the whole refusal stays under 15 s).
-CONNECT_SECONDS = 8
-#: Times a point is retried when its worker dies under it.
-RETRIES = 3
 #: Points in flight per worker (keeps the scheduler fed without holding the whole sweep).
 WINDOW_PER_WORKER = 4
 
@@ -32,29 +26,6 @@ class SweepOutcome:
     failures: int
     results: Path
     interrupted: bool = False
-
-
-@contextlib.contextmanager
-def dask_client(scheduler: str | None, workers: int = 0, option: str = "scheduler"):
-    """A dask.distributed Client: of ``scheduler`` (or DASK_SCHEDULER_ADDRESS) when given,
-    else of a local cluster of ``workers`` processes (0: one per CPU core), 1 thread each.
-    An unreachable scheduler is a DesignError naming ``option``."""
-    from distributed import Client, LocalCluster
-
-    address = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")
-    if address:
-        try:
-            client = Client(address, timeout=f"{CONNECT_SECONDS}s")
-        except (OSError, TimeoutError, ValueError) as err:
-            raise DesignError(option, address, f"cannot be reached within {CONNECT_SECONDS} s "
-                                               f"({type(err).__name__})") from None
-        with client:
-            yield client
-        return
-    count = workers or os.cpu_count() or 1
-    with LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as cluster, Client(cluster) as client:
-        yield client
 
 
 def resolve_points(plan: SweepPlan) -> list[Point]:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 from pathlib import Path
 from typing import Annotated, Optional
@@ -41,6 +42,8 @@ def sweep(
     best = _keep_count(keep)
     if workers < 0:
         raise DesignError("workers", workers, "must be >= 0 (0: one per CPU core)")
+    if workers and (scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")):
+        raise DesignError("workers", workers, "sizes the local cluster; not with a scheduler")
     if out.exists() and not out.is_dir():
         raise DesignError("out", str(out), "is a file; give a folder")
     try:
