@@ -133,8 +133,8 @@ class ResultStore:
                     csv.write_table(table)
         os.replace(staged_pq, self.out / RESULTS)
         os.replace(staged_csv, self.out / CSV)
-        for file in files[1:] if (self.out / RESULTS) in files else files:
-            if file.parent == self.parts:
+        for file in files:
+            if file.parent == self.parts:     # merged now
                 file.unlink()
         if self.parts.is_dir() and not any(self.parts.iterdir()):
             self.parts.rmdir()
