@@ -25,7 +25,6 @@ class SweepOutcome:
     computed: int
     failures: int
     results: Path
-    interrupted: bool = False
 
 
 def resolve_points(plan: SweepPlan) -> list[Point]:
