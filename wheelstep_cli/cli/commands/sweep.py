@@ -9,7 +9,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from wheelstep_cli.cli.options import Force, Json, Out, Quiet, Verbose, opt
+from wheelstep_cli.cli.options import DryRun, Force, Json, Out, Quiet, Verbose, opt
 from wheelstep_cli.cli.output import Output
 
 #: --scheduler, shared with ``batch``.
@@ -28,7 +28,8 @@ def sweep(
     scheduler: Scheduler = None, workers: Workers = 0,
     keep: Annotated[Optional[str], opt("--keep", help="best:N writes the files of the N best "
                                                       "designs into OUT/best-K/.")] = None,
-    force: Force = False, json: Json = False, quiet: Quiet = False, verbose: Verbose = False,
+    force: Force = False, json: Json = False, dry_run: DryRun = False, quiet: Quiet = False,
+    verbose: Verbose = False,
 ) -> None:
     """Compute every design of a sweep file (gears or shoe, meshing check included) into
     OUT/results.parquet, results.csv and pareto.png. A rerun computes only the missing
@@ -52,6 +53,9 @@ def sweep(
         for line in err.lines():
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
+    if dry_run:
+        _dry_run(plan, file, out, show)
+        return
     with dask_client(scheduler, workers) as client:
         show.detail(f"  {len(plan.points)} points on {len(client.scheduler_info()['workers'])} worker(s)")
         try:
@@ -71,6 +75,22 @@ def sweep(
     show.files(written, False)
     if outcome.failures:
         raise typer.Exit(1)
+
+
+def _dry_run(plan, file: Path, out: Path, show: Output) -> None:
+    """Say how many points would be computed (those not in ``out``'s results) and what would
+    be written; nothing is computed or written."""
+    from wheelstep_cli.batch.sweep_run import resolve_points
+    from wheelstep_cli.batch.sweep_store import ResultStore, axis_kinds, schema
+
+    points = resolve_points(plan)
+    done = ResultStore(out, schema(axis_kinds([p.values for p in points], plan.axes))).done_keys()
+    todo = sum(p.key not in done for p in points)
+    files = [out / "results.parquet", out / "results.csv", out / "pareto.png"]
+    show.report({"sweep": str(file), "out": str(out), "points": len(points),
+                 "skipped": len(points) - todo, "would_compute": todo,
+                 "written": []}, lambda: [f"{todo} of {len(points)} designs would be computed"])
+    show.files(files, True)
 
 
 def _keep_count(keep: str | None) -> int:
