@@ -134,6 +134,33 @@ def test_rerun_after_interruption_computes_only_the_missing_points(tmp_path, mon
     assert len(final) == POINTS and first.items() <= final.items()
 
 
+def test_ctrl_c_leaves_a_valid_results_file(cli, tmp_path):
+    """A real SIGINT to the sweep's process group (the command, its local cluster): exit 130
+    with the rows so far in a valid results file (none, if it came before the first), and a
+    rerun computes exactly the others."""
+    sweep = write(tmp_path / "shoes.yaml", SHOES.replace("stop: 14, step: 2", "stop: 22, step: 1"))
+    out = tmp_path / "out"
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
+    run = subprocess.Popen([sys.executable, "-m", "wheelstep_cli", "sweep", str(sweep), "--out",
+                            str(out), "--workers", "1", "-q"], env=env, stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True,
+                           preexec_fn=lambda: (signal.signal(signal.SIGINT, signal.SIG_DFL), os.setsid()))
+    time.sleep(6)
+    os.killpg(run.pid, signal.SIGINT)
+    _, err = run.communicate(timeout=120)
+    total = 2 * 13
+    if run.returncode == 130:
+        assert "interrupted" in err
+    else:                                 # it finished first (refused points: exit 1)
+        assert run.returncode == 1, err
+    before = len(rows(out))
+    assert before <= total and not (out / ".sweep-parts").exists()
+    rerun = cli("sweep", sweep, "--out", out, "--workers", "1", "-q", "--json")
+    report = json.loads(rerun.stdout)
+    assert (report["skipped"], report["computed"]) == (before, total - before)
+    assert len(rows(out)) == total
+
+
 def test_a_crashing_point_is_a_row(monkeypatch):
     from wheelstep_cli.batch import sweep_point
     from wheelstep_cli.config.sweep_file import load_sweep  # noqa: F401  (the real module path)
