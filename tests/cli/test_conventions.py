@@ -10,10 +10,12 @@ import pytest
 from tests.helpers.clicheck import error_line
 
 COMMANDS = ["pitch", "teeth", "gears", "mesh-check", "shoe", "kinematics", "stairs", "linkage",
-            "trajectory", "batch"]
-WRITERS = ["gears", "mesh-check", "shoe", "kinematics", "stairs", "linkage", "trajectory", "batch"]
+            "trajectory", "batch", "sweep"]
+WRITERS = ["gears", "mesh-check", "shoe", "kinematics", "stairs", "linkage", "trajectory", "batch",
+           "sweep"]
 
 SHOE_BATCH = "parts:\n  - name: sole\n    kind: shoe\n    printer: fdm-0.4-pla\n"
+SHOE_SWEEP = "command: shoe\ndesign: desk-demo\ngrid:\n  width: [12]\n"
 
 
 @pytest.fixture(scope="module")
@@ -35,6 +37,10 @@ def report_args(command: str, folder: Path, pair: Path) -> list[str]:
         batch = folder.parent / f"{folder.name}-shoe.yaml"
         batch.write_text(SHOE_BATCH)
         return [command, str(batch), "--out", str(folder / "batch"), "--jobs", "1"]
+    if command == "sweep":
+        sweep = folder.parent / f"{folder.name}-sweep.yaml"
+        sweep.write_text(SHOE_SWEEP)
+        return [command, str(sweep), "--out", str(folder / "sweep"), "--workers", "1"]
     files = {"gears": ["--z", "24", "--format", "stl", "--out", str(folder / "gears")],
              "shoe": ["--out", str(folder / "shoe")],
              "kinematics": ["--plot", str(folder / "k.png")],

@@ -99,7 +99,13 @@ class _Serial:
         return False
 
 
-def executor(jobs: int):
+def executor(jobs: int, scheduler: str | None = None):
+    """Where the entries are built: on the Dask cluster at ``scheduler`` when given, else
+    ``jobs`` local processes (in this process for one)."""
+    if scheduler:
+        from wheelstep_cli.batch.cluster import dask_executor
+
+        return dask_executor(scheduler)
     if jobs <= 1:
         return _Serial()
     import multiprocessing

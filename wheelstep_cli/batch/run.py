@@ -22,12 +22,14 @@ class BatchOutcome:
 
 
 def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
-              progress: Callable[[str, int], Any] | None = None, force: bool = False) -> BatchOutcome:
+              progress: Callable[[str, int], Any] | None = None, force: bool = False,
+              scheduler: str | None = None) -> BatchOutcome:
     """Build, pack, render and write a checked batch; ``progress(stage, total)`` -> advance().
 
     Files of an earlier batch in ``out`` (per its manifest, verified by SHA-256) that this one
     does not write are removed; any other file in the way is refused unless ``force``
-    (DesignError, before anything is written)."""
+    (DesignError, before anything is written). With ``scheduler`` the parts are built on
+    that Dask cluster instead of ``jobs`` local processes."""
     from wheelstep_cli.formats.atomic import remove_files, write_files_atomic
     from wheelstep_cli.formats.owned import check_collisions, stale_files
 
@@ -35,7 +37,7 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
     if not ours:  # refused before the build (the names of the other files are known only after)
         check_collisions(out, {out / MANIFEST: b""}, {}, force)
     advance = progress or (lambda stage, total: (lambda: None))
-    with executor(jobs) as pool:
+    with executor(jobs, scheduler) as pool:
         step = advance("building parts", len(plan.entries))
         results: dict[int, EntryResult] = {}
         for result in map_items(pool, build_entry, plan.entries, step):

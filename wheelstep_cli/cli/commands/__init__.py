@@ -7,7 +7,7 @@ import typer
 
 def register_all(app: typer.Typer) -> None:
     """Attach every command module's commands to ``app``."""
-    from wheelstep_cli.cli.commands import batch, gears, linkage, meshcheck, shoe, stairs, trajectory
+    from wheelstep_cli.cli.commands import batch, gears, linkage, meshcheck, shoe, stairs, sweep, trajectory
 
     gears.register(app)
     meshcheck.register(app)
@@ -16,3 +16,4 @@ def register_all(app: typer.Typer) -> None:
     linkage.register(app)
     trajectory.register(app)
     batch.register(app)
+    sweep.register(app)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Optional
 
 import typer
 
@@ -15,6 +15,9 @@ def batch(
     file: Path = typer.Argument(..., help="Batch YAML: parts with kind, design, overrides, quantity, printer."),
     out: Out = Path("wheelstep-batch"),
     jobs: Annotated[int, opt("--jobs", "-j", help="Worker processes; 0 = one per CPU core.")] = 0,
+    scheduler: Annotated[Optional[str], opt(
+        "--scheduler", help="Build on the Dask cluster of this scheduler (tcp://HOST:8786) "
+                            "instead of --jobs local processes.")] = None,
     force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
@@ -27,6 +30,8 @@ def batch(
     show = Output(json, quiet, verbose)
     if jobs < 0:
         raise DesignError("jobs", jobs, "must be >= 0 (0: one per CPU core)")
+    if scheduler and jobs:
+        raise DesignError("jobs", jobs, "must not be given with --scheduler (the cluster's workers build)")
     if out.exists() and not out.is_dir():
         raise DesignError("out", str(out), "is a file; give a folder")
     try:
@@ -35,7 +40,7 @@ def batch(
         for line in err.lines():
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
-    outcome, written = _run(plan, out, jobs, show, dry_run, force)
+    outcome, written = _run(plan, out, jobs, show, dry_run, force, scheduler)
     show.report(_summary(file, out, plan, outcome, [] if dry_run else written),
                 lambda: _lines(out, plan, outcome))
     if dry_run:
@@ -47,7 +52,7 @@ def batch(
         raise typer.Exit(1)
 
 
-def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool):
+def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, scheduler=None):
     """Build the batch into ``out`` (a dry run: into a scratch folder, then discarded);
     returns the outcome and the files written (or that would be, named inside ``out``)."""
     import os
@@ -59,14 +64,14 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool):
     from wheelstep_cli.errors import DesignError
 
     workers = max(1, min(jobs or os.cpu_count() or 1, len(plan.entries)))
-    show.detail(f"  {len(plan.entries)} entries, {workers} worker(s)")
+    show.detail(f"  {len(plan.entries)} entries, " + (f"on {scheduler}" if scheduler else f"{workers} worker(s)"))
     try:
         with Progress(not show.quiet, transient=False) as bars:
             if not dry_run:
-                outcome = run_batch(plan, out, workers, bars, force)
+                outcome = run_batch(plan, out, workers, bars, force, scheduler)
                 return outcome, outcome.written
             with tempfile.TemporaryDirectory(prefix="wheelstep-dry-run-") as scratch:
-                outcome = run_batch(plan, Path(scratch), workers, bars)
+                outcome = run_batch(plan, Path(scratch), workers, bars, scheduler=scheduler)
                 written = [out / p.relative_to(scratch) for p in outcome.written]
                 check_folder(out, written, force)   # what the real run would refuse
                 return outcome, written

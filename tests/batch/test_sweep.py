@@ -1,0 +1,270 @@
+"""`wheelstep sweep`: a sweep file's points computed on Dask (a local cluster, or a scheduler
+and workers started here as subprocesses) give the same rows; refusals and crashes are rows;
+a worker killed mid-sweep costs nothing; an interrupted sweep resumes with the missing points
+only; an unreachable scheduler and bad axes are refused at once. `batch --scheduler` too."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pyarrow.parquet as pq
+import pytest
+
+from tests.helpers.clicheck import error_line
+from tests.helpers.files import SMALL_BATCH, write
+
+# cheap shoes (desk-demo, narrow); socket_depth 60 is deeper than the body: a refused point
+SHOES = """\
+command: shoe
+design: desk-demo
+fixed:
+  width: 12
+grid:
+  socket_depth: [10, 60]
+  rim: {start: 10, stop: 14, step: 2}
+printers: [fdm-0.4-pla]
+"""
+POINTS = 6
+
+
+def rows(out: Path) -> dict[str, dict]:
+    """key -> the row's parameters, outcome, reason and figures (not its time)."""
+    table = pq.read_table(out / "results.parquet").to_pylist()
+    assert len({r["key"] for r in table}) == len(table)
+    return {r["key"]: {k: v for k, v in r.items() if k != "seconds"} for r in table}
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _start(*args: str) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", *args], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL, start_new_session=True)
+
+
+def _stop(proc: subprocess.Popen) -> None:
+    if proc.poll() is None:
+        os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait(timeout=30)
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    """A `dask scheduler` and two single-process, single-thread `dask worker`s on localhost."""
+    from distributed import Client
+
+    address = f"tcp://127.0.0.1:{_free_port()}"
+    port = address.rsplit(":", 1)[1]
+    scheduler = _start("distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", port,
+                       "--dashboard-address", ":0")
+    workers = [_start("distributed.cli.dask_worker", address, "--nworkers", "1", "--nthreads", "1",
+                      "--no-dashboard", "--name", f"w{i}") for i in range(2)]
+    try:
+        with Client(address, timeout="30s") as client:
+            client.wait_for_workers(2, timeout=60)
+        yield address, workers
+    finally:
+        for proc in [*workers, scheduler]:
+            _stop(proc)
+
+
+def test_local_cluster_rows_and_refused_point(cli, tmp_path):
+    sweep = write(tmp_path / "shoes.yaml", SHOES)
+    result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "2", "-q", "--json")
+    assert result.exit_code == 1, result.stderr      # some points refused
+    found = rows(tmp_path / "out")
+    assert len(found) == POINTS
+    refused = [r for r in found.values() if r["outcome"] == "refused"]
+    assert {r["p_socket_depth"] for r in refused} == {60.0} and len(refused) == 3
+    assert all("socket_depth = 60" in r["reason"] for r in refused)
+    ok = [r for r in found.values() if r["outcome"] == "ok"]
+    assert sorted(r["p_rim"] for r in ok) == [10.0, 12.0, 14.0]
+    assert all(r["volume_mm3"] > 0 and r["mass_g"] > 0 for r in ok)
+    assert all(json.loads(r["parameters"])["width"] == 12 for r in ok)
+    csv_lines = (tmp_path / "out" / "results.csv").read_text().splitlines()
+    assert len(csv_lines) == POINTS + 1 and csv_lines[0].startswith('"key"')
+    assert (tmp_path / "out" / "pareto.png").read_bytes()[:4] == b"\x89PNG"
+    assert json.loads(result.stdout)["computed"] == POINTS
+
+
+def test_scheduler_gives_the_same_rows(cli, tmp_path, cluster):
+    address, _ = cluster
+    sweep = write(tmp_path / "shoes.yaml", SHOES)
+    assert cli("sweep", sweep, "--out", tmp_path / "local", "--workers", "2", "-q").exit_code == 1
+    remote = cli("sweep", sweep, "--out", tmp_path / "remote", "--scheduler", address, "-q")
+    assert remote.exit_code == 1, remote.stderr
+    local, there = rows(tmp_path / "local"), rows(tmp_path / "remote")
+    assert local.keys() == there.keys()
+    for key, row in local.items():
+        assert {k: v for k, v in row.items() if k != "index"} == \
+               {k: v for k, v in there[key].items() if k != "index"}
+
+
+def test_rerun_after_interruption_computes_only_the_missing_points(tmp_path, monkeypatch):
+    from distributed import Client, LocalCluster
+
+    from wheelstep_cli.batch.sweep_run import run_sweep
+    from wheelstep_cli.config.sweep_file import load_sweep
+
+    plan = load_sweep(write(tmp_path / "shoes.yaml", SHOES))
+    out = tmp_path / "out"
+
+    def interrupt(done, failures, total):  # Ctrl-C after two rows
+        if done == 2:
+            raise KeyboardInterrupt
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as lc, Client(lc) as client:
+        with pytest.raises(KeyboardInterrupt):
+            run_sweep(plan, out, client, interrupt)
+        first = rows(out)                      # a valid results file with the rows so far
+        assert len(first) == 2 and not (out / ".sweep-parts").exists()
+        outcome = run_sweep(plan, out, client)
+    assert (outcome.skipped, outcome.computed) == (2, POINTS - 2)
+    final = rows(out)
+    assert len(final) == POINTS and first.items() <= final.items()
+
+
+def test_ctrl_c_leaves_a_valid_results_file(cli, tmp_path):
+    """A real SIGINT to the sweep's process group (the command, its local cluster): exit 130
+    with the rows so far in a valid results file (none, if it came before the first), and a
+    rerun computes exactly the others."""
+    sweep = write(tmp_path / "shoes.yaml", SHOES.replace("stop: 14, step: 2", "stop: 22, step: 1"))
+    out = tmp_path / "out"
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
+    run = subprocess.Popen([sys.executable, "-m", "wheelstep_cli", "sweep", str(sweep), "--out",
+                            str(out), "--workers", "1", "-q"], env=env, stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True,
+                           preexec_fn=lambda: (signal.signal(signal.SIGINT, signal.SIG_DFL), os.setsid()))
+    time.sleep(6)
+    os.killpg(run.pid, signal.SIGINT)
+    _, err = run.communicate(timeout=120)
+    total = 2 * 13
+    if run.returncode == 130:
+        assert "interrupted" in err
+    else:                                 # it finished first (refused points: exit 1)
+        assert run.returncode == 1, err
+    before = len(rows(out))
+    assert before <= total and not (out / ".sweep-parts").exists()
+    rerun = cli("sweep", sweep, "--out", out, "--workers", "1", "-q", "--json")
+    report = json.loads(rerun.stdout)
+    assert (report["skipped"], report["computed"]) == (before, total - before)
+    assert len(rows(out)) == total
+
+
+def test_a_crashing_point_is_a_row(monkeypatch):
+    from wheelstep_cli.batch import sweep_point
+    from wheelstep_cli.config.sweep_file import load_sweep  # noqa: F401  (the real module path)
+
+    point = sweep_point.resolve_point(0, "shoe", None, None, None, {"width": 12}, False, "t")
+    assert point.refusal is None
+
+    def crash(_point):
+        raise ZeroDivisionError("boom")
+
+    monkeypatch.setattr(sweep_point, "build_point", crash)
+    row = sweep_point.evaluate(point)
+    assert row["outcome"] == "failed" and row["reason"] == "internal error: ZeroDivisionError: boom"
+
+
+def test_unreachable_scheduler_is_one_line(cli, tmp_path):
+    sweep = write(tmp_path / "shoes.yaml", SHOES)
+    start = time.monotonic()
+    result = cli("sweep", sweep, "--out", tmp_path / "out", "--scheduler", "tcp://127.0.0.1:9")
+    line = error_line(result)
+    assert time.monotonic() - start < 15     # the issue's bound on the refusal, not a benchmark
+    assert "--scheduler" in line and "tcp://127.0.0.1:9" in line and "cannot be reached" in line
+    assert not (tmp_path / "out").exists()
+
+
+def test_bad_axes_refused_with_every_line(cli, tmp_path):
+    sweep = write(tmp_path / "bad.yaml", """\
+command: gears
+fixed:
+  zz: 3
+grid:
+  z: [18, 2000]
+  module: {start: 3, stop: 1, step: 1}
+  pressure_angle: {start: 15, stop: 25, step: -1}
+random:
+  seed: 1
+  samples: 3
+  bounds:
+    backlash: {low: 0.5, high: 0.1}
+printers: [no-such-printer]
+""")
+    result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1")
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    expected = {3: "fixed.zz: unknown parameter", 5: "grid.z[1] = 2000", 6: "grid.module: range 3..1",
+                7: "grid.pressure_angle.step = -1", 12: "random.bounds.backlash: low 0.5 > high 0.1",
+                13: "printers[0] = 'no-such-printer'"}
+    assert len(lines) == len(expected)
+    for line_no, text in expected.items():
+        assert any(f"bad.yaml:{line_no}: {text}" in line for line in lines), (line_no, lines)
+    assert not (tmp_path / "out").exists()
+
+
+def test_too_many_points_refused(cli, tmp_path):
+    sweep = write(tmp_path / "big.yaml", "command: shoe\ngrid:\n  width: {start: 1, stop: 200, step: 1}\n"
+                                         "  rim: {start: 1, stop: 100, step: 1}\n")
+    line = error_line(cli("sweep", sweep, "--out", tmp_path / "out"))
+    assert "the sweep has 20000 points; at most 10000" in line
+
+
+def test_keep_best_writes_the_best_designs(cli, tmp_path):
+    sweep = write(tmp_path / "shoes.yaml", SHOES + "objectives: [volume_mm3, mass_g]\n")
+    result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "--keep", "best:2", "-q")
+    assert result.exit_code == 1, result.stderr
+    ok = sorted((r for r in rows(tmp_path / "out").values() if r["outcome"] == "ok"),
+                key=lambda r: r["volume_mm3"])
+    for rank in (1, 2):
+        folder = tmp_path / "out" / f"best-{rank}"
+        record = json.loads((folder / ".wheelstep-shoe.json").read_text())
+        stls = list(folder.glob("*.stl"))
+        assert stls and all(p.name in json.dumps(record) for p in stls)   # the shoe command's files
+    assert not (tmp_path / "out" / "best-3").exists()
+    assert ok[0]["p_rim"] == 10.0        # the smallest body is the best of both objectives
+
+
+def test_batch_on_the_scheduler(cli, tmp_path, cluster):
+    address, _ = cluster
+    batch = write(tmp_path / "batch.yaml", SMALL_BATCH)
+    result = cli("batch", batch, "--out", tmp_path / "out", "--scheduler", address, "-q", "--json")
+    assert result.exit_code == 0, result.stderr
+    summary = json.loads(result.stdout)
+    assert summary["built"] == ["pair", "shoes"] and summary["parts"] == 5
+    line = error_line(cli("batch", batch, "--out", tmp_path / "x", "--scheduler", "tcp://127.0.0.1:9"))
+    assert "--scheduler" in line
+
+
+def test_killing_a_worker_mid_sweep_still_completes(tmp_path, cluster):
+    """Last: it kills one of the module's workers."""
+    from distributed import Client
+
+    address, workers = cluster
+    sweep = write(tmp_path / "shoes.yaml", SHOES.replace("stop: 14, step: 2", "stop: 22, step: 1"))
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
+    run = subprocess.Popen([sys.executable, "-m", "wheelstep_cli", "sweep", str(sweep), "--out",
+                            str(tmp_path / "out"), "--scheduler", address, "-q"], env=env,
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    with Client(address, timeout="30s") as client:
+        deadline = time.monotonic() + 120
+        while not any(client.processing().values()) and time.monotonic() < deadline:
+            time.sleep(0.05)
+    _stop(workers[1])                     # a worker lost with its points in hand
+    out, err = run.communicate(timeout=300)
+    assert run.returncode == 1, err       # the refused points only
+    found = rows(tmp_path / "out")
+    assert len(found) == 2 * 13
+    assert {r["outcome"] for r in found.values()} == {"ok", "refused"}
+    assert all(r["p_socket_depth"] == 60.0 for r in found.values() if r["outcome"] == "refused")

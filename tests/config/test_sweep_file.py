@@ -1,0 +1,61 @@
+"""Sweep files: the points a grid, random samples and printers expand to, and their limits."""
+
+from __future__ import annotations
+
+import pytest
+
+from tests.helpers.files import write
+from wheelstep_cli.config.schema import InvalidInput
+from wheelstep_cli.config.sweep_file import MAX_POINTS, load_sweep
+
+
+def test_grid_ranges_include_the_stop_without_float_drift(tmp_path):
+    plan = load_sweep(write(tmp_path / "s.yaml", """\
+command: gears
+grid:
+  backlash: {start: 0.1, stop: 0.5, step: 0.1}
+  z: [18, 24]
+fixed: {thickness: 4}
+printers: [fdm-0.4-pla, fdm-0.4-petg]
+"""))
+    assert plan.axes == ("backlash", "z") and len(plan.points) == 2 * 5 * 2
+    backlashes = sorted({values["backlash"] for _, values in plan.points})
+    assert backlashes == [0.1, 0.2, 0.3, 0.4, 0.5]
+    assert {printer for printer, _ in plan.points} == {"fdm-0.4-pla", "fdm-0.4-petg"}
+    assert all(values["thickness"] == 4 for _, values in plan.points)
+    assert plan.objectives == ("drive_f_i_um", "backlash_max_mm")
+
+
+def test_random_samples_are_seeded_and_within_bounds(tmp_path):
+    text = """\
+command: shoe
+random:
+  seed: 7
+  samples: 20
+  bounds:
+    width: {low: 10, high: 14}
+    rim: {low: 5.5, high: 9.0}
+"""
+    first = load_sweep(write(tmp_path / "a.yaml", text)).points
+    again = load_sweep(write(tmp_path / "b.yaml", text)).points
+    assert first == again and len(first) == 20
+    widths = [values["width"] for _, values in first]
+    assert all(isinstance(w, int) and 10 <= w <= 14 for w in widths) and len(set(widths)) > 1
+    assert all(5.5 <= values["rim"] <= 9.0 for _, values in first)
+    other = load_sweep(write(tmp_path / "c.yaml", text.replace("seed: 7", "seed: 8"))).points
+    assert other != first
+
+
+def test_structure_problems_each_at_its_line(tmp_path):
+    with pytest.raises(InvalidInput) as err:
+        load_sweep(write(tmp_path / "s.yaml", """\
+command: drill
+grid:
+  z: 5
+extra: 1
+"""))
+    lines = err.value.lines()
+    assert any("s.yaml:1: command" in line for line in lines)
+    assert any("s.yaml:4: extra: unknown key" in line for line in lines)
+    assert any("s.yaml:3: grid.z = 5: must be a list of values" in line for line in lines)
+    assert MAX_POINTS == 10_000

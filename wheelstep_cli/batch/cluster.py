@@ -1,0 +1,79 @@
+"""The Dask cluster sweeps and batches run on: a local one sized to the machine, or an
+existing one at a scheduler address (``--scheduler`` or DASK_SCHEDULER_ADDRESS)."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import threading
+
+from wheelstep_cli.errors import DesignError
+
+#: Seconds to reach a scheduler before giving up (the whole refusal stays under 15 s).
+CONNECT_SECONDS = 6
+#: Times a task is retried when its worker dies under it.
+RETRIES = 3
+
+
+@contextlib.contextmanager
+def dask_client(scheduler: str | None, workers: int = 0, option: str = "scheduler"):
+    """A dask.distributed Client: of ``scheduler`` (or DASK_SCHEDULER_ADDRESS) when given,
+    else of a local cluster of ``workers`` processes (0: one per CPU core), 1 thread each.
+    An unreachable scheduler is a DesignError naming ``option``."""
+    from distributed import Client, LocalCluster
+
+    address = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")
+    if address:
+        with _connect(address, option) as client:
+            yield client
+        return
+    count = workers or os.cpu_count() or 1
+    with LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        yield client
+
+
+def _connect(address: str, option: str):
+    """A Client of the scheduler at ``address`` within :data:`CONNECT_SECONDS`, else a
+    DesignError. The attempt runs in a thread with a deadline of its own: a name that does not
+    resolve, or a peer that answers but is no scheduler, can take longer than the Client's
+    own timeout."""
+    from distributed import Client
+
+    box: dict = {}
+
+    def attempt():
+        try:
+            _probe(address)
+            box["client"] = Client(address, timeout=f"{CONNECT_SECONDS}s")
+        except BaseException as err:  # whatever the address did, it is not a scheduler we reach
+            box["error"] = err
+
+    thread = threading.Thread(target=attempt, daemon=True)
+    thread.start()
+    thread.join(CONNECT_SECONDS + 1)
+    if "client" in box:
+        return box["client"]
+    why = type(box["error"]).__name__ if "error" in box else "no answer"
+    raise DesignError(option, address, f"cannot be reached within {CONNECT_SECONDS} s ({why})")
+
+
+def _probe(address: str) -> None:
+    """Open and close a TCP connection to a ``tcp://`` scheduler (OSError at once when
+    refused, rather than the Client's retries until its timeout)."""
+    import socket
+
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    scheme, location = parse_address(address)
+    if scheme == "tcp":
+        host, port = parse_host_port(location, default_port=8786)
+        socket.create_connection((host, port), timeout=CONNECT_SECONDS).close()
+
+
+@contextlib.contextmanager
+def dask_executor(scheduler: str | None, workers: int = 0):
+    """A concurrent.futures executor running on Dask (see :func:`dask_client`); a task lost
+    with its worker is retried."""
+    with dask_client(scheduler, workers) as client:
+        yield client.get_executor(retries=RETRIES, pure=False)

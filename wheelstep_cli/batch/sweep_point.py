@@ -1,0 +1,124 @@
+"""One point of a sweep: its design resolved (its key), then built and checked as the
+``gears`` or ``shoe`` command does, reduced to one row of figures. Never raises: a refusal
+(DesignError) and a crash are rows with their reason."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import time
+from dataclasses import dataclass
+from typing import Any
+
+from wheelstep_cli.config.names import yaml_message
+from wheelstep_cli.errors import DesignError
+
+#: Figures of a row (float, None when not computed), in column order.
+FIGURES = ("drive_F_i_um", "drive_f_i_um", "drive_ripple_pct", "coast_F_i_um", "coast_f_i_um",
+           "coast_ripple_pct", "backlash_min_mm", "backlash_max_mm", "max_penetration_mm",
+           "volume_mm3", "mass_g")
+KINDS_OF = {"gears": "gear-pair", "shoe": "shoe"}
+
+
+@dataclass(frozen=True)
+class Point:
+    """A resolved design point: what a worker needs, and its key in the results."""
+
+    index: int
+    command: str
+    printer_name: str | None
+    printer: Any            # config.printers.Printer or None
+    values: dict            # the values the sweep gave (for the row's parameter columns)
+    spec: Any               # the resolved spec, or None when resolving refused it
+    refusal: str | None     # why resolving refused it
+    allow_interference: bool
+    key: str
+
+
+def versions() -> str:
+    """The versions that decide a row's figures: wheelstep and its numeric libraries."""
+    from importlib.metadata import version
+
+    from wheelstep_cli import __version__
+
+    libs = {name: version(name) for name in ("numpy", "scipy", "manifold3d", "shapely")}
+    return json.dumps({"wheelstep": __version__, **libs}, sort_keys=True)
+
+
+def point_key(command: str, design: dict, printer, tool: str) -> str:
+    """SHA-256 of the resolved design (all its parameters), the printer preset and the tool's
+    versions: the same key means the same row."""
+    printer_id = None if printer is None else [printer.name, printer.sha256]
+    text = json.dumps([command, design, printer_id, tool], sort_keys=True, default=str)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def resolve_point(index: int, command: str, profile, printer_name: str | None, printer,
+                  values: dict, allow_interference: bool, tool: str) -> Point:
+    """The point's spec: its values over the design profile over the defaults, checked (a
+    problem becomes the point's refusal)."""
+    from wheelstep_cli.config.resolve import spec_problems, spec_values
+    from wheelstep_cli.config.sweep_file import COMMANDS
+
+    spec_type, section = COMMANDS[command]
+    spec, refusal = None, None
+    try:
+        spec, problems = spec_problems(spec_type, spec_values(spec_type, section, profile, values))
+        if problems:
+            spec, refusal = None, "; ".join(yaml_message(p) for p in problems)
+    except DesignError as err:
+        refusal = yaml_message(err)
+    design = spec.model_dump(mode="json") if spec is not None else {"given": values}
+    return Point(index, command, printer_name, printer, values, spec, refusal, allow_interference,
+                 point_key(command, design, printer, tool))
+
+
+def evaluate(point: Point) -> dict:
+    """The row of one point (worker entry point): outcome ``ok``, ``refused`` or ``failed``."""
+    start = time.perf_counter()
+    row: dict[str, Any] = dict.fromkeys(FIGURES)
+    row.update(key=point.key, index=point.index, outcome="ok", reason=None, interference=None)
+    try:
+        if point.refusal is not None:
+            raise DesignError("design", "", point.refusal)
+        row.update(_figures(point))
+        if row["interference"] and not point.allow_interference:
+            row.update(outcome="refused", reason="the teeth interfere (allow_interference: true "
+                                                 "keeps such designs)")
+    except DesignError as err:
+        reason = err.limit if err.param == "design" else yaml_message(err)
+        row.update(outcome="refused", reason=reason)
+    except Exception as err:  # a crash of one design must not stop the sweep
+        row.update(outcome="failed", reason=f"internal error: {type(err).__name__}: {err}")
+    row["seconds"] = time.perf_counter() - start
+    return row
+
+
+def build_point(point: Point):
+    """(built part, meshing record or None) exactly as the command builds and checks it."""
+    from wheelstep_cli.parts.kinds import build_for_printer
+
+    built = build_for_printer(KINDS_OF[point.command], point.spec, point.printer)
+    if point.command != "gears":
+        return built, None
+    from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+
+    return built, meshing_record(check_gear_pair(built))
+
+
+def _figures(point: Point) -> dict:
+    """The figures of a built point: per-flank transmission error, backlash, volume, mass."""
+    built, record = build_point(point)
+    volume = sum(check.volume for check in built.checks.values())
+    out = {"volume_mm3": float(volume),
+           "mass_g": None if point.printer is None else float(volume / 1000.0 * point.printer.density)}
+    if record is None:
+        return out
+    for side in ("drive", "coast"):
+        flank = record[side]
+        out[f"{side}_F_i_um"] = flank["F_i_total_um"]
+        out[f"{side}_f_i_um"] = flank["f_i_tooth_um"]
+        out[f"{side}_ripple_pct"] = flank["hub_speed_ripple_pct"]
+    out.update(backlash_min_mm=record["backlash_min_mm"], backlash_max_mm=record["backlash_max_mm"],
+               max_penetration_mm=record["max_penetration_mm"], interference=bool(record["interference"]))
+    return out

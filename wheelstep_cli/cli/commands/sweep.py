@@ -1,0 +1,175 @@
+"""``wheelstep sweep``: run a design-space sweep of ``gears`` or ``shoe`` on Dask."""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from wheelstep_cli.cli.options import DryRun, Force, Json, Out, Quiet, Verbose, opt
+from wheelstep_cli.cli.output import Output
+
+#: --scheduler, shared with ``batch``.
+Scheduler = Annotated[Optional[str], opt(
+    "--scheduler", help="Address of an existing Dask scheduler (tcp://HOST:8786); default "
+                        "DASK_SCHEDULER_ADDRESS, else a local cluster.")]
+Workers = Annotated[int, opt("--workers", help="Worker processes of the local cluster; 0 = one "
+                                               "per CPU core (not with --scheduler).")]
+#: Most designs --keep best:N writes (each is a set of mesh files).
+MAX_KEEP = 50
+
+
+def sweep(
+    file: Path = typer.Argument(..., help="Sweep YAML: command, grid/random axes, fixed values, printers."),
+    out: Out = Path("wheelstep-sweep"),
+    scheduler: Scheduler = None, workers: Workers = 0,
+    keep: Annotated[Optional[str], opt("--keep", help="best:N writes the files of the N best "
+                                                      "designs into OUT/best-K/.")] = None,
+    force: Force = False, json: Json = False, dry_run: DryRun = False, quiet: Quiet = False,
+    verbose: Verbose = False,
+) -> None:
+    """Compute every design of a sweep file (gears or shoe, meshing check included) into
+    OUT/results.parquet, results.csv and pareto.png. A rerun computes only the missing
+    designs. Exit 1 if some designs failed, 2 if the input is invalid."""
+    from wheelstep_cli.batch.sweep_run import dask_client, run_sweep
+    from wheelstep_cli.config.schema import InvalidInput
+    from wheelstep_cli.config.sweep_file import load_sweep
+    from wheelstep_cli.errors import DesignError
+
+    show = Output(json, quiet, verbose)
+    best = _keep_count(keep)
+    if workers < 0:
+        raise DesignError("workers", workers, "must be >= 0 (0: one per CPU core)")
+    if workers and (scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")):
+        raise DesignError("workers", workers, "sizes the local cluster; not with a scheduler")
+    if out.exists() and not out.is_dir():
+        raise DesignError("out", str(out), "is a file; give a folder")
+    try:
+        plan = load_sweep(file, str(file))
+    except InvalidInput as err:
+        for line in err.lines():
+            show.error(f"wheelstep: error: {line}")
+        raise typer.Exit(2)
+    if dry_run:
+        _dry_run(plan, file, out, show)
+        return
+    with dask_client(scheduler, workers) as client:
+        show.detail(f"  {len(plan.points)} points on {len(client.scheduler_info()['workers'])} worker(s)")
+        try:
+            with _Bar(not show.quiet) as bar:
+                outcome = run_sweep(plan, out, client, bar.update)
+        except KeyboardInterrupt:
+            show.error(f"wheelstep: interrupted; the rows so far are in {out / 'results.parquet'} "
+                       "(a rerun computes the rest)")
+            raise typer.Exit(130)
+    written = [outcome.results, out / "results.csv", _plot(plan, outcome.results, out)]
+    written += _keep_best(plan, outcome.results, out, best, show, force)
+    show.report({"sweep": str(file), "out": str(out), "points": outcome.total,
+                 "skipped": outcome.skipped, "computed": outcome.computed,
+                 "failures": outcome.failures, "written": [str(p) for p in written]},
+                lambda: [f"{outcome.computed} designs computed ({outcome.failures} refused or "
+                         f"failed), {outcome.skipped} already in {outcome.results}"])
+    show.files(written, False)
+    if outcome.failures:
+        raise typer.Exit(1)
+
+
+def _dry_run(plan, file: Path, out: Path, show: Output) -> None:
+    """Say how many points would be computed (those not in ``out``'s results) and what would
+    be written; nothing is computed or written."""
+    from wheelstep_cli.batch.sweep_run import resolve_points
+    from wheelstep_cli.batch.sweep_store import ResultStore, axis_kinds, schema
+
+    points = resolve_points(plan)
+    done = ResultStore(out, schema(axis_kinds([p.values for p in points], plan.axes))).done_keys()
+    todo = sum(p.key not in done for p in points)
+    files = [out / "results.parquet", out / "results.csv", out / "pareto.png"]
+    show.report({"sweep": str(file), "out": str(out), "points": len(points),
+                 "skipped": len(points) - todo, "would_compute": todo,
+                 "written": []}, lambda: [f"{todo} of {len(points)} designs would be computed"])
+    show.files(files, True)
+
+
+def _keep_count(keep: str | None) -> int:
+    from wheelstep_cli.errors import DesignError
+
+    if keep is None:
+        return 0
+    match = re.fullmatch(r"best:(\d+)", keep)
+    if not match or not 1 <= int(match.group(1)) <= MAX_KEEP:
+        raise DesignError("keep", keep, f"must be best:N with N = 1..{MAX_KEEP}")
+    return int(match.group(1))
+
+
+def _plot(plan, results: Path, out: Path) -> Path:
+    """pareto.png: the ok designs by the plan's two objectives, the front highlighted."""
+    import pyarrow.parquet as pq
+
+    from wheelstep_cli.batch.sweep_store import pareto_order
+    from wheelstep_cli.formats.atomic import write_bytes_atomic
+    from wheelstep_cli.render.sweep_plot import pareto_png
+
+    first, second = plan.objectives
+    rows = pq.read_table(results, columns=["outcome", first, second]).to_pylist()
+    ok = [r for r in rows if r["outcome"] == "ok" and r[first] is not None and r[second] is not None]
+    a, b = [r[first] for r in ok], [r[second] for r in ok]
+    _, front = pareto_order(a, b)
+    path = out / "pareto.png"
+    write_bytes_atomic(path, pareto_png(a, b, front, (first, second),
+                                        f"{Path(plan.label).name}: {len(ok)} of {len(rows)} designs"))
+    return path
+
+
+def _keep_best(plan, results: Path, out: Path, count: int, show: Output, force: bool) -> list[Path]:
+    """The files of the ``count`` best designs, built again with the command's writers."""
+    from wheelstep_cli.batch.sweep_point import build_point
+    from wheelstep_cli.batch.sweep_run import best_points
+
+    written: list[Path] = []
+    for rank, point in enumerate(best_points(plan, results, count) if count else [], start=1):
+        folder = out / f"best-{rank}"
+        built, record = build_point(point)
+        if point.command == "gears":
+            from wheelstep_cli.parts.gear_pair import gear_pair_files
+
+            files = gear_pair_files(built, folder, "both", record)
+        else:
+            from wheelstep_cli.parts.shoe import shoe_files
+
+            files = shoe_files(built, folder, "both")
+        written += show.write_owned(folder, point.command, files, False, force)
+    return written
+
+
+class _Bar:
+    """A rich progress bar on stderr: designs done of those to compute, failures, rate."""
+
+    def __init__(self, enabled: bool):
+        self.enabled = enabled
+
+    def __enter__(self):
+        from rich.console import Console
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+        self.bar = Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
+                            TextColumn("{task.fields[failures]} failed"),
+                            TextColumn("{task.fields[rate]}"), TimeElapsedColumn(),
+                            console=Console(stderr=True), disable=not self.enabled)
+        self.bar.__enter__()
+        self.task = self.bar.add_task("sweep", total=None, failures=0, rate="")
+        return self
+
+    def __exit__(self, *exc):
+        return self.bar.__exit__(*exc)
+
+    def update(self, done: int, failures: int, total: int) -> None:
+        elapsed = self.bar.tasks[0].elapsed or 0.0
+        rate = f"{60 * done / elapsed:.1f} designs/min" if elapsed > 0 and done else ""
+        self.bar.update(self.task, completed=done, total=total, failures=failures, rate=rate)
+
+
+def register(app: typer.Typer) -> None:
+    app.command("sweep")(sweep)

@@ -1,0 +1,234 @@
+"""A sweep file: which command's parameters to vary, how (a grid, or seeded random samples
+within bounds), what stays fixed and on which printer presets; read and checked whole, every
+problem at once as ``file:line``.
+
+The points are the product of the grid axes and the printers, times ``samples`` random
+draws when ``random:`` is given (each draw combined with every grid point). At most
+:data:`MAX_POINTS` points.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Literal, Optional
+
+from pydantic import BaseModel, Field, ValidationError
+
+from wheelstep_cli.config.fields import STRICT, Number
+from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
+from wheelstep_cli.config.schema import (InvalidInput, Issue, dotted, file_issues, section_model, show,
+                                         validate_file)
+from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
+
+#: Most design points one sweep may hold (each takes seconds; more is a cluster's week).
+MAX_POINTS = 10_000
+#: The spec of each command a sweep can run, and the design-profile section of its options.
+COMMANDS = {"gears": (GearPairSpec, "gears"), "shoe": (ShoeSpec, "shoe")}
+#: Figures a sweep can rank designs by (columns of the results; smaller is better).
+OBJECTIVES = ("drive_f_i_um", "coast_f_i_um", "drive_F_i_um", "coast_F_i_um", "drive_ripple_pct",
+              "coast_ripple_pct", "backlash_max_mm", "backlash_min_mm", "volume_mm3", "mass_g")
+DEFAULT_OBJECTIVES = {"gears": ["drive_f_i_um", "backlash_max_mm"], "shoe": ["volume_mm3", "mass_g"]}
+
+
+class Range(BaseModel):
+    """A grid axis from ``start`` to ``stop`` (included when hit) in steps of ``step``."""
+
+    model_config = STRICT
+    start: Number
+    stop: Number
+    step: Number = Field(gt=0, json_schema_extra={"limit": "must be > 0"})
+
+
+class Bounds(BaseModel):
+    """A random axis: uniform in [low, high]; whole numbers if both bounds are."""
+
+    model_config = STRICT
+    low: Number
+    high: Number
+
+
+class RandomAxes(BaseModel):
+    """``samples`` seeded draws of every bounded parameter."""
+
+    model_config = STRICT
+    seed: int = Field(strict=True, ge=0)
+    samples: int = Field(strict=True, ge=1, le=MAX_POINTS,
+                         json_schema_extra={"limit": f"must be 1..{MAX_POINTS}"})
+    bounds: dict[str, Bounds] = Field(min_length=1, json_schema_extra={
+        "limit": "must map at least one parameter to {low, high}"})
+
+
+class SweepFile(BaseModel):
+    """The whole sweep file."""
+
+    model_config = STRICT
+    description: Optional[str] = Field(None, strict=True)
+    command: Literal["gears", "shoe"]
+    design: Optional[str] = Field(None, strict=True)
+    printers: Optional[list[str]] = Field(None, min_length=1)
+    fixed: dict[str, Any] = {}
+    grid: dict[str, Any] = {}          # name -> list of values or {start, stop, step} (a Range)
+    random: Optional[dict[str, Any]] = None   # a RandomAxes, checked on its own
+    objectives: Optional[list[str]] = Field(None, min_length=2, max_length=2, json_schema_extra={
+        "limit": "must name two figures: " + ", ".join(OBJECTIVES)})
+    allow_interference: bool = Field(False, strict=True)
+
+
+@dataclass(frozen=True)
+class SweepPlan:
+    """A checked sweep: the command, its design profile, the printers and every point's values."""
+
+    label: str
+    command: str
+    design: str | None
+    objectives: tuple[str, str]
+    allow_interference: bool
+    axes: tuple[str, ...]                 # names of the parameters that vary, in file order
+    points: tuple[tuple[str | None, dict[str, Any]], ...]   # (printer preset, given values)
+
+
+def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
+    """Read and check a sweep file; InvalidInput lists every problem with its line."""
+    label = label or str(path)
+    try:
+        doc = read_located_yaml(path, label)
+    except YamlSyntaxError as err:
+        raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+    issues: list[Issue] = []
+    sweep = validate_file(SweepFile, doc, (), issues)
+    data = doc.data if isinstance(doc.data, dict) else {}
+    random = None
+    if isinstance(data.get("random"), dict):
+        random = validate_file(RandomAxes, doc, ("random",), issues)
+    grid = _grid(doc, data.get("grid"), issues)
+    command = data.get("command")
+    if command in COMMANDS:
+        _check_values(doc, COMMANDS[command][0], command, data, grid, random, issues)
+    _check_objectives(doc, data.get("objectives"), issues)
+    _check_printers(doc, data.get("printers"), issues)
+    if issues:
+        raise InvalidInput(issues)
+    points = _points(sweep, grid, random)
+    if len(points) > MAX_POINTS:
+        raise InvalidInput([Issue(doc.where(()), "", f"the sweep has {len(points)} points; at most "
+                                                     f"{MAX_POINTS}")])
+    objectives = tuple(sweep.objectives or DEFAULT_OBJECTIVES[sweep.command])
+    axes = tuple(grid) + tuple(random.bounds if random else ())
+    return SweepPlan(label, sweep.command, sweep.design, objectives, sweep.allow_interference,
+                     axes, tuple(points))
+
+
+def _grid(doc: LocatedYaml, raw, issues: list[Issue]) -> dict[str, list | Range]:
+    """The grid axes that are a list of values or a valid Range (the others: issues)."""
+    axes: dict[str, list | Range] = {}
+    for key, axis in (raw.items() if isinstance(raw, dict) else []):
+        at = ("grid", key)
+        if isinstance(axis, list):
+            axes[key] = axis
+        elif isinstance(axis, dict):
+            found = validate_file(Range, doc, at, issues)
+            if found is not None:
+                axes[key] = found
+        else:
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(axis)}: must be a list of values "
+                                                           "or {start, stop, step}"))
+    return axes
+
+
+def _check_values(doc: LocatedYaml, spec, command: str, data: dict, grid: dict,
+                  random: RandomAxes | None, issues: list[Issue]) -> None:
+    """Every named parameter is the command's, named once, every value within its field's limits."""
+    fields = section_model(spec)
+    seen: dict[str, str] = {}
+    fixed = data.get("fixed") if isinstance(data.get("fixed"), dict) else {}
+    named = [("fixed", k, [v]) for k, v in fixed.items()]
+    named += [("grid", k, _axis_values(v)) for k, v in grid.items()]
+    if random is not None:
+        named += [(("random", "bounds"), k, [b.low, b.high]) for k, b in random.bounds.items()]
+    for section, key, values in named:
+        at = (section if isinstance(section, tuple) else (section,)) + (key,)
+        if key not in fields.model_fields:
+            issues.append(Issue(doc.where(at), dotted(at), f"unknown parameter of {command}; "
+                                "allowed: " + ", ".join(fields.model_fields)))
+            continue
+        if key in seen:
+            issues.append(Issue(doc.where(at), dotted(at), f"already given at {seen[key]}"))
+            continue
+        seen[key] = doc.where(at)
+        issues.extend(_value_issues(doc, fields, at, key, grid.get(key), values))
+    for key, b in (random.bounds.items() if random is not None else []):
+        if b.low > b.high:
+            at = ("random", "bounds", key)
+            issues.append(Issue(doc.where(at), dotted(at), f"low {show(b.low)} > high {show(b.high)}"))
+
+
+def _value_issues(doc, fields, at: tuple, key: str, axis, values: list) -> list[Issue]:
+    """The problems of the values of one parameter (an empty range, one out of limits)."""
+    if isinstance(axis, Range) and not values:
+        return [Issue(doc.where(at), dotted(at), f"range {show(axis.start)}..{show(axis.stop)} step "
+                                                  f"{show(axis.step)} holds no value")]
+    if isinstance(axis, list) and not axis:
+        return [Issue(doc.where(at), dotted(at), "must list at least one value")]
+    for i, value in enumerate(values):
+        try:
+            fields.model_validate({key: value})
+        except ValidationError as err:
+            where = at + (i,) if isinstance(axis, list) else at
+            return [Issue(doc.where(where), dotted(where), issue.message)
+                    for issue in file_issues(fields, LocatedYaml(doc.file, {key: value}), (), err)][:1]
+    return []
+
+
+def _check_objectives(doc: LocatedYaml, names, issues: list[Issue]) -> None:
+    for i, name in enumerate(names if isinstance(names, list) else []):
+        if name not in OBJECTIVES:
+            at = ("objectives", i)
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: must be one of: "
+                                + ", ".join(OBJECTIVES)))
+
+
+def _check_printers(doc: LocatedYaml, names, issues: list[Issue]) -> None:
+    """Each printer is a known printer preset or a YAML file."""
+    from wheelstep_cli.config.profiles import profile_names
+
+    known = profile_names(printer=True)
+    for i, name in enumerate(names if isinstance(names, list) else []):
+        if isinstance(name, str) and name not in known and not name.endswith((".yaml", ".yml")):
+            at = ("printers", i)
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: unknown printer preset; "
+                                "known: " + ", ".join(known)))
+
+
+def _axis_values(axis: list | Range) -> list:
+    """The values of a grid axis; a range's computed without float drift."""
+    if isinstance(axis, list):
+        return list(axis)
+    count = math.floor((axis.stop - axis.start) / axis.step + 1e-9) + 1
+    whole = all(isinstance(v, int) for v in (axis.start, axis.stop, axis.step))
+    values = [axis.start + i * axis.step for i in range(max(count, 0))]
+    return values if whole else [round(v, 12) for v in values]
+
+
+def _points(sweep: SweepFile, grid: dict, random: RandomAxes | None) -> list[tuple[str | None, dict]]:
+    """Every (printer, values) point: printers x grid product x random draws."""
+    import numpy as np
+
+    grid = [[(k, v) for v in _axis_values(axis)] for k, axis in grid.items()]
+    combos = [dict(c) for c in itertools.product(*grid)]
+    draws: list[dict] = [{}]
+    if random is not None:
+        rng = np.random.default_rng(random.seed)
+        draws = [{k: _draw(rng, b) for k, b in random.bounds.items()} for _ in range(random.samples)]
+    printers = sweep.printers or [None]
+    return [(printer, {**sweep.fixed, **combo, **draw})
+            for printer in printers for combo in combos for draw in draws]
+
+
+def _draw(rng, bounds: Bounds):
+    """One uniform value in the bounds: a whole number if both bounds are whole numbers."""
+    if isinstance(bounds.low, int) and isinstance(bounds.high, int):
+        return int(rng.integers(bounds.low, bounds.high + 1))
+    return round(float(rng.uniform(bounds.low, bounds.high)), 9)
