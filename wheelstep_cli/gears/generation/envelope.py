@@ -117,22 +117,18 @@ def _fold(grid: PolarGrid, pts: np.ndarray, nearest: bool, out: np.ndarray, reac
         np.maximum.at(out, ray, radius)
 
 
-def _range_max(values: np.ndarray, lo: np.ndarray, counts: np.ndarray) -> np.ndarray:
-    """Per range, the largest of the periodic ``values`` at indices lo .. lo + counts - 1
-    (-inf for an empty range), by a table of maxima over power-of-two spans."""
+def _range_max(values: np.ndarray, lo: np.ndarray, counts: np.ndarray, block: int = 32) -> np.ndarray:
+    """Per range, a bound at or above the largest of the periodic ``values`` at indices
+    lo .. lo + counts - 1: the largest over the ``block``-long blocks its ends lie in
+    (+inf for a range longer than a block, -inf for an empty one)."""
     n = len(values)
-    counts = np.minimum(counts, n)
-    levels = [np.concatenate([values, values])]
-    while 2 ** len(levels) <= max(int(counts.max(initial=0)), 1):
-        half = 2 ** (len(levels) - 1)
-        prev = levels[-1]
-        levels.append(np.maximum(prev, np.concatenate([prev[half:], np.full(half, -np.inf)])))
-    table = np.stack(levels)
-    level = np.floor(np.log2(np.maximum(counts, 1))).astype(np.int64)
+    blocks = -(-n // block)
+    padded = np.concatenate([values, np.full(blocks * block - n, -np.inf)])
+    top = np.concatenate([padded.reshape(blocks, block).max(axis=1), [-np.inf]])
     start = np.mod(lo, n)
-    end = start + np.maximum(counts, 1) - 2 ** level
-    best = np.maximum(table[level, start], table[level, end])
-    return np.where(counts > 0, best, -np.inf)
+    last = np.mod(lo + np.maximum(counts, 1) - 1, n)
+    bound = np.maximum(top[start // block], top[last // block])
+    return np.where(counts > block, np.inf, np.where(counts > 0, bound, -np.inf))
 
 
 def miter_offset(points: np.ndarray, distance: float) -> np.ndarray:
