@@ -124,7 +124,7 @@ def _range_max(values: np.ndarray, lo: np.ndarray, counts: np.ndarray, block: in
     n = len(values)
     blocks = -(-n // block)
     padded = np.concatenate([values, np.full(blocks * block - n, -np.inf)])
-    top = np.concatenate([padded.reshape(blocks, block).max(axis=1), [-np.inf]])
+    top = padded.reshape(blocks, block).max(axis=1)
     start = np.mod(lo, n)
     last = np.mod(lo + np.maximum(counts, 1) - 1, n)
     bound = np.maximum(top[start // block], top[last // block])
