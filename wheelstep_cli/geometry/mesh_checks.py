@@ -58,12 +58,12 @@ def check_part(part: Part) -> MeshReport:
     Consistent winding: those two triangles traverse it in opposite directions.
     """
     faces = np.asarray(part.faces, dtype=np.int64)
-    directed = np.stack([faces, np.roll(faces, -1, axis=1)], axis=2).reshape(-1, 2)
-    undirected = np.sort(directed, axis=1)
-    _, edge_uses = np.unique(undirected, axis=0, return_counts=True)
-    watertight = bool(len(faces) > 0 and np.all(edge_uses == 2))
-    _, directed_uses = np.unique(directed, axis=0, return_counts=True)
-    winding = bool(watertight and np.all(directed_uses == 1))
+    start, end = faces.ravel(), np.roll(faces, -1, axis=1).ravel()
+    # an edge (a, b) as the one integer a * n + b: a flat sort is much cheaper than a row-wise unique
+    n = int(faces.max()) + 1 if len(faces) else 1
+    undirected = np.minimum(start, end) * n + np.maximum(start, end)
+    watertight = bool(len(faces) > 0 and np.all(_uses(undirected) == 2))
+    winding = bool(watertight and np.all(_uses(start * n + end) == 1))
     return MeshReport(
         watertight=watertight,
         winding_consistent=winding,
@@ -71,6 +71,13 @@ def check_part(part: Part) -> MeshReport:
         expected_volume=part.expected_volume,
         triangles=len(faces),
     )
+
+
+def _uses(keys: np.ndarray) -> np.ndarray:
+    """How many times each distinct value of ``keys`` (1-D integers) occurs."""
+    ordered = np.sort(keys)
+    starts = np.flatnonzero(np.r_[True, ordered[1:] != ordered[:-1]])
+    return np.diff(np.r_[starts, len(ordered)])
 
 
 def mesh_volume(vertices: np.ndarray, faces: np.ndarray) -> float:

@@ -36,6 +36,14 @@ class PolarGrid:
         return self.start + (np.arange(self.count) + 0.5) * self.width
 
 
+#: Nearest envelopes of many polylines fold every this many-th polyline first; the rest is
+#: then skipped segment by segment where it cannot come nearer (see :func:`polyline_envelope`).
+FIRST_STRIDE = 8
+
+#: Margin (mm) below a segment's nearer end that its crossings may reach by rounding.
+_ROUNDING = 1e-9
+
+
 def polyline_envelope(grid: PolarGrid, points: np.ndarray, nearest: bool = True,
                       out: np.ndarray | None = None, reach: float = np.inf) -> np.ndarray:
     """Fold polylines into the grid: per ray the nearest (or farthest) crossing radius.
@@ -46,6 +54,25 @@ def polyline_envelope(grid: PolarGrid, points: np.ndarray, nearest: bool = True,
     lying wholly beyond ``reach`` mm from the centre are skipped (they cannot cut).
     """
     pts = np.asarray(points, dtype=float).reshape(-1, points.shape[-2], 2)
+    if out is None:
+        out = np.full(grid.count, np.inf if nearest else -np.inf)
+    if not nearest or len(pts) < 2 * FIRST_STRIDE:
+        _fold(grid, pts, nearest, out, reach)
+        return out
+    # a nearest crossing is a minimum, so the order of folding cannot change it: a spread-out
+    # sample first, then every segment wholly beyond what the rays it spans already hold is
+    # skipped (most of a carving cutter lies beyond the envelope it carves)
+    first = np.zeros(len(pts), dtype=bool)
+    first[::FIRST_STRIDE] = True
+    _fold(grid, pts[first], nearest, out, reach, cull=bool(np.isfinite(out).any()))
+    _fold(grid, pts[~first], nearest, out, reach, cull=True)
+    return out
+
+
+def _fold(grid: PolarGrid, pts: np.ndarray, nearest: bool, out: np.ndarray, reach: float,
+          cull: bool = False) -> None:
+    """Fold the polylines (P, K, 2) mm into ``out`` (see :func:`polyline_envelope`); ``cull``
+    (nearest only): skip the segments that cannot lower any ray of ``out`` they span."""
     x0, y0 = pts[:, :-1, 0].ravel(), pts[:, :-1, 1].ravel()
     x1, y1 = pts[:, 1:, 0].ravel(), pts[:, 1:, 1].ravel()
     r0, r1 = np.hypot(x0, y0), np.hypot(x1, y1)
@@ -63,9 +90,10 @@ def polyline_envelope(grid: PolarGrid, points: np.ndarray, nearest: bool = True,
     hi = np.floor(np.maximum(i0, i1)).astype(np.int64)
     counts = np.maximum(hi - lo + 1, 0)
     hit = counts > 0
+    if cull:
+        # NaN never compares greater: such a segment is kept
+        hit &= ~(np.minimum(r0, r1) - _ROUNDING > _range_max(out, lo, counts))
     lo, counts, i0, i1, r0, r1 = lo[hit], counts[hit], i0[hit], i1[hit], r0[hit], r1[hit]
-    if out is None:
-        out = np.full(grid.count, np.inf if nearest else -np.inf)
     # most segments cross at most one ray: handle those without repeat()
     single = counts == 1
     rays = [lo[single]]
@@ -87,7 +115,20 @@ def polyline_envelope(grid: PolarGrid, points: np.ndarray, nearest: bool = True,
         np.minimum.at(out, ray, radius)
     else:
         np.maximum.at(out, ray, radius)
-    return out
+
+
+def _range_max(values: np.ndarray, lo: np.ndarray, counts: np.ndarray, block: int = 32) -> np.ndarray:
+    """Per range, a bound at or above the largest of the periodic ``values`` at indices
+    lo .. lo + counts - 1: the largest over the ``block``-long blocks its ends lie in
+    (+inf for a range longer than a block, -inf for an empty one)."""
+    n = len(values)
+    blocks = -(-n // block)
+    padded = np.concatenate([values, np.full(blocks * block - n, -np.inf)])
+    top = padded.reshape(blocks, block).max(axis=1)
+    start = np.mod(lo, n)
+    last = np.mod(lo + np.maximum(counts, 1) - 1, n)
+    bound = np.maximum(top[start // block], top[last // block])
+    return np.where(counts > block, np.inf, np.where(counts > 0, bound, -np.inf))
 
 
 def miter_offset(points: np.ndarray, distance: float) -> np.ndarray:

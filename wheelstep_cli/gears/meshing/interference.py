@@ -11,15 +11,16 @@ from wheelstep_cli.gears.meshing.outlines import MeshWindow, RadialBand, Window,
 from wheelstep_cli.geometry.planar import clipped_overlap_areas, points_inside
 
 
-def contains(polygon, body: np.ndarray, band: RadialBand | None) -> np.ndarray:
+def contains(polygon, body: np.ndarray, band: RadialBand | None, seen=None) -> np.ndarray:
     """Points (own frame of the prepared polygon, mm) inside it.
 
     A point farther from the axis than every edge seen at its angle is outside (the ray
     out from the axis through it meets no edge beyond it), so only the others are tested.
+    ``seen``: :func:`band_at` of the points, when already known.
     """
     maybe = np.ones(len(body), dtype=bool)
     if band is not None:
-        r, _, rmax = band_at(body, band)
+        r, _, rmax = band_at(body, band) if seen is None else seen
         maybe = r <= rmax + 1e-9
     inside = np.zeros(len(body), dtype=bool)
     inside[maybe] = points_inside(polygon, body[maybe])

@@ -252,9 +252,11 @@ def band_at(body: np.ndarray, band: RadialBand):
     return r, band.rmin[cell], band.rmax[cell]
 
 
-def near_band(body: np.ndarray, slack: np.ndarray | float, band: RadialBand | None) -> np.ndarray:
-    """Points (own frame of the band's outline, mm) within ``slack`` mm of its radial band."""
+def near_band(body: np.ndarray, slack: np.ndarray | float, band: RadialBand | None,
+              seen=None) -> np.ndarray:
+    """Points (own frame of the band's outline, mm) within ``slack`` mm of its radial band;
+    ``seen``: :func:`band_at` of the points, when already known."""
     if band is None:
         return np.ones(len(body), dtype=bool)
-    r, rmin, rmax = band_at(body, band)
+    r, rmin, rmax = band_at(body, band) if seen is None else seen
     return (r + slack >= rmin) & (r - slack <= rmax)

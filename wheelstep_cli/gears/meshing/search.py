@@ -15,8 +15,8 @@ import numpy as np
 from wheelstep_cli.gears.meshing.contacts import edge_table, gaps, rotations_to_touch
 from wheelstep_cli.gears.meshing.interference import contains, depth, overlap_area
 from wheelstep_cli.gears.meshing.outlines import (MeshWindow, Pose, RadialBand, SortedOutline,
-                                                  Window, near_band, posed_window, radial_band,
-                                                  rotate, sector, sorted_outline)
+                                                  Window, band_at, near_band, posed_window,
+                                                  radial_band, rotate, sector, sorted_outline)
 from wheelstep_cli.gears.meshing.settings import MeshingSettings
 from wheelstep_cli.geometry.planar import prepared_polygon
 
@@ -91,13 +91,16 @@ def posed_sides(pair: Pair, theta: np.ndarray, phi: np.ndarray, reach: float) ->
     # vertices inside the other outline, tested in that outline's own frame
     pv_body = rotate(pw.v - centre, -(np.pi + phi[pw.v_pose]))
     wv_body = rotate(ww.v, theta[ww.v_pose])
-    p_inside = contains(pair.wheel_body, pv_body, pair.wheel_band)
-    w_inside = contains(pair.pinion_body, wv_body, pair.pinion_band)
+    # where the vertices fall in the other outline's band: asked twice below, found once
+    pv_seen = band_at(pv_body, pair.wheel_band) if pair.wheel_band is not None else None
+    wv_seen = band_at(wv_body, pair.pinion_band) if pair.pinion_band is not None else None
+    p_inside = contains(pair.wheel_body, pv_body, pair.wheel_band, pv_seen)
+    w_inside = contains(pair.pinion_body, wv_body, pair.pinion_band, wv_seen)
     pw, ww = pw.shifted(centre), ww.shifted(centre)
     # vertices and edges that cannot meet the other outline within the reach (radial bands)
     rho_w = np.hypot(ww.v[:, 0], ww.v[:, 1])
-    p_near = near_band(pv_body, 1e-9, pair.wheel_band)
-    w_near = near_band(wv_body, reach * rho_w + 1e-9, pair.pinion_band)
+    p_near = near_band(pv_body, 1e-9, pair.wheel_band, pv_seen)
+    w_near = near_band(wv_body, reach * rho_w + 1e-9, pair.pinion_band, wv_seen)
     half = lambda e: 0.5 * np.hypot(*(e.e1 - e.e0).T)  # noqa: E731
     mid = lambda e: 0.5 * (e.e0 + e.e1)  # noqa: E731
     # wheel edges: crossed by a pinion vertex that turned at most the reach about the wheel axis
