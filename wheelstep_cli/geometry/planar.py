@@ -163,3 +163,20 @@ def clipped_overlap_areas(first: np.ndarray, second: np.ndarray,
     a = shapely.clip_by_rect(shapely.polygons(first), *box)
     b = shapely.clip_by_rect(shapely.polygons(second), *box)
     return shapely.area(shapely.intersection(a, b))
+
+
+def offset_outline(outline: np.ndarray, distance: float, what: str = "outline") -> np.ndarray:
+    """The exact offset (mm) of a closed outline (N, 2) mm along its normals: every point at
+    ``distance`` from the outline, outward when positive (the Minkowski sum with a disc;
+    convex corners rounded, concave ones cut), inward when negative. Returned
+    counter-clockwise without the closing point; DesignError naming ``what`` if the offset
+    splits the outline or leaves nothing."""
+    outline = check_outline(outline, what)
+    if distance == 0.0:
+        return outline
+    # round joins: a convex corner's offset is the arc of points at exactly ``distance``
+    grown = shapely.Polygon(outline).buffer(float(distance), quad_segs=16, join_style="round")
+    if grown.is_empty or grown.geom_type != "Polygon":
+        raise DesignError(what, f"offset {distance:g} mm", "splits or empties the outline")
+    ring = np.asarray(grown.exterior.coords, dtype=float)[:-1]
+    return check_outline(ring, what)

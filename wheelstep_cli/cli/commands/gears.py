@@ -5,8 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Force, Format, Json, LawCsv,
-                                       MeshFormat, Out, Printer, Profile, Quiet, Turns, Verbose, Z, opt)
+from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, FitChoice, Force, Format,
+                                       Json, LawCsv, MeshFormat, Out, Printer, Profile, Quiet, Tolerance,
+                                       Turns, Verbose, Z, opt)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec
 from wheelstep_cli.config.specs import Corner, Teeth
@@ -111,7 +112,7 @@ def gears(
         "--allow-interference", help="Write the pair even if the meshing check finds "
                                      "overlapping teeth (the paper method's pair does, at the "
                                      "shoe handovers).")] = False,
-    force: Force = False,
+    force: Force = False, tolerance: Tolerance = False, fit: FitChoice = None,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Write the non-circular gear pair as printable STL/3MF meshes and gears.json.
@@ -129,7 +130,8 @@ def gears(
                           corner=corner.value if corner else None,
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
-    _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force)
+    _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force,
+                (tolerance or fit is not None, fit.value if fit else None))
 
 
 def _printer(name: str | None):
@@ -140,23 +142,27 @@ def _printer(name: str | None):
 
 
 def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interference: bool,
-                dry_run: bool, force: bool) -> None:
-    """Build, check, write (unless refused or a dry run) and report the pair of ``spec``."""
+                dry_run: bool, force: bool, band: tuple = (False, None)) -> None:
+    """Build, check, write (unless refused or a dry run) and report the pair of ``spec``;
+    ``band`` = (check over the printer's band, the --fit or None)."""
     import typer
 
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
-    from wheelstep_cli.parts.kinds import build_for_printer
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+    from wheelstep_cli.parts.tolerance_cli import band_pair
 
-    pair = build_for_printer("gear-pair", spec, printer)
-    record = meshing_record(with_progress(not show.quiet, "meshing check", check_gear_pair, pair))
+    pair, tolerance, nominal = band_pair(spec, printer, *band)
+    record = meshing_record(nominal or with_progress(not show.quiet, "meshing check", check_gear_pair,
+                                                     pair))
     if record["interference"] and not allow_interference:
         show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
                    f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
                    f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
                    "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
+    if tolerance is not None:
+        record["tolerance"] = tolerance
     files = gear_pair_files(pair, out, fmt, record)
     written = show.write_owned(out, "gears", files, dry_run, force)
     report = {**gear_pair_report(pair, record), "written": [] if dry_run else [str(p) for p in written]}
@@ -188,6 +194,10 @@ def _gears_lines(pair, record: dict) -> list[str]:
                  f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
                  f"hub speed ripple {record['law_hub_speed_ripple_pct']:.2f} %")
     lines.extend(f"  {flank_line(side, record[side])}" for side in ("drive", "coast"))
+    if "tolerance" in record:
+        from wheelstep_cli.parts.tolerance_cli import tolerance_lines
+
+        lines.extend(tolerance_lines(record["tolerance"]))
     return lines
 
 
