@@ -1,0 +1,39 @@
+"""`gears --tolerance / --fit`: a printer without a band is told to add one (SPEC §11)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from tests.helpers.clicheck import error_line
+
+PROFILES = Path(__file__).resolve().parents[2] / "profiles"
+
+
+def _without_band(tmp_path: Path) -> Path:
+    text = (PROFILES / "fdm-0.4-pla.yaml").read_text(encoding="utf-8")
+    kept, skipping = [], False
+    for line in text.splitlines():
+        if line.startswith("band:"):
+            skipping = True
+            continue
+        if skipping and (line.startswith(" ") or line.startswith("#")):
+            continue
+        skipping = False
+        kept.append(line)
+    path = tmp_path / "no-band.yaml"
+    path.write_text("\n".join(kept) + "\n", encoding="utf-8")
+    return path
+
+
+def test_a_printer_without_a_band_is_refused_by_tolerance_and_fit(cli, tmp_path):
+    printer = _without_band(tmp_path)
+    for option in (["--tolerance"], ["--fit", "auto"]):
+        result = cli("gears", "--printer", str(printer), *option, "--out", tmp_path / "out")
+        line = error_line(result)
+        assert "has no dimensional band: add a `band:` section" in line
+        assert not (tmp_path / "out").exists()
+
+
+def test_an_unknown_fit_is_refused(cli, tmp_path):
+    result = cli("gears", "--fit", "snug", "--out", tmp_path / "out")
+    assert result.exit_code == 2 and "--fit" in result.stderr
