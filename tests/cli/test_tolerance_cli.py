@@ -37,3 +37,13 @@ def test_a_printer_without_a_band_is_refused_by_tolerance_and_fit(cli, tmp_path)
 def test_an_unknown_fit_is_refused(cli, tmp_path):
     result = cli("gears", "--fit", "snug", "--out", tmp_path / "out")
     assert result.exit_code == 2 and "--fit" in result.stderr
+
+
+def test_mesh_check_printer_without_tolerance_is_refused(cli, tmp_path):
+    result = cli("mesh-check", "a.stl", "b.stl", "--printer", "fdm-0.4-pla")
+    assert "--printer = fdm-0.4-pla: names the band --tolerance checks" in error_line(result)
+
+
+def test_mesh_check_tolerance_on_plates_is_refused(cli, tmp_path):
+    result = cli("mesh-check", "plate.3mf", "--tolerance")
+    assert "checks two named meshes (PINION WHEEL), not plates" in error_line(result)

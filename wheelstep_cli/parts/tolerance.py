@@ -129,6 +129,8 @@ def case_record(case: BandCase, report: MeshingReport) -> dict:
     return {"case": case.name, "pinion_offset_mm": case.pinion_offset,
             "wheel_offset_mm": case.wheel_offset, "distance_mm": summary["distance_mm"],
             "jams": jams(summary), "interference": summary["interference"],
+            "interfering_poses": summary["interfering_poses"],
+            "max_penetration_mm": summary["max_penetration_mm"],
             "backlash_min_mm": summary["backlash_min_mm"], "backlash_max_mm": summary["backlash_max_mm"],
             **{side: {key: summary[side][key] for key in flank} for side in ("drive", "coast")}}
 
@@ -164,7 +166,9 @@ def band_lines(record: dict) -> list[str]:
             return "n/a" if value is None else format(value, fmt)
         lines.append(
             f"  {case['case']:<28} {case['pinion_offset_mm']:+.3f}/{case['wheel_offset_mm']:+.3f} mm "
-            f"at {case['distance_mm']:g} mm: {'JAMS' if case['jams'] else 'ok'}, backlash "
+            f"at {case['distance_mm']:g} mm: "
+            + (f"JAMS ({case['interfering_poses']} poses, {1000 * case['max_penetration_mm']:.0f} um deep)"
+               if case['jams'] else "ok") + ", backlash "
             f"{num(case['backlash_min_mm'])}..{num(case['backlash_max_mm'])} mm, drive F'i "
             f"{num(case['drive']['F_i_total_um'], '.1f')} um f'i {num(case['drive']['f_i_tooth_um'], '.1f')}"
             f" um ripple {num(case['drive']['hub_speed_ripple_pct'], '.2f')} %")

@@ -4,8 +4,8 @@ pair built (fitted or as asked) and the record and text lines of the report. Len
 from __future__ import annotations
 
 from wheelstep_cli.parts.fit import fit_line, fit_pair, fit_record
-from wheelstep_cli.parts.tolerance import (NOMINAL, band_lines, band_record, check_case, require_band,
-                                           sectioned_pair)
+from wheelstep_cli.parts.tolerance import (NOMINAL, SectionedPair, band_lines, band_record, check_case,
+                                           require_band, sectioned_pair)
 
 
 def band_printer(printer):
@@ -49,3 +49,18 @@ def tolerance_lines(record: dict) -> list[str]:
     if "note" in record:
         lines.append(f"  ({record['note']})")
     return lines
+
+
+def outline_band(outlines, check, nominal, printer) -> dict:
+    """The band record of two read outlines (mm, own frames) of ``mesh-check``: ``check`` a
+    :class:`~wheelstep_cli.parts.mesh_check_files.WrittenPairCheck`, ``nominal`` its report."""
+    from dataclasses import replace
+
+    from wheelstep_cli.gears.meshing import MeshingSettings
+    from wheelstep_cli.parts.gear_pair import generation_law
+
+    _, blended = generation_law(check.spec)
+    sections = SectionedPair(outlines[0], outlines[1], blended, float(check.spec.install_distance),
+                             int(nominal.teeth))
+    settings = replace(MeshingSettings(), samples=check.samples, window=check.window)
+    return band_record(sections, printer.band, printer.name, nominal, settings)
