@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from tests.helpers.clicheck import error_line
 
 PROFILES = Path(__file__).resolve().parents[2] / "profiles"
@@ -47,3 +49,20 @@ def test_mesh_check_printer_without_tolerance_is_refused(cli, tmp_path):
 def test_mesh_check_tolerance_on_plates_is_refused(cli, tmp_path):
     result = cli("mesh-check", "plate.3mf", "--tolerance")
     assert "checks two named meshes (PINION WHEEL), not plates" in error_line(result)
+
+
+def test_gears_tolerance_reports_every_case_and_the_loose_corner_has_more_play(cli, tmp_path):
+    import json
+
+    result = cli("gears", "--profile", "desk-demo", "--tolerance", "--printer", "resin-0.05-standard",
+                 "--json", "-q", "--out", tmp_path / "out")
+    assert result.exit_code == 0, result.stderr
+    meshing = json.loads((tmp_path / "out" / "gears.json").read_text())["meshing"]
+    band = meshing["tolerance"]
+    assert band["printer"] == "resin-0.05-standard" and band["band"]["outline_mm"] == 0.05
+    cases = {case["case"]: case for case in band["cases"]}
+    assert list(cases) == ["tight", "pinion grown, wheel shrunk", "pinion shrunk, wheel grown", "loose"]
+    loose = cases["loose"]
+    assert loose["distance_mm"] == pytest.approx(meshing["distance_mm"] + 0.03)
+    assert not loose["jams"] and loose["backlash_min_mm"] > meshing["backlash_min_mm"]
+    assert band["largest_backlash_mm"] == max(c["backlash_max_mm"] for c in band["cases"])
