@@ -153,8 +153,9 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.parts.tolerance_cli import band_pair
 
     pair, tolerance, nominal = band_pair(spec, printer, *band)
-    record = meshing_record(nominal or with_progress(not show.quiet, "meshing check", check_gear_pair,
-                                                     pair))
+    if nominal is None:
+        nominal = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
+    record = meshing_record(nominal)
     if record["interference"] and not allow_interference:
         show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
                    f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
