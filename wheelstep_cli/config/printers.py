@@ -101,7 +101,6 @@ class PrinterProfile(BaseModel):
     material: MaterialSection
     slicer: dict[str, SlicerValue] = {}
     band: Optional[BandSection] = None
-    fit: Fit = Fit.auto
 
 
 @dataclass(frozen=True)
@@ -137,7 +136,6 @@ class Printer:
     file_name: str
     sha256: str
     band: Optional[Band] = None
-    fit: str = "auto"
 
     def geometry(self) -> dict[str, float]:
         """The settings that change the printed geometry (for reports and 3MF metadata)."""
@@ -195,8 +193,7 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
                    elephant_foot_inset=section.elephant_foot_inset, material=material.name,
                    density=material.density, slicer=dict(profile.slicer),
                    file_name=Path(path).name, sha256=hashlib.sha256(raw).hexdigest(),
-                   band=None if profile.band is None else Band(**profile.band.model_dump()),
-                   fit=Fit(profile.fit).value)
+                   band=None if profile.band is None else Band(**profile.band.model_dump()))
 
 
 #: The printer a command uses when none is named.
