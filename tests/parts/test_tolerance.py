@@ -75,3 +75,69 @@ def test_shifted_law_moves_the_wheel_angle_pose_by_pose():
     law = ShiftedLaw(Law(), np.array([0.0, 0.5]), np.array([0.01, 0.03]))
     assert law.carrier_angle(np.array([0.25]))[0] == pytest.approx(0.5 + 0.02)
     assert law.carrier_angle(np.array([1.25]))[0] == pytest.approx(2.5 + 0.02)
+
+
+class _FakeReport:
+    """Stands for a meshing report whose least backlash is linear in the tooth clearance."""
+
+    def __init__(self, least):
+        self.least = least
+        self.phi_drive = self.phi_coast = self.phi_law = np.zeros(4)
+        self.theta = np.arange(4.0)
+
+    def to_dict(self):
+        flank = {"F_i_total_um": 1.0, "f_i_tooth_um": 1.0, "hub_speed_ripple_pct": 0.1}
+        return {"distance_mm": 144.0, "interference": self.least <= 0, "interfering_poses": 0,
+                "max_penetration_mm": 0.0, "backlash_min_mm": self.least,
+                "backlash_max_mm": self.least + 0.1, "drive": flank, "coast": flank}
+
+
+def _fake_search(monkeypatch, least_of_clearance):
+    import wheelstep_cli.parts.fit as fit
+    import wheelstep_cli.parts.tolerance as tolerance
+
+    def check(sections, case, settings=None):
+        return _FakeReport(least_of_clearance(sections.clearance)
+                           - 0.1 * (case.pinion_offset + case.wheel_offset))
+
+    from types import SimpleNamespace
+
+    monkeypatch.setattr(fit, "sectioned_pair", lambda pair: SimpleNamespace(
+        clearance=pair, shift=(np.zeros(1), np.zeros(1))))
+    monkeypatch.setattr(fit, "check_case", check)
+    monkeypatch.setattr(tolerance, "check_case", check)
+    monkeypatch.setattr(fit, "mid_play", lambda sections, nominal: sections)
+    monkeypatch.setattr(tolerance, "mid_play", lambda sections, nominal: sections)
+
+
+def test_fit_search_lands_on_the_margin_for_a_linear_response(monkeypatch):
+    from types import SimpleNamespace
+
+    from wheelstep_cli.parts.fit import FIT_TOLERANCE, fit_pair
+
+    # least backlash = 1.1 x clearance - 0.10, and 0.02 less at the tight corner (+0.1 mm each)
+    _fake_search(monkeypatch, lambda clearance: 1.1 * clearance - 0.10)
+    printer = replace_printer()
+    spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
+    result = fit_pair(spec, printer, "normal", lambda s, p: p.tooth_clearance)
+    tight = 1.1 * result.clearance - 0.10 - 0.1 * 2 * printer.band.outline
+    assert 0.1 <= tight <= 0.1 + FIT_TOLERANCE
+    assert len(result.rounds) <= 3
+    assert result.band["least_backlash_mm"] == pytest.approx(tight)
+
+
+def test_fit_search_stops_at_its_clearance_cap_when_nothing_helps(monkeypatch):
+    from types import SimpleNamespace
+
+    from wheelstep_cli.parts.fit import FIT_MAX_CLEARANCE, fit_pair
+
+    _fake_search(monkeypatch, lambda clearance: -1.0)
+    spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
+    result = fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance)
+    assert result.clearance <= FIT_MAX_CLEARANCE and result.band["jams"]
+
+
+def replace_printer():
+    from dataclasses import replace
+
+    return replace(load_printer_profile("fdm-0.4-pla"), tooth_clearance=0.0)
