@@ -17,6 +17,7 @@ from typing import Annotated, Optional
 import numpy as np
 import typer
 
+from wheelstep_cli.config.printers import Fit
 from wheelstep_cli.errors import DesignError, require
 
 
@@ -89,6 +90,13 @@ Printer = Annotated[Optional[str], opt(
 Out = Annotated[Path, opt("--out", "-o", help="Output folder.")]
 Force = Annotated[bool, opt("--force", help="Overwrite files in the output folder that this "
                                             "command did not write (refused otherwise).")]
+Tolerance = Annotated[bool, opt(
+    "--tolerance", help="Also run the meshing check over the printer's dimensional band (SPEC "
+                        "§11): grown and shrunk outlines at the band's centre distances.")]
+FitChoice = Annotated[Optional[Fit], opt(
+    "--fit", help="Search the printer's tooth clearance so the least backlash over its band "
+                  "stays at the fit's margin (auto 0.01, tight 0.05, normal 0.1, loose 0.2 mm) "
+                  "with no more play; implies --tolerance.", shown="the printer's clearance")]
 Format = Annotated[MeshFormat, opt("--format", help="Mesh files to write.")]
 # --- conventions of every command
 Json = Annotated[bool, opt("--json", help="Print the report as one JSON document on stdout "

@@ -56,6 +56,34 @@ class PrinterSection(BaseModel):
     elephant_foot_inset: Real = length(0.0, ge=0, le=1)
 
 
+class BandSection(BaseModel):
+    """The printer's dimensional band (SPEC §11), mm: outlines come out offset along their
+    normals by -outline..+outline, holes come out up to ``hole_shrink`` smaller in diameter,
+    and the frame holds a centre distance to +-``center_distance``."""
+
+    model_config = STRICT
+
+    outline: Real = length(..., gt=0, le=1)
+    hole_shrink: Real = length(0.0, ge=0, le=1)
+    center_distance: Real = length(0.0, ge=0, le=1)
+
+
+class Fit(str, Enum):
+    """How much play a printed pair is given over its band (see :data:`FIT_MARGINS`)."""
+
+    auto = "auto"
+    tight = "tight"
+    normal = "normal"
+    loose = "loose"
+
+
+#: Least backlash (mm, on the wheel pitch curve) each fit keeps at the band's tight corner:
+#: auto keeps the least that is still positive with a safety of 10 um (the check's own
+#: error is a few um); tight 0.05 mm (about half an FDM line's wobble); normal 0.1 mm
+#: (smooth running with a dry PLA pair); loose 0.2 mm (dirt, wear, a frame that flexes).
+FIT_MARGINS = {Fit.auto: 0.01, Fit.tight: 0.05, Fit.normal: 0.1, Fit.loose: 0.2}
+
+
 class MaterialSection(BaseModel):
     model_config = STRICT
 
@@ -72,6 +100,17 @@ class PrinterProfile(BaseModel):
     printer: PrinterSection
     material: MaterialSection
     slicer: dict[str, SlicerValue] = {}
+    band: Optional[BandSection] = None
+
+
+@dataclass(frozen=True)
+class Band:
+    """A printer's dimensional band (SPEC §11), mm: outline offset +-``outline`` along the
+    normals, holes up to ``hole_shrink`` smaller, centre distance +-``center_distance``."""
+
+    outline: float
+    hole_shrink: float
+    center_distance: float
 
 
 @dataclass(frozen=True)
@@ -96,6 +135,7 @@ class Printer:
     slicer: dict[str, Any]
     file_name: str
     sha256: str
+    band: Optional[Band] = None
 
     def geometry(self) -> dict[str, float]:
         """The settings that change the printed geometry (for reports and 3MF metadata)."""
@@ -152,7 +192,8 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
                    elephant_foot_height=section.elephant_foot_height,
                    elephant_foot_inset=section.elephant_foot_inset, material=material.name,
                    density=material.density, slicer=dict(profile.slicer),
-                   file_name=Path(path).name, sha256=hashlib.sha256(raw).hexdigest())
+                   file_name=Path(path).name, sha256=hashlib.sha256(raw).hexdigest(),
+                   band=None if profile.band is None else Band(**profile.band.model_dump()))
 
 
 #: The printer a command uses when none is named.

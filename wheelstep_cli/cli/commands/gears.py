@@ -5,8 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Force, Format, Json, LawCsv,
-                                       MeshFormat, Out, Printer, Profile, Quiet, Turns, Verbose, Z, opt)
+from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, FitChoice, Force, Format,
+                                       Json, LawCsv, MeshFormat, Out, Printer, Profile, Quiet, Tolerance,
+                                       Turns, Verbose, Z, opt)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec
 from wheelstep_cli.config.specs import Corner, Teeth
@@ -121,7 +122,7 @@ def gears(
                                      "overlapping teeth (the paper method's pair does, at the "
                                      "shoe handovers).")] = False,
     plot: Plot = None, gif: Gif = None, dxf: Dxf = False, svg: Svg = False, step: Step = False,
-    force: Force = False,
+    force: Force = False, tolerance: Tolerance = False, fit: FitChoice = None,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Write the gear pair as printable STL/3MF meshes, gears.json and the exports asked for.
@@ -140,7 +141,8 @@ def gears(
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
     _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force,
-                checked_extras(plot, gif, dxf, svg, step))
+                checked_extras(plot, gif, dxf, svg, step),
+                (tolerance or fit is not None, fit.value if fit else None))
 
 
 def _printer(name: str | None):
@@ -151,18 +153,21 @@ def _printer(name: str | None):
 
 
 def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interference: bool,
-                dry_run: bool, force: bool, extras: GearExtras = GearExtras()) -> None:
-    """Build, check, write (unless refused or a dry run) and report the pair of ``spec``."""
+                dry_run: bool, force: bool, extras: GearExtras = GearExtras(),
+                band: tuple = (False, None)) -> None:
+    """Build, check, write (unless refused or a dry run) and report the pair of ``spec``;
+    ``band`` = (check over the printer's band, the --fit or None)."""
     import typer
 
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
-    from wheelstep_cli.parts.kinds import build_for_printer
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+    from wheelstep_cli.parts.tolerance_cli import band_pair
 
-    pair = build_for_printer("gear-pair", spec, printer)
-    check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
+    pair, tolerance, check = band_pair(spec, printer, *band)
+    if check is None:
+        check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
     record = meshing_record(check)
     if record["interference"] and not allow_interference:
         show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
@@ -170,6 +175,8 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                    f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
                    "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
+    if tolerance is not None:
+        record["tolerance"] = tolerance
     files = {**gear_pair_files(pair, out, fmt, record),
              **with_progress(extras.step and not show.quiet, "STEP solids", export_files, pair,
                              extras, out)}
@@ -206,6 +213,10 @@ def _gears_lines(pair, record: dict) -> list[str]:
                  f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
                  f"hub speed ripple {record['law_hub_speed_ripple_pct']:.2f} %")
     lines.extend(f"  {flank_line(side, record[side])}" for side in ("drive", "coast"))
+    if "tolerance" in record:
+        from wheelstep_cli.parts.tolerance_cli import tolerance_lines
+
+        lines.extend(tolerance_lines(record["tolerance"]))
     return lines
 
 

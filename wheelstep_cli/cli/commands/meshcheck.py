@@ -7,10 +7,13 @@ from typing import Annotated, Optional
 import typer
 
 from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Json, LawCsv, Profile,
-                                       Quiet, Turns, Verbose, opt, plot_option)
+                                       Quiet, Tolerance, Turns, Verbose, opt, plot_option)
 from wheelstep_cli.cli.output import Output
 
 Plot = plot_option("the transfer function, the position error of both flanks and hub speed")
+BandPrinter = Annotated[Optional[str], opt(
+    "--printer", help="Printer profile (a name in profiles/ or a YAML path) whose dimensional "
+                      "band --tolerance checks.", shown="the default printer")]
 
 
 def mesh_check(
@@ -30,7 +33,7 @@ def mesh_check(
     window: Annotated[Optional[float], opt("--window", help="Half-height of the mesh window round "
                                                             "the line of centres, mm.",
                                            shown="0.25 x the smaller outer radius")] = None,
-    plot: Plot = None,
+    plot: Plot = None, tolerance: Tolerance = False, printer: BandPrinter = None,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Section two gear meshes at mid-thickness and check them over one period of the law:
@@ -44,18 +47,30 @@ def mesh_check(
     show = Output(json, quiet, verbose)
     design = {"distance": distance, "a": a, "b": b, "c": c, "turns": turns,
               "center_distance": center_distance, "law_csv": law_csv, "blend": blend, "profile": profile}
+    band = (tolerance, printer)
     if is_plate_input(pinion, wheel):
+        _no_band_on_plates(tolerance, printer)
         failed = _check_plates(show, [pinion] + ([wheel] if wheel else []), pair, design, samples,
                                window, plot, dry_run, quiet)
     else:
-        failed = _check_meshes(show, pinion, wheel, pair, design, samples, window, plot, dry_run, quiet)
+        failed = _check_meshes(show, pinion, wheel, pair, design, samples, window, plot, dry_run, quiet,
+                               band)
     if failed:
         raise typer.Exit(1)
 
 
+def _no_band_on_plates(tolerance: bool, printer) -> None:
+    from wheelstep_cli.errors import DesignError
+
+    if tolerance or printer is not None:
+        raise DesignError("tolerance" if tolerance else "printer", printer or "on",
+                          "checks two named meshes (PINION WHEEL), not plates")
+
+
 def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, samples: int, window,
-                  plot, dry_run: bool, quiet: bool) -> bool:
-    """Two meshes named on the command line, the design from the options."""
+                  plot, dry_run: bool, quiet: bool, band: tuple = (False, None)) -> bool:
+    """Two meshes named on the command line, the design from the options; with
+    ``band`` = (--tolerance, --printer) also over the printer's band (SPEC §11)."""
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.config.resolve import gear_pair_spec
     from wheelstep_cli.errors import DesignError
@@ -71,14 +86,34 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
                           blend=design["blend"])
     check = WrittenPairCheck(pinion, wheel, spec, samples, window, plot)
     show.parameters(vars(spec))
+    chosen = _band_printer(*band)
     outlines = read_written_pair(check)
     report, summary = with_progress(not quiet, "meshing check", run_written_pair_check, check,
                                     outlines)
+    if chosen is not None:
+        from wheelstep_cli.parts.tolerance_cli import outline_band
+
+        summary["tolerance"] = outline_band(outlines, check, report, chosen)
     files = written_pair_files(check, report)
     show.write(files, dry_run)
     show.report(summary, lambda: _lines(summary, spec.install_distance, samples))
     show.files(files, dry_run)
     return report.interferes or report.contact_lost
+
+
+def _band_printer(tolerance: bool, printer):
+    """The printer whose band --tolerance checks (None: no band check); --printer alone is
+    refused (it only says whose band)."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.tolerance_cli import band_printer
+
+    if not tolerance:
+        if printer is not None:
+            raise DesignError("printer", printer, "names the band --tolerance checks: add --tolerance")
+        return None
+    from wheelstep_cli.config.profiles import load_printer_profile
+
+    return band_printer(load_printer_profile(printer) if printer else None)
 
 
 def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: int, window, plot,
@@ -119,7 +154,16 @@ def _lines(summary: dict, distance: float, samples: int) -> list[str]:
 
     pair = f"pair {summary['pair']}: " if "pair" in summary else ""
     return [f"meshing check: {pair}{summary['pinion']} + {summary['wheel']} at {distance:g} mm, "
-            f"{samples} poses over {summary['period_deg']:g} deg of pinion", *meshing_lines(summary)]
+            f"{samples} poses over {summary['period_deg']:g} deg of pinion", *meshing_lines(summary),
+            *_band_lines(summary)]
+
+
+def _band_lines(summary: dict) -> list[str]:
+    if "tolerance" not in summary:
+        return []
+    from wheelstep_cli.parts.tolerance_cli import tolerance_lines
+
+    return tolerance_lines(summary["tolerance"])
 
 
 def register(app: typer.Typer) -> None:

@@ -1,0 +1,143 @@
+"""The band cases, the refusal of a printer without a band and the fit's secant step (SPEC §11)."""
+
+import numpy as np
+import pytest
+
+from wheelstep_cli.config.printers import FIT_MARGINS, Band, Fit
+from wheelstep_cli.config.profiles import load_printer_profile
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.parts.fit import _next_clearance
+from wheelstep_cli.parts.tolerance import ShiftedLaw, band_cases, jams, require_band
+
+PRESETS = ["fdm-0.4-pla", "fdm-0.4-petg", "resin-0.05-standard"]
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_every_printer_preset_has_a_band(name):
+    printer = load_printer_profile(name)
+    band = require_band(printer)
+    assert 0 < band.outline <= 0.2 and band.center_distance > 0 and band.hole_shrink > 0
+
+
+def test_fdm_band_is_wider_than_resin():
+    assert (load_printer_profile("fdm-0.4-pla").band.outline
+            > load_printer_profile("resin-0.05-standard").band.outline)
+
+
+def test_a_printer_without_a_band_is_told_to_add_one():
+    from dataclasses import replace
+    printer = replace(load_printer_profile("fdm-0.4-pla"), band=None)
+    with pytest.raises(DesignError, match="band"):
+        require_band(printer)
+
+
+def test_cases_are_the_extremes_and_the_mixed_cases_at_the_smallest_distance():
+    cases = band_cases(Band(outline=0.1, hole_shrink=0.2, center_distance=0.05))
+    by_name = {c.name: (c.pinion_offset, c.wheel_offset, c.distance_shift) for c in cases}
+    assert by_name["tight"] == (0.1, 0.1, -0.05)
+    assert by_name["loose"] == (-0.1, -0.1, 0.05)
+    assert by_name["pinion grown, wheel shrunk"] == (0.1, -0.1, -0.05)
+    assert by_name["pinion shrunk, wheel grown"] == (-0.1, 0.1, -0.05)
+    assert cases[0].name == "tight" and len(cases) == 4
+
+
+def test_jam_is_overlap_or_no_backlash():
+    assert jams({"interference": True, "backlash_min_mm": 0.2})
+    assert jams({"interference": False, "backlash_min_mm": -0.01})
+    assert not jams({"interference": False, "backlash_min_mm": 0.01})
+
+
+def test_fit_margins_grow_from_auto_to_loose():
+    margins = [FIT_MARGINS[f] for f in (Fit.auto, Fit.tight, Fit.normal, Fit.loose)]
+    assert margins == sorted(margins) and margins[0] > 0
+
+
+def test_fit_step_first_by_the_normal_share_then_by_the_secant():
+    cos_a = np.cos(np.radians(20))
+    first = _next_clearance([{"clearance_mm": 0.15, "tight_least_backlash_mm": -0.05}], 0.01, cos_a)
+    assert first == pytest.approx(0.15 + (0.01 + 0.0025 + 0.05) * cos_a)
+    # a linear response of slope 1.2: the secant lands on the margin (+ half the tolerance)
+    tried = [{"clearance_mm": 0.1, "tight_least_backlash_mm": -0.1},
+             {"clearance_mm": 0.2, "tight_least_backlash_mm": 0.02}]
+    assert _next_clearance(tried, 0.05, cos_a) == pytest.approx(0.2 + (0.0525 - 0.02) / 1.2)
+
+
+def test_shifted_law_moves_the_wheel_angle_pose_by_pose():
+    class Law:
+        theta_period = 1.0
+
+        def carrier_angle(self, theta):
+            return 2.0 * np.asarray(theta)
+
+        def hub_speed_factor(self, phi):
+            return np.ones_like(np.asarray(phi, float))
+
+    law = ShiftedLaw(Law(), np.array([0.0, 0.5]), np.array([0.01, 0.03]))
+    assert law.carrier_angle(np.array([0.25]))[0] == pytest.approx(0.5 + 0.02)
+    assert law.carrier_angle(np.array([1.25]))[0] == pytest.approx(2.5 + 0.02)
+
+
+class _FakeReport:
+    """Stands for a meshing report whose least backlash is linear in the tooth clearance."""
+
+    def __init__(self, least):
+        self.least = least
+        self.phi_drive = self.phi_coast = self.phi_law = np.zeros(4)
+        self.theta = np.arange(4.0)
+
+    def to_dict(self):
+        flank = {"F_i_total_um": 1.0, "f_i_tooth_um": 1.0, "hub_speed_ripple_pct": 0.1}
+        return {"distance_mm": 144.0, "interference": self.least <= 0, "interfering_poses": 0,
+                "max_penetration_mm": 0.0, "backlash_min_mm": self.least,
+                "backlash_max_mm": self.least + 0.1, "drive": flank, "coast": flank}
+
+
+def _fake_search(monkeypatch, least_of_clearance):
+    import wheelstep_cli.parts.fit as fit
+    import wheelstep_cli.parts.tolerance as tolerance
+
+    def check(sections, case, settings=None):
+        return _FakeReport(least_of_clearance(sections.clearance)
+                           - 0.1 * (case.pinion_offset + case.wheel_offset))
+
+    from types import SimpleNamespace
+
+    monkeypatch.setattr(fit, "sectioned_pair", lambda pair: SimpleNamespace(
+        clearance=pair, shift=(np.zeros(1), np.zeros(1))))
+    monkeypatch.setattr(fit, "check_case", check)
+    monkeypatch.setattr(tolerance, "check_case", check)
+    monkeypatch.setattr(fit, "mid_play", lambda sections, nominal: sections)
+    monkeypatch.setattr(tolerance, "mid_play", lambda sections, nominal: sections)
+
+
+def test_fit_search_lands_on_the_margin_for_a_linear_response(monkeypatch):
+    from types import SimpleNamespace
+
+    from wheelstep_cli.parts.fit import FIT_TOLERANCE, fit_pair
+
+    # least backlash = 1.1 x clearance - 0.10, and 0.02 less at the tight corner (+0.1 mm each)
+    _fake_search(monkeypatch, lambda clearance: 1.1 * clearance - 0.10)
+    printer = replace_printer()
+    spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
+    result = fit_pair(spec, printer, "normal", lambda s, p: p.tooth_clearance)
+    tight = 1.1 * result.clearance - 0.10 - 0.1 * 2 * printer.band.outline
+    assert 0.1 <= tight <= 0.1 + FIT_TOLERANCE
+    assert len(result.rounds) <= 3
+    assert result.band["least_backlash_mm"] == pytest.approx(tight)
+
+
+def test_fit_search_stops_at_its_clearance_cap_when_nothing_helps(monkeypatch):
+    from types import SimpleNamespace
+
+    from wheelstep_cli.parts.fit import FIT_MAX_CLEARANCE, fit_pair
+
+    _fake_search(monkeypatch, lambda clearance: -1.0)
+    spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
+    result = fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance)
+    assert result.clearance <= FIT_MAX_CLEARANCE and result.band["jams"]
+
+
+def replace_printer():
+    from dataclasses import replace
+
+    return replace(load_printer_profile("fdm-0.4-pla"), tooth_clearance=0.0)

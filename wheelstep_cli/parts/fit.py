@@ -1,0 +1,94 @@
+"""The fit of a printed pair (SPEC §11): the tooth clearance that keeps the least backlash
+over the printer's band at the fit's margin, with no more play than that.
+
+The least backlash of the band is that of its tight corner (both gears grown at the
+smallest distance); it grows about linearly with the clearance cut into the teeth, so a
+secant search on the tight corner finds the clearance in two or three builds, and the
+whole band is checked once on the pair found. Lengths in mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from wheelstep_cli.config.printers import FIT_MARGINS, Fit
+from wheelstep_cli.gears.meshing import MeshingSettings
+from wheelstep_cli.parts.tolerance import (NOMINAL, band_cases, band_record, case_record, check_case,
+                                           mid_play, printer_with_clearance, sectioned_pair)
+
+#: The search stops when the tight corner's least backlash is this close (mm) above the margin.
+FIT_TOLERANCE = 0.005
+FIT_ROUNDS = 4
+#: The most clearance (mm) the search tries: the profile's own limit is 1 mm; beyond about a
+#: quarter module the teeth thin out, and a band that still jams there jams radially (tips
+#: in roots), which no clearance cures.
+FIT_MAX_CLEARANCE = 0.5
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """The fitted pair, the printer's clearance it was drawn with (mm) and its band record."""
+
+    pair: object
+    nominal: object     # the fitted pair's meshing report as written
+    clearance: float
+    margin: float
+    band: dict
+    rounds: list
+
+
+def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings = MeshingSettings()
+             ) -> FitResult:
+    """Search the tooth clearance (mm, added to ``spec``'s backlash) for ``fit`` (auto, tight,
+    normal, loose: :data:`FIT_MARGINS`) on ``printer``'s band; ``build(spec, printer)``
+    builds the pair as written. The clearance never takes the backlash below zero."""
+    margin = FIT_MARGINS[Fit(fit)]
+    tight = band_cases(printer.band)[0]
+    cos_a = float(np.cos(np.radians(spec.pressure_angle)))
+    lowest = -float(spec.backlash_mm)
+    clearance, tried = float(printer.tooth_clearance), []
+    pair = sections = nominal = None
+    for _ in range(FIT_ROUNDS):
+        pair = build(spec, printer_with_clearance(printer, clearance))
+        sections = sectioned_pair(pair)
+        nominal = check_case(sections, NOMINAL, settings)
+        least = case_record(tight, check_case(mid_play(sections, nominal), tight, settings))["backlash_min_mm"]
+        least = -1.0 if least is None else float(least)
+        tried.append({"clearance_mm": clearance, "tight_least_backlash_mm": least})
+        if margin <= least <= margin + FIT_TOLERANCE:
+            break
+        clearance = min(FIT_MAX_CLEARANCE, max(lowest, _next_clearance(tried, margin, cos_a)))
+        if any(abs(t["clearance_mm"] - clearance) < 1e-6 for t in tried):
+            break
+    record = band_record(sections, printer.band, printer.name, nominal, settings)
+    return FitResult(pair, nominal, tried[-1]["clearance_mm"], margin, record, tried)
+
+
+def _next_clearance(tried: list, margin: float, cos_a: float) -> float:
+    """The next clearance (mm): a secant through the last two tries, or (first try, or a
+    flat secant) the normal backlash's share cos(alpha) of the missing play."""
+    last = tried[-1]
+    aim = last["clearance_mm"] + (margin + FIT_TOLERANCE / 2 - last["tight_least_backlash_mm"]) * cos_a
+    if len(tried) < 2:
+        return aim
+    prev = tried[-2]
+    slope = ((last["tight_least_backlash_mm"] - prev["tight_least_backlash_mm"])
+             / (last["clearance_mm"] - prev["clearance_mm"]))
+    if not np.isfinite(slope) or slope <= 0.1:
+        return aim
+    return last["clearance_mm"] + (margin + FIT_TOLERANCE / 2 - last["tight_least_backlash_mm"]) / slope
+
+
+def fit_record(result: FitResult, fit: str, design_backlash: float) -> dict:
+    """What the report says of the fit (mm)."""
+    return {"fit": fit, "margin_mm": result.margin, "tooth_clearance_mm": result.clearance,
+            "backlash_mm": design_backlash + result.clearance, "search": result.rounds}
+
+
+def fit_line(record: dict) -> str:
+    return (f"fit {record['fit']}: tooth clearance {record['tooth_clearance_mm']:.3f} mm (backlash "
+            f"j_n {record['backlash_mm']:.3f} mm) keeps the band's least backlash >= "
+            f"{record['margin_mm']:g} mm, found in {len(record['search'])} builds")

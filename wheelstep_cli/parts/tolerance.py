@@ -1,0 +1,180 @@
+"""Will the pair mesh when printed? The meshing check over a printer's band (SPEC §11).
+
+A printer lays outlines down offset along their normals by -d..+d and holds the centre
+distance to +-e (:class:`~wheelstep_cli.config.printers.Band`). The pair is checked at the
+band's extremes: both gears grown at the smallest distance (least backlash: does it jam?),
+both shrunk at the largest (most backlash), and the two mixed cases at the smallest
+distance (one gear's grown tips in the other's shrunk spaces: tip and root interference
+that the symmetric cases hide). The nominal case is the check ``gears`` already ran.
+Lengths in mm, angles in radians.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.gears.meshing import MeshingReport, MeshingSettings, check_meshing
+from wheelstep_cli.geometry.planar import offset_outline
+
+
+@dataclass(frozen=True)
+class BandCase:
+    """One corner of the band: outline offsets (mm, + grows) and the distance shift (mm)."""
+
+    name: str
+    pinion_offset: float
+    wheel_offset: float
+    distance_shift: float
+
+
+@dataclass(frozen=True)
+class SectionedPair:
+    """A pair's mid-thickness outlines (mm, own frames), law, installed distance and teeth."""
+
+    pinion: np.ndarray
+    wheel: np.ndarray
+    law: object
+    distance: float
+    teeth: int
+    shift: tuple | None = None   # (theta, wheel angle rad): start poses moved into the play
+
+
+class ShiftedLaw:
+    """``law`` with the wheel's angle moved by ``shift`` rad at the pinion angles ``theta``
+    (rad, one period, periodic in between): the pose the band's cases start from (the
+    contact search runs both ways from it, so it must lie in the play)."""
+
+    def __init__(self, law, theta: np.ndarray, shift: np.ndarray):
+        self.law, self.theta, self.shift = law, np.asarray(theta, float), np.asarray(shift, float)
+        self.theta_period = law.theta_period
+        self.mean = float(np.mean(self.shift))
+
+    def carrier_angle(self, theta):
+        theta = np.asarray(theta, dtype=float)
+        moved = np.interp(theta, self.theta, self.shift, period=float(self.theta_period))
+        return np.asarray(self.law.carrier_angle(theta), dtype=float) + moved
+
+    def hub_speed_factor(self, phi):
+        # the hub reads the wheel's own angle: the start shift is taken out (its mean; the
+        # shift varies by arcminutes, far below the factor's scale)
+        return self.law.hub_speed_factor(np.asarray(phi, dtype=float) - self.mean)
+
+
+def mid_play(sections: SectionedPair, nominal: MeshingReport) -> SectionedPair:
+    """``sections`` starting their cases in the middle of the nominal pair's play, pose by
+    pose: generated teeth may keep their play on one side, so the law's own pose touches a
+    flank and any growth would overlap there although the wheel is free to turn away."""
+    middle = 0.5 * (nominal.phi_drive + nominal.phi_coast) - nominal.phi_law
+    good = np.isfinite(middle)
+    fill = float(np.mean(middle[good])) if good.any() else 0.0
+    return replace(sections, shift=(np.asarray(nominal.theta, float), np.where(good, middle, fill)))
+
+
+def band_cases(band) -> tuple[BandCase, ...]:
+    """The band's cases that decide jam and play (SPEC §11), tightest first."""
+    d, e = float(band.outline), float(band.center_distance)
+    return (BandCase("tight", d, d, -e),
+            BandCase("pinion grown, wheel shrunk", d, -d, -e),
+            BandCase("pinion shrunk, wheel grown", -d, d, -e),
+            BandCase("loose", -d, -d, e))
+
+
+def require_band(printer, option: str = "printer"):
+    """The printer's band; DesignError telling the user to add one when it has none (a
+    printer without a band is never taken as perfect)."""
+    if printer.band is None:
+        raise DesignError(option, printer.name, "has no dimensional band: add a `band:` "
+                                                "section (outline, hole_shrink, center_distance, mm) "
+                                                "to its profile")
+    return printer.band
+
+
+def sectioned_pair(pair) -> SectionedPair:
+    """The mid-thickness sections of a built gear pair's written meshes (SPEC §10)."""
+    from wheelstep_cli.geometry.solids import section_outline
+
+    generated = getattr(pair, "generated", None)
+    law = generated.law if generated is not None else pair.law
+    return SectionedPair(section_outline(pair.pinion.vertices, pair.pinion.faces, "pinion"),
+                         section_outline(pair.wheel.vertices, pair.wheel.faces, "wheel"),
+                         law, float(pair.mounted_distance), int(pair.spec.z))
+
+
+NOMINAL = BandCase("nominal", 0.0, 0.0, 0.0)
+
+
+def check_case(sections: SectionedPair, case: BandCase,
+               settings: MeshingSettings = MeshingSettings()) -> MeshingReport:
+    """The meshing check of ``sections`` offset and moved as ``case`` says."""
+    pinion = offset_outline(sections.pinion, case.pinion_offset, "pinion")
+    wheel = offset_outline(sections.wheel, case.wheel_offset, "wheel")
+    law = sections.law if sections.shift is None else ShiftedLaw(sections.law, *sections.shift)
+    return check_meshing(pinion, wheel, law, sections.distance + case.distance_shift,
+                         settings, teeth=sections.teeth)
+
+
+def jams(summary: dict) -> bool:
+    """True when a case's teeth overlap or leave no backlash somewhere."""
+    least = summary["backlash_min_mm"]
+    return bool(summary["interference"]) or (least is not None and least <= 0.0)
+
+
+def case_record(case: BandCase, report: MeshingReport) -> dict:
+    """What the band report says of one case (mm, um, %)."""
+    summary = report.to_dict()
+    flank = ("F_i_total_um", "f_i_tooth_um", "hub_speed_ripple_pct")
+    return {"case": case.name, "pinion_offset_mm": case.pinion_offset,
+            "wheel_offset_mm": case.wheel_offset, "distance_mm": summary["distance_mm"],
+            "jams": jams(summary), "interference": summary["interference"],
+            "interfering_poses": summary["interfering_poses"],
+            "max_penetration_mm": summary["max_penetration_mm"],
+            "backlash_min_mm": summary["backlash_min_mm"], "backlash_max_mm": summary["backlash_max_mm"],
+            **{side: {key: summary[side][key] for key in flank} for side in ("drive", "coast")}}
+
+
+def band_record(sections: SectionedPair, band, printer_name: str, nominal: MeshingReport,
+                settings: MeshingSettings = MeshingSettings(), cases=None) -> dict:
+    """The meshing check on every case of ``band`` (or the ``cases`` given), started in the
+    middle of the ``nominal`` check's play: per case and the band's least and largest
+    backlash (mm on the wheel pitch curve)."""
+    cases = band_cases(band) if cases is None else cases
+    sections = mid_play(sections, nominal)
+    records = [case_record(case, check_case(sections, case, settings)) for case in cases]
+    least = [r["backlash_min_mm"] for r in records if r["backlash_min_mm"] is not None]
+    largest = [r["backlash_max_mm"] for r in records if r["backlash_max_mm"] is not None]
+    return {"printer": printer_name,
+            "band": {"outline_mm": band.outline, "hole_shrink_mm": band.hole_shrink,
+                     "center_distance_mm": band.center_distance},
+            "source": "exact offsets of the mid-thickness sections of the written meshes (SPEC §11)",
+            "start_shift_arcmin": float(np.degrees(np.mean(sections.shift[1])) * 60.0),
+            "cases": records, "jams": any(r["jams"] for r in records),
+            "least_backlash_mm": min(least) if least else None,
+            "largest_backlash_mm": max(largest) if largest else None}
+
+
+def band_lines(record: dict) -> list[str]:
+    """The band report as text, one line per case."""
+    band = record["band"]
+    lines = [f"tolerance band of {record['printer']}: outline +-{band['outline_mm']:g} mm, "
+             f"centre distance +-{band['center_distance_mm']:g} mm -> "
+             + ("JAMS" if record["jams"] else "meshes in every case")]
+    for case in record["cases"]:
+        def num(value, fmt=".3f"):
+            return "n/a" if value is None else format(value, fmt)
+        lines.append(
+            f"  {case['case']:<28} {case['pinion_offset_mm']:+.3f}/{case['wheel_offset_mm']:+.3f} mm "
+            f"at {case['distance_mm']:g} mm: "
+            + (f"JAMS ({case['interfering_poses']} poses, {1000 * case['max_penetration_mm']:.0f} um deep)"
+               if case['jams'] else "ok") + ", backlash "
+            f"{num(case['backlash_min_mm'])}..{num(case['backlash_max_mm'])} mm, drive F'i "
+            f"{num(case['drive']['F_i_total_um'], '.1f')} um f'i {num(case['drive']['f_i_tooth_um'], '.1f')}"
+            f" um ripple {num(case['drive']['hub_speed_ripple_pct'], '.2f')} %")
+    return lines
+
+
+def printer_with_clearance(printer, clearance: float):
+    """``printer`` drawing its teeth with ``clearance`` mm of extra backlash instead."""
+    return replace(printer, tooth_clearance=float(clearance))
