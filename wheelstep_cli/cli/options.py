@@ -88,6 +88,9 @@ Printer = Annotated[Optional[str], opt(
                       "clearance, elephant-foot inset), as batch does.",
     shown="none: the geometry as designed")]
 Out = Annotated[Path, opt("--out", "-o", help="Output folder.")]
+AllowInterference = Annotated[bool, opt(
+    "--allow-interference", help="Write the pair even if the meshing check finds overlapping "
+                                 "teeth (the paper method's pair does, at the shoe handovers).")]
 Force = Annotated[bool, opt("--force", help="Overwrite files in the output folder that this "
                                             "command did not write (refused otherwise).")]
 Tolerance = Annotated[bool, opt(

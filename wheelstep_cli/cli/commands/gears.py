@@ -5,7 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, FitChoice, Force, Format,
+from wheelstep_cli.cli.options import (A, AllowInterference, B, Blend, C, CenterDistance, DryRun,
+                                       FitChoice, Force, Format,
                                        Json, LawCsv, MeshFormat, Out, Printer, Profile, Quiet, Tolerance,
                                        Turns, Verbose, Z, opt)
 from wheelstep_cli.cli.output import Output
@@ -117,10 +118,7 @@ def gears(
         "--tilt", help="Tilt of the rack teeth towards the radius, as a fraction of the "
                        "pitch-curve slope (generated).", shown="0.6")] = None,
     law_csv: LawCsv = None,
-    allow_interference: Annotated[bool, opt(
-        "--allow-interference", help="Write the pair even if the meshing check finds "
-                                     "overlapping teeth (the paper method's pair does, at the "
-                                     "shoe handovers).")] = False,
+    allow_interference: AllowInterference = False,
     plot: Plot = None, gif: Gif = None, dxf: Dxf = False, svg: Svg = False, step: Step = False,
     force: Force = False, tolerance: Tolerance = False, fit: FitChoice = None,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
