@@ -51,6 +51,60 @@ def extrude_plate(name: str, outline: np.ndarray, thickness: float, bore: float 
     return solid_from_polygons(name, polygons, thickness, area * thickness)
 
 
+#: Least wall (mm) from a shaft hole (bore, key, flat corner, hex corner) to the root.
+MIN_HOLE_WALL = 1.5
+
+
+def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndarray | None,
+                 marks: list[np.ndarray], mark_depth: float, hole_param: str = "bore",
+                 hole_value: object = None) -> Part:
+    """A gear plate (mm): ``outline`` extruded by ``thickness`` along +z with the shaft
+    ``hole`` ring (CCW, None for none) cut through and the ``marks`` (CCW rings) engraved
+    ``mark_depth`` mm into the top face (an open groove: prints without support).
+
+    The hole must leave MIN_HOLE_WALL mm to the root (DesignError naming ``hole_param``)."""
+    import manifold3d as m3d
+
+    if not thickness > 0:
+        raise DesignError("thickness", thickness, "must be > 0 mm")
+    outline = check_outline(outline, name)
+    if signed_area(outline) < 0:
+        outline = outline[::-1]
+    polygons, area = [outline], signed_area(outline)
+    if hole is not None:
+        root = min_radius(outline)
+        reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
+        if root - reach < MIN_HOLE_WALL:
+            raise DesignError(hole_param, hole_value,
+                              f"leaves {root - reach:.2f} mm of wall to the {name}'s root "
+                              f"(radius {root:.2f} mm); must leave >= {MIN_HOLE_WALL:g} mm")
+        polygons.append(np.asarray(hole, dtype=float)[::-1])
+        area -= signed_area(hole)
+    body = m3d.Manifold.extrude(m3d.CrossSection([np.ascontiguousarray(p, dtype=np.float64)
+                                                  for p in polygons], m3d.FillRule.Positive),
+                                thickness)
+    volume = area * thickness
+    if marks and mark_depth > 0:
+        # the cutter pokes 1 mm above the top so no face of it is coplanar with the top
+        cutter = m3d.Manifold.extrude(m3d.CrossSection(
+            [np.ascontiguousarray(m, dtype=np.float64) for m in marks], m3d.FillRule.Positive),
+            mark_depth + 1.0).translate((0.0, 0.0, thickness - mark_depth))
+        body = body - cutter
+        volume -= mark_depth * sum(signed_area(m) for m in marks)
+    return _part_of(name, body, volume)
+
+
+def section_rings(part: Part, z: float) -> list[np.ndarray]:
+    """Every ring (N, 2) mm of the part's section at height ``z`` (outer CCW, holes CW)."""
+    rings = _manifold_of(part).slice(float(z)).to_polygons()
+    return [np.asarray(r, dtype=float) for r in rings if len(r) >= 3]
+
+
+def manifold_of(part: Part):
+    """The part as a manifold3d solid (for boolean checks in tests and reports)."""
+    return _manifold_of(part)
+
+
 def solid_from_polygons(name: str, polygons: list[np.ndarray], height: float,
                         expected_volume: float) -> Part:
     """Extrude checked polygons (outer CCW, holes CW) with manifold3d into a Part."""

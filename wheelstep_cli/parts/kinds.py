@@ -148,7 +148,7 @@ KINDS: dict[str, PartKind] = {
     KindName.gear_pair.value: PartKind(
         name=KindName.gear_pair.value, module="wheelstep_cli.parts.gear_pair", spec_class="GearPairSpec",
         build="build_gear_pair", report="gear_pair_report", section="gears",
-        parts=lambda pair: [pair.pinion, pair.wheel], hole_fields=("bore",),
+        parts=lambda pair: [pair.pinion, pair.wheel], hole_fields=("bore", "key_width"),
         clearance=_gear_pair_clearance, mating_check=_gear_pair_meshing,
         with_parts=lambda pair, parts, checks: replace(pair, pinion=parts[0], wheel=parts[1], checks=checks),
         checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _sectors)),

@@ -1,0 +1,93 @@
+"""The 2D faces of the gears (mm, each gear's own frame): teeth ring, shaft hole, timing marks.
+
+The faces are what each gear's top looks like: ``outline`` the teeth ring (CCW), ``holes``
+the shaft hole ring(s), ``marks`` the engraved timing marks as closed polylines. The marks
+point along the body direction that meets the other gear on the line of centres with the
+carrier at 0 (gears.phase); the shaft hole's key, flat or hex flat faces ``--key-angle``
+from it, so a keyed shaft puts the pair in phase.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from wheelstep_cli.gears import bore_shapes as shapes
+from wheelstep_cli.gears.phase import assembly_phase
+from wheelstep_cli.geometry.planar import min_radius
+from wheelstep_cli.geometry.solids import bore_segments, extrude_gear
+
+#: Radial gap (mm) between a mark and the hole or the root.
+MARK_GAP = 1.0
+
+
+@dataclass(frozen=True)
+class GearFace:
+    """One gear's top face in mm in its own frame."""
+
+    name: str
+    outline: np.ndarray            # (N, 2) teeth ring, CCW
+    holes: list[np.ndarray]        # shaft hole ring(s), CCW
+    marks: list[np.ndarray]        # timing marks, closed polylines (CCW rings)
+
+
+def shaft_hole(spec, direction: float) -> np.ndarray | None:
+    """The shaft hole of ``spec`` (a GearPairSpec, mm) with its key/flat along ``direction``
+    + key_angle (rad); None without a bore."""
+    if not spec.bore > 0:
+        return None
+    angle = direction + np.radians(spec.key_angle)
+    segments = bore_segments(spec.bore)
+    if spec.bore_shape == "d-flat":
+        return shapes.d_flat_hole(spec.bore, spec.flat_depth, angle, segments)
+    if spec.bore_shape == "keyway":
+        return shapes.keyway_hole(spec.bore, spec.key_width, spec.key_depth, angle, segments)
+    if spec.bore_shape == "hex":
+        return shapes.hex_hole(spec.bore, angle)
+    return shapes.round_hole(spec.bore, segments)
+
+
+def timing_marks(outline: np.ndarray, hole: np.ndarray | None, direction: float,
+                 carrier: bool) -> list[np.ndarray]:
+    """The arrow (with the carrier's crossbar on the wheel) between hole and root, pointing
+    along ``direction`` (rad); none when the web is too narrow for one."""
+    inner = (shapes.hole_reach(hole) if hole is not None else 0.0) + MARK_GAP
+    outer = min_radius(outline) - MARK_GAP
+    if outer - inner < shapes.HEAD_LENGTH + 2.0 * shapes.MARK_WIDTH:
+        return []
+    return [shapes.arrow_mark(inner, outer, direction, bar=carrier)]
+
+
+def face_of(name: str, outline: np.ndarray, spec, direction: float) -> GearFace:
+    """The face of gear ``name`` (pinion or wheel) whose mark points along ``direction``."""
+    hole = shaft_hole(spec, direction)
+    marks = timing_marks(outline, hole, direction, carrier=name == "wheel")
+    return GearFace(name, np.asarray(outline, dtype=float), [] if hole is None else [hole], marks)
+
+
+def gear_part(face: GearFace, spec):
+    """The gear's printable plate (geometry.mesh_checks.Part) from its face."""
+    hole = face.holes[0] if face.holes else None
+    param = {"keyway": "key_depth", "d-flat": "bore", "hex": "bore"}.get(spec.bore_shape, "bore")
+    value = spec.key_depth if param == "key_depth" else spec.bore
+    return extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
+                        spec.mark_depth, param, value)
+
+
+def faces_for(spec, law, pinion_outline: np.ndarray, wheel_outline: np.ndarray) -> dict[str, GearFace]:
+    """Both faces of a pair following ``law`` (gears.transmission law)."""
+    phase = assembly_phase(law)
+    return {"pinion": face_of("pinion", pinion_outline, spec, phase.pinion_mark),
+            "wheel": face_of("wheel", wheel_outline, spec, phase.wheel_mark)}
+
+
+def pair_law(pair):
+    """The law the pair's teeth follow (generated: the blended law they were cut for)."""
+    generated = getattr(pair, "generated", None)
+    return generated.law if generated is not None else pair.law
+
+
+def gear_faces(pair) -> dict[str, GearFace]:
+    """``{"pinion": GearFace, "wheel": GearFace}`` of a built parts.gear_pair.GearPair."""
+    return faces_for(pair.spec, pair_law(pair), pair.pinion_outline, pair.wheel_outline)
