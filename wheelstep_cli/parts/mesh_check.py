@@ -70,6 +70,9 @@ def meshing_lines(summary: dict) -> list[str]:
         lines.append("interference: none")
     if summary["contact_lost"]:
         lines.append("contact: LOST at some poses (teeth out of mesh in the drive direction)")
+    lines.append("phase: in phase with the law" if summary["in_phase"] else
+                 "phase: OUT OF PHASE (the pair does not follow its law: assembled a tooth off, "
+                 "or interfering)")
     lines.append(f"backlash: {_fmt(summary['backlash_min_mm'], '.3f')} .. "
                  f"{_fmt(summary['backlash_max_mm'], '.3f')} mm on the wheel pitch curve "
                  f"({_fmt(summary['backlash_min_arcmin'], '.1f')}' .. "
