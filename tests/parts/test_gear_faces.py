@@ -121,3 +121,25 @@ def test_keyed_parts_on_keyed_shafts_mesh_in_phase_and_a_tooth_off_does_not(keye
     off = check_outlines(rotate(outlines["pinion"], 2.0 * np.pi / keyed_pair.spec.z), outlines["wheel"],
                          law, distance, samples=96).to_dict()
     assert not off["in_phase"]
+
+
+def test_lighten_keeps_the_meshing_outlines_and_reports_what_it_saves(keyed_pair):
+    light = build_gear_pair(GearPairSpec(bore_shape="keyway", key_angle=40, lighten=True))
+    record = gear_pair_report(light)["lighten"]
+    assert record["density_g_cm3"] == 1.24 and "PLA" in record["density_from"]
+    for name in ("pinion", "wheel"):
+        full, cut = getattr(keyed_pair, name), getattr(light, name)
+        # the meshing check sections the outer boundary: the teeth are the same points
+        assert np.array_equal(section_outline(full.vertices, full.faces, name),
+                              section_outline(cut.vertices, cut.faces, name))
+        saved = keyed_pair.checks[name].volume - light.checks[name].volume
+        assert record[name]["pockets"] == 5
+        assert saved / 1000.0 == pytest.approx(record[name]["volume_saved_cm3"], rel=1e-6)
+        assert len(manifold_of(cut).decompose()) == 1
+    # the rim: every pocket point at least 2.5 modules under the wheel's root
+    faces = gear_faces(light)
+    root = np.min(np.hypot(*light.wheel_outline.T))
+    module = light.generated.module
+    for pocket in faces["wheel"].holes[1:]:
+        assert np.max(np.hypot(*pocket.T)) <= root - 2.5 * module + 1e-6
+    assert record["wheel"]["volume_saved_cm3"] > 100.0       # the 285 cm3 disc loses over a third

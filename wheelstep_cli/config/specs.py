@@ -78,6 +78,7 @@ class GearPairSpec(BaseModel):
     key_depth: Optional[Number] = length(None, gt=0)   # keyway hub depth t2; None: DIN 6885
     key_angle: Number = quantity(0.0, unit="deg", limit="must be -360..360 deg", ge=-360, le=360)
     mark_depth: Number = length(0.5, ge=0, le=2)       # timing mark engraving, 0: none
+    lighten: bool = Field(False, strict=True)          # spoked pockets in the wheel (and pinion)
     teeth: Teeth = Teeth.generated.value
     pressure_angle: Number = 20.0    # deg, generated teeth (bounds: the rack cutter's)
     addendum: Number = 1.0           # x module, generated teeth

@@ -57,10 +57,11 @@ MIN_HOLE_WALL = 1.5
 
 def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndarray | None,
                  marks: list[np.ndarray], mark_depth: float, hole_param: str = "bore",
-                 hole_value: object = None) -> Part:
+                 hole_value: object = None, pockets: list[np.ndarray] = ()) -> Part:
     """A gear plate (mm): ``outline`` extruded by ``thickness`` along +z with the shaft
     ``hole`` ring (CCW, None for none) cut through and the ``marks`` (CCW rings) engraved
-    ``mark_depth`` mm into the top face (an open groove: prints without support).
+    ``mark_depth`` mm into the top face (an open groove: prints without support) and the
+    ``pockets`` (CCW rings inside the web, checked by their maker) cut through.
 
     The hole must leave MIN_HOLE_WALL mm to the root (DesignError naming ``hole_param``)."""
     import manifold3d as m3d
@@ -80,6 +81,9 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
                               f"(radius {root:.2f} mm); must leave >= {MIN_HOLE_WALL:g} mm")
         polygons.append(np.asarray(hole, dtype=float)[::-1])
         area -= signed_area(hole)
+    for pocket in pockets:
+        polygons.append(np.asarray(pocket, dtype=float)[::-1])
+        area -= signed_area(pocket)
     body = m3d.Manifold.extrude(m3d.CrossSection([np.ascontiguousarray(p, dtype=np.float64)
                                                   for p in polygons], m3d.FillRule.Positive),
                                 thickness)

@@ -15,11 +15,14 @@ import numpy as np
 
 from wheelstep_cli.gears import bore_shapes as shapes
 from wheelstep_cli.gears.phase import assembly_phase
-from wheelstep_cli.geometry.planar import min_radius
+from wheelstep_cli.geometry.planar import min_radius, signed_area, spoked_pockets
 from wheelstep_cli.geometry.solids import bore_segments, extrude_gear
 
 #: Radial gap (mm) between a mark and the hole or the root.
 MARK_GAP = 1.0
+#: --lighten: rim under the root (x module), spokes, least web round the hole and spoke
+#: width (mm), pocket corner fillet (mm); PLA density (g/cm3) when no printer says.
+RIM_MODULES, SPOKES, WEB, SPOKE_WIDTH, POCKET_FILLET, PLA_DENSITY = 2.5, 5, 4.0, 6.0, 2.0, 1.24
 
 
 @dataclass(frozen=True)
@@ -59,27 +62,64 @@ def timing_marks(outline: np.ndarray, hole: np.ndarray | None, direction: float,
     return [shapes.arrow_mark(inner, outer, direction, bar=carrier)]
 
 
-def face_of(name: str, outline: np.ndarray, spec, direction: float) -> GearFace:
-    """The face of gear ``name`` (pinion or wheel) whose mark points along ``direction``."""
+def pockets(outline: np.ndarray, hole: np.ndarray | None, spec, direction: float,
+            module: float) -> list[np.ndarray]:
+    """--lighten pockets (CCW rings, mm) between spokes, the first spoke under the mark:
+    a rim of RIM_MODULES modules under the root, a web round the hole; none if no room."""
+    r_in = (shapes.hole_reach(hole) if hole is not None else 0.0) + max(WEB, 0.5 * spec.bore)
+    r_out = min_radius(outline) - RIM_MODULES * module
+    if not spec.lighten or r_out - r_in < 2.0 * POCKET_FILLET + 3.0:
+        return []
+    width = max(SPOKE_WIDTH, 0.1 * r_out)
+    return spoked_pockets(r_in, r_out, SPOKES, width, direction, POCKET_FILLET)
+
+
+def face_of(name: str, outline: np.ndarray, spec, direction: float, module: float) -> GearFace:
+    """The face of gear ``name`` (pinion or wheel) whose mark points along ``direction``;
+    ``module`` (mm) sizes the --lighten rim. ``holes``: the shaft hole, then any pockets."""
     hole = shaft_hole(spec, direction)
     marks = timing_marks(outline, hole, direction, carrier=name == "wheel")
-    return GearFace(name, np.asarray(outline, dtype=float), [] if hole is None else [hole], marks)
+    cut = pockets(outline, hole, spec, direction, module)
+    return GearFace(name, np.asarray(outline, dtype=float), ([] if hole is None else [hole]) + cut,
+                    marks)
+
+
+def saved(face: GearFace, spec) -> float:
+    """Volume (mm3) the --lighten pockets remove from the gear."""
+    first = 1 if spec.bore > 0 else 0
+    return float(sum(signed_area(p) for p in face.holes[first:]) * spec.thickness)
+
+
+def lighten_record(faces: dict[str, GearFace], spec, printer) -> dict:
+    """Volume (cm3) and mass (g) the pockets save per gear, and the density used."""
+    density = printer.density if printer is not None else PLA_DENSITY
+    source = (f"printer profile {printer.name}" if printer is not None
+              else f"PLA {PLA_DENSITY} g/cm3 (no --printer given)")
+    first = 1 if spec.bore > 0 else 0
+    return {"density_g_cm3": density, "density_from": source,
+            "rim_modules": RIM_MODULES, "spokes": SPOKES,
+            **{name: {"pockets": len(face.holes) - first,
+                      "volume_saved_cm3": saved(face, spec) / 1000.0,
+                      "mass_saved_g": saved(face, spec) / 1000.0 * density}
+               for name, face in faces.items()}}
 
 
 def gear_part(face: GearFace, spec):
     """The gear's printable plate (geometry.mesh_checks.Part) from its face."""
-    hole = face.holes[0] if face.holes else None
+    hole = face.holes[0] if spec.bore > 0 else None
+    cut = face.holes[1 if spec.bore > 0 else 0:]
     param = {"keyway": "key_depth", "d-flat": "bore", "hex": "bore"}.get(spec.bore_shape, "bore")
     value = spec.key_depth if param == "key_depth" else spec.bore
     return extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
-                        spec.mark_depth, param, value)
+                        spec.mark_depth, param, value, cut)
 
 
-def faces_for(spec, law, pinion_outline: np.ndarray, wheel_outline: np.ndarray) -> dict[str, GearFace]:
-    """Both faces of a pair following ``law`` (gears.transmission law)."""
+def faces_for(spec, law, pinion_outline: np.ndarray, wheel_outline: np.ndarray,
+              module: float) -> dict[str, GearFace]:
+    """Both faces of a pair following ``law`` (gears.transmission law), module in mm."""
     phase = assembly_phase(law)
-    return {"pinion": face_of("pinion", pinion_outline, spec, phase.pinion_mark),
-            "wheel": face_of("wheel", wheel_outline, spec, phase.wheel_mark)}
+    return {"pinion": face_of("pinion", pinion_outline, spec, phase.pinion_mark, module),
+            "wheel": face_of("wheel", wheel_outline, spec, phase.wheel_mark, module)}
 
 
 def pair_law(pair):
@@ -90,4 +130,11 @@ def pair_law(pair):
 
 def gear_faces(pair) -> dict[str, GearFace]:
     """``{"pinion": GearFace, "wheel": GearFace}`` of a built parts.gear_pair.GearPair."""
-    return faces_for(pair.spec, pair_law(pair), pair.pinion_outline, pair.wheel_outline)
+    return faces_for(pair.spec, pair_law(pair), pair.pinion_outline, pair.wheel_outline,
+                     pair_module(pair))
+
+
+def pair_module(pair) -> float:
+    """The pair's module (mm): the generated teeth's, else the paper teeth's."""
+    generated = getattr(pair, "generated", None)
+    return float(generated.module) if generated is not None else float(pair.spec.paper_module)

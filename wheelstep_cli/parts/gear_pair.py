@@ -64,16 +64,18 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
     check_tooth_form(partition, form)
     p_outline = pinion_outline(partition, form)
     w_outline = wheel_outline(partition, form)
-    pinion, wheel = _plates(spec, law, p_outline, w_outline)
+    pinion, wheel = _plates(spec, law, p_outline, w_outline, spec.paper_module)
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     return GearPair(spec, law, partition, p_outline, w_outline, pinion, wheel, checks)
 
 
-def _plates(spec: GearPairSpec, law, p_outline: np.ndarray, w_outline: np.ndarray):
-    """Pinion and wheel plates: shaft holes keyed to and timing marks on the assembly phase."""
+def _plates(spec: GearPairSpec, law, p_outline: np.ndarray, w_outline: np.ndarray,
+            module: float):
+    """Pinion and wheel plates: shaft holes keyed to and timing marks on the assembly phase,
+    pockets with --lighten (``module`` mm sizes their rim)."""
     from wheelstep_cli.parts.gear_faces import faces_for, gear_part
 
-    faces = faces_for(spec, law, p_outline, w_outline)
+    faces = faces_for(spec, law, p_outline, w_outline, module)
     return gear_part(faces["pinion"], spec), gear_part(faces["wheel"], spec)
 
 
@@ -114,7 +116,7 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     # curved flank kinks the hub speed by about 1 %)
     p_outline = gen.pinion_outline
     w_outline = simplify_outline(gen.wheel_outline, settings.wheel_tolerance)
-    pinion, wheel = _plates(spec, gen.law, p_outline, w_outline)
+    pinion, wheel = _plates(spec, gen.law, p_outline, w_outline, gen.module)
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     crank = spec.law() if spec.law_csv is None else None
     return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen)
@@ -164,6 +166,11 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
     if pair.generated is not None:
         report["generated"] = generated_report(pair)
     report["phase"] = _phase(pair)
+    if pair.spec.lighten:
+        from wheelstep_cli.parts.gear_faces import gear_faces, lighten_record
+
+        printer = pair.printing.printer if pair.printing is not None else None
+        report["lighten"] = lighten_record(gear_faces(pair), pair.spec, printer)
     if meshing is not None:
         report["meshing"] = meshing
     return report

@@ -90,6 +90,8 @@ KeyAngle = Annotated[Optional[float], opt("--key-angle", help="Angle of the key,
                                           shown="0")]
 MarkDepth = Annotated[Optional[float], opt("--mark-depth", help="Timing mark engraving depth, mm; 0 "
                                                                 "for none.", shown="0.5")]
+Lighten = Annotated[bool, opt("--lighten", help="Cut spoked pockets into the wheel (and the pinion "
+                                                  "where it has room), keeping a 2.5 module rim.")]
 TeethOpt = Annotated[Optional[Teeth], opt(
     "--teeth", help="generated: conjugate teeth (SPEC §9); paper: the source's sector "
                     "involutes (SPEC §5).", shown="generated")]
@@ -121,7 +123,7 @@ def gears(
     module: Module = None, backlash: Backlash = None, thickness: Thickness = None,
     bore: Bore = None, bore_shape: BoreShapeOpt = None, flat_depth: FlatDepth = None,
     key_width: KeyWidth = None, key_depth: KeyDepth = None, key_angle: KeyAngle = None,
-    mark_depth: MarkDepth = None,
+    mark_depth: MarkDepth = None, lighten: Lighten = False,
     fmt: Format = MeshFormat.both, out: Out = Path("wheelstep-out"), profile: Profile = None,
     printer: Printer = None, teeth: TeethOpt = None, pressure_angle: PressureAngle = None,
     addendum: Addendum = None, dedendum: Dedendum = None, fillet: Fillet = None,
@@ -141,7 +143,8 @@ def gears(
                           install_distance=install_distance, module=module, backlash=backlash,
                           thickness=thickness, bore=bore, bore_shape=_value(bore_shape),
                           flat_depth=flat_depth, key_width=key_width, key_depth=key_depth,
-                          key_angle=key_angle, mark_depth=mark_depth, teeth=_value(teeth),
+                          key_angle=key_angle, mark_depth=mark_depth,
+                          lighten=lighten or None, teeth=_value(teeth),
                           pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
                           fillet=fillet, clearance=clearance, blend=blend, corner=_value(corner),
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
@@ -210,7 +213,19 @@ def _gears_lines(pair, record: dict) -> list[str]:
                  f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
                  f"hub speed ripple {record['law_hub_speed_ripple_pct']:.2f} %")
     lines.extend(f"  {flank_line(side, record[side])}" for side in ("drive", "coast"))
-    return lines
+    return lines + _lighten_lines(pair)
+
+
+def _lighten_lines(pair) -> list[str]:
+    """What --lighten saved per gear (cm3, g)."""
+    if not pair.spec.lighten:
+        return []
+    from wheelstep_cli.parts.gear_pair import gear_pair_report
+
+    saved = gear_pair_report(pair)["lighten"]
+    return [f"lighten: {name} {saved[name]['pockets']} pockets, {saved[name]['volume_saved_cm3']:.1f} "
+            f"cm3 / {saved[name]['mass_saved_g']:.1f} g saved ({saved['density_from']})"
+            for name in ("pinion", "wheel")]
 
 
 def _num(record: dict, key: str, fmt: str) -> str:
