@@ -79,6 +79,7 @@ class GearPairSpec(BaseModel):
     key_angle: Number = quantity(0.0, unit="deg", limit="must be -360..360 deg", ge=-360, le=360)
     mark_depth: Number = length(0.5, ge=0, le=2)       # timing mark engraving, 0: none
     lighten: bool = Field(False, strict=True)          # spoked pockets in the wheel (and pinion)
+    chamfer: Number = length(0.0, ge=0, le=5)          # 45 deg top/bottom edges, 0: none
     teeth: Teeth = Teeth.generated.value
     pressure_angle: Number = 20.0    # deg, generated teeth (bounds: the rack cutter's)
     addendum: Number = 1.0           # x module, generated teeth

@@ -57,11 +57,13 @@ MIN_HOLE_WALL = 1.5
 
 def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndarray | None,
                  marks: list[np.ndarray], mark_depth: float, hole_param: str = "bore",
-                 hole_value: object = None, pockets: list[np.ndarray] = ()) -> Part:
+                 hole_value: object = None, pockets: list[np.ndarray] = (),
+                 chamfer: float = 0.0) -> Part:
     """A gear plate (mm): ``outline`` extruded by ``thickness`` along +z with the shaft
     ``hole`` ring (CCW, None for none) cut through and the ``marks`` (CCW rings) engraved
     ``mark_depth`` mm into the top face (an open groove: prints without support) and the
-    ``pockets`` (CCW rings inside the web, checked by their maker) cut through.
+    ``pockets`` (CCW rings inside the web, checked by their maker) cut through; every edge
+    of the top and bottom faces chamfered 45 deg by ``chamfer`` mm (see :func:`_chamfered`).
 
     The hole must leave MIN_HOLE_WALL mm to the root (DesignError naming ``hole_param``)."""
     import manifold3d as m3d
@@ -84,10 +86,10 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
     for pocket in pockets:
         polygons.append(np.asarray(pocket, dtype=float)[::-1])
         area -= signed_area(pocket)
-    body = m3d.Manifold.extrude(m3d.CrossSection([np.ascontiguousarray(p, dtype=np.float64)
-                                                  for p in polygons], m3d.FillRule.Positive),
-                                thickness)
-    volume = area * thickness
+    section = m3d.CrossSection([np.ascontiguousarray(p, dtype=np.float64) for p in polygons],
+                               m3d.FillRule.Positive)
+    body, volume = _chamfered(section, thickness, chamfer) if chamfer > 0 else \
+        (m3d.Manifold.extrude(section, thickness), area * thickness)
     if marks and mark_depth > 0:
         # the cutter pokes 1 mm above the top so no face of it is coplanar with the top
         cutter = m3d.Manifold.extrude(m3d.CrossSection(
@@ -96,6 +98,35 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         body = body - cutter
         volume -= mark_depth * sum(signed_area(m) for m in marks)
     return _part_of(name, body, volume)
+
+
+#: Height (mm) of one step of a chamfer: half a fine layer, so a slicer prints it as a slope.
+CHAMFER_STEP = 0.1
+
+
+def _chamfered(section, thickness: float, chamfer: float):
+    """The section extruded by ``thickness`` mm with its top and bottom edges chamfered 45 deg
+    by ``chamfer`` mm, and its volume (mm3). The chamfer is a staircase of steps no taller than
+    CHAMFER_STEP (finer than any printed layer, so the print is the slope); the steps are
+    nested prisms that overlap in volume, so their union is one closed body."""
+    import manifold3d as m3d
+
+    if not 2.0 * chamfer < thickness:
+        raise DesignError("chamfer", chamfer, f"must be < half the thickness {thickness / 2:g} mm")
+    steps = max(2, int(np.ceil(chamfer / CHAMFER_STEP)))
+    body, volume, previous = None, 0.0, 0.0
+    for k in range(steps + 1):
+        inset = chamfer * (1.0 - k / steps)
+        # offsets leave vertex pairs nanometres apart; 0.1 micron simplification drops them
+        layer = section.offset(-inset, m3d.JoinType.Miter, 2.0).simplify(1e-4) if inset else section
+        if layer.is_empty():
+            raise DesignError("chamfer", chamfer, "removes a whole tooth or web")
+        z = chamfer * k / steps
+        prism = m3d.Manifold.extrude(layer, thickness - 2.0 * z).translate((0.0, 0.0, z))
+        body = prism if body is None else body + prism
+        volume += (layer.area() - previous) * (thickness - 2.0 * z)
+        previous = layer.area()
+    return body, volume
 
 
 def section_rings(part: Part, z: float) -> list[np.ndarray]:

@@ -93,8 +93,12 @@ def for_printer(kind: PartKind, built, printer, design=None):
     from wheelstep_cli.geometry.solids import inset_bottom
 
     parts = []
+    # a chamfered part's bed-side edges are already drawn in (and it is no prism there for
+    # the foot's step inset to follow): the chamfer replaces the elephant-foot inset
+    chamfered = (getattr(getattr(built, "spec", None), "chamfer", 0) or 0) > 0
     for part in kind.parts(built):
-        part = inset_bottom(part, printer.elephant_foot_height, printer.elephant_foot_inset)
+        if not chamfered:
+            part = inset_bottom(part, printer.elephant_foot_height, printer.elephant_foot_inset)
         lift = [0.0, 0.0, -float(part.bounds[0, 2])]
         parts.append(Part(part.name, part.vertices + lift, part.faces, part.expected_volume))
     checks = {part.name: require_printable(part) for part in parts}

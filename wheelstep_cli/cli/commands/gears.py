@@ -92,6 +92,8 @@ MarkDepth = Annotated[Optional[float], opt("--mark-depth", help="Timing mark eng
                                                                 "for none.", shown="0.5")]
 Lighten = Annotated[bool, opt("--lighten", help="Cut spoked pockets into the wheel (and the pinion "
                                                   "where it has room), keeping a 2.5 module rim.")]
+Chamfer = Annotated[Optional[float], opt("--chamfer", help="45 deg chamfer of the top and bottom "
+                                                          "edges (teeth, bore, pockets), mm.", shown="0")]
 TeethOpt = Annotated[Optional[Teeth], opt(
     "--teeth", help="generated: conjugate teeth (SPEC §9); paper: the source's sector "
                     "involutes (SPEC §5).", shown="generated")]
@@ -123,7 +125,7 @@ def gears(
     module: Module = None, backlash: Backlash = None, thickness: Thickness = None,
     bore: Bore = None, bore_shape: BoreShapeOpt = None, flat_depth: FlatDepth = None,
     key_width: KeyWidth = None, key_depth: KeyDepth = None, key_angle: KeyAngle = None,
-    mark_depth: MarkDepth = None, lighten: Lighten = False,
+    mark_depth: MarkDepth = None, lighten: Lighten = False, chamfer: Chamfer = None,
     fmt: Format = MeshFormat.both, out: Out = Path("wheelstep-out"), profile: Profile = None,
     printer: Printer = None, teeth: TeethOpt = None, pressure_angle: PressureAngle = None,
     addendum: Addendum = None, dedendum: Dedendum = None, fillet: Fillet = None,
@@ -144,7 +146,7 @@ def gears(
                           thickness=thickness, bore=bore, bore_shape=_value(bore_shape),
                           flat_depth=flat_depth, key_width=key_width, key_depth=key_depth,
                           key_angle=key_angle, mark_depth=mark_depth,
-                          lighten=lighten or None, teeth=_value(teeth),
+                          lighten=lighten or None, chamfer=chamfer, teeth=_value(teeth),
                           pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
                           fillet=fillet, clearance=clearance, blend=blend, corner=_value(corner),
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
