@@ -18,6 +18,7 @@ from tests.helpers.meshcheck import assert_printable_stl
     (["--bore-shape", "oval"], "--bore-shape"),
     (["--key-angle", "400"], "--key-angle = 400"),
     (["--mark-depth", "3"], "--mark-depth = 3"),
+    (["--chamfer", "5"], "--chamfer = 5: must be < half the thickness"),
 ])
 def test_shaft_misfits_are_refused_in_one_line_nothing_written(cli, tmp_path, args, text):
     out = tmp_path / "out"
