@@ -80,6 +80,8 @@ class GearPairSpec(BaseModel):
     mark_depth: Number = length(0.5, ge=0, le=2)       # timing mark engraving, 0: none
     lighten: bool = Field(False, strict=True)          # spoked pockets in the wheel (and pinion)
     chamfer: Number = length(0.0, ge=0, le=5)          # 45 deg top/bottom edges, 0: none
+    hub_d: Optional[Number] = length(None, gt=0)       # boss on the top face round the bore
+    hub_length: Optional[Number] = length(None, gt=0, le=MAX_LENGTH)  # None: 8 mm with a hub
     teeth: Teeth = Teeth.generated.value
     pressure_angle: Number = 20.0    # deg, generated teeth (bounds: the rack cutter's)
     addendum: Number = 1.0           # x module, generated teeth
@@ -119,7 +121,12 @@ class GearPairSpec(BaseModel):
         return self
 
     def _bore_fits(self) -> None:
-        """Key narrower than the bore, flat shallower than its radius (mm)."""
+        """Key narrower than the bore, flat shallower than its radius, a hub with its
+        diameter and no chamfer under it (mm)."""
+        require(self.hub_length is None or self.hub_d is not None, "hub_length", self.hub_length,
+                "needs --hub-d")
+        require(self.hub_d is None or self.chamfer == 0, "hub_d", self.hub_d,
+                "cannot be combined with --chamfer (the chamfer would cut under the hub)")
         if self.bore_shape == BoreShape.keyway:
             require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a keyway")
             require(self.key_width < self.bore, "key_width", self.key_width,
@@ -128,6 +135,13 @@ class GearPairSpec(BaseModel):
             require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a D-flat")
             require(self.flat_depth < self.bore / 2.0, "flat_depth", self.flat_depth,
                     f"must be < half the bore {self.bore / 2.0:g} mm")
+
+    @property
+    def hub_mm(self) -> tuple[float, float]:
+        """Hub diameter and length above the top face (mm); (0, 0) without a hub."""
+        if self.hub_d is None:
+            return 0.0, 0.0
+        return float(self.hub_d), 8.0 if self.hub_length is None else float(self.hub_length)
 
     @property
     def backlash_mm(self) -> float:

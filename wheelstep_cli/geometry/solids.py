@@ -58,12 +58,14 @@ MIN_HOLE_WALL = 1.5
 def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndarray | None,
                  marks: list[np.ndarray], mark_depth: float, hole_param: str = "bore",
                  hole_value: object = None, pockets: list[np.ndarray] = (),
-                 chamfer: float = 0.0) -> Part:
+                 chamfer: float = 0.0, hub: tuple[float, float] = (0.0, 0.0)) -> Part:
     """A gear plate (mm): ``outline`` extruded by ``thickness`` along +z with the shaft
     ``hole`` ring (CCW, None for none) cut through and the ``marks`` (CCW rings) engraved
     ``mark_depth`` mm into the top face (an open groove: prints without support) and the
     ``pockets`` (CCW rings inside the web, checked by their maker) cut through; every edge
-    of the top and bottom faces chamfered 45 deg by ``chamfer`` mm (see :func:`_chamfered`).
+    of the top and bottom faces chamfered 45 deg by ``chamfer`` mm (see :func:`_chamfered`);
+    ``hub`` = (diameter, length) mm: a boss round the hole on the top face (none for 0), which
+    must leave MIN_HOLE_WALL mm to the root and round the hole (DesignError naming hub_d).
 
     The hole must leave MIN_HOLE_WALL mm to the root (DesignError naming ``hole_param``)."""
     import manifold3d as m3d
@@ -90,6 +92,13 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
                                m3d.FillRule.Positive)
     body, volume = _chamfered(section, thickness, chamfer) if chamfer > 0 else \
         (m3d.Manifold.extrude(section, thickness), area * thickness)
+    if hub[0] > 0:
+        ring, hub_area = _hub_ring(outline, hole, hub[0])
+        # the boss starts 1 mm inside the plate: solids that only touch at a plane stay two
+        # shells; that millimetre is material of both, counted once
+        boss = m3d.Manifold.extrude(ring, hub[1] + 1.0).translate((0.0, 0.0, thickness - 1.0))
+        body = body + boss
+        volume += hub_area * hub[1]
     if marks and mark_depth > 0:
         # the cutter pokes 1 mm above the top so no face of it is coplanar with the top
         cutter = m3d.Manifold.extrude(m3d.CrossSection(
@@ -98,6 +107,25 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         body = body - cutter
         volume -= mark_depth * sum(signed_area(m) for m in marks)
     return _part_of(name, body, volume)
+
+
+def _hub_ring(outline: np.ndarray, hole: np.ndarray | None, diameter: float):
+    """The hub's cross-section (manifold3d) and area (mm2), its diameter checked."""
+    import manifold3d as m3d
+
+    root = min_radius(outline)
+    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1]))) if hole is not None else 0.0
+    if diameter / 2.0 > root - MIN_HOLE_WALL:
+        raise DesignError("hub_d", diameter, f"must be <= {2 * (root - MIN_HOLE_WALL):.2f} mm (leave "
+                          f"{MIN_HOLE_WALL:g} mm to the root)")
+    if diameter / 2.0 < reach + MIN_HOLE_WALL:
+        raise DesignError("hub_d", diameter, f"must be >= {2 * (reach + MIN_HOLE_WALL):.2f} mm (leave "
+                          f"{MIN_HOLE_WALL:g} mm of wall round the shaft hole)")
+    rings = [circle(diameter / 2.0, bore_segments(diameter))]
+    if hole is not None:
+        rings.append(np.asarray(hole, dtype=float)[::-1])
+    area = sum(signed_area(r) for r in rings)
+    return m3d.CrossSection([np.ascontiguousarray(r) for r in rings], m3d.FillRule.Positive), area
 
 
 #: Height (mm) of one step of a chamfer: half a fine layer, so a slicer prints it as a slope.

@@ -52,10 +52,11 @@ def shaft_hole(spec, direction: float) -> np.ndarray | None:
 
 
 def timing_marks(outline: np.ndarray, hole: np.ndarray | None, direction: float,
-                 carrier: bool) -> list[np.ndarray]:
-    """The arrow (with the carrier's crossbar on the wheel) between hole and root, pointing
+                 carrier: bool, hub: float = 0.0) -> list[np.ndarray]:
+    """The arrow (with the carrier's crossbar on the wheel) between hole (or the ``hub``
+    diameter, mm) and root, pointing
     along ``direction`` (rad); none when the web is too narrow for one."""
-    inner = (shapes.hole_reach(hole) if hole is not None else 0.0) + MARK_GAP
+    inner = max(shapes.hole_reach(hole) if hole is not None else 0.0, hub / 2.0) + MARK_GAP
     outer = min_radius(outline) - MARK_GAP
     if outer - inner < shapes.HEAD_LENGTH + 2.0 * shapes.MARK_WIDTH:
         return []
@@ -66,7 +67,8 @@ def pockets(outline: np.ndarray, hole: np.ndarray | None, spec, direction: float
             module: float) -> list[np.ndarray]:
     """--lighten pockets (CCW rings, mm) between spokes, the first spoke under the mark:
     a rim of RIM_MODULES modules under the root, a web round the hole; none if no room."""
-    r_in = (shapes.hole_reach(hole) if hole is not None else 0.0) + max(WEB, 0.5 * spec.bore)
+    r_in = max(shapes.hole_reach(hole) if hole is not None else 0.0, spec.hub_mm[0] / 2.0) + \
+        max(WEB, 0.5 * spec.bore)
     r_out = min_radius(outline) - RIM_MODULES * module
     if not spec.lighten or r_out - r_in < 2.0 * POCKET_FILLET + 3.0:
         return []
@@ -78,7 +80,7 @@ def face_of(name: str, outline: np.ndarray, spec, direction: float, module: floa
     """The face of gear ``name`` (pinion or wheel) whose mark points along ``direction``;
     ``module`` (mm) sizes the --lighten rim. ``holes``: the shaft hole, then any pockets."""
     hole = shaft_hole(spec, direction)
-    marks = timing_marks(outline, hole, direction, carrier=name == "wheel")
+    marks = timing_marks(outline, hole, direction, carrier=name == "wheel", hub=spec.hub_mm[0])
     cut = pockets(outline, hole, spec, direction, module)
     return GearFace(name, np.asarray(outline, dtype=float), ([] if hole is None else [hole]) + cut,
                     marks)
@@ -111,7 +113,7 @@ def gear_part(face: GearFace, spec):
     param = {"keyway": "key_depth", "d-flat": "bore", "hex": "bore"}.get(spec.bore_shape, "bore")
     value = spec.key_depth if param == "key_depth" else spec.bore
     return extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
-                        spec.mark_depth, param, value, cut, spec.chamfer)
+                        spec.mark_depth, param, value, cut, spec.chamfer, spec.hub_mm)
 
 
 def faces_for(spec, law, pinion_outline: np.ndarray, wheel_outline: np.ndarray,

@@ -94,6 +94,9 @@ Lighten = Annotated[bool, opt("--lighten", help="Cut spoked pockets into the whe
                                                   "where it has room), keeping a 2.5 module rim.")]
 Chamfer = Annotated[Optional[float], opt("--chamfer", help="45 deg chamfer of the top and bottom "
                                                           "edges (teeth, bore, pockets), mm.", shown="0")]
+HubD = Annotated[Optional[float], opt("--hub-d", help="Hub (boss) diameter on the top face, mm.")]
+HubLength = Annotated[Optional[float], opt("--hub-length", help="Hub height above the top face, mm.",
+                                           shown="8 with --hub-d")]
 TeethOpt = Annotated[Optional[Teeth], opt(
     "--teeth", help="generated: conjugate teeth (SPEC §9); paper: the source's sector "
                     "involutes (SPEC §5).", shown="generated")]
@@ -126,6 +129,7 @@ def gears(
     bore: Bore = None, bore_shape: BoreShapeOpt = None, flat_depth: FlatDepth = None,
     key_width: KeyWidth = None, key_depth: KeyDepth = None, key_angle: KeyAngle = None,
     mark_depth: MarkDepth = None, lighten: Lighten = False, chamfer: Chamfer = None,
+    hub_d: HubD = None, hub_length: HubLength = None,
     fmt: Format = MeshFormat.both, out: Out = Path("wheelstep-out"), profile: Profile = None,
     printer: Printer = None, teeth: TeethOpt = None, pressure_angle: PressureAngle = None,
     addendum: Addendum = None, dedendum: Dedendum = None, fillet: Fillet = None,
@@ -146,7 +150,8 @@ def gears(
                           thickness=thickness, bore=bore, bore_shape=_value(bore_shape),
                           flat_depth=flat_depth, key_width=key_width, key_depth=key_depth,
                           key_angle=key_angle, mark_depth=mark_depth,
-                          lighten=lighten or None, chamfer=chamfer, teeth=_value(teeth),
+                          lighten=lighten or None, chamfer=chamfer, hub_d=hub_d,
+                          hub_length=hub_length, teeth=_value(teeth),
                           pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
                           fillet=fillet, clearance=clearance, blend=blend, corner=_value(corner),
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
