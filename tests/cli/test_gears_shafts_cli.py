@@ -18,6 +18,9 @@ from tests.helpers.meshcheck import assert_printable_stl
     (["--bore-shape", "oval"], "--bore-shape"),
     (["--key-angle", "400"], "--key-angle = 400"),
     (["--mark-depth", "3"], "--mark-depth = 3"),
+    (["--hub-d", "90"], "--hub-d = 90: must be <="),                      # larger than the root
+    (["--hub-d", "9"], "--hub-d = 9: must be >="),                        # no wall round the bore
+    (["--hub-length", "9"], "--hub-length = 9: needs --hub-d"),
     (["--chamfer", "5"], "--chamfer = 5: must be < half the thickness"),
 ])
 def test_shaft_misfits_are_refused_in_one_line_nothing_written(cli, tmp_path, args, text):

@@ -41,3 +41,17 @@ def test_chamfer_keeps_one_closed_body_and_the_mid_section():
 def test_chamfer_must_leave_a_middle():
     with pytest.raises(DesignError, match="chamfer"):
         plate(5.0)
+
+
+def test_hub_stands_on_the_top_face_round_the_hole_as_one_body():
+    hole = keyway_hole(8.0, 2.0, 1.0, 0.3, 64)
+    part = extrude_gear("pinion", toothed(), 10.0, hole, [arrow_mark(12.0, 25.0, 0.3)], 0.5,
+                        hub=(20.0, 6.0))
+    assert require_printable(part).watertight and len(manifold_of(part).decompose()) == 1
+    assert part.bounds[1, 2] == pytest.approx(16.0)
+    above = section_rings(part, 13.0)                 # hub ring: outer circle and the keyway
+    assert len(above) == 2
+    outer = max(above, key=lambda r: abs(signed_area(r)))
+    assert np.max(np.hypot(*outer.T)) == pytest.approx(10.0, abs=0.01)
+    with pytest.raises(DesignError, match="hub_d"):
+        extrude_gear("pinion", toothed(), 10.0, hole, [], 0.5, hub=(60.0, 6.0))
