@@ -81,6 +81,7 @@ class GearPairSpec(BaseModel):
     lighten: bool = Field(False, strict=True)          # spoked pockets in the wheel (and pinion)
     chamfer: Number = length(0.0, ge=0, le=5)          # 45 deg top/bottom edges, 0: none
     hub_d: Optional[Number] = length(None, gt=0)       # boss on the top face round the bore
+    set_screw: Optional[str] = Field(None, strict=True)  # M2..M6 radial screw + nut in the hub
     hub_length: Optional[Number] = length(None, gt=0, le=MAX_LENGTH)  # None: 8 mm with a hub
     teeth: Teeth = Teeth.generated.value
     pressure_angle: Number = 20.0    # deg, generated teeth (bounds: the rack cutter's)
@@ -125,6 +126,12 @@ class GearPairSpec(BaseModel):
         diameter and no chamfer under it (mm)."""
         require(self.hub_length is None or self.hub_d is not None, "hub_length", self.hub_length,
                 "needs --hub-d")
+        from wheelstep_cli.gears.bore_shapes import SET_SCREWS
+
+        require(self.set_screw is None or self.set_screw in SET_SCREWS, "set_screw", self.set_screw,
+                f"must be one of {', '.join(SET_SCREWS)}")
+        require(self.set_screw is None or self.hub_d is not None, "set_screw", self.set_screw,
+                "needs --hub-d (the screw goes through the hub)")
         require(self.hub_d is None or self.chamfer == 0, "hub_d", self.hub_d,
                 "cannot be combined with --chamfer (the chamfer would cut under the hub)")
         if self.bore_shape == BoreShape.keyway:

@@ -90,3 +90,19 @@ def arrow_mark(inner: float, outer: float, angle: float, bar: bool = False) -> n
     else:
         points = [(inner, -hw)] + arrow + [(inner, hw)]
     return _turn(np.array(points, dtype=float), angle)
+
+
+#: Metric set screws with a hex nut: size -> (clearance hole d, nut across flats, nut height) mm
+#: (ISO 4032 nuts; the pocket adds PRINT_PLAY).
+SET_SCREWS = {"M2": (2.2, 4.0, 1.6), "M2.5": (2.7, 5.0, 2.0), "M3": (3.2, 5.5, 2.4),
+              "M4": (4.3, 7.0, 3.2), "M5": (5.3, 8.0, 4.7), "M6": (6.4, 10.0, 5.2)}
+#: Play (mm) added round the nut pocket so the nut slides in.
+PRINT_PLAY = 0.3
+
+
+def teardrop(diameter: float, segments: int = 32) -> np.ndarray:
+    """A horizontal hole's cross-section (CCW, mm, y up): the circle with a 45 deg point on
+    top, so its roof prints without support."""
+    r = diameter / 2.0
+    t = np.linspace(np.pi * 0.75, np.pi * 2.25, segments)
+    return np.vstack([[0.0, r * np.sqrt(2.0)], r * np.column_stack([np.cos(t), np.sin(t)])])

@@ -58,7 +58,8 @@ MIN_HOLE_WALL = 1.5
 def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndarray | None,
                  marks: list[np.ndarray], mark_depth: float, hole_param: str = "bore",
                  hole_value: object = None, pockets: list[np.ndarray] = (),
-                 chamfer: float = 0.0, hub: tuple[float, float] = (0.0, 0.0)) -> Part:
+                 chamfer: float = 0.0, hub: tuple[float, float] = (0.0, 0.0),
+                 set_screw: tuple | None = None) -> Part:
     """A gear plate (mm): ``outline`` extruded by ``thickness`` along +z with the shaft
     ``hole`` ring (CCW, None for none) cut through and the ``marks`` (CCW rings) engraved
     ``mark_depth`` mm into the top face (an open groove: prints without support) and the
@@ -66,6 +67,9 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
     of the top and bottom faces chamfered 45 deg by ``chamfer`` mm (see :func:`_chamfered`);
     ``hub`` = (diameter, length) mm: a boss round the hole on the top face (none for 0), which
     must leave MIN_HOLE_WALL mm to the root and round the hole (DesignError naming hub_d).
+    ``set_screw`` = (name, direction rad, teardrop ring, nut across flats, nut height) mm: a
+    radial screw hole through the hub along ``direction`` and a nut slot open to the hub's
+    top (see :func:`_set_screw`).
 
     The hole must leave MIN_HOLE_WALL mm to the root (DesignError naming ``hole_param``)."""
     import manifold3d as m3d
@@ -99,6 +103,8 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         boss = m3d.Manifold.extrude(ring, hub[1] + 1.0).translate((0.0, 0.0, thickness - 1.0))
         body = body + boss
         volume += hub_area * hub[1]
+    if set_screw is not None:
+        body, volume = _set_screw(body, volume, hole, hub, thickness, set_screw)
     if marks and mark_depth > 0:
         # the cutter pokes 1 mm above the top so no face of it is coplanar with the top
         cutter = m3d.Manifold.extrude(m3d.CrossSection(
@@ -107,6 +113,36 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         body = body - cutter
         volume -= mark_depth * sum(signed_area(m) for m in marks)
     return _part_of(name, body, volume)
+
+
+def _set_screw(body, volume: float, hole, hub: tuple[float, float], thickness: float,
+               screw: tuple):
+    """Cut a radial set-screw hole (teardrop section, axis half-way up the hub) and a captive
+    nut slot (open upwards, so both print without support) into ``body``; the volume (mm3)
+    is taken from the boolean result since the cuts cross curved walls (refused when the nut
+    leaves under MIN_HOLE_WALL mm of wall)."""
+    import manifold3d as m3d
+
+    name, direction, drop, flats, height = screw
+    if hub[0] <= 0:
+        raise DesignError("set_screw", name, "needs --hub-d (the screw goes through the hub)")
+    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1]))) if hole is not None else 0.0
+    r_hub, axis_z = hub[0] / 2.0, thickness + hub[1] / 2.0
+    nut_in = reach + MIN_HOLE_WALL
+    nut_out = nut_in + height
+    if nut_out > r_hub - MIN_HOLE_WALL or flats / np.sqrt(3.0) > hub[1] / 2.0 + thickness - 1.0:
+        raise DesignError("set_screw", name, f"does not fit the hub: needs --hub-d >= "
+                          f"{2 * (nut_out + MIN_HOLE_WALL):.2f} mm")
+    # the hole: the teardrop in the (y, z) plane extruded along +x, then turned to direction
+    rod = m3d.Manifold.extrude(m3d.CrossSection([np.ascontiguousarray(drop)]), r_hub + 1.0)
+    rod = rod.rotate((0.0, 90.0, 0.0)).rotate((90.0, 0.0, 0.0))
+    # the nut slides in from the top, flats against the slot's sides: corners up and down
+    corner = flats / np.sqrt(3.0)
+    slot = m3d.Manifold.cube((height, flats, hub[1] / 2.0 + corner + 1.0)).translate(
+        (nut_in, -flats / 2.0, axis_z - corner))
+    cutter = (rod.translate((0.0, 0.0, axis_z)) + slot).rotate((0.0, 0.0, float(np.degrees(direction))))
+    result = body - cutter
+    return result, float(result.volume())
 
 
 def _hub_ring(outline: np.ndarray, hole: np.ndarray | None, diameter: float):

@@ -33,6 +33,7 @@ class GearFace:
     outline: np.ndarray            # (N, 2) teeth ring, CCW
     holes: list[np.ndarray]        # shaft hole ring(s), CCW
     marks: list[np.ndarray]        # timing marks, closed polylines (CCW rings)
+    direction: float = 0.0         # rad, the mark's direction (the phase's body angle)
 
 
 def shaft_hole(spec, direction: float) -> np.ndarray | None:
@@ -83,7 +84,7 @@ def face_of(name: str, outline: np.ndarray, spec, direction: float, module: floa
     marks = timing_marks(outline, hole, direction, carrier=name == "wheel", hub=spec.hub_mm[0])
     cut = pockets(outline, hole, spec, direction, module)
     return GearFace(name, np.asarray(outline, dtype=float), ([] if hole is None else [hole]) + cut,
-                    marks)
+                    marks, float(direction))
 
 
 def saved(face: GearFace, spec) -> float:
@@ -106,6 +107,15 @@ def lighten_record(faces: dict[str, GearFace], spec, printer) -> dict:
                for name, face in faces.items()}}
 
 
+def _set_screw(spec, direction: float):
+    """The set screw solids.extrude_gear cuts (along the key/flat), or None."""
+    if spec.set_screw is None:
+        return None
+    diameter, flats, height = shapes.SET_SCREWS[spec.set_screw]
+    return (spec.set_screw, direction + np.radians(spec.key_angle), shapes.teardrop(diameter),
+            flats + shapes.PRINT_PLAY, height + shapes.PRINT_PLAY)
+
+
 def gear_part(face: GearFace, spec):
     """The gear's printable plate (geometry.mesh_checks.Part) from its face."""
     hole = face.holes[0] if spec.bore > 0 else None
@@ -113,7 +123,8 @@ def gear_part(face: GearFace, spec):
     param = {"keyway": "key_depth", "d-flat": "bore", "hex": "bore"}.get(spec.bore_shape, "bore")
     value = spec.key_depth if param == "key_depth" else spec.bore
     return extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
-                        spec.mark_depth, param, value, cut, spec.chamfer, spec.hub_mm)
+                        spec.mark_depth, param, value, cut, spec.chamfer, spec.hub_mm,
+                        _set_screw(spec, face.direction))
 
 
 def faces_for(spec, law, pinion_outline: np.ndarray, wheel_outline: np.ndarray,

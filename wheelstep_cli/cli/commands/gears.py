@@ -97,6 +97,9 @@ Chamfer = Annotated[Optional[float], opt("--chamfer", help="45 deg chamfer of th
 HubD = Annotated[Optional[float], opt("--hub-d", help="Hub (boss) diameter on the top face, mm.")]
 HubLength = Annotated[Optional[float], opt("--hub-length", help="Hub height above the top face, mm.",
                                            shown="8 with --hub-d")]
+SetScrew = Annotated[Optional[str], opt("--set-screw", help="Radial set screw through the hub along the "
+                                                          "key, with a captive nut slot: M2..M6.",
+                                        callback=None)]
 TeethOpt = Annotated[Optional[Teeth], opt(
     "--teeth", help="generated: conjugate teeth (SPEC §9); paper: the source's sector "
                     "involutes (SPEC §5).", shown="generated")]
@@ -129,7 +132,7 @@ def gears(
     bore: Bore = None, bore_shape: BoreShapeOpt = None, flat_depth: FlatDepth = None,
     key_width: KeyWidth = None, key_depth: KeyDepth = None, key_angle: KeyAngle = None,
     mark_depth: MarkDepth = None, lighten: Lighten = False, chamfer: Chamfer = None,
-    hub_d: HubD = None, hub_length: HubLength = None,
+    hub_d: HubD = None, hub_length: HubLength = None, set_screw: SetScrew = None,
     fmt: Format = MeshFormat.both, out: Out = Path("wheelstep-out"), profile: Profile = None,
     printer: Printer = None, teeth: TeethOpt = None, pressure_angle: PressureAngle = None,
     addendum: Addendum = None, dedendum: Dedendum = None, fillet: Fillet = None,
@@ -151,7 +154,7 @@ def gears(
                           flat_depth=flat_depth, key_width=key_width, key_depth=key_depth,
                           key_angle=key_angle, mark_depth=mark_depth,
                           lighten=lighten or None, chamfer=chamfer, hub_d=hub_d,
-                          hub_length=hub_length, teeth=_value(teeth),
+                          hub_length=hub_length, set_screw=set_screw, teeth=_value(teeth),
                           pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
                           fillet=fillet, clearance=clearance, blend=blend, corner=_value(corner),
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
