@@ -21,6 +21,8 @@ from tests.helpers.meshcheck import assert_printable_stl
     (["--hub-d", "90"], "--hub-d = 90: must be <="),                      # larger than the root
     (["--hub-d", "9"], "--hub-d = 9: must be >="),                        # no wall round the bore
     (["--hub-length", "9"], "--hub-length = 9: needs --hub-d"),
+    (["--set-screw", "M3"], "--set-screw = M3: needs --hub-d"),
+    (["--hub-d", "14", "--set-screw", "M3"], "--set-screw = M3: does not fit the hub"),
     (["--chamfer", "5"], "--chamfer = 5: must be < half the thickness"),
 ])
 def test_shaft_misfits_are_refused_in_one_line_nothing_written(cli, tmp_path, args, text):

@@ -55,3 +55,20 @@ def test_hub_stands_on_the_top_face_round_the_hole_as_one_body():
     assert np.max(np.hypot(*outer.T)) == pytest.approx(10.0, abs=0.01)
     with pytest.raises(DesignError, match="hub_d"):
         extrude_gear("pinion", toothed(), 10.0, hole, [], 0.5, hub=(60.0, 6.0))
+
+
+def test_set_screw_opens_the_hub_wall_and_a_nut_slot_from_the_top():
+    from wheelstep_cli.gears.bore_shapes import PRINT_PLAY, SET_SCREWS, d_flat_hole, teardrop
+
+    hole = d_flat_hole(8.0, 0.8, 0.0, 64)
+    d, flats, height = SET_SCREWS["M3"]
+    screw = ("M3", 0.0, teardrop(d), flats + PRINT_PLAY, height + PRINT_PLAY)
+    plain = extrude_gear("pinion", toothed(), 10.0, hole, [], 0.5, hub=(22.0, 10.0))
+    part = extrude_gear("pinion", toothed(), 10.0, hole, [], 0.5, hub=(22.0, 10.0), set_screw=screw)
+    assert require_printable(part).watertight and len(manifold_of(part).decompose()) == 1
+    assert part.expected_volume < plain.expected_volume
+    # at the screw's axis (z = 15) the hub ring is cut open along +x: one ring, not two
+    assert len(section_rings(plain, 15.0)) == 2 and len(section_rings(part, 15.0)) == 1
+    assert len(section_rings(part, 5.0)) == len(section_rings(plain, 5.0))   # plate untouched
+    with pytest.raises(DesignError, match="set_screw"):
+        extrude_gear("pinion", toothed(), 10.0, hole, [], 0.5, hub=(14.0, 10.0), set_screw=screw)
