@@ -13,7 +13,7 @@ from tests.helpers.meshcheck import assert_printable_stl
     (["--key-width", "3"], "--key-width = 3: needs --bore-shape keyway"),
     (["--flat-depth", "1"], "--flat-depth = 1: needs --bore-shape d-flat"),
     (["--bore-shape", "d-flat", "--flat-depth", "4"], "--flat-depth = 4: must be < half the bore"),
-    (["--bore-shape", "hex", "--bore", "76"], "must leave >= 1.5 mm"),       # wall to the root
+    (["--bore-shape", "hex", "--bore", "76"], "--bore = 76: must be < 65.62 mm (leave 1.5 mm"),
     (["--bore-shape", "keyway", "--bore", "70", "--key-depth", "6"], "--key-depth = 6"),
     (["--bore-shape", "oval"], "--bore-shape"),
     (["--key-angle", "400"], "--key-angle = 400"),

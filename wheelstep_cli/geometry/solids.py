@@ -84,9 +84,13 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         root = min_radius(outline)
         reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
         if root - reach < MIN_HOLE_WALL:
-            raise DesignError(hole_param, hole_value,
-                              f"leaves {root - reach:.2f} mm of wall to the {name}'s root "
-                              f"(radius {root:.2f} mm); must leave >= {MIN_HOLE_WALL:g} mm")
+            # the largest value that leaves the wall: the hole's reach grows in proportion to
+            # the bore (round, flat, hex), one for one with a key's depth
+            value = float(hole_value or 0.0)
+            limit = (value - (MIN_HOLE_WALL - (root - reach)) if hole_param == "key_depth"
+                     else (root - MIN_HOLE_WALL) * value / reach)
+            raise DesignError(hole_param, hole_value, f"must be < {limit:.2f} mm (leave "
+                              f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
         polygons.append(np.asarray(hole, dtype=float)[::-1])
         area -= signed_area(hole)
     for pocket in pockets:
