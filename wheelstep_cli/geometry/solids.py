@@ -81,16 +81,7 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         outline = outline[::-1]
     polygons, area = [outline], signed_area(outline)
     if hole is not None:
-        root = min_radius(outline)
-        reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
-        if root - reach < MIN_HOLE_WALL:
-            # the largest value that leaves the wall: the hole's reach grows in proportion to
-            # the bore (round, flat, hex), one for one with a key's depth
-            value = float(hole_value or 0.0)
-            limit = (value - (MIN_HOLE_WALL - (root - reach)) if hole_param == "key_depth"
-                     else (root - MIN_HOLE_WALL) * value / reach)
-            raise DesignError(hole_param, hole_value, f"must be < {limit:.2f} mm (leave "
-                              f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
+        _require_wall(name, outline, hole, hole_param, hole_value)
         polygons.append(np.asarray(hole, dtype=float)[::-1])
         area -= signed_area(hole)
     for pocket in pockets:
@@ -147,6 +138,21 @@ def _set_screw(body, volume: float, hole, hub: tuple[float, float], thickness: f
     cutter = (rod.translate((0.0, 0.0, axis_z)) + slot).rotate((0.0, 0.0, float(np.degrees(direction))))
     result = body - cutter
     return result, float(result.volume())
+
+
+def _require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: str,
+                  hole_value: object) -> None:
+    """DesignError naming ``hole_param`` when the hole leaves under MIN_HOLE_WALL mm to the root."""
+    root = min_radius(outline)
+    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
+    if root - reach < MIN_HOLE_WALL:
+        # the largest value that leaves the wall: the hole's reach grows in proportion to
+        # the bore (round, flat, hex), one for one with a key's depth
+        value = float(hole_value or 0.0)
+        limit = (value - (MIN_HOLE_WALL - (root - reach)) if hole_param == "key_depth"
+                 else (root - MIN_HOLE_WALL) * value / reach)
+        raise DesignError(hole_param, hole_value, f"must be < {limit:.2f} mm (leave "
+                          f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
 
 
 def _hub_ring(outline: np.ndarray, hole: np.ndarray | None, diameter: float):
