@@ -41,6 +41,15 @@ class Corner(str, Enum):
     tooth = "tooth"
 
 
+class BoreShape(str, Enum):
+    """The shaft hole of each gear: round, D-flat (motor shafts), DIN 6885 keyway, hexagon."""
+
+    round = "round"
+    d_flat = "d-flat"
+    keyway = "keyway"
+    hex = "hex"
+
+
 class GearPairSpec(BaseModel):
     """Everything that defines a printed gear pair. Lengths in mm, angles in deg.
 
@@ -62,7 +71,18 @@ class GearPairSpec(BaseModel):
     module: Optional[Number] = None
     backlash: Optional[Number] = None   # None: 0.25 * module (2 mm when none; bounds: the tooth form's)
     thickness: Number = length(10.0, gt=0)
-    bore: Number = length(8.0, ge=0)
+    bore: Number = length(8.0, ge=0)   # shaft diameter; across flats for a hex bore
+    bore_shape: BoreShape = BoreShape.round.value
+    flat_depth: Optional[Number] = length(None, gt=0)  # d-flat; None: 0.1 x bore
+    key_width: Optional[Number] = length(None, gt=0)   # keyway; None: DIN 6885 b of the bore
+    key_depth: Optional[Number] = length(None, gt=0)   # keyway hub depth t2; None: DIN 6885
+    key_angle: Number = quantity(0.0, unit="deg", limit="must be -360..360 deg", ge=-360, le=360)
+    mark_depth: Number = length(0.5, ge=0, le=2)       # timing mark engraving, 0: none
+    lighten: bool = Field(False, strict=True)          # spoked pockets in the wheel (and pinion)
+    chamfer: Number = length(0.0, ge=0, le=5)          # 45 deg top/bottom edges, 0: none
+    hub_d: Optional[Number] = length(None, gt=0)       # boss on the top face round the bore
+    set_screw: Optional[str] = Field(None, strict=True)  # M2..M6 radial screw + nut in the hub
+    hub_length: Optional[Number] = length(None, gt=0, le=MAX_LENGTH)  # None: 8 mm with a hub
     teeth: Teeth = Teeth.generated.value
     pressure_angle: Number = 20.0    # deg, generated teeth (bounds: the rack cutter's)
     addendum: Number = 1.0           # x module, generated teeth
@@ -73,6 +93,15 @@ class GearPairSpec(BaseModel):
     corner: Corner = Corner.space.value
     tilt: Number = quantity(0.6, limit="must be 0..1.5", ge=0, le=1.5)
     law_csv: Optional[str] = Field(None, strict=True)  # driving/driven angle samples (deg)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _bore_defaults(cls, values):
+        """Fill the key and flat from the bore (so a printer's hole compensation widens them
+        as given), and refuse dimensions the shape does not use."""
+        if not isinstance(values, dict):
+            return values
+        return bore_defaults(values)
 
     @model_validator(mode="after")
     def _distances(self) -> "GearPairSpec":
@@ -89,7 +118,37 @@ class GearPairSpec(BaseModel):
                     f"must be <= the centre distance + module = "
                     f"{self.center_distance + self.paper_module:g} mm "
                     "(farther apart the teeth lose contact)")
+        self._bore_fits()
         return self
+
+    def _bore_fits(self) -> None:
+        """Key narrower than the bore, flat shallower than its radius, a hub with its
+        diameter and no chamfer under it (mm)."""
+        require(self.hub_length is None or self.hub_d is not None, "hub_length", self.hub_length,
+                "needs --hub-d")
+        from wheelstep_cli.gears.bore_shapes import SET_SCREWS
+
+        require(self.set_screw is None or self.set_screw in SET_SCREWS, "set_screw", self.set_screw,
+                f"must be one of {', '.join(SET_SCREWS)}")
+        require(self.set_screw is None or self.hub_d is not None, "set_screw", self.set_screw,
+                "needs --hub-d (the screw goes through the hub)")
+        require(self.hub_d is None or self.chamfer == 0, "hub_d", self.hub_d,
+                "cannot be combined with --chamfer (the chamfer would cut under the hub)")
+        if self.bore_shape == BoreShape.keyway:
+            require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a keyway")
+            require(self.key_width < self.bore, "key_width", self.key_width,
+                    f"must be < the bore {self.bore:g} mm")
+        if self.bore_shape == BoreShape.d_flat:
+            require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a D-flat")
+            require(self.flat_depth < self.bore / 2.0, "flat_depth", self.flat_depth,
+                    f"must be < half the bore {self.bore / 2.0:g} mm")
+
+    @property
+    def hub_mm(self) -> tuple[float, float]:
+        """Hub diameter and length above the top face (mm); (0, 0) without a hub."""
+        if self.hub_d is None:
+            return 0.0, 0.0
+        return float(self.hub_d), 8.0 if self.hub_length is None else float(self.hub_length)
 
     @property
     def backlash_mm(self) -> float:
@@ -122,6 +181,32 @@ class GearPairSpec(BaseModel):
 
         return RackCutter(np.radians(self.pressure_angle), self.addendum, self.dedendum,
                           self.fillet, self.backlash_mm, self.clearance)
+
+
+def bore_defaults(values: dict) -> dict:
+    """``values`` (a GearPairSpec's raw fields) with the bore shape's missing dimensions
+    filled (mm) and the ones it does not use refused."""
+    from wheelstep_cli.gears.bore_shapes import din_6885_key
+
+    shape = values.get("bore_shape", BoreShape.round.value)
+    shape = shape.value if isinstance(shape, Enum) else shape
+    bore = values.get("bore", 8.0)
+    uses = {"d-flat": ("flat_depth",), "keyway": ("key_width", "key_depth")}.get(shape, ())
+    for name in ("flat_depth", "key_width", "key_depth"):
+        if values.get(name) is not None and name not in uses:
+            raise DesignError(name, values[name], f"needs --bore-shape "
+                              f"{'d-flat' if name == 'flat_depth' else 'keyway'}")
+    if not isinstance(bore, (int, float)) or isinstance(bore, bool) or bore <= 0:
+        return values
+    values = dict(values)
+    if shape == "d-flat" and values.get("flat_depth") is None:
+        values["flat_depth"] = round(0.1 * bore, 6)
+    if shape == "keyway":
+        width, depth = din_6885_key(bore)
+        values.setdefault("key_width", None)
+        values["key_width"] = width if values["key_width"] is None else values["key_width"]
+        values["key_depth"] = depth if values.get("key_depth") is None else values["key_depth"]
+    return values
 
 
 class ShoeSpec(BaseModel):

@@ -183,3 +183,24 @@ def offset_outline(outline: np.ndarray, distance: float, what: str = "outline",
         raise DesignError(what, f"offset {distance:g} mm", "splits or empties the outline")
     ring = shapely.simplify(grown.exterior, thin, preserve_topology=True) if thin > 0 else grown.exterior
     return check_outline(np.asarray(ring.coords, dtype=float)[:-1], what)
+
+def spoked_pockets(r_in: float, r_out: float, spokes: int, spoke_width: float, direction: float,
+                   fillet: float) -> list[np.ndarray]:
+    """Pockets (CCW rings, mm) of the annulus ``r_in``..``r_out`` between ``spokes`` straight
+    spokes ``spoke_width`` mm wide, the first along ``direction`` rad; corners rounded by
+    ``fillet`` mm (a rounded pocket prints and carries load better than a sharp one)."""
+    annulus = shapely.Point(0.0, 0.0).buffer(r_out, quad_segs=64).difference(
+        shapely.Point(0.0, 0.0).buffer(r_in, quad_segs=64))
+    for k in range(spokes):
+        t = direction + 2.0 * np.pi * k / spokes
+        c, s = np.cos(t), np.sin(t)
+        half = spoke_width / 2.0
+        box = [(0.0, -half), (2.0 * r_out, -half), (2.0 * r_out, half), (0.0, half)]
+        annulus = annulus.difference(shapely.Polygon([(x * c - y * s, x * s + y * c) for x, y in box]))
+    rounded = annulus.buffer(-fillet, quad_segs=8).buffer(fillet, quad_segs=8)
+    parts = list(getattr(rounded, "geoms", [rounded]))
+    rings = [np.asarray(shapely.geometry.polygon.orient(p, 1.0).exterior.coords)[:-1]
+             for p in parts if p.area > 1.0]
+    # order by angle so the result does not depend on shapely's ordering
+    return sorted(rings, key=lambda r: float(np.mod(np.arctan2(*r.mean(axis=0)[::-1]) - direction,
+                                                    2.0 * np.pi)))

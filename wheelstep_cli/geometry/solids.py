@@ -51,6 +51,169 @@ def extrude_plate(name: str, outline: np.ndarray, thickness: float, bore: float 
     return solid_from_polygons(name, polygons, thickness, area * thickness)
 
 
+#: Least wall (mm) from a shaft hole (bore, key, flat corner, hex corner) to the root.
+MIN_HOLE_WALL = 1.5
+
+
+def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndarray | None,
+                 marks: list[np.ndarray], mark_depth: float, hole_param: str = "bore",
+                 hole_value: object = None, pockets: list[np.ndarray] = (),
+                 chamfer: float = 0.0, hub: tuple[float, float] = (0.0, 0.0),
+                 set_screw: tuple | None = None) -> Part:
+    """A gear plate (mm): ``outline`` extruded by ``thickness`` along +z with the shaft
+    ``hole`` ring (CCW, None for none) cut through and the ``marks`` (CCW rings) engraved
+    ``mark_depth`` mm into the top face (an open groove: prints without support) and the
+    ``pockets`` (CCW rings inside the web, checked by their maker) cut through; every edge
+    of the top and bottom faces chamfered 45 deg by ``chamfer`` mm (see :func:`_chamfered`);
+    ``hub`` = (diameter, length) mm: a boss round the hole on the top face (none for 0), which
+    must leave MIN_HOLE_WALL mm to the root and round the hole (DesignError naming hub_d).
+    ``set_screw`` = (name, direction rad, teardrop ring, nut across flats, nut height) mm: a
+    radial screw hole through the hub along ``direction`` and a nut slot open to the hub's
+    top (see :func:`_set_screw`).
+
+    The hole must leave MIN_HOLE_WALL mm to the root (DesignError naming ``hole_param``)."""
+    import manifold3d as m3d
+
+    if not thickness > 0:
+        raise DesignError("thickness", thickness, "must be > 0 mm")
+    outline = check_outline(outline, name)
+    if signed_area(outline) < 0:
+        outline = outline[::-1]
+    polygons, area = [outline], signed_area(outline)
+    if hole is not None:
+        _require_wall(name, outline, hole, hole_param, hole_value)
+        polygons.append(np.asarray(hole, dtype=float)[::-1])
+        area -= signed_area(hole)
+    for pocket in pockets:
+        polygons.append(np.asarray(pocket, dtype=float)[::-1])
+        area -= signed_area(pocket)
+    section = m3d.CrossSection([np.ascontiguousarray(p, dtype=np.float64) for p in polygons],
+                               m3d.FillRule.Positive)
+    body, volume = _chamfered(section, thickness, chamfer) if chamfer > 0 else \
+        (m3d.Manifold.extrude(section, thickness), area * thickness)
+    if hub[0] > 0:
+        ring, hub_area = _hub_ring(outline, hole, hub[0])
+        # the boss starts 1 mm inside the plate: solids that only touch at a plane stay two
+        # shells; that millimetre is material of both, counted once
+        boss = m3d.Manifold.extrude(ring, hub[1] + 1.0).translate((0.0, 0.0, thickness - 1.0))
+        body = body + boss
+        volume += hub_area * hub[1]
+    if set_screw is not None:
+        body, volume = _set_screw(body, volume, hole, hub, thickness, set_screw)
+    if marks and mark_depth > 0:
+        # the cutter pokes 1 mm above the top so no face of it is coplanar with the top
+        cutter = m3d.Manifold.extrude(m3d.CrossSection(
+            [np.ascontiguousarray(m, dtype=np.float64) for m in marks], m3d.FillRule.Positive),
+            mark_depth + 1.0).translate((0.0, 0.0, thickness - mark_depth))
+        body = body - cutter
+        volume -= mark_depth * sum(signed_area(m) for m in marks)
+    return _part_of(name, body, volume)
+
+
+def _set_screw(body, volume: float, hole, hub: tuple[float, float], thickness: float,
+               screw: tuple):
+    """Cut a radial set-screw hole (teardrop section, axis half-way up the hub) and a captive
+    nut slot (open upwards, so both print without support) into ``body``; the volume (mm3)
+    is taken from the boolean result since the cuts cross curved walls (refused when the nut
+    leaves under MIN_HOLE_WALL mm of wall)."""
+    import manifold3d as m3d
+
+    name, direction, drop, flats, height = screw
+    if hub[0] <= 0:
+        raise DesignError("set_screw", name, "needs --hub-d (the screw goes through the hub)")
+    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1]))) if hole is not None else 0.0
+    r_hub, axis_z = hub[0] / 2.0, thickness + hub[1] / 2.0
+    nut_in = reach + MIN_HOLE_WALL
+    nut_out = nut_in + height
+    if nut_out > r_hub - MIN_HOLE_WALL or flats / np.sqrt(3.0) > hub[1] / 2.0 + thickness - 1.0:
+        raise DesignError("set_screw", name, f"does not fit the hub: needs --hub-d >= "
+                          f"{2 * (nut_out + MIN_HOLE_WALL):.2f} mm")
+    # the hole: the teardrop in the (y, z) plane extruded along +x, then turned to direction
+    rod = m3d.Manifold.extrude(m3d.CrossSection([np.ascontiguousarray(drop)]), r_hub + 1.0)
+    rod = rod.rotate((0.0, 90.0, 0.0)).rotate((90.0, 0.0, 0.0))
+    # the nut slides in from the top, flats against the slot's sides: corners up and down
+    corner = flats / np.sqrt(3.0)
+    slot = m3d.Manifold.cube((height, flats, hub[1] / 2.0 + corner + 1.0)).translate(
+        (nut_in, -flats / 2.0, axis_z - corner))
+    cutter = (rod.translate((0.0, 0.0, axis_z)) + slot).rotate((0.0, 0.0, float(np.degrees(direction))))
+    result = body - cutter
+    return result, float(result.volume())
+
+
+def _require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: str,
+                  hole_value: object) -> None:
+    """DesignError naming ``hole_param`` when the hole leaves under MIN_HOLE_WALL mm to the root."""
+    root = min_radius(outline)
+    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
+    if root - reach < MIN_HOLE_WALL:
+        # the largest value that leaves the wall: the hole's reach grows in proportion to
+        # the bore (round, flat, hex), one for one with a key's depth
+        value = float(hole_value or 0.0)
+        limit = (value - (MIN_HOLE_WALL - (root - reach)) if hole_param == "key_depth"
+                 else (root - MIN_HOLE_WALL) * value / reach)
+        raise DesignError(hole_param, hole_value, f"must be < {limit:.2f} mm (leave "
+                          f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
+
+
+def _hub_ring(outline: np.ndarray, hole: np.ndarray | None, diameter: float):
+    """The hub's cross-section (manifold3d) and area (mm2), its diameter checked."""
+    import manifold3d as m3d
+
+    root = min_radius(outline)
+    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1]))) if hole is not None else 0.0
+    if diameter / 2.0 > root - MIN_HOLE_WALL:
+        raise DesignError("hub_d", diameter, f"must be <= {2 * (root - MIN_HOLE_WALL):.2f} mm (leave "
+                          f"{MIN_HOLE_WALL:g} mm to the root)")
+    if diameter / 2.0 < reach + MIN_HOLE_WALL:
+        raise DesignError("hub_d", diameter, f"must be >= {2 * (reach + MIN_HOLE_WALL):.2f} mm (leave "
+                          f"{MIN_HOLE_WALL:g} mm of wall round the shaft hole)")
+    rings = [circle(diameter / 2.0, bore_segments(diameter))]
+    if hole is not None:
+        rings.append(np.asarray(hole, dtype=float)[::-1])
+    area = sum(signed_area(r) for r in rings)
+    return m3d.CrossSection([np.ascontiguousarray(r) for r in rings], m3d.FillRule.Positive), area
+
+
+#: Height (mm) of one step of a chamfer: half a fine layer, so a slicer prints it as a slope.
+CHAMFER_STEP = 0.1
+
+
+def _chamfered(section, thickness: float, chamfer: float):
+    """The section extruded by ``thickness`` mm with its top and bottom edges chamfered 45 deg
+    by ``chamfer`` mm, and its volume (mm3). The chamfer is a staircase of steps no taller than
+    CHAMFER_STEP (finer than any printed layer, so the print is the slope); the steps are
+    nested prisms that overlap in volume, so their union is one closed body."""
+    import manifold3d as m3d
+
+    if not 2.0 * chamfer < thickness:
+        raise DesignError("chamfer", chamfer, f"must be < half the thickness {thickness / 2:g} mm")
+    steps = max(2, int(np.ceil(chamfer / CHAMFER_STEP)))
+    body, volume, previous = None, 0.0, 0.0
+    for k in range(steps + 1):
+        inset = chamfer * (1.0 - k / steps)
+        # offsets leave vertex pairs nanometres apart; 0.1 micron simplification drops them
+        layer = section.offset(-inset, m3d.JoinType.Miter, 2.0).simplify(1e-4) if inset else section
+        if layer.is_empty():
+            raise DesignError("chamfer", chamfer, "removes a whole tooth or web")
+        z = chamfer * k / steps
+        prism = m3d.Manifold.extrude(layer, thickness - 2.0 * z).translate((0.0, 0.0, z))
+        body = prism if body is None else body + prism
+        volume += (layer.area() - previous) * (thickness - 2.0 * z)
+        previous = layer.area()
+    return body, volume
+
+
+def section_rings(part: Part, z: float) -> list[np.ndarray]:
+    """Every ring (N, 2) mm of the part's section at height ``z`` (outer CCW, holes CW)."""
+    rings = _manifold_of(part).slice(float(z)).to_polygons()
+    return [np.asarray(r, dtype=float) for r in rings if len(r) >= 3]
+
+
+def manifold_of(part: Part):
+    """The part as a manifold3d solid (for boolean checks in tests and reports)."""
+    return _manifold_of(part)
+
+
 def solid_from_polygons(name: str, polygons: list[np.ndarray], height: float,
                         expected_volume: float) -> Part:
     """Extrude checked polygons (outer CCW, holes CW) with manifold3d into a Part."""

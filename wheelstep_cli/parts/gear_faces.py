@@ -1,47 +1,153 @@
-"""The 2D faces of both gears (mm, each gear in its own frame): outline, holes, marks.
+"""The 2D faces of the gears (mm, each gear's own frame): teeth ring, shaft hole, timing marks.
 
-Provisional: a round bore of ``spec.bore`` (drawn as the solids cut it) and no marks yet.
+The faces are what each gear's top looks like: ``outline`` the teeth ring (CCW), ``holes``
+the shaft hole ring(s), ``marks`` the engraved timing marks as closed polylines. The marks
+point along the body direction that meets the other gear on the line of centres with the
+carrier at 0 (gears.phase); the shaft hole's key, flat or hex flat faces ``--key-angle``
+from it, so a keyed shaft puts the pair in phase.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from wheelstep_cli.geometry.planar import signed_area
-from wheelstep_cli.geometry.solids import bore_segments, circle
+from wheelstep_cli.gears import bore_shapes as shapes
+from wheelstep_cli.gears.phase import assembly_phase
+from wheelstep_cli.geometry.planar import min_radius, signed_area, spoked_pockets
+from wheelstep_cli.geometry.solids import bore_segments, extrude_gear
+
+#: Radial gap (mm) between a mark and the hole or the root.
+MARK_GAP = 1.0
+#: --lighten: rim under the root (x module), spokes, least web round the hole and spoke
+#: width (mm), pocket corner fillet (mm); PLA density (g/cm3) when no printer says.
+RIM_MODULES, SPOKES, WEB, SPOKE_WIDTH, POCKET_FILLET, PLA_DENSITY = 2.5, 5, 4.0, 6.0, 2.0, 1.24
 
 
 @dataclass(frozen=True)
 class GearFace:
-    """One gear's top face: ``outline`` (N, 2) mm counter-clockwise, ``holes`` (bores, each
-    (M, 2) mm clockwise) and ``marks`` (engraved timing marks, closed (K, 2) mm polylines),
-    all in the gear's own frame (the meshing check's)."""
+    """One gear's top face in mm in its own frame."""
 
     name: str
-    outline: np.ndarray
-    holes: list[np.ndarray] = field(default_factory=list)
-    marks: list[np.ndarray] = field(default_factory=list)
+    outline: np.ndarray            # (N, 2) teeth ring, CCW
+    holes: list[np.ndarray]        # shaft hole ring(s), CCW
+    marks: list[np.ndarray]        # timing marks, closed polylines (CCW rings)
+    direction: float = 0.0         # rad, the mark's direction (the phase's body angle)
 
 
-def _ccw(points: np.ndarray, ccw: bool = True) -> np.ndarray:
-    """``points`` (N, 2) in the asked orientation."""
-    points = np.asarray(points, dtype=float)
-    return points if (signed_area(points) > 0) == ccw else points[::-1]
+def shaft_hole(spec, direction: float) -> np.ndarray | None:
+    """The shaft hole of ``spec`` (a GearPairSpec, mm) with its key/flat along ``direction``
+    + key_angle (rad); None without a bore."""
+    if not spec.bore > 0:
+        return None
+    angle = direction + np.radians(spec.key_angle)
+    segments = bore_segments(spec.bore)
+    if spec.bore_shape == "d-flat":
+        return shapes.d_flat_hole(spec.bore, spec.flat_depth, angle, segments)
+    if spec.bore_shape == "keyway":
+        return shapes.keyway_hole(spec.bore, spec.key_width, spec.key_depth, angle, segments)
+    if spec.bore_shape == "hex":
+        return shapes.hex_hole(spec.bore, angle)
+    return shapes.round_hole(spec.bore, segments)
 
 
-def _bore(diameter: float) -> list[np.ndarray]:
-    """The bore as the solids cut it: the polygon circumscribing the nominal circle."""
-    if diameter <= 0:
+def timing_marks(outline: np.ndarray, hole: np.ndarray | None, direction: float,
+                 carrier: bool, hub: float = 0.0) -> list[np.ndarray]:
+    """The arrow (with the carrier's crossbar on the wheel) between hole (or the ``hub``
+    diameter, mm) and root, pointing
+    along ``direction`` (rad); none when the web is too narrow for one."""
+    inner = max(shapes.hole_reach(hole) if hole is not None else 0.0, hub / 2.0) + MARK_GAP
+    outer = min_radius(outline) - MARK_GAP
+    if outer - inner < shapes.HEAD_LENGTH + 2.0 * shapes.MARK_WIDTH:
         return []
-    segments = bore_segments(diameter)
-    return [_ccw(circle(diameter / 2.0 / np.cos(np.pi / segments), segments), ccw=False)]
+    return [shapes.arrow_mark(inner, outer, direction, bar=carrier)]
+
+
+def pockets(outline: np.ndarray, hole: np.ndarray | None, spec, direction: float,
+            module: float) -> list[np.ndarray]:
+    """--lighten pockets (CCW rings, mm) between spokes, the first spoke under the mark:
+    a rim of RIM_MODULES modules under the root, a web round the hole; none if no room."""
+    r_in = max(shapes.hole_reach(hole) if hole is not None else 0.0, spec.hub_mm[0] / 2.0) + \
+        max(WEB, 0.5 * spec.bore)
+    r_out = min_radius(outline) - RIM_MODULES * module
+    if not spec.lighten or r_out - r_in < 2.0 * POCKET_FILLET + 3.0:
+        return []
+    width = max(SPOKE_WIDTH, 0.1 * r_out)
+    return spoked_pockets(r_in, r_out, SPOKES, width, direction, POCKET_FILLET)
+
+
+def face_of(name: str, outline: np.ndarray, spec, direction: float, module: float) -> GearFace:
+    """The face of gear ``name`` (pinion or wheel) whose mark points along ``direction``;
+    ``module`` (mm) sizes the --lighten rim. ``holes``: the shaft hole, then any pockets."""
+    hole = shaft_hole(spec, direction)
+    marks = timing_marks(outline, hole, direction, carrier=name == "wheel", hub=spec.hub_mm[0])
+    cut = pockets(outline, hole, spec, direction, module)
+    return GearFace(name, np.asarray(outline, dtype=float), ([] if hole is None else [hole]) + cut,
+                    marks, float(direction))
+
+
+def saved(face: GearFace, spec) -> float:
+    """Volume (mm3) the --lighten pockets remove from the gear."""
+    first = 1 if spec.bore > 0 else 0
+    return float(sum(signed_area(p) for p in face.holes[first:]) * spec.thickness)
+
+
+def lighten_record(faces: dict[str, GearFace], spec, printer) -> dict:
+    """Volume (cm3) and mass (g) the pockets save per gear, and the density used."""
+    density = printer.density if printer is not None else PLA_DENSITY
+    source = (f"printer profile {printer.name}" if printer is not None
+              else f"PLA {PLA_DENSITY} g/cm3 (no --printer given)")
+    first = 1 if spec.bore > 0 else 0
+    return {"density_g_cm3": density, "density_from": source,
+            "rim_modules": RIM_MODULES, "spokes": SPOKES,
+            **{name: {"pockets": len(face.holes) - first,
+                      "volume_saved_cm3": saved(face, spec) / 1000.0,
+                      "mass_saved_g": saved(face, spec) / 1000.0 * density}
+               for name, face in faces.items()}}
+
+
+def _set_screw(spec, direction: float):
+    """The set screw solids.extrude_gear cuts (along the key/flat), or None."""
+    if spec.set_screw is None:
+        return None
+    diameter, flats, height = shapes.SET_SCREWS[spec.set_screw]
+    return (spec.set_screw, direction + np.radians(spec.key_angle), shapes.teardrop(diameter),
+            flats + shapes.PRINT_PLAY, height + shapes.PRINT_PLAY)
+
+
+def gear_part(face: GearFace, spec):
+    """The gear's printable plate (geometry.mesh_checks.Part) from its face."""
+    hole = face.holes[0] if spec.bore > 0 else None
+    cut = face.holes[1 if spec.bore > 0 else 0:]
+    param = {"keyway": "key_depth", "d-flat": "bore", "hex": "bore"}.get(spec.bore_shape, "bore")
+    value = spec.key_depth if param == "key_depth" else spec.bore
+    return extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
+                        spec.mark_depth, param, value, cut, spec.chamfer, spec.hub_mm,
+                        _set_screw(spec, face.direction))
+
+
+def faces_for(spec, law, pinion_outline: np.ndarray, wheel_outline: np.ndarray,
+              module: float) -> dict[str, GearFace]:
+    """Both faces of a pair following ``law`` (gears.transmission law), module in mm."""
+    phase = assembly_phase(law)
+    return {"pinion": face_of("pinion", pinion_outline, spec, phase.pinion_mark, module),
+            "wheel": face_of("wheel", wheel_outline, spec, phase.wheel_mark, module)}
+
+
+def pair_law(pair):
+    """The law the pair's teeth follow (generated: the blended law they were cut for)."""
+    generated = getattr(pair, "generated", None)
+    return generated.law if generated is not None else pair.law
 
 
 def gear_faces(pair) -> dict[str, GearFace]:
-    """``{"pinion": GearFace, "wheel": GearFace}`` of a built
-    :class:`~wheelstep_cli.parts.gear_pair.GearPair` (mm, own frames)."""
-    bore = float(pair.spec.bore)
-    return {name: GearFace(name, _ccw(outline), _bore(bore), [])
-            for name, outline in (("pinion", pair.pinion_outline), ("wheel", pair.wheel_outline))}
+    """``{"pinion": GearFace, "wheel": GearFace}`` of a built parts.gear_pair.GearPair."""
+    return faces_for(pair.spec, pair_law(pair), pair.pinion_outline, pair.wheel_outline,
+                     pair_module(pair))
+
+
+def pair_module(pair) -> float:
+    """The pair's module (mm): the generated teeth's, else the paper teeth's."""
+    generated = getattr(pair, "generated", None)
+    return float(generated.module) if generated is not None else float(pair.spec.paper_module)

@@ -12,7 +12,6 @@ from wheelstep_cli.gears.paper_teeth import check_tooth_form, pinion_outline, wh
 from wheelstep_cli.gears.laws import CrankLaw
 from wheelstep_cli.gears.sectors import SectorPartition, sector_partition, sectors_per_quarter
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
-from wheelstep_cli.geometry.solids import extrude_plate
 from wheelstep_cli.formats.jsonio import json_bytes
 from wheelstep_cli.formats.stl import stl_bytes
 from wheelstep_cli.parts.plate_layout import bed_plates, design_metadata, plate_files, require_on_bed
@@ -65,10 +64,19 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
     check_tooth_form(partition, form)
     p_outline = pinion_outline(partition, form)
     w_outline = wheel_outline(partition, form)
-    pinion = extrude_plate("pinion", p_outline, spec.thickness, spec.bore)
-    wheel = extrude_plate("wheel", w_outline, spec.thickness, spec.bore)
+    pinion, wheel = _plates(spec, law, p_outline, w_outline, spec.paper_module)
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     return GearPair(spec, law, partition, p_outline, w_outline, pinion, wheel, checks)
+
+
+def _plates(spec: GearPairSpec, law, p_outline: np.ndarray, w_outline: np.ndarray,
+            module: float):
+    """Pinion and wheel plates: shaft holes keyed to and timing marks on the assembly phase,
+    pockets with --lighten (``module`` mm sizes their rim)."""
+    from wheelstep_cli.parts.gear_faces import faces_for, gear_part
+
+    faces = faces_for(spec, law, p_outline, w_outline, module)
+    return gear_part(faces["pinion"], spec), gear_part(faces["wheel"], spec)
 
 
 def generation_law(spec: GearPairSpec):
@@ -108,8 +116,7 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     # curved flank kinks the hub speed by about 1 %)
     p_outline = gen.pinion_outline
     w_outline = simplify_outline(gen.wheel_outline, settings.wheel_tolerance)
-    pinion = extrude_plate("pinion", p_outline, spec.thickness, spec.bore)
-    wheel = extrude_plate("wheel", w_outline, spec.thickness, spec.bore)
+    pinion, wheel = _plates(spec, gen.law, p_outline, w_outline, gen.module)
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     crank = spec.law() if spec.law_csv is None else None
     return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen)
@@ -158,9 +165,29 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
         report["sectors"] = partition_rows(pair.partition)
     if pair.generated is not None:
         report["generated"] = generated_report(pair)
+    report["phase"] = _phase(pair)
+    if pair.spec.lighten:
+        from wheelstep_cli.parts.gear_faces import gear_faces, lighten_record
+
+        printer = pair.printing.printer if pair.printing is not None else None
+        report["lighten"] = lighten_record(gear_faces(pair), pair.spec, printer)
     if meshing is not None:
         report["meshing"] = meshing
     return report
+
+
+def _phase(pair: GearPair) -> dict:
+    """The assembly phase (deg) and how the shaft holes sit on it."""
+    from wheelstep_cli.gears.phase import assembly_phase, phase_record
+    from wheelstep_cli.parts.gear_faces import pair_law
+
+    record = phase_record(assembly_phase(pair_law(pair)))
+    spec = pair.spec
+    record["shaft"] = {"bore_shape": spec.bore_shape, "key_angle_deg": spec.key_angle,
+                       "note": "the key, flat or a hex flat faces key_angle from each gear's "
+                               "mark (counter-clockwise seen from the top): shaft keys at the "
+                               "two mark angles plus key_angle put the pair in phase"}
+    return record
 
 
 def _printing(pair: GearPair) -> dict:

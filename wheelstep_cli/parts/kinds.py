@@ -93,8 +93,12 @@ def for_printer(kind: PartKind, built, printer, design=None):
     from wheelstep_cli.geometry.solids import inset_bottom
 
     parts = []
+    # a chamfered part's bed-side edges are already drawn in (and it is no prism there for
+    # the foot's step inset to follow): the chamfer replaces the elephant-foot inset
+    chamfered = (getattr(getattr(built, "spec", None), "chamfer", 0) or 0) > 0
     for part in kind.parts(built):
-        part = inset_bottom(part, printer.elephant_foot_height, printer.elephant_foot_inset)
+        if not chamfered:
+            part = inset_bottom(part, printer.elephant_foot_height, printer.elephant_foot_inset)
         lift = [0.0, 0.0, -float(part.bounds[0, 2])]
         parts.append(Part(part.name, part.vertices + lift, part.faces, part.expected_volume))
     checks = {part.name: require_printable(part) for part in parts}
@@ -148,7 +152,7 @@ KINDS: dict[str, PartKind] = {
     KindName.gear_pair.value: PartKind(
         name=KindName.gear_pair.value, module="wheelstep_cli.parts.gear_pair", spec_class="GearPairSpec",
         build="build_gear_pair", report="gear_pair_report", section="gears",
-        parts=lambda pair: [pair.pinion, pair.wheel], hole_fields=("bore",),
+        parts=lambda pair: [pair.pinion, pair.wheel], hole_fields=("bore", "key_width"),
         clearance=_gear_pair_clearance, mating_check=_gear_pair_meshing,
         with_parts=lambda pair, parts, checks: replace(pair, pinion=parts[0], wheel=parts[1], checks=checks),
         checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _sectors)),

@@ -32,8 +32,10 @@ def check_gear_pair(pair, settings: MeshingSettings = MeshingSettings(),
     blended law with ``--blend``)."""
     from wheelstep_cli.geometry.solids import section_outline
 
-    pinion = section_outline(pair.pinion.vertices, pair.pinion.faces, "pinion")
-    wheel = section_outline(pair.wheel.vertices, pair.wheel.faces, "wheel")
+    # the plate's mid-thickness (the parts stand on z = 0), not the mesh's: a hub is higher
+    mid = 0.5 * float(pair.spec.thickness)
+    pinion = section_outline(pair.pinion.vertices, pair.pinion.faces, "pinion", mid)
+    wheel = section_outline(pair.wheel.vertices, pair.wheel.faces, "wheel", mid)
     # generated teeth are checked against the law they were cut for (blended when --blend)
     generated = getattr(pair, "generated", None)
     law = generated.law if generated is not None else pair.law
@@ -70,6 +72,9 @@ def meshing_lines(summary: dict) -> list[str]:
         lines.append("interference: none")
     if summary["contact_lost"]:
         lines.append("contact: LOST at some poses (teeth out of mesh in the drive direction)")
+    lines.append("phase: in phase with the law" if summary["in_phase"] else
+                 "phase: OUT OF PHASE (the pair does not follow its law: assembled a tooth off, "
+                 "or interfering)")
     lines.append(f"backlash: {_fmt(summary['backlash_min_mm'], '.3f')} .. "
                  f"{_fmt(summary['backlash_max_mm'], '.3f')} mm on the wheel pitch curve "
                  f"({_fmt(summary['backlash_min_arcmin'], '.1f')}' .. "

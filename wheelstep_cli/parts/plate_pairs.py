@@ -90,6 +90,8 @@ def spec_from_metadata(values: dict[str, str], file: str) -> GearPairSpec:
                 break
             except ValueError:
                 continue
+        if text in ("True", "False"):      # a switch (--lighten) is written as str(bool)
+            typed[key] = text == "True"
     if isinstance(typed.get("law_csv"), (int, float)):
         typed["law_csv"] = values["law_csv"]
     try:

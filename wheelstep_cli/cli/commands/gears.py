@@ -11,7 +11,7 @@ from wheelstep_cli.cli.options import (A, AllowInterference, B, Blend, C, Center
                                        Turns, Verbose, Z, opt)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec
-from wheelstep_cli.config.specs import Corner, Teeth
+from wheelstep_cli.config.specs import BoreShape, Corner, Teeth
 from wheelstep_cli.parts.gear_exports import GearExtras, checked_extras
 
 
@@ -83,42 +83,68 @@ def _teeth_lines(report: dict) -> list[str]:
     return lines
 
 
+InstallDistance = Annotated[Optional[float], opt("--install-distance", help="Installed centre distance, mm.",
+                                                 shown="144")]
+Thickness = Annotated[Optional[float], opt("--thickness", help="Face width, mm.", shown="10")]
+Bore = Annotated[Optional[float], opt("--bore", help="Shaft diameter, mm (a hex bore: across flats); "
+                                                     "0 for none.", shown="8")]
+BoreShapeOpt = Annotated[Optional[BoreShape], opt(
+    "--bore-shape", help="Shaft hole: round, d-flat, keyway (DIN 6885) or hex, its key or flat "
+                         "at --key-angle from the timing mark.", shown="round")]
+FlatDepth = Annotated[Optional[float], opt("--flat-depth", help="D-flat depth from the bore, mm.",
+                                           shown="0.1 x bore")]
+KeyWidth = Annotated[Optional[float], opt("--key-width", help="Keyway width, mm.", shown="DIN 6885 b")]
+KeyDepth = Annotated[Optional[float], opt("--key-depth", help="Keyway depth beyond the bore (hub t2), mm.",
+                                          shown="DIN 6885 t2")]
+KeyAngle = Annotated[Optional[float], opt("--key-angle", help="Angle of the key, flat or hex flat from "
+                                                              "the timing mark, deg (CCW from the top).",
+                                          shown="0")]
+MarkDepth = Annotated[Optional[float], opt("--mark-depth", help="Timing mark engraving depth, mm; 0 "
+                                                                "for none.", shown="0.5")]
+Lighten = Annotated[bool, opt("--lighten", help="Cut spoked pockets into the wheel (and the pinion "
+                                                  "where it has room), keeping a 2.5 module rim.")]
+Chamfer = Annotated[Optional[float], opt("--chamfer", help="45 deg chamfer of the top and bottom "
+                                                          "edges (teeth, bore, pockets), mm.", shown="0")]
+HubD = Annotated[Optional[float], opt("--hub-d", help="Hub (boss) diameter on the top face, mm.")]
+HubLength = Annotated[Optional[float], opt("--hub-length", help="Hub height above the top face, mm.",
+                                           shown="8 with --hub-d")]
+SetScrew = Annotated[Optional[str], opt("--set-screw", help="Radial set screw through the hub along the "
+                                                          "key, with a captive nut slot: M2..M6.",
+                                        callback=None)]
+TeethOpt = Annotated[Optional[Teeth], opt(
+    "--teeth", help="generated: conjugate teeth (SPEC §9); paper: the source's sector "
+                    "involutes (SPEC §5).", shown="generated")]
+PressureAngle = Annotated[Optional[float], opt(
+    "--pressure-angle", help="Rack pressure angle, deg (generated).", shown="20")]
+Addendum = Annotated[Optional[float], opt("--addendum", help="Addendum, x module (generated).", shown="1.0")]
+Dedendum = Annotated[Optional[float], opt("--dedendum", help="Dedendum, x module (generated).",
+                                          shown="1.25")]
+Fillet = Annotated[Optional[float], opt("--fillet", help="Rack tip fillet radius, x module (generated).",
+                                        shown="0.25")]
+Clearance = Annotated[Optional[float], opt(
+    "--clearance", help="Tip clearance of the wheel's spaces below the pinion's tips, "
+                        "x module (generated).", shown="0.25")]
+CornerOpt = Annotated[Optional[Corner], opt(
+    "--corner", help="Centre a pinion space or tooth on each pitch-curve corner "
+                     "(generated).", shown="space")]
+Tilt = Annotated[Optional[float], opt(
+    "--tilt", help="Tilt of the rack teeth towards the radius, as a fraction of the "
+                   "pitch-curve slope (generated).", shown="0.6")]
+
+
 def gears(
     a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = None,
-    center_distance: CenterDistance = None,
-    install_distance: Annotated[Optional[float], opt("--install-distance",
-                                                     help="Installed centre distance, mm.",
-                                                     shown="144")] = None,
-    module: Module = None, backlash: Backlash = None,
-    thickness: Annotated[Optional[float], opt("--thickness", help="Face width, mm.",
-                                              shown="10")] = None,
-    bore: Annotated[Optional[float], opt("--bore", help="Shaft bore diameter, mm; 0 for none.",
-                                         shown="8")] = None,
+    center_distance: CenterDistance = None, install_distance: InstallDistance = None,
+    module: Module = None, backlash: Backlash = None, thickness: Thickness = None,
+    bore: Bore = None, bore_shape: BoreShapeOpt = None, flat_depth: FlatDepth = None,
+    key_width: KeyWidth = None, key_depth: KeyDepth = None, key_angle: KeyAngle = None,
+    mark_depth: MarkDepth = None, lighten: Lighten = False, chamfer: Chamfer = None,
+    hub_d: HubD = None, hub_length: HubLength = None, set_screw: SetScrew = None,
     fmt: Format = MeshFormat.both, out: Out = Path("wheelstep-out"), profile: Profile = None,
-    printer: Printer = None,
-    teeth: Annotated[Optional[Teeth], opt(
-        "--teeth", help="generated: conjugate teeth (SPEC §9); paper: the source's sector "
-                        "involutes (SPEC §5).", shown="generated")] = None,
-    pressure_angle: Annotated[Optional[float], opt(
-        "--pressure-angle", help="Rack pressure angle, deg (generated).", shown="20")] = None,
-    addendum: Annotated[Optional[float], opt(
-        "--addendum", help="Addendum, x module (generated).", shown="1.0")] = None,
-    dedendum: Annotated[Optional[float], opt(
-        "--dedendum", help="Dedendum, x module (generated).", shown="1.25")] = None,
-    fillet: Annotated[Optional[float], opt(
-        "--fillet", help="Rack tip fillet radius, x module (generated).", shown="0.25")] = None,
-    clearance: Annotated[Optional[float], opt(
-        "--clearance", help="Tip clearance of the wheel's spaces below the pinion's tips, "
-                            "x module (generated).", shown="0.25")] = None,
-    blend: Blend = None,
-    corner: Annotated[Optional[Corner], opt(
-        "--corner", help="Centre a pinion space or tooth on each pitch-curve corner "
-                         "(generated).", shown="space")] = None,
-    tilt: Annotated[Optional[float], opt(
-        "--tilt", help="Tilt of the rack teeth towards the radius, as a fraction of the "
-                       "pitch-curve slope (generated).", shown="0.6")] = None,
-    law_csv: LawCsv = None,
-    allow_interference: AllowInterference = False,
+    printer: Printer = None, teeth: TeethOpt = None, pressure_angle: PressureAngle = None,
+    addendum: Addendum = None, dedendum: Dedendum = None, fillet: Fillet = None,
+    clearance: Clearance = None, blend: Blend = None, corner: CornerOpt = None, tilt: Tilt = None,
+    law_csv: LawCsv = None, allow_interference: AllowInterference = False,
     plot: Plot = None, gif: Gif = None, dxf: Dxf = False, svg: Svg = False, step: Step = False,
     force: Force = False, tolerance: Tolerance = False, fit: FitChoice = None,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
@@ -128,19 +154,28 @@ def gears(
     The written meshes are checked first (SPEC §10); overlapping teeth are refused (exit 1,
     nothing written) unless --allow-interference. Generated teeth roll at the installed
     distance, their module following from the perimeter and --z; or at the distance a
-    --module fits (SPEC §9)."""
+    --module fits (SPEC §9). Each gear carries an engraved timing mark; gears.json states
+    the assembly phase the marks and keyed bores build in."""
     show = Output(json, quiet, verbose)
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                           install_distance=install_distance, module=module, backlash=backlash,
-                          thickness=thickness, bore=bore, teeth=teeth.value if teeth else None,
+                          thickness=thickness, bore=bore, bore_shape=_value(bore_shape),
+                          flat_depth=flat_depth, key_width=key_width, key_depth=key_depth,
+                          key_angle=key_angle, mark_depth=mark_depth,
+                          lighten=lighten or None, chamfer=chamfer, hub_d=hub_d,
+                          hub_length=hub_length, set_screw=set_screw, teeth=_value(teeth),
                           pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
-                          fillet=fillet, clearance=clearance, blend=blend,
-                          corner=corner.value if corner else None,
+                          fillet=fillet, clearance=clearance, blend=blend, corner=_value(corner),
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
     _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force,
                 checked_extras(plot, gif, dxf, svg, step),
                 (tolerance or fit is not None, fit.value if fit else None))
+
+
+def _value(choice):
+    """An enum option's value (None when not given)."""
+    return choice.value if choice is not None else None
 
 
 def _printer(name: str | None):
@@ -215,7 +250,19 @@ def _gears_lines(pair, record: dict) -> list[str]:
         from wheelstep_cli.parts.tolerance_cli import tolerance_lines
 
         lines.extend(tolerance_lines(record["tolerance"]))
-    return lines
+    return lines + _lighten_lines(pair)
+
+
+def _lighten_lines(pair) -> list[str]:
+    """What --lighten saved per gear (cm3, g)."""
+    if not pair.spec.lighten:
+        return []
+    from wheelstep_cli.parts.gear_pair import gear_pair_report
+
+    saved = gear_pair_report(pair)["lighten"]
+    return [f"lighten: {name} {saved[name]['pockets']} pockets, {saved[name]['volume_saved_cm3']:.1f} "
+            f"cm3 / {saved[name]['mass_saved_g']:.1f} g saved ({saved['density_from']})"
+            for name in ("pinion", "wheel")]
 
 
 def _num(record: dict, key: str, fmt: str) -> str:

@@ -119,12 +119,21 @@ class MeshingReport:
         v = self.hub_speed[clear]
         return _peak_to_peak(v) / float(np.nanmean(v))
 
+    def _in_phase(self, drive: dict) -> bool:
+        """Whether the pair follows its law in phase: no interference, contact kept, and the
+        drive flank's total transmission error F'i under a quarter of the tooth pitch (a pair
+        assembled a tooth off crashes or wanders by about a pitch from the law)."""
+        total = drive.get("F_i_total_um")
+        return bool(not self.interferes and not self.contact_lost and total is not None
+                    and total < 250.0 * self.track.pitch)
+
     def to_dict(self) -> dict:
         """Summary in degrees, arcminutes, mm, um and % for JSON and tables: the figures of
         merit per flank side (``drive``, ``coast``), backlash band, interference, and the
         pointwise ripple labelled as a diagnostic."""
         arcmin = 60.0 * 180.0 / np.pi
         law_ripple = _peak_to_peak(self.hub_speed_law) / float(np.mean(self.hub_speed_law))
+        drive = _flank_dict(self.drive, self.transmission_error * arcmin)
         return {
             "distance_mm": self.distance,
             "samples": int(len(self.theta)),
@@ -141,7 +150,8 @@ class MeshingReport:
             "backlash_max_arcmin": _nan_none(np.nanmax(self.backlash) * arcmin),
             "backlash_min_mm": _nan_none(np.nanmin(self.backlash_mm)),
             "backlash_max_mm": _nan_none(np.nanmax(self.backlash_mm)),
-            "drive": _flank_dict(self.drive, self.transmission_error * arcmin),
+            "drive": drive,
+            "in_phase": self._in_phase(drive),
             "coast": _flank_dict(self.coast, (self.phi_coast - self.phi_law) * arcmin),
             "diagnostic_pointwise_ripple_pct": _nan_none(100.0 * self.hub_speed_ripple),
             "diagnostic_pointwise_ripple_clear_pct": _nan_none(

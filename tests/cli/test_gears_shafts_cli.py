@@ -1,0 +1,47 @@
+"""`wheelstep gears` shaft options and phase record: refusals and what gears.json says."""
+
+import json
+
+import pytest
+
+from tests.helpers.clicheck import error_line
+from tests.helpers.meshcheck import assert_printable_stl
+
+
+@pytest.mark.parametrize("args, text", [
+    (["--bore-shape", "keyway", "--key-width", "9"], "--key-width = 9: must be < the bore 8 mm"),
+    (["--key-width", "3"], "--key-width = 3: needs --bore-shape keyway"),
+    (["--flat-depth", "1"], "--flat-depth = 1: needs --bore-shape d-flat"),
+    (["--bore-shape", "d-flat", "--flat-depth", "4"], "--flat-depth = 4: must be < half the bore"),
+    (["--bore-shape", "hex", "--bore", "76"], "--bore = 76: must be < 65.62 mm (leave 1.5 mm"),
+    (["--bore-shape", "keyway", "--bore", "70", "--key-depth", "6"], "--key-depth = 6"),
+    (["--bore-shape", "oval"], "--bore-shape"),
+    (["--key-angle", "400"], "--key-angle = 400"),
+    (["--mark-depth", "3"], "--mark-depth = 3"),
+    (["--hub-d", "90"], "--hub-d = 90: must be <="),                      # larger than the root
+    (["--hub-d", "9"], "--hub-d = 9: must be >="),                        # no wall round the bore
+    (["--hub-length", "9"], "--hub-length = 9: needs --hub-d"),
+    (["--set-screw", "M3"], "--set-screw = M3: needs --hub-d"),
+    (["--hub-d", "14", "--set-screw", "M3"], "--set-screw = M3: does not fit the hub"),
+    (["--chamfer", "5"], "--chamfer = 5: must be < half the thickness"),
+])
+def test_shaft_misfits_are_refused_in_one_line_nothing_written(cli, tmp_path, args, text):
+    out = tmp_path / "out"
+    assert text in error_line(cli("gears", *args, "--out", out))
+    assert not out.exists()
+
+
+def test_keyway_for_a_printer_states_phase_and_compensates_the_key(cli, tmp_path):
+    out = tmp_path / "k"
+    result = cli("gears", "--bore-shape", "keyway", "--key-angle", "90", "--printer", "fdm-0.4-pla",
+                 "--format", "stl", "--out", out)
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((out / "gears.json").read_text())
+    assert report["parameters"]["key_width"] == 2 and report["parameters"]["key_depth"] == 1.0
+    assert report["printed_parameters"]["key_width"] == pytest.approx(2.2)
+    phase = report["phase"]
+    assert phase["shaft"] == {**phase["shaft"], "bore_shape": "keyway", "key_angle_deg": 90}
+    assert [h["carrier_deg"] for h in phase["handovers"]] == pytest.approx([-45, 45, 135, 225])
+    assert report["meshing"]["in_phase"] is True
+    for name in ("pinion", "wheel"):
+        assert_printable_stl(out / f"{name}.stl")
