@@ -34,9 +34,11 @@ class PairDrawing:
 
 def assembly_phase(law) -> tuple[float, float]:
     """Pinion and wheel angles (rad) meeting at the line of centres with the carrier at 0
-    (a shoe in mid-stance): the pitch curves are built so that the law's theta(phi) puts
-    the pinion's body angle theta(0) against the wheel's body angle 0 there."""
-    return float(law.pinion_angle(np.array([0.0]))[0]), 0.0
+    (a shoe in mid-stance), as gears.json states them (gears.phase)."""
+    from wheelstep_cli.gears.phase import assembly_phase as phase_of
+
+    phase = phase_of(law)
+    return phase.pinion_mark, phase.wheel_mark
 
 
 def handover_angle(law) -> float:
