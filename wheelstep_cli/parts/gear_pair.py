@@ -101,8 +101,11 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
 
     _, law = generation_law(spec)
     settings = replace(GenerationSettings(), tilt=spec.tilt)
+    distance = rolling_distance(spec, law)
+    if spec.backlash is None:
+        spec = spec.model_copy(update={"backlash": generated_backlash(spec, law, distance, settings)})
     gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, settings=settings,
-                        center_distance=rolling_distance(spec, law))
+                        center_distance=distance)
     # the pinion is written as it carved the wheel; the wheel's ray map is thinned only by a
     # fraction of a micron (coarser facets make real speed ripple: a 0.2 mm facet on a
     # curved flank kinks the hub speed by about 1 %)
@@ -113,6 +116,31 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     crank = spec.law() if spec.law_csv is None else None
     return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen)
+
+
+def design_backlash(spec: GearPairSpec) -> float:
+    """The normal backlash (mm) the pair is designed with: as given, else for generated teeth
+    the most whose play keeps each flank's hub speed ripple within the settings' share
+    (:func:`generated_backlash`), else 0.25 x module."""
+    if spec.backlash is not None or spec.teeth != "generated":
+        return spec.backlash_mm
+    from wheelstep_cli.gears.generation import GenerationSettings
+
+    _, law = generation_law(spec)
+    return generated_backlash(spec, law, rolling_distance(spec, law), GenerationSettings())
+
+
+def generated_backlash(spec: GearPairSpec, law, distance: float, settings) -> float:
+    """Default normal backlash (mm) of generated teeth rolling at ``distance`` mm on ``law``:
+    the play a flank carries steps the hub speed at the law's handover corners
+    (gears.generation.play), so it is the most that costs ``settings.backlash_ripple``."""
+    from wheelstep_cli.gears.generation.play import default_backlash
+    from wheelstep_cli.gears.pitch_curves import pitch_curves
+
+    curves = pitch_curves(law, distance)
+    module = curves.period_arc / max(1, spec.z // law.pinion_periods) / np.pi
+    return default_backlash(law, curves.wheel, np.radians(spec.pressure_angle), settings.backlash_ripple,
+                            module)
 
 
 def rolling_distance(spec: GearPairSpec, law) -> float:

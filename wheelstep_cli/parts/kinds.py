@@ -135,7 +135,9 @@ def _gear_pair_meshing(pair) -> dict:
 
 
 def _gear_pair_clearance(spec, extra: float) -> dict:
-    return {"backlash": spec.backlash_mm + extra} if extra else {}
+    from wheelstep_cli.parts.gear_pair import design_backlash
+
+    return {"backlash": design_backlash(spec) + extra} if extra else {}
 
 
 def _sectors(spec) -> None:

@@ -147,6 +147,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.kinds import build_for_printer
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
 
     pair = build_for_printer("gear-pair", spec, printer)
@@ -157,6 +158,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                    f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
                    "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
+    require_within_bounds(pair, record)
     files = gear_pair_files(pair, out, fmt, record)
     written = show.write_owned(out, "gears", files, dry_run, force)
     report = {**gear_pair_report(pair, record), "written": [] if dry_run else [str(p) for p in written]}
