@@ -18,7 +18,9 @@ def remedy_options(line: str) -> list[str]:
     return line.rsplit("; use ", 1)[1].split()
 
 
-@pytest.mark.parametrize("design", [["--profile", "desk-demo"], ["--z", "32"]])
+# the desk demonstrator as it was (z 24, j_n 0.375 mm), and the source design with z = 32
+@pytest.mark.parametrize("design", [["--profile", "desk-demo", "--z", "24", "--backlash", "0.375"],
+                                    ["--z", "32"]])
 def test_refused_design_passes_with_its_remedy(cli, tmp_path, design):
     out = tmp_path / "out"
     line = error_line(cli("gears", *design, "--format", "stl", "--out", out))
@@ -38,6 +40,12 @@ def test_default_pair_meets_the_bounds_on_both_flanks(cli, tmp_path):
     report = json.loads((tmp_path / "gears.json").read_text())
     assert bound_violations(report["meshing"]) == []
     assert 0.2 < report["parameters"]["backlash"] < 0.3      # the default the ripple bound allows
+
+
+def test_desk_demo_preset_is_written_within_the_bounds(cli, tmp_path):
+    result = cli("gears", "--profile", "desk-demo", "--format", "stl", "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    assert bound_violations(json.loads((tmp_path / "gears.json").read_text())["meshing"]) == []
 
 
 @seed(13)

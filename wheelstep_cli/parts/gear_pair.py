@@ -197,7 +197,8 @@ def _printing(pair: GearPair) -> dict:
 
     record = printing_record(pair.printing, pair.spec)
     if record:
-        record["parameters"]["backlash"] = pair.printing.design.backlash_mm
+        # the design's backlash: what is drawn less the printer's tooth clearance
+        record["parameters"]["backlash"] = pair.spec.backlash_mm - pair.printing.printer.tooth_clearance
         record["printed_parameters"]["backlash"] = pair.spec.backlash_mm
     return record
 

@@ -102,6 +102,7 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
     Interference is refused elsewhere."""
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.gear_pair import design_backlash
+    from wheelstep_cli.parts.gear_pair import design_backlash
 
     broken = [text for text in bound_violations(record, bounds) if "interfere" not in text]
     if not broken or pair.generated is None:
@@ -114,7 +115,8 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
         remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
     param = next(iter(remedy))
     options = " ".join(f"--{name.replace('_', '-')} {value:g}" for name, value in remedy.items())
-    raise DesignError(param, getattr(design, param),
+    value = design_backlash(design) if param == "backlash" else getattr(design, param)
+    raise DesignError(param, value,
                       f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
                       f"written; use {options}")
 

@@ -57,6 +57,7 @@ def default_backlash(law: TransmissionLaw, wheel_curve: np.ndarray, pressure_ang
     costs each flank at most ``budget`` (fraction) of hub speed ripple, at most 0.25 x
     ``module`` mm (the usual allowance; a law with no hub speed factor takes that)."""
     usual = 0.25 * module
-    play = largest_play(law, budget)
+    # the budget is on top of the law's own ripple (a law that is not the crank law has one)
+    play = largest_play(law, budget + play_ripple(law, 0.0))
     per_mm = play_angle(1.0, wheel_curve, pressure_angle)
     return float(min(usual, np.floor(1000.0 * play / per_mm) / 1000.0))
