@@ -15,6 +15,8 @@ from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, re
 from wheelstep_cli.geometry.solids import extrude_plate
 from wheelstep_cli.formats.jsonio import json_bytes
 from wheelstep_cli.formats.stl import stl_bytes
+from wheelstep_cli.parts.gear_laws import (design_backlash, design_law, generated_backlash,  # noqa: F401
+                                           generation_law, rolling_distance)
 from wheelstep_cli.parts.plate_layout import bed_plates, design_metadata, plate_files, require_on_bed
 
 FORMATS = ("stl", "3mf", "both")
@@ -71,21 +73,6 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
     return GearPair(spec, law, partition, p_outline, w_outline, pinion, wheel, checks)
 
 
-def generation_law(spec: GearPairSpec):
-    """The law the generated teeth follow (crank law or --law-csv) and its blended form."""
-    from wheelstep_cli.gears.laws import blended_law
-
-    law = design_law(spec)
-    return law, blended_law(law, np.radians(spec.blend))
-
-
-def design_law(spec: GearPairSpec):
-    """The law the pair is designed for: the design's crank law, or the --law-csv law."""
-    from wheelstep_cli.formats.law_csv import read_law_csv
-
-    return read_law_csv(spec.law_csv) if spec.law_csv is not None else spec.law()
-
-
 def law_record(spec: GearPairSpec, law) -> dict:
     """What a report says of the law (mm, deg): the mechanism and ratio constant, or the CSV."""
     if spec.law_csv is not None:
@@ -116,45 +103,6 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     crank = spec.law() if spec.law_csv is None else None
     return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen)
-
-
-def design_backlash(spec: GearPairSpec) -> float:
-    """The normal backlash (mm) the pair is designed with: as given, else for generated teeth
-    the most whose play keeps each flank's hub speed ripple within the settings' share
-    (:func:`generated_backlash`), else 0.25 x module."""
-    if spec.backlash is not None or spec.teeth != "generated":
-        return spec.backlash_mm
-    from wheelstep_cli.gears.generation import GenerationSettings
-
-    _, law = generation_law(spec)
-    return generated_backlash(spec, law, rolling_distance(spec, law), GenerationSettings())
-
-
-def generated_backlash(spec: GearPairSpec, law, distance: float, settings) -> float:
-    """Default normal backlash (mm) of generated teeth rolling at ``distance`` mm on ``law``:
-    the play a flank carries steps the hub speed at the law's handover corners
-    (gears.generation.play), so it is the most that costs ``settings.backlash_ripple``."""
-    from wheelstep_cli.gears.generation.play import default_backlash
-    from wheelstep_cli.gears.pitch_curves import pitch_curves
-
-    curves = pitch_curves(law, distance)
-    module = curves.period_arc / max(1, spec.z // law.pinion_periods) / np.pi
-    return default_backlash(law, curves.wheel, np.radians(spec.pressure_angle), settings.backlash_ripple,
-                            module)
-
-
-def rolling_distance(spec: GearPairSpec, law) -> float:
-    """The distance (mm) generated teeth roll and are mounted at: the one a given module
-    fits (SPEC §9: the pitch curves' perimeter is proportional to it), else the installed
-    distance."""
-    from wheelstep_cli.errors import require
-    from wheelstep_cli.gears.pitch_curves import center_distance_for_module
-
-    if spec.module is None:
-        return float(spec.install_distance)
-    require(spec.module > 0, "module", spec.module, "must be > 0 mm")
-    per_period = max(1, spec.z // law.pinion_periods)
-    return float(center_distance_for_module(law, per_period, spec.module))
 
 
 def partition_rows(partition: SectorPartition) -> list[dict]:

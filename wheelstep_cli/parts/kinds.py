@@ -135,7 +135,7 @@ def _gear_pair_meshing(pair) -> dict:
 
 
 def _gear_pair_clearance(spec, extra: float) -> dict:
-    from wheelstep_cli.parts.gear_pair import design_backlash
+    from wheelstep_cli.parts.gear_laws import design_backlash
 
     if not extra:
         return {}

@@ -101,8 +101,8 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
     for F'i and f'i, less backlash (--backlash) for the ripple a flank's play costs.
     Interference is refused elsewhere."""
     from wheelstep_cli.errors import DesignError
-    from wheelstep_cli.parts.gear_pair import design_backlash
-    from wheelstep_cli.parts.gear_pair import design_backlash
+    from wheelstep_cli.parts.gear_laws import design_backlash
+    from wheelstep_cli.parts.gear_laws import design_backlash
 
     broken = [text for text in bound_violations(record, bounds) if "interfere" not in text]
     if not broken or pair.generated is None:
@@ -125,7 +125,7 @@ def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds)
     """Options (name -> value) that should bring the ripple within the bound. Other teeth
     ripple otherwise: with a new --z the backlash is the default for that design (what its
     play may cost, gears.generation.play), else it is scaled from the measured play."""
-    from wheelstep_cli.parts.gear_pair import design_backlash
+    from wheelstep_cli.parts.gear_laws import design_backlash
 
     law = pair.generated.law
     extra = pair.spec.backlash_mm - design_backlash(design)   # a printer's tooth clearance
