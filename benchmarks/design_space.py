@@ -47,7 +47,7 @@ def grid(folder: Path, quick: bool = False) -> list[tuple[str, dict]]:
         return designs
     designs += [(f"alpha={pa} z=48", {"pressure_angle": pa}) for pa in (14.5, 17.5, 22.5, 25, 30)]
     designs += [(f"alpha={pa} z=24", {"pressure_angle": pa, "z": 24}) for pa in (14.5, 25, 30)]
-    designs += [(f"alpha=25 z={z}", {"pressure_angle": 25, "z": z}) for z in range(32, 121, 16)]
+    designs += [(f"alpha=25 z={z}", {"pressure_angle": 25, "z": z}) for z in (32, 40, 64, 80, 96, 112)]
     designs += [(f"backlash={j} z=48", {"backlash": j}) for j in (0.2, 0.3, 0.8, 1.0)]
     designs += [("ha=0.8 hf=1.0", {"addendum": 0.8, "dedendum": 1.0}),
                 ("ha=1.0 hf=1.4", {"dedendum": 1.4}), ("ha=0.9 hf=1.15 z=32", {"addendum": 0.9,
