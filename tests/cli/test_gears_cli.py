@@ -35,7 +35,7 @@ def test_writes_printable_meshes_and_report(default_pair):
         assert np.allclose(mesh.bounds, part["bounding_box_mm"], atol=1e-3)
         assert mesh.bounds[1, 2] - mesh.bounds[0, 2] == pytest.approx(10.0)
     assert report["parameters"]["install_distance"] == 144
-    assert report["parameters"]["backlash"] == pytest.approx(0.5)
+    assert report["parameters"]["backlash"] == pytest.approx(0.239)   # what the ripple bound allows
     assert report["parameters"]["teeth"] == "generated"       # the default since issue 6
     assert report["generated"]["pinion_teeth"] == 48 and report["generated"]["wheel_teeth"] == 96
     assert report["parts"]["pinion"]["teeth"] == 48 and report["parts"]["wheel"]["teeth"] == 96

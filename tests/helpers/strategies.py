@@ -33,3 +33,15 @@ def r_min_designs(min_b: float = 0.0, min_r_min: float = 1.0):
     strut c = R_min - a + 4b > 0 (a is a fraction 0.02..0.98 of R_min + 4b)."""
     return st.tuples(st.floats(min_b, 250.0), st.floats(min_r_min, 300.0), st.floats(0.02, 0.98)).map(
         lambda t: (t[2] * (t[1] + 4 * t[0]), t[0], t[1]))
+
+
+@st.composite
+def generated_gear_options(draw):
+    """`wheelstep gears` options of generated pairs on the source mechanism: tooth counts from
+    the smallest refused to well within bounds, pressure angle, backlash (None: the default)."""
+    options = ["--z", str(draw(st.sampled_from([24, 32, 40, 48, 56, 64])))]
+    options += ["--pressure-angle", f"{draw(st.floats(18.0, 25.0)):.1f}"]
+    backlash = draw(st.one_of(st.none(), st.floats(0.1, 0.5)))
+    if backlash is not None:
+        options += ["--backlash", f"{backlash:.2f}"]
+    return options

@@ -14,6 +14,8 @@ from wheelstep_cli.gears.sectors import SectorPartition, sector_partition, secto
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
 from wheelstep_cli.formats.jsonio import json_bytes
 from wheelstep_cli.formats.stl import stl_bytes
+from wheelstep_cli.parts.gear_laws import (design_backlash, design_law, generated_backlash,  # noqa: F401
+                                           generation_law, rolling_distance)
 from wheelstep_cli.parts.plate_layout import bed_plates, design_metadata, plate_files, require_on_bed
 
 FORMATS = ("stl", "3mf", "both")
@@ -79,21 +81,6 @@ def _plates(spec: GearPairSpec, law, p_outline: np.ndarray, w_outline: np.ndarra
     return gear_part(faces["pinion"], spec), gear_part(faces["wheel"], spec)
 
 
-def generation_law(spec: GearPairSpec):
-    """The law the generated teeth follow (crank law or --law-csv) and its blended form."""
-    from wheelstep_cli.gears.laws import blended_law
-
-    law = design_law(spec)
-    return law, blended_law(law, np.radians(spec.blend))
-
-
-def design_law(spec: GearPairSpec):
-    """The law the pair is designed for: the design's crank law, or the --law-csv law."""
-    from wheelstep_cli.formats.law_csv import read_law_csv
-
-    return read_law_csv(spec.law_csv) if spec.law_csv is not None else spec.law()
-
-
 def law_record(spec: GearPairSpec, law) -> dict:
     """What a report says of the law (mm, deg): the mechanism and ratio constant, or the CSV."""
     if spec.law_csv is not None:
@@ -109,8 +96,11 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
 
     _, law = generation_law(spec)
     settings = replace(GenerationSettings(), tilt=spec.tilt)
+    distance = rolling_distance(spec, law)
+    if spec.backlash is None:
+        spec = spec.model_copy(update={"backlash": generated_backlash(spec, law, distance, settings)})
     gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, settings=settings,
-                        center_distance=rolling_distance(spec, law))
+                        center_distance=distance)
     # the pinion is written as it carved the wheel; the wheel's ray map is thinned only by a
     # fraction of a micron (coarser facets make real speed ripple: a 0.2 mm facet on a
     # curved flank kinks the hub speed by about 1 %)
@@ -120,20 +110,6 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     crank = spec.law() if spec.law_csv is None else None
     return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen)
-
-
-def rolling_distance(spec: GearPairSpec, law) -> float:
-    """The distance (mm) generated teeth roll and are mounted at: the one a given module
-    fits (SPEC §9: the pitch curves' perimeter is proportional to it), else the installed
-    distance."""
-    from wheelstep_cli.errors import require
-    from wheelstep_cli.gears.pitch_curves import center_distance_for_module
-
-    if spec.module is None:
-        return float(spec.install_distance)
-    require(spec.module > 0, "module", spec.module, "must be > 0 mm")
-    per_period = max(1, spec.z // law.pinion_periods)
-    return float(center_distance_for_module(law, per_period, spec.module))
 
 
 def partition_rows(partition: SectorPartition) -> list[dict]:
@@ -196,7 +172,8 @@ def _printing(pair: GearPair) -> dict:
 
     record = printing_record(pair.printing, pair.spec)
     if record:
-        record["parameters"]["backlash"] = pair.printing.design.backlash_mm
+        # the design's backlash: what is drawn less the printer's tooth clearance
+        record["parameters"]["backlash"] = pair.spec.backlash_mm - pair.printing.printer.tooth_clearance
         record["printed_parameters"]["backlash"] = pair.spec.backlash_mm
     return record
 

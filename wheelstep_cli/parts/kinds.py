@@ -139,7 +139,15 @@ def _gear_pair_meshing(pair) -> dict:
 
 
 def _gear_pair_clearance(spec, extra: float) -> dict:
-    return {"backlash": spec.backlash_mm + extra} if extra else {}
+    from wheelstep_cli.parts.gear_laws import design_backlash
+
+    if not extra:
+        return {}
+    if spec.backlash is None and spec.teeth == "generated":
+        # the default is the most backlash the ripple bound allows: the printer's tooth
+        # clearance is taken out of it (at least all of the clearance), not added on top
+        return {"backlash": max(design_backlash(spec), extra)}
+    return {"backlash": spec.backlash_mm + extra}
 
 
 def _sectors(spec) -> None:

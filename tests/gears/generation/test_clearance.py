@@ -5,6 +5,7 @@ import json
 import numpy as np
 import pytest
 
+from tests.helpers.clicheck import error_line
 from wheelstep_cli.gears.generation.wheel import deepened_spaces
 
 
@@ -49,13 +50,20 @@ def test_clearance_out_of_bounds_is_refused(cli, tmp_path):
 
 def test_module_solves_the_centre_distance_and_changes_the_teeth(cli, tmp_path):
     # SPEC §9: the pitch-curve perimeter grows with the distance; a module picks the distance
-    result = cli("gears", "--module", "2.5", "--format", "stl", "--out", tmp_path)
+    # at z = 48 the module's pair meshes outside the bounds: refused with more teeth as the
+    # remedy, which is applied as given
+    refused = cli("gears", "--module", "2.5", "--format", "stl", "--out", tmp_path)
+    remedy = error_line(refused).rsplit("; use ", 1)[1].split()
+    assert remedy[0] == "--z"
+    result = cli("gears", "--module", "2.5", *remedy, "--format", "stl", "--out", tmp_path)
     assert result.exit_code == 0, result.stderr
     report = json.loads((tmp_path / "gears.json").read_text())
     gen, meshing = report["generated"], report["meshing"]
     assert gen["module_mm"] == pytest.approx(2.5, rel=1e-6)
     # the default's 144 mm carries module 2.1082: the distance scales with the module
-    assert gen["rolling_center_distance_mm"] == pytest.approx(144.0 * 2.5 / 2.1082, rel=1e-3)
+    # (and with the number of teeth: the perimeter is z x the pitch)
+    z = int(remedy[1])
+    assert gen["rolling_center_distance_mm"] == pytest.approx(144.0 * 2.5 / 2.1082 * z / 48, rel=1e-3)
     assert gen["center_distance_chosen_by"].startswith("the module")
     assert meshing["distance_mm"] == pytest.approx(gen["rolling_center_distance_mm"])
     assert meshing["interference"] is False

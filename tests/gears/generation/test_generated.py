@@ -92,7 +92,7 @@ def test_pointed_teeth_are_refused():
 def test_cli_reports_undercut_and_pointed_in_one_line(cli, tmp_path):
     for args, words in ((["--pressure-angle", "10"], "undercut"),
                         (["--pressure-angle", "30", "--addendum", "1.25", "--dedendum", "1.5",
-                          "--fillet", "0.1"], "come to a point")):
+                          "--fillet", "0.1", "--backlash", "0.5"], "come to a point")):
         out = tmp_path / "x"
         result = cli("gears", *args, "--out", out)
         assert words in error_line(result), result.stderr
@@ -164,9 +164,10 @@ def test_default_pair_meshes_without_interference_within_its_backlash_band(cli, 
     report = json.loads((tmp_path / "gears.json").read_text())
     meshing, generated = report["meshing"], report["generated"]
     assert meshing["interference"] is False and not meshing["contact_lost"]
-    # constant angular play worth j_n = 0.5 mm at the mean wheel pitch radius: the normal
-    # backlash scales with the wheel pitch radius (79.8..102 mm over 92.6), plus 2 x 0.006 mm
-    assert 0.5 * 79.0 / 92.6 < meshing["backlash_min_mm"] and meshing["backlash_max_mm"] < 0.5 * 103.0 / 92.6 + 0.03
+    # constant angular play worth j_n (the default, 0.239 mm) at the mean wheel pitch radius: the
+    # normal backlash scales with the wheel pitch radius (79.8..102 mm over 92.6), plus 2 x 0.006 mm
+    j = report["parameters"]["backlash"]
+    assert j * 79.0 / 92.6 < meshing["backlash_min_mm"] and meshing["backlash_max_mm"] < j * 103.0 / 92.6 + 0.03
     # SPEC §10 figures, both flanks within the bounds of issue 13
     for side in ("drive", "coast"):
         assert meshing[side]["F_i_total_um"] <= 15.0 and meshing[side]["f_i_tooth_um"] <= 10.0

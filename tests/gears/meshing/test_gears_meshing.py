@@ -92,8 +92,11 @@ def test_mesh_check_bad_input_one_line_exit_2(paper_pair, cli, tmp_path, args, p
 
 
 def test_blend_10_is_checked_against_the_blended_law_and_written(cli, tmp_path):
-    # the pair is cut for the blended law: checked against it, it meshes (issue 13)
-    result = cli("gears", "--blend", "10", "--format", "stl", "--out", tmp_path)
+    # the pair is cut for the blended law: checked against it, it meshes (issue 13); at z = 48
+    # its F'i/f'i break the bounds, so it is refused and written with the remedy's --z
+    refused = cli("gears", "--blend", "10", "--format", "stl", "--out", tmp_path)
+    remedy = error_line(refused).rsplit("; use ", 1)[1].split()
+    result = cli("gears", "--blend", "10", *remedy, "--format", "stl", "--out", tmp_path)
     assert result.exit_code == 0, result.stderr
     report = json.loads((tmp_path / "gears.json").read_text())
     meshing = report["meshing"]

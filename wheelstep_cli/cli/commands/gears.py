@@ -195,6 +195,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
     from wheelstep_cli.parts.tolerance_cli import band_pair
 
@@ -208,6 +209,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                    f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
                    "(--allow-interference writes them anyway)")
         raise typer.Exit(1)
+    require_within_bounds(pair, record)
     if tolerance is not None:
         record["tolerance"] = tolerance
     files = {**gear_pair_files(pair, out, fmt, record),

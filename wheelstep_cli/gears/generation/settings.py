@@ -31,11 +31,17 @@ class GenerationSettings:
     side (>= 0.5: the whole turn). A partial pivot leaves a ridge in the corner space, so the
     wheel tooth there takes over the drive before the previous tooth tip lets go."""
 
-    lead: float = 0.8
-    """Where the angular play goes (-1..1): 0 splits it (drive TE = -play), +-1 puts it all on
-    the coast side. Mostly on the coast side, the drive contact lags the law by little, so the
-    hub speed factor is not read at a lagged angle; short of 1 keeps some play on the drive
-    side as margin. Applied only to laws with handover corners."""
+    lead: float = 0.0
+    """Where the angular play goes (-1..1): 0 splits it evenly (drive TE = -play), +-1 puts it
+    all on the coast side. A flank carrying a wheel play delta reads the hub speed factor
+    delta off the law, and its hub speed steps by delta times the jump of f'/f at each
+    handover corner (``play``): with both flanks bounded alike, the even split keeps the
+    larger of their ripples least (default pair: drive/coast 0.47/1.96 % at 0.8, 1.23/1.21 %
+    at 0; benchmarks/results.md, issue 13)."""
+
+    backlash_ripple: float = 0.005
+    """Hub speed ripple (fraction) the play may cost each flank when no backlash is given: half
+    the 1 % bound, the other half left to the tooth form (0.3-0.7 % measured)."""
 
     tip_round: float = 0.1
     """Radius (x module) the pinion's tip corners are rounded to (tip relief; 0: sharp). A sharp

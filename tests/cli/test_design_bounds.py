@@ -1,0 +1,63 @@
+"""`wheelstep gears` writes a generated pair only within the bounds (issue 13), else refuses it
+with a remedy that, applied literally, passes."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from hypothesis import HealthCheck, given, seed, settings
+
+from tests.helpers.clicheck import error_line
+from tests.helpers.strategies import generated_gear_options
+from wheelstep_cli.parts.mesh_bounds import bound_violations
+
+
+def remedy_options(line: str) -> list[str]:
+    """The options after the refusal's final ``use``."""
+    return line.rsplit("; use ", 1)[1].split()
+
+
+# the desk demonstrator as it was (z 24, j_n 0.375 mm), and the source design with z = 32
+@pytest.mark.parametrize("design", [["--profile", "desk-demo", "--z", "24", "--backlash", "0.375"],
+                                    ["--z", "32"]])
+def test_refused_design_passes_with_its_remedy(cli, tmp_path, design):
+    out = tmp_path / "out"
+    line = error_line(cli("gears", *design, "--format", "stl", "--out", out))
+    assert line.startswith("wheelstep: error: --z = ") and "nothing written" in line
+    assert not out.exists() or not any(out.iterdir())
+    remedy = remedy_options(line)
+    assert remedy[0] == "--z"
+    result = cli("gears", *design, *remedy, "--format", "stl", "--out", out)
+    assert result.exit_code == 0, result.stderr
+    meshing = json.loads((out / "gears.json").read_text())["meshing"]
+    assert bound_violations(meshing) == []
+
+
+def test_default_pair_meets_the_bounds_on_both_flanks(cli, tmp_path):
+    result = cli("gears", "--format", "stl", "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((tmp_path / "gears.json").read_text())
+    assert bound_violations(report["meshing"]) == []
+    assert 0.2 < report["parameters"]["backlash"] < 0.3      # the default the ripple bound allows
+
+
+def test_desk_demo_preset_is_written_within_the_bounds(cli, tmp_path):
+    result = cli("gears", "--profile", "desk-demo", "--format", "stl", "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    assert bound_violations(json.loads((tmp_path / "gears.json").read_text())["meshing"]) == []
+
+
+@seed(13)
+@settings(max_examples=3, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
+@given(options=generated_gear_options())
+def test_written_implies_within_bounds_refused_implies_one_line(cli, tmp_path_factory, options):
+    out = tmp_path_factory.mktemp("design")
+    result = cli("gears", *options, "--format", "stl", "--out", out)
+    if result.exit_code == 0:
+        assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
+    else:
+        line = error_line(result, result.exit_code)
+        assert result.exit_code in (1, 2) and line.startswith("wheelstep: ")
+        assert "; use --" in line or "--allow-interference" in line

@@ -1,0 +1,60 @@
+"""The bounds a written pair must mesh within, and the play's ripple model behind the remedies."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from wheelstep_cli.gears.generation.play import largest_play, play_angle, play_ripple
+from wheelstep_cli.gears.pitch_curves import pitch_curves
+from wheelstep_cli.parts.gear_pair import GearPairSpec, design_backlash, generation_law
+from wheelstep_cli.parts.mesh_bounds import bound_violations, teeth_remedy
+
+
+def flank(total=5.0, tooth=4.0, ripple=0.5):
+    return {"F_i_total_um": total, "f_i_tooth_um": tooth, "hub_speed_ripple_pct": ripple,
+            "te_min_arcmin": -10.0, "te_max_arcmin": -9.0}
+
+
+def record(drive=None, coast=None, **extra):
+    return {"interference": False, "interfering_poses": 0, "samples": 1536, "contact_lost": False,
+            "law_hub_speed_ripple_pct": 0.0, "drive": drive or flank(), "coast": coast or flank(), **extra}
+
+
+def test_within_bounds_on_both_flanks_has_no_violation():
+    assert bound_violations(record()) == []
+
+
+@pytest.mark.parametrize("side", ["drive", "coast"])
+def test_each_flank_and_figure_is_held_to_its_bound(side):
+    broken = bound_violations(record(**{side: flank(total=15.5, tooth=10.2, ripple=1.3)}))
+    assert len(broken) == 3 and all(text.startswith(f"{side} flank") for text in broken)
+    assert bound_violations(record(**{side: flank(total=None)})) == [f"{side} flank F'i not measured > 15 um"]
+
+
+def test_ripple_bound_is_on_what_the_teeth_add_to_the_laws_own():
+    assert bound_violations(record(drive=flank(ripple=9.8), coast=flank(ripple=9.9),
+                                   law_hub_speed_ripple_pct=9.2)) == []
+    assert len(bound_violations(record(drive=flank(ripple=10.4), law_hub_speed_ripple_pct=9.2))) == 1
+
+
+def test_teeth_remedy_scales_z_by_the_worst_ratio_in_whole_periods():
+    assert teeth_remedy(record(drive=flank(total=30.0, tooth=12.0)), 24, 2) == 48
+    assert teeth_remedy(record(), 48, 2) == 48
+
+
+def test_a_constant_play_costs_hub_speed_ripple_at_the_handover_corners():
+    spec = GearPairSpec()
+    _, law = generation_law(spec)
+    assert play_ripple(law, 0.0) < 0.002                  # the law alone is (nearly) flat
+    curves = pitch_curves(law, spec.install_distance)
+    quarter, half = (play_ripple(law, play_angle(j, curves.wheel, np.radians(20.0))) for j in (0.25, 0.5))
+    assert 0.004 < quarter < half < 0.012                 # grows with the play, about linearly
+    limit = largest_play(law, 0.005)
+    assert play_ripple(law, limit) == pytest.approx(0.005, abs=1e-4)
+
+
+def test_default_backlash_of_generated_teeth_keeps_half_the_ripple_bound_for_the_teeth():
+    assert 0.2 < design_backlash(GearPairSpec()) < 0.3
+    assert design_backlash(GearPairSpec(backlash=0.4)) == 0.4
+    assert design_backlash(GearPairSpec(teeth="paper")) == 0.5
