@@ -14,6 +14,7 @@ PAPER = """\
     printer: fdm-0.4-pla
     overrides:
       teeth: paper
+      z: 24
 """
 
 

@@ -24,7 +24,7 @@ def pair(tmp_path_factory):
     from wheelstep_cli.cli import run
 
     out = tmp_path_factory.mktemp("pair")
-    assert run(["gears", "--z", "24", "--format", "stl", "--out", str(out)]) == 0
+    assert run(["gears", "--profile", "desk-demo", "--format", "stl", "--out", str(out)]) == 0
     return out
 
 

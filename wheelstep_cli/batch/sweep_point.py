@@ -121,4 +121,16 @@ def _figures(point: Point) -> dict:
         out[f"{side}_ripple_pct"] = flank["hub_speed_ripple_pct"]
     out.update(backlash_min_mm=record["backlash_min_mm"], backlash_max_mm=record["backlash_max_mm"],
                max_penetration_mm=record["max_penetration_mm"], interference=bool(record["interference"]))
-    return out
+    return {**out, **_bounds_refusal(built, record)}
+
+
+def _bounds_refusal(pair, record: dict) -> dict:
+    """The refusal `gears` gives a pair meshing outside the SPEC §10 bounds (its figures are
+    kept in the row), or nothing."""
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+
+    try:
+        require_within_bounds(pair, record)
+    except DesignError as err:
+        return {"outcome": "refused", "reason": yaml_message(err)}
+    return {}

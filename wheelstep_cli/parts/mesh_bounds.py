@@ -102,7 +102,6 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
     Interference is refused elsewhere."""
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.gear_laws import design_backlash
-    from wheelstep_cli.parts.gear_laws import design_backlash
 
     broken = [text for text in bound_violations(record, bounds) if "interfere" not in text]
     if not broken or pair.generated is None:
