@@ -107,12 +107,12 @@ class Output:
         for folder, group in groups.items():
             for path, data in group.items():
                 check_collisions(folder, {path: data}, records[folder], force, param=options.get(path, "out"))
-        if dry_run or not files:
-            return []
         recorded = {folder / f".wheelstep-{command}.json":
                     merged_record_bytes(f"wheelstep {command}", folder, group, records[folder])
                     for folder, group in groups.items()}
-        return [p for p in self.write({**files, **recorded}, dry_run) if p not in recorded]
+        if dry_run or not files:
+            return [*files, *recorded]
+        return self.write({**files, **recorded}, dry_run)
 
     def files(self, paths: Iterable[Path], dry_run: bool, joined: bool = False) -> None:
         """Say which files were written (or would be, with ``dry_run``): one line each, or

@@ -63,10 +63,10 @@ def linkage(
     show.parameters(vars(request))
     study = ls.linkage_study(request)
     files = linkage_files(study, csv, plot, gif, gif_frames)
-    show.write_named("linkage", files, dry_run, force, csv=csv, plot=plot, gif=gif)
+    named = show.write_named("linkage", files, dry_run, force, csv=csv, plot=plot, gif=gif)
     report = ls.linkage_report(study)
     show.report(report, lambda: _lines(report))
-    show.files(files, dry_run)
+    show.files(named, dry_run)
 
 
 def _lines(report: dict) -> list[str]:

@@ -80,9 +80,9 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     report, summary = with_progress(not quiet, "meshing check", run_written_pair_check, check,
                                     outlines)
     files = written_pair_files(check, report)
-    show.write_named("mesh-check", files, dry_run, force, plot=plot)
+    named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report(summary, lambda: _lines(summary, spec.install_distance, samples))
-    show.files(files, dry_run)
+    show.files(named, dry_run)
     return report.interferes or report.contact_lost
 
 
@@ -108,10 +108,10 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
         failed = failed or report.interferes or report.contact_lost
         files.update(written_pair_files(WrittenPairCheck(*summary_files(summary), found.spec, samples,
                                                          window, plot), report))
-    show.write_named("mesh-check", files, dry_run, force, plot=plot)
+    named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report({"pairs": summaries}, lambda: [line for s in summaries
                                                for line in _lines(s, s["distance_mm"], samples)])
-    show.files(files, dry_run)
+    show.files(named, dry_run)
     return failed
 
 

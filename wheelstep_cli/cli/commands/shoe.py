@@ -101,10 +101,10 @@ def kinematics(
                      "turns": turns})
     kin = hub_speed_study(design, turns, motor_rpm, points)
     files = kinematics_files(design, kin, plot)
-    show.write_named("kinematics", files, dry_run, force, plot=plot)
+    named = show.write_named("kinematics", files, dry_run, force, plot=plot)
     report = kinematics_report(design, kin, motor_rpm)
     show.report(report, lambda: _kinematics_lines(report, rows))
-    show.files(files, dry_run)
+    show.files(named, dry_run)
 
 
 def _kinematics_lines(report: dict, rows: int) -> list[str]:

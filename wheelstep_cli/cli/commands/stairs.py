@@ -58,10 +58,10 @@ def stairs(
     study = sr.stair_study(request)
     show.parameters(vars(study.design))
     files = stairs_files(study, plot)
-    show.write_named("stairs", files, dry_run, force, plot=plot)
+    named = show.write_named("stairs", files, dry_run, force, plot=plot)
     report = sr.stair_report(study)
     show.report(report, lambda: _study_lines(study, report))
-    show.files(files, dry_run)
+    show.files(named, dry_run)
     return 1 if study.check is not None and not study.check.climbs else 0
 
 

@@ -51,9 +51,9 @@ def trajectory(
     show.parameters({"r1": study.path.r1, "r2": study.path.r2, "r3": study.path.r3,
                      "h_max": study.path.h_max, "spacing": spacing})
     files = trajectory_files(study, csv, dxf, dxf_polyline, plot)
-    show.write_named("trajectory", files, dry_run, force, csv=csv, dxf=dxf, plot=plot)
+    named = show.write_named("trajectory", files, dry_run, force, csv=csv, dxf=dxf, plot=plot)
     show.report(trajectory_report(study), lambda: _lines(study))
-    show.files(files, dry_run)
+    show.files(named, dry_run)
 
 
 def _lines(study) -> list[str]:
