@@ -104,6 +104,7 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_pa
     (["--thickness", "0"], "thickness ="),
     (["--install-distance", "140"], "install-distance ="),
     (["--turns", "3"], "turns ="),
+    (["--backlash", "5"], "--backlash = 5:"),      # pointed teeth: the rule named for the backlash
     (["--profile", "no-such-design"], "profile ="),
 ])
 def test_bad_input_one_line_exit_2_nothing_written(cli, tmp_path, args, param):

@@ -6,6 +6,7 @@ import json
 import numpy as np
 import pytest
 
+from tests.helpers.clicheck import error_line
 from wheelstep_cli.formats.mesh_read import read_3mf_objects
 
 
@@ -95,3 +96,23 @@ def test_full_scale_pair_goes_on_two_plates_and_checks_as_a_pair(cli, tmp_path):
     (measured,) = json.loads(check.stdout)["pairs"]
     assert measured["interference"] == stored["interference"]
     assert measured["backlash_max_mm"] == pytest.approx(stored["backlash_max_mm"], rel=0.01)
+
+
+def test_the_same_mesh_twice_is_refused_before_any_work(desk_pair, cli, tmp_path):
+    wheel = desk_pair / "wheel.stl"
+    copy = tmp_path / "copy.stl"
+    copy.write_bytes(wheel.read_bytes())
+    for pinion in (wheel, copy):
+        result = cli("mesh-check", pinion, wheel, "--profile", "desk-demo", "--samples", "64")
+        line = error_line(result)
+        assert line.startswith(f"wheelstep: error: wheel = {wheel}: is the same mesh as the pinion"), line
+
+
+def test_a_plot_over_a_users_file_is_refused_unless_forced(desk_pair, cli, tmp_path):
+    mine = tmp_path / "mine.png"
+    mine.write_bytes(b"the user's picture")
+    args = ["mesh-check", desk_pair / "gears.3mf", "--samples", "64", "--plot", mine]
+    assert "--plot = " in error_line(cli(*args))
+    assert mine.read_bytes() == b"the user's picture"
+    assert cli(*args, "--force").exit_code == 0
+    assert mine.read_bytes().startswith(b"\x89PNG")

@@ -8,6 +8,8 @@ import json
 import os
 import stat
 
+import pytest
+
 from tests.helpers.clicheck import error_line
 from tests.helpers.files import write
 
@@ -94,3 +96,21 @@ def test_batch_dry_run_refuses_what_the_run_would_refuse(cli, tmp_path):
     line = error_line(cli("batch", batch, "--out", out, "--jobs", "1", "--dry-run", "-q"))
     assert "plate-1.png: exists and was not written by this command" in line
     assert listing(out) == {"plate-1.png": b"my picture"}
+
+
+@pytest.mark.parametrize("command, option, name", [
+    ("kinematics", "--plot", "k.png"), ("stairs", "--plot", "s.png"), ("linkage", "--csv", "l.csv"),
+    ("linkage", "--gif", "l.gif"), ("trajectory", "--csv", "t.csv"), ("trajectory", "--dxf", "t.dxf"),
+    ("trajectory", "--plot", "t.png")])
+def test_mechanism_outputs_keep_a_users_file_of_the_same_name(cli, tmp_path, command, option, name):
+    mine, fresh = tmp_path / name, tmp_path / "fresh.png"
+    mine.write_bytes(b"the user's file")
+    extra = [] if command == "stairs" or option == "--plot" else ["--plot", fresh]
+    line = error_line(cli(command, option, mine, *extra))
+    assert line.startswith(f"wheelstep: error: {option} = {mine}: exists and was not written"), line
+    assert listing(tmp_path) == {name: b"the user's file"}          # all or nothing
+    assert cli(command, option, mine, *extra, "-q", "--force").exit_code == 0
+    assert mine.read_bytes() != b"the user's file"
+    again = listing(tmp_path)
+    assert cli(command, option, mine, *extra, "-q").exit_code == 0   # its own file: replaced
+    assert listing(tmp_path) == again                                  # byte-identical rerun

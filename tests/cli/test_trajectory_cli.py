@@ -45,3 +45,13 @@ def test_cli_bad_input_one_line_exit_2(cli, tmp_path):
     assert error_line(res).startswith("wheelstep: error: --h-max = 40") and not out.exists()
     res = cli("trajectory", "--r3", "400", "--h-max", "100")
     assert res.exit_code == 2 and "either --r3 or --h-max" in res.stderr
+
+
+def test_dxf_run_prints_no_library_log_line(tmp_path):
+    import subprocess
+    import sys
+
+    run = subprocess.run([sys.executable, "-m", "wheelstep_cli", "trajectory", "--dxf", "p.dxf", "-q"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert run.stderr == "" and (tmp_path / "p.dxf").is_file()

@@ -25,6 +25,15 @@ OPTIONS = {
     "mesh-check": ["--distance", "--samples", "--window"],
 }
 SLOW = {"gears", "shoe"}      # a successful run writes meshes: seconds, not milliseconds
+#: command -> its options that write a file beside the meshes (a plot, a table)
+WRITERS = {"kinematics": ["--plot"], "stairs": ["--plot"], "linkage": ["--csv", "--plot"],
+           "trajectory": ["--csv", "--plot"], "mesh-check": ["--plot"]}
+#: hostile side files: a design profile (--profile) and a law table (--law-csv)
+PROFILE_TEXTS = [b"\xff\xfe not utf-8", b"gears: {z: '48'}\n", b"mechanism: {c: text}\n",
+                 b"gears: {thickness: {a: 1}}\n", b"<<: {a: 1}\n", b"p: &p [*p]\n", b"[1, 2", b""]
+CSV_TEXTS = [b"\xff\xfe\x00", b"", b"phi,psi\n0,nan\n1,inf\n", b"a,b\nx,y\n", b"0,0\n0,0\n",
+             b"0,1e308\n1,1e308\n"]
+OUT_SETUPS = ["none", "user-file", "file-as-folder", "read-only"]
 
 BATCH_TEXTS = [
     "parts: &p [*p]\n",
@@ -54,7 +63,7 @@ class Invocation:
 
     args: list[str]
     files: dict[str, bytes] = field(default_factory=dict)
-    out_setup: str = "none"      # "none", "user-file", "file-as-folder", "manifest-claim"
+    out_setup: str = "none"      # OUT_SETUPS or "manifest-claim" (the ``out`` folder's state)
 
 
 def _value(rng: random.Random) -> str:
@@ -68,24 +77,41 @@ def _command_case(rng: random.Random, allow_slow: bool) -> Invocation:
     for option in rng.sample(OPTIONS[command], k=min(len(OPTIONS[command]), rng.randint(1, 3))):
         args += [option, _value(rng)]
     if command == "mesh-check":
-        mesh = rng.choice(list(MESH_TEXTS))
-        return Invocation(args[:1] + [mesh, mesh] + args[1:], {mesh: MESH_TEXTS[mesh]})
+        meshes = [rng.choice(list(MESH_TEXTS)) for _ in range(2)]
+        inv = Invocation(args[:1] + meshes + args[1:], {m: MESH_TEXTS[m] for m in meshes})
+        _side_files(rng, command, inv)
+        return inv
     if rng.random() < 0.15:
         args.append(rng.choice(["--no-such-option", "--json", "--dry-run", "-q", "--profile"]))
     if rng.random() < 0.3:
         args.append("--json")
     inv = Invocation(args)
     if command in SLOW and rng.random() < 0.5:
-        inv.out_setup = rng.choice(["user-file", "file-as-folder"])
+        inv.out_setup = rng.choice(OUT_SETUPS[1:])
         inv.args += ["--out", "out"]
+    _side_files(rng, command, inv)
     return inv
+
+
+def _side_files(rng: random.Random, command: str, inv: Invocation) -> None:
+    """Sometimes a hostile profile or law table, and an output file in a prepared ``out``."""
+    if rng.random() < 0.15 and command in {"gears", "shoe", "pitch", "kinematics", "mesh-check"}:
+        inv.files["p.yaml"] = rng.choice(PROFILE_TEXTS)
+        inv.args += ["--profile", "p.yaml"]
+    if rng.random() < 0.15 and command in {"gears", "mesh-check"}:
+        inv.files["law.csv"] = rng.choice(CSV_TEXTS)
+        inv.args += ["--law-csv", rng.choice(["law.csv", "missing.csv"])]
+    if command in WRITERS and rng.random() < 0.3:
+        option = rng.choice(WRITERS[command])
+        inv.out_setup = rng.choice(OUT_SETUPS)
+        inv.args += [option, "out/" + ("k.png" if option == "--plot" else "k.csv")]
 
 
 def _batch_case(rng: random.Random) -> Invocation:
     text = rng.choice(BATCH_TEXTS)
     data = text.encode("latin-1") if text.startswith("\xff") else text.encode()
     inv = Invocation(["batch", "b.yaml", "--out", "out"], {"b.yaml": data})
-    inv.out_setup = rng.choice(["none", "manifest-claim", "user-file"])
+    inv.out_setup = rng.choice(["none", "manifest-claim", "user-file", "file-as-folder", "read-only"])
     return inv
 
 
@@ -93,7 +119,10 @@ def invocations(seed: int, count: int, slow_share: float = 0.1):
     """``count`` seeded invocations; ``slow_share`` of them may be slow successful part runs."""
     rng = random.Random(seed)
     for _ in range(count):
-        if rng.random() < 0.2:
+        draw = rng.random()
+        if draw < 0.03:
+            yield Invocation(rng.choice([["--help"], [rng.choice(list(OPTIONS)), "--help"]]))
+        elif draw < 0.2:
             yield _batch_case(rng)
         else:
             yield _command_case(rng, allow_slow=rng.random() < slow_share)

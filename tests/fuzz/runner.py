@@ -33,8 +33,12 @@ def _setup(folder: Path, inv: Invocation) -> None:
         (out / "notes.txt").write_bytes(USER_TEXT)
     elif inv.out_setup == "file-as-folder":
         out.mkdir()
-        (out / "gears.json").mkdir()
-        (out / "shoe.json").mkdir()
+        for name in ("gears.json", "shoe.json", "manifest.json", "k.png", "k.csv"):
+            (out / name).mkdir()
+    elif inv.out_setup == "read-only":
+        out.mkdir()
+        (out / "notes.txt").write_bytes(USER_TEXT)
+        out.chmod(0o555)
     elif inv.out_setup == "manifest-claim":
         out.mkdir()
         (out / "notes.txt").write_bytes(USER_TEXT)
@@ -59,6 +63,9 @@ def check(inv: Invocation) -> list[str]:
                                  preexec_fn=_limit_memory, stdin=subprocess.DEVNULL)
         except subprocess.TimeoutExpired:
             return [f"timeout after {TIMEOUT:g} s"]
+        finally:
+            if (folder / "out").is_dir():
+                (folder / "out").chmod(0o755)
         return _findings(inv, run, folder, before)
 
 
@@ -79,14 +86,14 @@ def _findings(inv: Invocation, run, folder: Path, before: dict[str, str]) -> lis
         if not lines or not all(line.startswith("wheelstep: error") for line in lines):
             found.append("refusal is not 'wheelstep: error' lines: " + run.stderr.strip()[:200])
         if set(after) != set(before):
-            found.append("refused but wrote " + ", ".join(sorted(set(after) - set(before))))
+            found.append("refused but wrote: " + ", ".join(sorted(set(after) - set(before))))
     if run.returncode == 0 and "--json" in inv.args:
         try:
             json.loads(run.stdout, parse_constant=_no_constant)
         except ValueError as err:
             found.append(f"--json output is not valid JSON ({err})")
     for name in sorted(set(after) - set(before)):
-        if name.endswith(".stl"):
+        if name.endswith(".stl") and run.returncode == 0:
             found.extend(_mesh_findings(folder / name))
     return found
 

@@ -78,6 +78,12 @@ def _as_typed(param: str, options: dict[str, list[str]], argv: list[str]) -> str
     return (used or [o for o in opts if o == flag_name(param)] or opts)[0]
 
 
+def _given(options: dict[str, list[str]], argv: list[str]) -> list[str]:
+    """Names of the parameters whose flags appear in ``argv``."""
+    typed = {arg.split("=", 1)[0] for arg in argv if arg.startswith("-")}
+    return [name for name, opts in options.items() if typed.intersection(opts)]
+
+
 def error_text(err: DesignError, options: dict[str, list[str]], argv: list[str]) -> str:
     """One line: the parameter as the user wrote it, the value and the limit."""
     return f"{_as_typed(err.param, options, argv)} = {err.shown_value}: {err.limit}"
@@ -98,7 +104,9 @@ def run(argv: list[str] | None = None) -> int:
             typer.echo(f"wheelstep: error: {line}", err=True)
         return 2
     except DesignError as err:
-        typer.echo(f"wheelstep: error: {error_text(err, _command_options(command, args), args)}", err=True)
+        options = _command_options(command, args)
+        err = err.for_given(_given(options, args))
+        typer.echo(f"wheelstep: error: {error_text(err, options, args)}", err=True)
         return 2
     except click_errors.NoArgsIsHelpError as err:
         typer.echo(err.format_message(), err=True)

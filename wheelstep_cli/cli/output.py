@@ -90,6 +90,30 @@ class Output:
             self.detail(f"  removed {path} (written by an earlier run)")
         return written
 
+    def write_named(self, command: str, files: Mapping[Path, bytes], dry_run: bool,
+                    force: bool, **named: Path | None) -> list[Path]:
+        """Write files the user named (``named``: option -> path, e.g. plot=...) as ``command``'s
+        outputs: a file of the same name that this command did not write (per the record
+        ``.wheelstep-COMMAND.json`` in its folder) is refused naming its option unless
+        ``force``, every path checked before any is written; each folder's record is updated
+        with them and nothing else is removed."""
+        from wheelstep_cli.formats.owned import check_collisions, merged_record_bytes, read_record
+
+        groups: dict[Path, dict[Path, bytes]] = {}
+        for path, data in files.items():
+            groups.setdefault(Path(path).parent, {})[Path(path)] = data
+        records = {folder: read_record(folder / f".wheelstep-{command}.json") for folder in groups}
+        options = {Path(path): option for option, path in named.items() if path is not None}
+        for folder, group in groups.items():
+            for path, data in group.items():
+                check_collisions(folder, {path: data}, records[folder], force, param=options.get(path, "out"))
+        recorded = {folder / f".wheelstep-{command}.json":
+                    merged_record_bytes(f"wheelstep {command}", folder, group, records[folder])
+                    for folder, group in groups.items()}
+        if dry_run or not files:
+            return [*files, *recorded]
+        return self.write({**files, **recorded}, dry_run)
+
     def files(self, paths: Iterable[Path], dry_run: bool, joined: bool = False) -> None:
         """Say which files were written (or would be, with ``dry_run``): one line each, or
         one ``joined`` line. In table mode on stdout; with --json on stderr for a dry run."""

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import logging
 
 import numpy as np
 
@@ -17,7 +18,14 @@ def path_dxf_bytes(pieces, polyline: bool = False, layer: str = "FOOT_PATH") -> 
     fixed = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True
     try:
-        doc = ezdxf.new("R12", setup=False)
+        # ezdxf.new sets the drawing units and logs that R12 does not store them: mm is the
+        # documented unit of the file, and the log line is not for the person at the terminal
+        quiet = logging.getLogger("ezdxf")
+        level, quiet.level = quiet.level, logging.ERROR
+        try:
+            doc = ezdxf.new("R12", setup=False)
+        finally:
+            quiet.setLevel(level)
         doc.layers.add(layer)
         msp = doc.modelspace()
         attribs = {"layer": layer}

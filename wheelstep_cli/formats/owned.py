@@ -52,8 +52,8 @@ def record_bytes(tool: str, folder: Path, files: Mapping[Path, bytes]) -> bytes:
 
 
 def check_collisions(folder: Path, files: Mapping[Path, bytes], record: Mapping[str, str],
-                     force: bool, own: tuple[str, ...] = ()) -> None:
-    """Refuse (DesignError naming ``out``) to overwrite a file in ``folder`` that the record
+                     force: bool, own: tuple[str, ...] = (), param: str = "out") -> None:
+    """Refuse (DesignError naming ``param``) to overwrite a file in ``folder`` that the record
     does not list with its present content; ``own`` names files that are ours by name."""
     if force:
         return
@@ -63,7 +63,7 @@ def check_collisions(folder: Path, files: Mapping[Path, bytes], record: Mapping[
             continue
         if record.get(name) != sha256_of(path):
             why = "changed since this command wrote it" if name in record else "not written by this command"
-            raise DesignError("out", str(path), f"exists and was {why}: it is kept; move it away or "
+            raise DesignError(param, str(path), f"exists and was {why}: it is kept; move it away or "
                               "give --force to overwrite it")
 
 
@@ -73,3 +73,15 @@ def stale_files(folder: Path, files: Mapping[Path, bytes], record: Mapping[str, 
     new = {Path(p).relative_to(folder).as_posix() for p in files}
     return [folder / name for name, sha in sorted(record.items())
             if name not in new and sha256_of(folder / name) == sha]
+
+
+def merged_record_bytes(tool: str, folder: Path, files: Mapping[Path, bytes],
+                        record: Mapping[str, str]) -> bytes:
+    """The record of ``files`` (inside ``folder``) written by ``tool``, keeping the entries of
+    ``record`` (an earlier run's) for the names this run does not write."""
+    from wheelstep_cli.formats.jsonio import json_bytes
+
+    listed = dict(record)
+    listed.update({Path(p).relative_to(folder).as_posix(): hashlib.sha256(data).hexdigest()
+                   for p, data in files.items()})
+    return json_bytes({"tool": tool, "files": dict(sorted(listed.items()))})

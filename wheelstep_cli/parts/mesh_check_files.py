@@ -14,6 +14,8 @@ from wheelstep_cli.gears.meshing import MeshingReport
 from wheelstep_cli.parts.gear_pair import GearPairSpec, design_law, generation_law, law_record
 
 
+MAX_SAMPLES = 20000     # poses over one period: 13 x the default 1536
+
 @dataclass(frozen=True)
 class WrittenPairCheck:
     """What to check: two mesh specs (``FILE.stl``, ``FILE.3mf[:NAME]``), the design whose
@@ -30,7 +32,8 @@ class WrittenPairCheck:
         """Raise DesignError for a distance, pose count, window or plot name that cannot work."""
         dist = self.spec.install_distance
         require(dist > 0, "distance", dist, "must be > 0 mm")
-        require(self.samples >= 16, "samples", self.samples, "must be >= 16")
+        # each pose sections and intersects both outlines: the count bounds the run time
+        require(16 <= self.samples <= MAX_SAMPLES, "samples", self.samples, f"must be in [16, {MAX_SAMPLES}]")
         require(self.window is None or self.window > 0, "window", self.window, "must be > 0 mm")
         if self.plot is not None:
             require(self.plot.suffix.lower() == ".png", "plot", str(self.plot), "must be a .png file")

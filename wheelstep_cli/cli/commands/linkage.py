@@ -6,7 +6,7 @@ from enum import Enum
 from pathlib import Path
 from typing import Annotated, List, Optional
 
-from wheelstep_cli.cli.options import (DryRun, Json, Quiet, Verbose, csv_option, opt, plot_option,
+from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, plot_option,
                                        point, signs)
 from wheelstep_cli.cli.output import Output
 
@@ -47,6 +47,7 @@ def linkage(
     gif: Annotated[Optional[Path], opt("--gif", help="Write an animation of one crank turn "
                                                      "(GIF).")] = None,
     gif_frames: Annotated[int, opt("--gif-frames", help="Frames of the GIF animation.")] = 48,
+    force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Foot path, stride, lift, duty factor, foot and body speed of a walking linkage (SPEC §7)."""
@@ -62,10 +63,10 @@ def linkage(
     show.parameters(vars(request))
     study = ls.linkage_study(request)
     files = linkage_files(study, csv, plot, gif, gif_frames)
-    show.write(files, dry_run)
+    named = show.write_named("linkage", files, dry_run, force, csv=csv, plot=plot, gif=gif)
     report = ls.linkage_report(study)
     show.report(report, lambda: _lines(report))
-    show.files(files, dry_run)
+    show.files(named, dry_run)
 
 
 def _lines(report: dict) -> list[str]:

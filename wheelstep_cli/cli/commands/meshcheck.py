@@ -6,8 +6,8 @@ from typing import Annotated, Optional
 
 import typer
 
-from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Json, LawCsv, Profile,
-                                       Quiet, Tolerance, Turns, Verbose, opt, plot_option)
+from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Force, Json, LawCsv,
+                                       Profile, Quiet, Tolerance, Turns, Verbose, opt, plot_option)
 from wheelstep_cli.cli.output import Output
 
 Plot = plot_option("the transfer function, the position error of both flanks and hub speed")
@@ -34,6 +34,7 @@ def mesh_check(
                                                             "the line of centres, mm.",
                                            shown="0.25 x the smaller outer radius")] = None,
     plot: Plot = None, tolerance: Tolerance = False, printer: BandPrinter = None,
+    force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Section two gear meshes at mid-thickness and check them over one period of the law:
@@ -51,10 +52,10 @@ def mesh_check(
     if is_plate_input(pinion, wheel):
         _no_band_on_plates(tolerance, printer)
         failed = _check_plates(show, [pinion] + ([wheel] if wheel else []), pair, design, samples,
-                               window, plot, dry_run, quiet)
+                               window, plot, dry_run, quiet, force)
     else:
         failed = _check_meshes(show, pinion, wheel, pair, design, samples, window, plot, dry_run, quiet,
-                               band)
+                               force, band)
     if failed:
         raise typer.Exit(1)
 
@@ -68,7 +69,8 @@ def _no_band_on_plates(tolerance: bool, printer) -> None:
 
 
 def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, samples: int, window,
-                  plot, dry_run: bool, quiet: bool, band: tuple = (False, None)) -> bool:
+                  plot, dry_run: bool, quiet: bool, force: bool,
+                  band: tuple = (False, None)) -> bool:
     """Two meshes named on the command line, the design from the options; with
     ``band`` = (--tolerance, --printer) also over the printer's band (SPEC §11)."""
     from wheelstep_cli.cli.progress import with_progress
@@ -79,6 +81,9 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
 
     if pair is not None:
         raise DesignError("pair", pair, "picks a pair on plates; give one or two 3MF plates")
+    if _same_mesh(pinion, wheel):
+        raise DesignError("wheel", wheel, f"is the same mesh as the pinion ({pinion}): give the "
+                                          "pinion and the wheel of one pair")
     law_csv = design["law_csv"]
     spec = gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
                           turns=design["turns"], center_distance=design["center_distance"],
@@ -95,9 +100,9 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
 
         summary["tolerance"] = outline_band(outlines, check, report, chosen)
     files = written_pair_files(check, report)
-    show.write(files, dry_run)
+    named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report(summary, lambda: _lines(summary, spec.install_distance, samples))
-    show.files(files, dry_run)
+    show.files(named, dry_run)
     return report.interferes or report.contact_lost
 
 
@@ -117,7 +122,7 @@ def _band_printer(tolerance: bool, printer):
 
 
 def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: int, window, plot,
-                  dry_run: bool, quiet: bool) -> bool:
+                  dry_run: bool, quiet: bool, force: bool) -> bool:
     """Every gear pair of the plates (or the one --pair names), designs from their metadata."""
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.errors import DesignError, require
@@ -138,11 +143,36 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
         failed = failed or report.interferes or report.contact_lost
         files.update(written_pair_files(WrittenPairCheck(*summary_files(summary), found.spec, samples,
                                                          window, plot), report))
-    show.write(files, dry_run)
+    named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report({"pairs": summaries}, lambda: [line for s in summaries
                                                for line in _lines(s, s["distance_mm"], samples)])
-    show.files(files, dry_run)
+    show.files(named, dry_run)
     return failed
+
+
+def _same_mesh(pinion: str, wheel: str | None) -> bool:
+    """Whether the two mesh arguments name one mesh: the same file (or object of a 3MF), or
+    two files of identical content. Checking a part against itself cannot give a meshing
+    figure, and its sections overlap everywhere: refused before any work."""
+    from pathlib import Path
+
+    if wheel is None:
+        return False
+    (p_file, p_obj), (w_file, w_obj) = (_split(pinion), _split(wheel))
+    if p_obj != w_obj:
+        return False
+    try:
+        sizes = (Path(p_file).stat().st_size, Path(w_file).stat().st_size)
+        return Path(p_file).resolve() == Path(w_file).resolve() or (
+            sizes[0] == sizes[1] and Path(p_file).read_bytes() == Path(w_file).read_bytes())
+    except OSError:
+        return False        # a missing or unreadable file is refused where it is read
+
+
+def _split(given: str) -> tuple[str, str]:
+    """FILE.3mf:NAME -> (FILE.3mf, NAME); any other argument -> (it, "")."""
+    head, sep, tail = given.rpartition(":")
+    return (head, tail) if sep and head.lower().endswith(".3mf") else (given, "")
 
 
 def summary_files(summary: dict) -> tuple[str, str]:

@@ -84,7 +84,7 @@ def kinematics(
                                     help="Constant pinion (motor side) speed, rpm.")] = 60.0,
     points: Annotated[int, opt("--points", help="Samples over one shoe cycle.")] = 361,
     rows: Annotated[int, opt("--rows", help="Table rows printed.")] = 9,
-    plot: Plot = None, profile: Profile = None,
+    plot: Plot = None, profile: Profile = None, force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Hub speed over one shoe cycle with a constant-speed motor, without and with the
@@ -101,10 +101,10 @@ def kinematics(
                      "turns": turns})
     kin = hub_speed_study(design, turns, motor_rpm, points)
     files = kinematics_files(design, kin, plot)
-    show.write(files, dry_run)
+    named = show.write_named("kinematics", files, dry_run, force, plot=plot)
     report = kinematics_report(design, kin, motor_rpm)
     show.report(report, lambda: _kinematics_lines(report, rows))
-    show.files(files, dry_run)
+    show.files(named, dry_run)
 
 
 def _kinematics_lines(report: dict, rows: int) -> list[str]:

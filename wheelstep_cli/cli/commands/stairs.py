@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import DryRun, Json, Quiet, Verbose, number_list, opt, plot_option
+from wheelstep_cli.cli.options import DryRun, Force, Json, Quiet, Verbose, number_list, opt, plot_option
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.errors import DesignError, require
 
@@ -34,6 +34,7 @@ def stairs(
                                                                     "'start:stop:step'.",
                                               shown="40,70,100,150,192")] = None,
     plot: Plot = None,
+    force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> int:
     """Size crank b, strut Y1 and a = 2b for a stair, with climb and descent kinematics (SPEC §6).
@@ -57,10 +58,10 @@ def stairs(
     study = sr.stair_study(request)
     show.parameters(vars(study.design))
     files = stairs_files(study, plot)
-    show.write(files, dry_run)
+    named = show.write_named("stairs", files, dry_run, force, plot=plot)
     report = sr.stair_report(study)
     show.report(report, lambda: _study_lines(study, report))
-    show.files(files, dry_run)
+    show.files(named, dry_run)
     return 1 if study.check is not None and not study.check.climbs else 0
 
 

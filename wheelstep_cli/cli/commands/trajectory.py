@@ -6,7 +6,7 @@ from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (DryRun, Json, Quiet, Verbose, csv_option, opt, plot_option)
+from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, plot_option)
 from wheelstep_cli.cli.output import Output
 
 
@@ -39,6 +39,7 @@ def trajectory(
     dxf_polyline: Annotated[bool, opt("--dxf-polyline", help="DXF as one closed polyline with "
                                                              "arc bulges instead.")] = False,
     plot: Plot = None,
+    force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Compose a foot path: support segment AD and arcs r1, r2, r3 (or clearance h_max), SPEC §8."""
@@ -50,9 +51,9 @@ def trajectory(
     show.parameters({"r1": study.path.r1, "r2": study.path.r2, "r3": study.path.r3,
                      "h_max": study.path.h_max, "spacing": spacing})
     files = trajectory_files(study, csv, dxf, dxf_polyline, plot)
-    show.write(files, dry_run)
+    named = show.write_named("trajectory", files, dry_run, force, csv=csv, dxf=dxf, plot=plot)
     show.report(trajectory_report(study), lambda: _lines(study))
-    show.files(files, dry_run)
+    show.files(named, dry_run)
 
 
 def _lines(study) -> list[str]:

@@ -107,10 +107,14 @@ def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
     top = min(cutter.addendum * module + 0.15 * module, (pitch / 2.0 - half) / tan_a - 1e-3)
     if top <= cutter.addendum * module:
         land = 2.0 * (pitch / 2.0 - half - cutter.addendum * module * tan_a)
-        raise DesignError("addendum", cutter.addendum,
-                          f"the teeth come to a point (the rack's tooth spaces close below the tip "
-                          f"line, tip land {land:.3f} mm at module {module:.3f} mm); use a smaller "
-                          "addendum, a smaller pressure angle or more teeth (--z)")
+        why = (f"the teeth come to a point (the rack's tooth spaces close below the tip line, tip "
+               f"land {land:.3f} mm at module {module:.3f} mm)")
+        # the same rule solved for the backlash the user may have given instead of the addendum
+        most = 4.0 * cos_a * (pitch / 4.0 - tan_a * (cutter.addendum * module + 1e-3))
+        raise DesignError("addendum", cutter.addendum, f"{why}; use a smaller addendum, a smaller "
+                          "pressure angle or more teeth (--z)", alternatives={
+                              "backlash": (cutter.backlash, f"{why}; must be below {max(most, 0.0):.3f} mm"),
+                              "pressure_angle": (np.degrees(a), f"{why}; use a smaller pressure angle")})
     yc = -h_f + rho
     xc = half + (yc * sin_a - rho) / cos_a                 # right fillet centre
     require(xc >= 0.0, "fillet", cutter.fillet, "too large: the cutter tip has no flat land")

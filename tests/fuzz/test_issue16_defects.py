@@ -1,0 +1,54 @@
+"""Each defect the first stability fuzz found (issue 16), replayed: one line on stderr naming
+the parameter the user gave, exit 2, no traceback and nothing written."""
+
+from __future__ import annotations
+
+import pytest
+
+from tests.fuzz.cases import BATCH_TEXTS, MESH_TEXTS
+from tests.helpers.clicheck import error_line
+
+PNG = MESH_TEXTS["png.stl"]
+HUGE = MESH_TEXTS["huge.stl"]
+BATCH = {"merge": BATCH_TEXTS[1], "recursive": BATCH_TEXTS[0], "kind-list": BATCH_TEXTS[2],
+         "huge-z": BATCH_TEXTS[3], "long-name": BATCH_TEXTS[6], "bomb": BATCH_TEXTS[7]}
+
+CASES = [  # (args, files, text the line must hold)
+    (["gears", "--law-csv", "law.csv"], {"law.csv": b"\xff\xfe\x00phi"}, "--law-csv"),
+    (["gears", "--law-csv", "missing.csv"], {}, "--law-csv"),
+    (["gears", "--profile", "p.yaml"], {"p.yaml": b"\xff\xfe not utf-8"}, "p.yaml"),
+    (["gears", "--profile", "p.yaml"], {"p.yaml": b"gears: {z: '48'}\n"}, "z"),
+    (["shoe", "--profile", "p.yaml"], {"p.yaml": b"mechanism: {c: text}\n"}, "c"),
+    (["gears", "--profile", "p.yaml"], {"p.yaml": b"gears: {thickness: {a: 1}}\n"}, "thickness"),
+    (["stairs", "--sweep", "--sweep-angles", "0:inf:1"], {}, "--sweep-angles"),
+    (["linkage", "--beta", "nan"], {}, "--beta"),
+    (["linkage", "--beta", "inf"], {}, "--beta"),
+    (["linkage", "--l3", "1e300"], {}, "--l3"),
+    (["linkage", "--rpm", "inf"], {}, "--rpm"),
+    (["trajectory", "--r3", "1e308"], {}, "--r3"),
+    (["trajectory", "--y0", "nan"], {}, "--y0"),
+    (["shoe", "--rmin", "1e20"], {}, "--rmin"),
+    (["shoe", "--rmin", "1e-300"], {}, "--rmin"),
+    (["kinematics", "--motor-rpm", "5e-324"], {}, "--motor-rpm"),
+    (["kinematics", "--points", "1000000000"], {}, "--points"),
+    (["gears", "--z", "100000000"], {}, "--z"),
+    (["stairs", "--landing-angle", "nan", "--json"], {}, "--landing-angle"),
+    (["pitch", "--center-distance=1e308"], {}, "--center-distance"),
+    (["gears", "--backlash", "5"], {}, "--backlash"),
+    (["mesh-check", "h.stl", "p.stl", "--distance", "inf"], {"h.stl": HUGE, "p.stl": PNG}, "--distance"),
+    (["mesh-check", "h.stl", "p.stl", "--samples", "2147483648"], {"h.stl": HUGE, "p.stl": PNG},
+     "--samples"),
+    (["mesh-check", "h.stl", "h2.stl"], {"h.stl": HUGE, "h2.stl": HUGE.replace(b"1e30", b"2e30")}, "h"),
+    (["mesh-check", "p.stl", "h.stl"], {"p.stl": PNG, "h.stl": HUGE}, "p.stl"),
+    (["gears", "--out", "x" * 300], {}, "cannot write"),
+] + [(["batch", "b.yaml", "--out", "o"], {"b.yaml": text.encode()}, "b.yaml") for text in BATCH.values()]
+
+
+@pytest.mark.parametrize("args, files, named", CASES, ids=[" ".join(c[0])[:60] for c in CASES])
+def test_defect_is_one_line_naming_the_parameter(cli, tmp_path, monkeypatch, args, files, named):
+    monkeypatch.chdir(tmp_path)
+    for name, data in files.items():
+        (tmp_path / name).write_bytes(data)
+    line = error_line(cli(*args))
+    assert named in line and "Traceback" not in line and "No module" not in line, line
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(files)
