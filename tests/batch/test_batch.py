@@ -126,8 +126,11 @@ def test_printer_compensation_is_in_the_geometry_and_metadata(example):
     assert report["parameters"]["bore"] == 8
     assert report["printed_parameters"]["bore"] == pytest.approx(8.25)
     # the default backlash of generated teeth already holds the printer's tooth clearance
+    from wheelstep_cli.config.resolve import gear_pair_spec
+    from wheelstep_cli.parts.gear_laws import design_backlash
+
     assert report["printed_parameters"]["backlash"] == pytest.approx(
-        max(report["parameters"]["backlash"], 0.2))
+        max(design_backlash(gear_pair_spec("bntu-2024")), 0.2))
     shoes = json.loads((example / "reports" / "bntu-shoes.json").read_text())
     assert shoes["printed_parameters"]["strut_diameter"] == pytest.approx(12.25)
     manifest = json.loads((example / "manifest.json").read_text())

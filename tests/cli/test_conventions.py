@@ -31,8 +31,8 @@ def pair(tmp_path_factory):
 def report_args(command: str, folder: Path, pair: Path) -> list[str]:
     """Quick arguments printing ``command``'s report; files (if any) go below ``folder``."""
     if command == "mesh-check":
-        return [command, str(pair / "pinion.stl"), str(pair / "wheel.stl"), "--plot",
-                str(folder / "mesh.png")]
+        return [command, str(pair / "pinion.stl"), str(pair / "wheel.stl"), "--profile",
+                "desk-demo", "--plot", str(folder / "mesh.png")]
     if command == "batch":
         batch = folder.parent / f"{folder.name}-shoe.yaml"
         batch.write_text(SHOE_BATCH)
@@ -41,7 +41,7 @@ def report_args(command: str, folder: Path, pair: Path) -> list[str]:
         sweep = folder.parent / f"{folder.name}-sweep.yaml"
         sweep.write_text(SHOE_SWEEP)
         return [command, str(sweep), "--out", str(folder / "sweep"), "--workers", "1"]
-    files = {"gears": ["--z", "24", "--format", "stl", "--out", str(folder / "gears")],
+    files = {"gears": ["--profile", "desk-demo", "--format", "stl", "--out", str(folder / "gears")],
              "shoe": ["--out", str(folder / "shoe")],
              "kinematics": ["--plot", str(folder / "k.png")],
              "stairs": ["--plot", str(folder / "s.png")],
