@@ -39,6 +39,9 @@ def test_installed_wheel_ships_the_presets_and_runs_them(tmp_path):
     wheelstep = env / "bin" / "wheelstep"
     _run([wheelstep, "gears", "--profile", "desk-demo", "--out", "gears"], work)
     report = json.loads((work / "gears" / "gears.json").read_text())
-    assert report["parameters"]["z"] == 24
+    import yaml
+
+    preset = yaml.safe_load((ROOT / "profiles" / "desk-demo.yaml").read_text())
+    assert report["parameters"]["z"] == preset["gears"]["z"]   # the installed preset was read
     _run([wheelstep, "batch", ROOT / "examples" / "shop-floor.yaml", "--out", "shop"], work)
     assert (work / "shop" / "manifest.json").is_file() and list((work / "shop").glob("plate-*.3mf"))

@@ -77,13 +77,14 @@ def test_a_pair_that_meshes_is_written_and_mesh_check_exits_0(cli, tmp_path):
 @pytest.mark.parametrize("args, param", [
     (["missing.stl", "wheel.stl"], "pinion ="),
     (["PIN", "nothing.txt"], "wheel ="),
-    (["PIN", "PIN", "--samples", "3"], "samples ="),
-    (["PIN", "PIN", "--distance", "-5"], "distance ="),
-    (["PIN", "PIN", "--plot", "x.pdf"], "plot ="),
-    (["PIN", "PIN", "--b", "110"], "b ="),
+    (["PIN", "WHEEL", "--samples", "3"], "samples ="),
+    (["PIN", "WHEEL", "--distance", "-5"], "distance ="),
+    (["PIN", "WHEEL", "--plot", "x.pdf"], "plot ="),
+    (["PIN", "WHEEL", "--b", "110"], "b ="),
 ])
 def test_mesh_check_bad_input_one_line_exit_2(paper_pair, cli, tmp_path, args, param):
-    args = [str(paper_pair / "pinion.stl") if a == "PIN" else a for a in args]
+    named = {"PIN": paper_pair / "pinion.stl", "WHEEL": paper_pair / "wheel.stl"}
+    args = [str(named[a]) if a in named else a for a in args]
     (tmp_path / "nothing.txt").write_text("x")
     result = cli("mesh-check", *[str(tmp_path / a) if a.endswith((".stl", ".txt")) and "/" not in a
                                  else a for a in args])
