@@ -8,12 +8,11 @@ touches (phi_drive). mm and radians inside; degrees, um and % only in the labels
 
 from __future__ import annotations
 
-import os
-import tempfile
 from typing import Callable
 
 import numpy as np
 
+from wheelstep_cli.render.gif import animation_gif
 from wheelstep_cli.render.gear_pair_plot import (PairDrawing, draw_pair, handover_angle, pair_limits, posed,
                                                  set_pose)
 
@@ -71,7 +70,6 @@ def pair_gif(drawing: PairDrawing, report, frames: int = GIF_FRAMES,
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from matplotlib.animation import FuncAnimation, PillowWriter
 
     poses = handover_poses(report, drawing.law, frames)
     reach = 4.0 * drawing.module
@@ -104,14 +102,4 @@ def pair_gif(drawing: PairDrawing, report, frames: int = GIF_FRAMES,
             progress(n + 1, len(poses))
         return []
 
-    anim = FuncAnimation(fig, frame, frames=len(poses), blit=False)
-    fd, tmp = tempfile.mkstemp(suffix=".gif")
-    os.close(fd)
-    try:
-        anim.save(tmp, writer=PillowWriter(fps=12, metadata={}))
-        with open(tmp, "rb") as fh:
-            data = fh.read()
-    finally:
-        os.unlink(tmp)
-        plt.close(fig)
-    return data
+    return animation_gif(fig, frame, len(poses), fps=12, metadata={})

@@ -113,11 +113,9 @@ def linkage_png(linkage, solution, gait, rpm: float) -> bytes:
 
 def linkage_gif(linkage, solution, gait, frames: int = 48) -> bytes:
     """Animation of one crank turn (GIF bytes, matplotlib + pillow)."""
-    import os
-    import tempfile
+    from wheelstep_cli.render.gif import animation_gif
 
     plt = _plt()
-    from matplotlib.animation import FuncAnimation, PillowWriter
 
     fig, ax = plt.subplots(figsize=(4.5, 4.5), dpi=80)
     n = gait.theta.size
@@ -140,17 +138,7 @@ def linkage_gif(linkage, solution, gait, frames: int = 48) -> bytes:
         foot.set_data([solution.joints[linkage.foot][k, 0]], [solution.joints[linkage.foot][k, 1]])
         return [*lines, foot]
 
-    anim = FuncAnimation(fig, frame, frames=idx, blit=False)
-    fd, tmp = tempfile.mkstemp(suffix=".gif")
-    os.close(fd)
-    try:
-        anim.save(tmp, writer=PillowWriter(fps=20))
-        with open(tmp, "rb") as fh:
-            data = fh.read()
-    finally:
-        os.unlink(tmp)
-        plt.close(fig)
-    return data
+    return animation_gif(fig, frame, idx, fps=20)
 
 
 def trajectory_png(path, points: np.ndarray, pieces: np.ndarray, title: str) -> bytes:
