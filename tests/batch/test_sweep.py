@@ -97,17 +97,111 @@ def test_local_cluster_rows_and_refused_point(cli, tmp_path):
     assert json.loads(result.stdout)["computed"] == POINTS
 
 
+def without_seconds(csv: Path) -> list[str]:
+    """The CSV's lines without their last column (seconds: the one that differs by design)."""
+    lines = csv.read_text().splitlines()
+    assert lines[0].endswith('"seconds"')
+    return [line.rsplit(",", 1)[0] for line in lines]
+
+
 def test_scheduler_gives_the_same_rows(cli, tmp_path, cluster):
+    """Two runs on different clusters (other workers, other completion order) write the same
+    files but for the seconds column: rows in point order."""
     address, _ = cluster
     sweep = write(tmp_path / "shoes.yaml", SHOES)
     assert cli("sweep", sweep, "--out", tmp_path / "local", "--workers", "2", "-q").exit_code == 1
     remote = cli("sweep", sweep, "--out", tmp_path / "remote", "--scheduler", address, "-q")
     assert remote.exit_code == 1, remote.stderr
     local, there = rows(tmp_path / "local"), rows(tmp_path / "remote")
-    assert local.keys() == there.keys()
-    for key, row in local.items():
-        assert {k: v for k, v in row.items() if k != "index"} == \
-               {k: v for k, v in there[key].items() if k != "index"}
+    assert local == there
+    assert without_seconds(tmp_path / "local" / "results.csv") == \
+           without_seconds(tmp_path / "remote" / "results.csv")
+    indices = pq.read_table(tmp_path / "remote" / "results.parquet").column("index").to_pylist()
+    assert indices == list(range(POINTS))
+
+
+def test_rows_are_written_in_point_order(tmp_path, monkeypatch):
+    """Rows that come in any order (several part files, earlier results) are written in point
+    order, each once: the same bytes as when they came in order."""
+    from wheelstep_cli.batch import sweep_store
+    from wheelstep_cli.batch.sweep_store import ResultStore, schema
+
+    def row(i: int) -> dict:
+        return {"key": f"k{i}", "index": i, "command": "shoe", "p_rim": float(i), "outcome": "ok",
+                "volume_mm3": 10.0 * i, "versions": "v", "seconds": 0.0}
+
+    columns = schema({"rim": "float"})
+    ordered_store = ResultStore(tmp_path / "a", columns)
+    for i in range(7):
+        ordered_store.add(row(i))
+    ordered_store.consolidate()
+    monkeypatch.setattr(sweep_store, "FLUSH_ROWS", 2)     # several part files
+    first = ResultStore(tmp_path / "b", columns)
+    for i in (5, 1, 6):
+        first.add(row(i))
+    first.consolidate()                     # an interrupted run's rows
+    second = ResultStore(tmp_path / "b", columns)
+    for i in (4, 0, 3, 2, 6):               # 6 again: merged and still in a part after a crash
+        second.add(row(i))
+    second.consolidate()
+    for name in ("results.csv", "results.parquet"):
+        assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes(), name
+
+
+def test_outputs_are_owned(cli, tmp_path):
+    """A user's file named like an output is refused before any work (nothing written, the
+    file kept); --force overwrites it; a rerun into the sweep's own folder is not refused."""
+    sweep = write(tmp_path / "one.yaml", "command: shoe\ndesign: desk-demo\ngrid:\n  width: [12]\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "results.csv").write_text("my own table\n")
+    line = error_line(cli("sweep", sweep, "--out", out, "--workers", "1"))
+    assert "--out" in line and "results.csv" in line and "not written by this command" in line
+    assert sorted(p.name for p in out.iterdir()) == ["results.csv"]
+    assert cli("sweep", sweep, "--out", out, "--workers", "1", "--dry-run").exit_code == 2
+    forced = cli("sweep", sweep, "--out", out, "--workers", "1", "--force", "-q", "--json")
+    assert forced.exit_code == 0, forced.stderr
+    assert (out / "results.csv").read_text() != "my own table\n"
+    record = json.loads((out / ".wheelstep-sweep.json").read_text())
+    assert sorted(record["files"]) == ["pareto.png", "results.csv", "results.parquet"]
+    again = cli("sweep", sweep, "--out", out, "--workers", "1", "-q", "--json")
+    assert again.exit_code == 0, again.stderr
+    assert (json.loads(again.stdout)["skipped"], json.loads(again.stdout)["computed"]) == (1, 0)
+    (out / "pareto.png").write_bytes(b"changed by the user")
+    line = error_line(cli("sweep", sweep, "--out", out, "--workers", "1"))
+    assert "pareto.png" in line and "changed since this command wrote it" in line
+    assert (out / "pareto.png").read_bytes() == b"changed by the user"
+
+
+def test_tolerance_band_columns_are_the_gears_commands(cli, tmp_path):
+    """``tolerance: true``: each pair's band check as ``gears --tolerance`` reports it."""
+    sweep = write(tmp_path / "band.yaml", "command: gears\ndesign: desk-demo\ntolerance: true\n"
+                                          "printers: [fdm-0.4-pla]\n")      # one point
+    result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "-q")
+    assert result.exit_code == 0, result.stderr
+    (row,) = rows(tmp_path / "out").values()
+    assert row["outcome"] == "ok", row["reason"]
+    gears = cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--tolerance",
+                "--dry-run", "--json", "-q", "--out", tmp_path / "g")
+    assert gears.exit_code == 0, (gears.stdout, gears.stderr)
+    band = json.loads(gears.stdout)["meshing"]["tolerance"]
+    assert row["band_jams"] is band["jams"]
+    assert row["band_least_backlash_mm"] == pytest.approx(band["least_backlash_mm"], abs=1e-9)
+    assert row["band_largest_backlash_mm"] == pytest.approx(band["largest_backlash_mm"], abs=1e-9)
+    prefixes = {"tight": "band_tight", "pinion grown, wheel shrunk": "band_pinion_grown",
+                "pinion shrunk, wheel grown": "band_wheel_grown", "loose": "band_loose"}
+    for case in band["cases"]:
+        prefix = prefixes[case["case"]]
+        assert row[f"{prefix}_jams"] is case["jams"]
+        assert row[f"{prefix}_backlash_min_mm"] == pytest.approx(case["backlash_min_mm"], abs=1e-9)
+        assert row[f"{prefix}_drive_f_i_um"] == pytest.approx(case["drive"]["f_i_tooth_um"], abs=1e-9)
+    assert row["band_least_backlash_mm"] < row["backlash_min_mm"]   # the band takes play away
+
+
+def test_tolerance_is_refused_for_shoes(cli, tmp_path):
+    sweep = write(tmp_path / "s.yaml", "command: shoe\ntolerance: true\ngrid:\n  width: [12]\n")
+    line = error_line(cli("sweep", sweep, "--out", tmp_path / "out"))
+    assert "s.yaml:2: tolerance = true: the band check is of gear pairs" in line
 
 
 def test_rerun_after_interruption_computes_only_the_missing_points(tmp_path, monkeypatch):

@@ -18,6 +18,14 @@ FIGURES = ("drive_F_i_um", "drive_f_i_um", "drive_ripple_pct", "coast_F_i_um", "
            "coast_ripple_pct", "backlash_min_mm", "backlash_max_mm", "max_penetration_mm",
            "volume_mm3", "mass_g")
 KINDS_OF = {"gears": "gear-pair", "shoe": "shoe"}
+#: The tolerance band's cases (parts.tolerance.band_cases, in its order) as column prefixes.
+BAND_CASES = {"tight": "band_tight", "pinion grown, wheel shrunk": "band_pinion_grown",
+              "pinion shrunk, wheel grown": "band_wheel_grown", "loose": "band_loose"}
+#: Columns of the band check (``tolerance: true``): whether any case jams, the band's least
+#: and largest backlash (mm), and per case whether it jams, its backlash and drive f'i (um).
+BAND_FIGURES = ("band_jams", "band_least_backlash_mm", "band_largest_backlash_mm") + tuple(
+    f"{prefix}_{name}" for prefix in BAND_CASES.values()
+    for name in ("jams", "backlash_min_mm", "backlash_max_mm", "drive_f_i_um"))
 
 
 @dataclass(frozen=True)
@@ -33,6 +41,7 @@ class Point:
     refusal: str | None     # why resolving refused it
     allow_interference: bool
     key: str
+    tolerance: bool = False   # also the meshing check over the printer's tolerance band
 
 
 def versions() -> str:
@@ -54,9 +63,9 @@ def point_key(command: str, design: dict, printer, tool: str) -> str:
 
 
 def resolve_point(index: int, command: str, profile, printer_name: str | None, printer,
-                  values: dict, allow_interference: bool, tool: str) -> Point:
+                  values: dict, allow_interference: bool, tool: str, tolerance: bool = False) -> Point:
     """The point's spec: its values over the design profile over the defaults, checked (a
-    problem becomes the point's refusal)."""
+    problem becomes the point's refusal); ``tolerance``: with the band check."""
     from wheelstep_cli.config.resolve import spec_problems, spec_values
     from wheelstep_cli.config.sweep_file import COMMANDS
 
@@ -69,8 +78,9 @@ def resolve_point(index: int, command: str, profile, printer_name: str | None, p
     except DesignError as err:
         refusal = yaml_message(err)
     design = spec.model_dump(mode="json") if spec is not None else {"given": values}
+    keyed = {**design, "tolerance_band": True} if tolerance else design
     return Point(index, command, printer_name, printer, values, spec, refusal, allow_interference,
-                 point_key(command, design, printer, tool))
+                 point_key(command, keyed, printer, tool), tolerance)
 
 
 def evaluate(point: Point) -> dict:
@@ -95,15 +105,20 @@ def evaluate(point: Point) -> dict:
 
 
 def build_point(point: Point):
-    """(built part, meshing record or None) exactly as the command builds and checks it."""
+    """(built part, meshing record or None) exactly as the command builds and checks it; with
+    ``point.tolerance`` as ``gears --tolerance`` does (the band record under ``tolerance``)."""
     from wheelstep_cli.parts.kinds import build_for_printer
 
-    built = build_for_printer(KINDS_OF[point.command], point.spec, point.printer)
     if point.command != "gears":
-        return built, None
+        return build_for_printer(KINDS_OF[point.command], point.spec, point.printer), None
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+    from wheelstep_cli.parts.tolerance_cli import band_pair
 
-    return built, meshing_record(check_gear_pair(built))
+    built, band, nominal = band_pair(point.spec, point.printer, point.tolerance, None)
+    record = meshing_record(nominal if nominal is not None else check_gear_pair(built))
+    if band is not None:
+        record["tolerance"] = band
+    return built, record
 
 
 def _figures(point: Point) -> dict:
@@ -121,7 +136,22 @@ def _figures(point: Point) -> dict:
         out[f"{side}_ripple_pct"] = flank["hub_speed_ripple_pct"]
     out.update(backlash_min_mm=record["backlash_min_mm"], backlash_max_mm=record["backlash_max_mm"],
                max_penetration_mm=record["max_penetration_mm"], interference=bool(record["interference"]))
+    if "tolerance" in record:
+        out.update(_band_figures(record["tolerance"]))
     return {**out, **_bounds_refusal(built, record)}
+
+
+def _band_figures(band: dict) -> dict:
+    """The BAND_FIGURES of a band record (parts.tolerance.band_record)."""
+    out = {"band_jams": bool(band["jams"]), "band_least_backlash_mm": band["least_backlash_mm"],
+           "band_largest_backlash_mm": band["largest_backlash_mm"]}
+    for case in band["cases"]:
+        prefix = BAND_CASES[case["case"]]
+        out.update({f"{prefix}_jams": bool(case["jams"]),
+                    f"{prefix}_backlash_min_mm": case["backlash_min_mm"],
+                    f"{prefix}_backlash_max_mm": case["backlash_max_mm"],
+                    f"{prefix}_drive_f_i_um": case["drive"]["f_i_tooth_um"]})
+    return out
 
 
 def _bounds_refusal(pair, record: dict) -> dict:

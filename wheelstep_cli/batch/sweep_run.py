@@ -35,19 +35,20 @@ def resolve_points(plan: SweepPlan) -> list[Point]:
     printers = {name: load_printer_profile(name) for name in {p for p, _ in plan.points if p}}
     tool = versions()
     return [resolve_point(i, plan.command, profile, name, printers.get(name), values,
-                          plan.allow_interference, tool)
+                          plan.allow_interference, tool, plan.tolerance)
             for i, (name, values) in enumerate(plan.points)]
 
 
 def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, int], None]
-              = lambda done, failures, total: None) -> SweepOutcome:
-    """Compute the points not yet in ``out``'s results on ``client``; rows written as they
-    come; on Ctrl-C the rows so far are merged into a valid results file and it re-raises."""
+              = lambda done, failures, total: None, earlier: bool = True) -> SweepOutcome:
+    """Compute the points not yet in ``out``'s results (``earlier``: those results are the
+    sweep's own, see sweep_store.owned_results) on ``client``; rows written as they come; on
+    Ctrl-C the rows so far are merged into a valid results file and it re-raises."""
     from distributed import as_completed
 
     points = resolve_points(plan)
     kinds = axis_kinds([p.values for p in points], plan.axes)
-    store = ResultStore(out, schema(kinds))
+    store = ResultStore(out, schema(kinds, plan.tolerance), earlier)
     done = store.done_keys()
     todo = [p for p in points if p.key not in done]
     tool = versions()

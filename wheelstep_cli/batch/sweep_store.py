@@ -1,7 +1,14 @@
 """The results of a sweep as they come: rows buffered a few at a time into Parquet part files
 (bounded memory, nothing lost at Ctrl-C but the buffer, which is flushed on the way out),
-then merged with the earlier results into ``results.parquet`` and ``results.csv``, each
-replaced atomically. The keys of the rows already there let a rerun skip them."""
+then merged with the earlier results into ``results.parquet`` and ``results.csv`` in point
+order (whatever order the workers finished in), each replaced atomically. The keys of the
+rows already there let a rerun skip them.
+
+Deterministic by design: every column but the last, ``seconds`` (the time a point took), is
+the same in every run of the same sweep with the same versions, so two runs' files differ
+in that column only. The folder's outputs are owned (formats.owned): the record
+``.wheelstep-sweep.json`` holds their SHA-256, and a file of the same name that a sweep did
+not write is refused unless --force."""
 
 from __future__ import annotations
 
@@ -11,20 +18,23 @@ import time
 from pathlib import Path
 from typing import Any, Iterable
 
-from wheelstep_cli.batch.sweep_point import FIGURES
+from wheelstep_cli.batch.sweep_point import BAND_FIGURES, FIGURES
 from wheelstep_cli.errors import DesignError
 
 RESULTS = "results.parquet"
 CSV = "results.csv"
+PLOT = "pareto.png"
 PARTS = ".sweep-parts"
+RECORD = ".wheelstep-sweep.json"
 #: Rows held before they are written (and seconds at most between two writes).
 FLUSH_ROWS = 16
 FLUSH_SECONDS = 5.0
 
 
-def schema(axes: dict[str, str]):
+def schema(axes: dict[str, str], band: bool = False):
     """The columns: key and point, the varied parameters (``p_NAME``, typed), the resolved
-    design (JSON), outcome and reason, the figures, seconds and versions."""
+    design (JSON), outcome and reason, the figures (with ``band``, the tolerance band's),
+    versions, and last the seconds the point took (the one column that differs between runs)."""
     import pyarrow as pa
 
     types = {"int": pa.int64(), "float": pa.float64(), "bool": pa.bool_(), "str": pa.string()}
@@ -34,7 +44,9 @@ def schema(axes: dict[str, str]):
     fields += [("parameters", pa.string()), ("outcome", pa.string()), ("reason", pa.string()),
                ("interference", pa.bool_())]
     fields += [(name, pa.float64()) for name in FIGURES]
-    fields += [("seconds", pa.float64()), ("versions", pa.string())]
+    fields += [(name, pa.bool_() if name.endswith("_jams") else pa.float64())
+               for name in (BAND_FIGURES if band else ())]
+    fields += [("versions", pa.string()), ("seconds", pa.float64())]
     return pa.schema(fields)
 
 
@@ -59,10 +71,11 @@ def cell(value: Any, kind: str):
 
 
 class ResultStore:
-    """Rows appended to part files in ``out/.sweep-parts``; :meth:`consolidate` merges them."""
+    """Rows appended to part files in ``out/.sweep-parts``; :meth:`consolidate` merges them
+    (with the earlier ``results.parquet`` unless ``earlier`` is False: not the sweep's own)."""
 
-    def __init__(self, out: Path, columns):
-        self.out, self.schema = Path(out), columns
+    def __init__(self, out: Path, columns, earlier: bool = True):
+        self.out, self.schema, self.earlier = Path(out), columns, earlier
         self.parts = self.out / PARTS
         self.buffer: list[dict] = []
         self.last = time.monotonic()
@@ -73,7 +86,7 @@ class ResultStore:
         import pyarrow.parquet as pq
 
         results = self.out / RESULTS
-        if results.exists() and not pq.read_schema(results).equals(self.schema):
+        if self.earlier and results.exists() and not pq.read_schema(results).equals(self.schema):
             raise DesignError("out", str(self.out), f"holds {RESULTS} of another sweep (other "
                                                     "columns); give another folder")
 
@@ -89,7 +102,7 @@ class ResultStore:
     def _files(self) -> list[Path]:
         results = self.out / RESULTS
         parts = sorted(self.parts.glob("part-*.parquet")) if self.parts.is_dir() else []
-        return ([results] if results.exists() else []) + parts
+        return ([results] if self.earlier and results.exists() else []) + parts
 
     def add(self, row: dict) -> None:
         self.buffer.append(row)
@@ -114,31 +127,65 @@ class ResultStore:
         self.buffer = []
 
     def consolidate(self) -> Path:
-        """Merge the earlier results and every part file, one file at a time, into
-        ``results.parquet`` and ``results.csv`` (each replaced atomically); parts removed."""
+        """Merge the earlier results and every part file into ``results.parquet`` and
+        ``results.csv`` in point order (each replaced atomically, then recorded as the
+        sweep's); parts removed. The rows are held here at once: at most MAX_POINTS small
+        rows (figures and the design's JSON, about 1 kB each; no meshes)."""
+        import pyarrow as pa
         import pyarrow.csv as pcsv
         import pyarrow.parquet as pq
 
         self.flush()
         files = self._files()
         self.out.mkdir(parents=True, exist_ok=True)
+        table = ordered(pa.concat_tables([pq.read_table(f, schema=self.schema) for f in files])
+                        if files else self.schema.empty_table())
         staged_pq, staged_csv = self.out / f".{RESULTS}.tmp", self.out / f".{CSV}.tmp"
-        with pq.ParquetWriter(staged_pq, self.schema) as writer, \
-                pcsv.CSVWriter(staged_csv, self.schema) as csv:
-            for file in files:
-                source = pq.ParquetFile(file)
-                for group in range(source.num_row_groups):
-                    table = source.read_row_group(group)
-                    writer.write_table(table)
-                    csv.write_table(table)
+        pq.write_table(table, staged_pq)
+        pcsv.write_csv(table, staged_csv)
         os.replace(staged_pq, self.out / RESULTS)
         os.replace(staged_csv, self.out / CSV)
+        record_outputs(self.out, (RESULTS, CSV))
         for file in files:
             if file.parent == self.parts:     # merged now
                 file.unlink()
         if self.parts.is_dir() and not any(self.parts.iterdir()):
             self.parts.rmdir()
         return self.out / RESULTS
+
+
+def ordered(table):
+    """The rows in point order (then by key), each key once: the first (a row both merged and
+    still in a part file, after a crash between the two, is kept once)."""
+    table = table.sort_by([("index", "ascending"), ("key", "ascending")])
+    seen: set[str] = set()
+    first = [i for i, key in enumerate(table.column("key").to_pylist())
+             if not (key in seen or seen.add(key))]
+    return table if len(first) == table.num_rows else table.take(first)
+
+
+def owned_results(out: Path, force: bool) -> bool:
+    """Refuse (naming --out) before any work a file among the sweep's outputs in ``out`` that
+    no sweep wrote with its present content, unless ``force``; True when ``out``'s
+    results.parquet is the sweep's own (its rows are kept and skipped by a rerun), False
+    when there is none or it is a file forced over (its rows are not read)."""
+    from wheelstep_cli.formats.owned import check_collisions, read_record, sha256_of
+
+    record = read_record(out / RECORD)
+    check_collisions(out, {out / name: b"" for name in (RESULTS, CSV, PLOT)}, record, force)
+    results = out / RESULTS
+    return results.is_file() and record.get(RESULTS) == sha256_of(results)
+
+
+def record_outputs(out: Path, names) -> None:
+    """Record the files ``names`` in ``out`` (as they are now) as the sweep's, keeping the
+    record's other entries."""
+    from wheelstep_cli.formats.atomic import write_bytes_atomic
+    from wheelstep_cli.formats.owned import merged_record_bytes, read_record
+
+    files = {out / name: (out / name).read_bytes() for name in names}
+    write_bytes_atomic(out / RECORD, merged_record_bytes("wheelstep sweep", out, files,
+                                                         read_record(out / RECORD)))
 
 
 def pareto_order(first, second) -> tuple[list[int], list[bool]]:

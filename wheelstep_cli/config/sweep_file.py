@@ -22,6 +22,7 @@ from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read
 from wheelstep_cli.config.schema import (InvalidInput, Issue, dotted, file_issues, section_model, show,
                                          validate_file)
 from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
+from wheelstep_cli.errors import DesignError
 
 #: Most design points one sweep may hold (each takes seconds; more is a cluster's week).
 MAX_POINTS = 10_000
@@ -75,6 +76,7 @@ class SweepFile(BaseModel):
     objectives: Optional[list[str]] = Field(None, min_length=2, max_length=2, json_schema_extra={
         "limit": "must name two figures: " + ", ".join(OBJECTIVES)})
     allow_interference: bool = Field(False, strict=True)
+    tolerance: bool = Field(False, strict=True)   # gears: also the check over the printer's band
 
 
 @dataclass(frozen=True)
@@ -88,6 +90,7 @@ class SweepPlan:
     allow_interference: bool
     axes: tuple[str, ...]                 # names of the parameters that vary, in file order
     points: tuple[tuple[str | None, dict[str, Any]], ...]   # (printer preset, given values)
+    tolerance: bool = False               # each gear pair also checked over its printer's band
 
 
 def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
@@ -109,6 +112,8 @@ def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
         _check_values(doc, COMMANDS[command][0], command, data, grid, random, issues)
     _check_objectives(doc, data.get("objectives"), issues)
     _check_printers(doc, data.get("printers"), issues)
+    if data.get("tolerance") is True:
+        _check_band(doc, command, data.get("printers"), issues)
     if issues:
         raise InvalidInput(issues)
     points = _points(sweep, grid, random)
@@ -118,7 +123,7 @@ def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
     objectives = tuple(sweep.objectives or DEFAULT_OBJECTIVES[sweep.command])
     axes = tuple(grid) + tuple(random.bounds if random else ())
     return SweepPlan(label, sweep.command, sweep.design, objectives, sweep.allow_interference,
-                     axes, tuple(points))
+                     axes, tuple(points), sweep.tolerance)
 
 
 def _grid(doc: LocatedYaml, raw, issues: list[Issue]) -> dict[str, list | Range]:
@@ -200,6 +205,28 @@ def _check_printers(doc: LocatedYaml, names, issues: list[Issue]) -> None:
             at = ("printers", i)
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: unknown printer preset; "
                                 "known: " + ", ".join(known)))
+
+
+def _check_band(doc: LocatedYaml, command, names, issues: list[Issue]) -> None:
+    """``tolerance: true`` is for gear pairs, on printers that have a band (none given: the
+    default printer's)."""
+    from wheelstep_cli.config.printers import DEFAULT_PRINTER
+    from wheelstep_cli.config.profiles import load_printer_profile
+
+    if command != "gears":
+        issues.append(Issue(doc.where(("tolerance",)), "tolerance", "= true: the band check is "
+                                                                    "of gear pairs (command: gears)"))
+        return
+    given = names if isinstance(names, list) and names else [DEFAULT_PRINTER]
+    for i, name in enumerate(given):
+        try:
+            band = load_printer_profile(name).band if isinstance(name, str) else True
+        except (DesignError, InvalidInput):   # an unknown or bad printer: _check_printers says it
+            continue
+        if band is None:
+            at = ("printers", i) if names else ("tolerance",)
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: has no dimensional "
+                                "band for tolerance: true; add a `band:` section to its profile"))
 
 
 def _axis_values(axis: list | Range) -> list:

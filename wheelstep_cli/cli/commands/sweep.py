@@ -35,6 +35,7 @@ def sweep(
     OUT/results.parquet, results.csv and pareto.png. A rerun computes only the missing
     designs. Exit 1 if some designs failed, 2 if the input is invalid."""
     from wheelstep_cli.batch.sweep_run import dask_client, run_sweep
+    from wheelstep_cli.batch.sweep_store import owned_results
     from wheelstep_cli.config.schema import InvalidInput
     from wheelstep_cli.config.sweep_file import load_sweep
     from wheelstep_cli.errors import DesignError
@@ -53,19 +54,21 @@ def sweep(
         for line in err.lines():
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
+    earlier = owned_results(out, force)     # a user's file among the outputs: refused here
     if dry_run:
-        _dry_run(plan, file, out, show)
+        _dry_run(plan, file, out, show, earlier)
         return
     with dask_client(scheduler, workers) as client:
         show.detail(f"  {len(plan.points)} points on {len(client.scheduler_info()['workers'])} worker(s)")
         try:
             with _Bar(not show.quiet) as bar:
-                outcome = run_sweep(plan, out, client, bar.update)
+                outcome = run_sweep(plan, out, client, bar.update, earlier)
         except KeyboardInterrupt:
             show.error(f"wheelstep: interrupted; the rows so far are in {out / 'results.parquet'} "
                        "(a rerun computes the rest)")
             raise typer.Exit(130)
-    written = [outcome.results, out / "results.csv", _plot(plan, outcome.results, out)]
+    written = [outcome.results, out / "results.csv", _plot(plan, outcome.results, out),
+               out / ".wheelstep-sweep.json"]
     written += _keep_best(plan, outcome.results, out, best, show, force)
     show.report({"sweep": str(file), "out": str(out), "points": outcome.total,
                  "skipped": outcome.skipped, "computed": outcome.computed,
@@ -77,16 +80,18 @@ def sweep(
         raise typer.Exit(1)
 
 
-def _dry_run(plan, file: Path, out: Path, show: Output) -> None:
-    """Say how many points would be computed (those not in ``out``'s results) and what would
-    be written; nothing is computed or written."""
+def _dry_run(plan, file: Path, out: Path, show: Output, earlier: bool) -> None:
+    """Say how many points would be computed (those not in ``out``'s own results) and what
+    would be written; nothing is computed or written."""
     from wheelstep_cli.batch.sweep_run import resolve_points
     from wheelstep_cli.batch.sweep_store import ResultStore, axis_kinds, schema
 
     points = resolve_points(plan)
-    done = ResultStore(out, schema(axis_kinds([p.values for p in points], plan.axes))).done_keys()
+    columns = schema(axis_kinds([p.values for p in points], plan.axes), plan.tolerance)
+    done = ResultStore(out, columns, earlier).done_keys()
     todo = sum(p.key not in done for p in points)
-    files = [out / "results.parquet", out / "results.csv", out / "pareto.png"]
+    files = [out / "results.parquet", out / "results.csv", out / "pareto.png",
+             out / ".wheelstep-sweep.json"]
     show.report({"sweep": str(file), "out": str(out), "points": len(points),
                  "skipped": len(points) - todo, "would_compute": todo,
                  "written": []}, lambda: [f"{todo} of {len(points)} designs would be computed"])
@@ -108,7 +113,7 @@ def _plot(plan, results: Path, out: Path) -> Path:
     """pareto.png: the ok designs by the plan's two objectives, the front highlighted."""
     import pyarrow.parquet as pq
 
-    from wheelstep_cli.batch.sweep_store import pareto_order
+    from wheelstep_cli.batch.sweep_store import PLOT, pareto_order, record_outputs
     from wheelstep_cli.formats.atomic import write_bytes_atomic
     from wheelstep_cli.render.sweep_plot import pareto_png
 
@@ -117,9 +122,10 @@ def _plot(plan, results: Path, out: Path) -> Path:
     ok = [r for r in rows if r["outcome"] == "ok" and r[first] is not None and r[second] is not None]
     a, b = [r[first] for r in ok], [r[second] for r in ok]
     _, front = pareto_order(a, b)
-    path = out / "pareto.png"
+    path = out / PLOT
     write_bytes_atomic(path, pareto_png(a, b, front, (first, second),
                                         f"{Path(plan.label).name}: {len(ok)} of {len(rows)} designs"))
+    record_outputs(out, (PLOT,))
     return path
 
 
