@@ -89,6 +89,39 @@ def error_text(err: DesignError, options: dict[str, list[str]], argv: list[str])
     return f"{_as_typed(err.param, options, argv)} = {err.shown_value}: {err.limit}"
 
 
+def _path_option(filename: str, options: dict[str, list[str]], argv: list[str]) -> tuple[str, str] | None:
+    """(flag as typed, its value) of the option in ``argv`` whose path is ``filename``, a
+    folder holding it or inside it, else None."""
+    from pathlib import Path
+
+    flags = {o for opts in options.values() for o in opts}
+    for i, arg in enumerate(argv):
+        flag, eq, value = arg.partition("=")
+        if flag not in flags or not (eq or i + 1 < len(argv)):
+            continue
+        value = value if eq else argv[i + 1]
+        file, given = Path(filename), Path(value)
+        if value and (file == given or given in file.parents or file in given.parents):
+            return flag, value
+    return None
+
+
+def os_error_text(err: OSError, options: dict[str, list[str]], argv: list[str]) -> str:
+    """One line for a file that cannot be written: naming the option whose path it is (as the
+    user typed it), the value and why (with the name-length limit when that is why)."""
+    import errno
+    import os
+
+    why = err.strerror or str(err)
+    if err.errno == errno.ENAMETOOLONG:
+        why += f"; a file or folder name holds at most {os.pathconf('/', 'PC_NAME_MAX')} bytes"
+    filename = getattr(err, "filename", None)
+    found = _path_option(str(filename), options, argv) if filename else None
+    if found is not None:
+        return f"{found[0]} = {found[1]}: cannot be written ({why})"
+    return f"cannot write{f' {filename}' if filename else ''}: {why}"
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run the CLI on ``argv`` and return the exit code (0 ok, 1 failed check, 2 bad input)."""
     args = sys.argv[1:] if argv is None else list(argv)
@@ -119,8 +152,8 @@ def run(argv: list[str] | None = None) -> int:
         typer.echo(f"wheelstep: error: {err.format_message()}", err=True)
         return err.exit_code
     except OSError as err:
-        target = f" {err.filename}" if getattr(err, "filename", None) else ""
-        typer.echo(f"wheelstep: error: cannot write{target}: {err.strerror or err}", err=True)
+        typer.echo(f"wheelstep: error: {os_error_text(err, _command_options(command, args), args)}",
+                   err=True)
         return 2
     except typer.Abort:
         typer.echo("wheelstep: aborted", err=True)

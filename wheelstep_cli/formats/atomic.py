@@ -40,16 +40,30 @@ def write_files_atomic(files: Mapping[Path, bytes]) -> list[Path]:
             raise IsADirectoryError(21, "is a folder, not a file", str(path))
     mode = _file_mode()
     staged: list[tuple[Path, Path]] = []
+    made: list[Path] = []
     try:
         for path, data in zip(targets, files.values()):
-            path.parent.mkdir(parents=True, exist_ok=True)
+            _make_folders(path.parent, made)
             staged.append((_staged(path, data, mode, ".part"), path))
         _rename_all(staged)
     except BaseException:
         for tmp, _ in staged:
             _unlink_quietly(tmp)
+        for folder in reversed(made):       # all-or-nothing: the folders made for them too
+            try:
+                folder.rmdir()
+            except OSError:
+                pass
         raise
     return targets
+
+
+def _make_folders(folder: Path, made: list[Path]) -> None:
+    """Create ``folder`` and its missing parents, outermost first, each added to ``made``
+    as it is created (so a failure half-way leaves the list of those to remove)."""
+    for missing in [f for f in [folder, *folder.parents] if not f.is_dir()][::-1]:
+        missing.mkdir(exist_ok=True)
+        made.append(missing)
 
 
 def _staged(path: Path, data: bytes | None, mode: int, suffix: str) -> Path:
