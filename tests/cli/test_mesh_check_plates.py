@@ -108,6 +108,25 @@ def test_the_same_mesh_twice_is_refused_before_any_work(desk_pair, cli, tmp_path
         assert line.startswith(f"wheelstep: error: wheel = {wheel}: is the same mesh as the pinion"), line
 
 
+def test_two_wheels_or_two_pinions_are_refused_before_any_work(desk_pair, cli, tmp_path):
+    """Two different wheels (not a pinion and its wheel) overlap everywhere; their check ran
+    for minutes. Refused from the outlines' sizes against the centre distance, one line."""
+    from wheelstep_cli.formats.mesh_read import read_mesh
+    from wheelstep_cli.formats.stl import stl_bytes
+
+    for part in ("wheel", "pinion"):
+        vertices, faces = read_mesh(str(desk_pair / f"{part}.stl"), part)
+        other = tmp_path / f"other-{part}.stl"          # another such part, 1 % larger
+        other.write_bytes(stl_bytes(vertices * [1.01, 1.01, 1.0], faces))
+        result = cli("mesh-check", desk_pair / f"{part}.stl", other, "--profile", "desk-demo")
+        line = error_line(result)
+        assert line.startswith(f"wheelstep: error: wheel = {other}: its radius by area"), line
+        assert "not the centre distance 72.125 mm" in line and "two wheels or two pinions" in line
+    apart = cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile",
+                  "desk-demo", "--samples", "64", "--distance", "75")
+    assert apart.exit_code in (0, 1), apart.stderr       # a real pair a little apart: checked
+
+
 def test_a_plot_over_a_users_file_is_refused_unless_forced(desk_pair, cli, tmp_path):
     mine = tmp_path / "mine.png"
     mine.write_bytes(b"the user's picture")

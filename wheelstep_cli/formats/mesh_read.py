@@ -158,4 +158,7 @@ def _model_part(zf: zipfile.ZipFile) -> str:
 def read_outline(spec: str, param: str, default_name: str | None = None) -> np.ndarray:
     """Read a gear mesh and return its mid-thickness outline (N, 2), mm, counter-clockwise."""
     vertices, faces = read_mesh(spec, param, default_name)
-    return section_outline(vertices, faces, param)
+    try:
+        return section_outline(vertices, faces, param)
+    except DesignError as err:          # named by the file the user gave, not "mesh"
+        raise DesignError(param, spec, err.limit) from None

@@ -15,6 +15,9 @@ from wheelstep_cli.parts.gear_pair import GearPairSpec, design_law, generation_l
 
 
 MAX_SAMPLES = 20000     # poses over one period: 13 x the default 1536
+#: How far (a fraction of the centre distance) the two outlines' pitch radii may add up away
+#: from it: a pinion and its wheel roll on pitch curves whose radii add to the distance.
+SIZE_SLACK = 0.2
 
 @dataclass(frozen=True)
 class WrittenPairCheck:
@@ -45,8 +48,27 @@ def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
 
     design_law(check.spec)
     check.validate()
-    return (read_outline(check.pinion, "pinion", default_name="pinion"),
-            read_outline(check.wheel, "wheel", default_name="wheel"))
+    outlines = (read_outline(check.pinion, "pinion", default_name="pinion"),
+                read_outline(check.wheel, "wheel", default_name="wheel"))
+    require_a_pair(outlines, check.spec.install_distance, check.wheel)
+    return outlines
+
+
+def require_a_pair(outlines: tuple[np.ndarray, np.ndarray], distance: float, wheel: str) -> None:
+    """Refuse (naming the wheel) two outlines (mm) that cannot be a pinion and its wheel at
+    ``distance`` mm, e.g. two wheels or two pinions: their radii by area (the teeth above
+    and below the pitch curve cancel) must add to the distance within SIZE_SLACK. Checked
+    before the poses: two wheels overlap everywhere and their check ran for minutes."""
+    def radius(outline: np.ndarray) -> float:
+        x, y = outline[:, 0], outline[:, 1]
+        return float(np.sqrt(abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))) / (2 * np.pi)))
+
+    pinion, wheel_r = (radius(o) for o in outlines)
+    total = pinion + wheel_r
+    require(abs(total - distance) <= SIZE_SLACK * distance, "wheel", wheel,
+            f"its radius by area {wheel_r:.1f} mm and the pinion's {pinion:.1f} mm add to "
+            f"{total:.1f} mm, not the centre distance {distance:g} mm +-{100 * SIZE_SLACK:.0f} %: "
+            "give the pinion and the wheel of one pair (two wheels or two pinions cannot mesh)")
 
 
 def run_written_pair_check(check: WrittenPairCheck, outlines: tuple[np.ndarray, np.ndarray],
