@@ -119,5 +119,6 @@ def test_unwritable_output_is_one_line(cli, tmp_path):
     blocker = tmp_path / "file"
     blocker.write_text("not a folder")
     result = cli("gears", "--out", blocker / "sub")
-    assert "cannot write" in error_line(result, code=2)   # a bad output path is bad input
+    line = error_line(result, code=2)                     # a bad output path is bad input
+    assert f"--out = {blocker / 'sub'}: cannot be written ({blocker}: is a file, not a folder)" in line
     assert blocker.read_text() == "not a folder"

@@ -111,6 +111,7 @@ def os_error_text(err: OSError, options: dict[str, list[str]], argv: list[str]) 
     user typed it), the value and why (with the name-length limit when that is why)."""
     import errno
     import os
+    from pathlib import Path
 
     why = err.strerror or str(err)
     if err.errno == errno.ENAMETOOLONG:
@@ -118,7 +119,8 @@ def os_error_text(err: OSError, options: dict[str, list[str]], argv: list[str]) 
     filename = getattr(err, "filename", None)
     found = _path_option(str(filename), options, argv) if filename else None
     if found is not None:
-        return f"{found[0]} = {found[1]}: cannot be written ({why})"
+        where = "" if Path(filename) == Path(found[1]) else f"{filename}: "
+        return f"{found[0]} = {found[1]}: cannot be written ({where}{why})"
     return f"cannot write{f' {filename}' if filename else ''}: {why}"
 
 

@@ -8,6 +8,7 @@ a temporary file.
 
 from __future__ import annotations
 
+import errno
 import os
 import tempfile
 from pathlib import Path
@@ -62,7 +63,9 @@ def _make_folders(folder: Path, made: list[Path]) -> None:
     """Create ``folder`` and its missing parents, outermost first, each added to ``made``
     as it is created (so a failure half-way leaves the list of those to remove)."""
     for missing in [f for f in [folder, *folder.parents] if not f.is_dir()][::-1]:
-        missing.mkdir(exist_ok=True)
+        if missing.exists():
+            raise NotADirectoryError(errno.ENOTDIR, "is a file, not a folder", str(missing))
+        missing.mkdir()
         made.append(missing)
 
 
