@@ -31,9 +31,10 @@ def sweep(
     force: Force = False, json: Json = False, dry_run: DryRun = False, quiet: Quiet = False,
     verbose: Verbose = False,
 ) -> None:
-    """Compute every design of a sweep file (gears or shoe, meshing check included) into
-    OUT/results.parquet, results.csv and pareto.png. A rerun computes only the missing
-    designs. Exit 1 if some designs failed, 2 if the input is invalid."""
+    """Compute every design of a sweep file (gears or shoe, meshing check included; the
+    printer's tolerance band with ``tolerance: true``) into OUT/results.parquet, results.csv
+    (rows in point order) and pareto.png. A rerun computes only the missing designs. Exit 1
+    if some designs failed, 2 if the input is invalid."""
     from wheelstep_cli.batch.sweep_run import dask_client, run_sweep
     from wheelstep_cli.batch.sweep_store import owned_results
     from wheelstep_cli.config.schema import InvalidInput
