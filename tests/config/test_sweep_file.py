@@ -59,3 +59,20 @@ extra: 1
     assert any("s.yaml:4: extra: unknown key" in line for line in lines)
     assert any("s.yaml:3: grid.z = 5: must be a list of values" in line for line in lines)
     assert MAX_POINTS == 10_000
+
+
+def test_tolerance_needs_printers_with_a_band(tmp_path):
+    """``tolerance: true`` on a printer profile without a ``band:`` is refused at its line
+    (never taken as a perfect printer); with the presets (all have one) it is planned."""
+    from pathlib import Path
+
+    preset = (Path(__file__).resolve().parents[2] / "profiles" / "fdm-0.4-pla.yaml").read_text()
+    write(tmp_path / "noband.yaml", preset.split("band:")[0] + "material:" + preset.split("material:")[1])
+    sweep = write(tmp_path / "s.yaml", f"command: gears\ntolerance: true\nprinters:\n  - fdm-0.4-pla\n"
+                                       f"  - {tmp_path / 'noband.yaml'}\n")
+    with pytest.raises(InvalidInput) as err:
+        load_sweep(sweep)
+    (line,) = err.value.lines()
+    assert line.startswith(f"{sweep}:5: printers[1] = ") and "has no dimensional band" in line
+    ok = write(tmp_path / "ok.yaml", "command: gears\ntolerance: true\nprinters: [fdm-0.4-pla]\n")
+    assert load_sweep(ok).tolerance is True
