@@ -125,7 +125,7 @@ def open_outline(outline: np.ndarray, radius: float, thin: float, quad_segs: int
     The outline is first thinned (Douglas-Peucker, ``thin`` mm); then eroded and dilated
     by ``radius`` with ``quad_segs`` chords per quarter circle. Concave corners stay sharp.
     """
-    body = shapely.simplify(shapely.Polygon(outline), thin)
+    body = shapely.Polygon(_simplified_ring(shapely.LinearRing(outline), thin))
     return _largest_exterior_ccw(body.buffer(-radius, quad_segs=quad_segs).buffer(radius, quad_segs=quad_segs))
 
 
@@ -136,8 +136,30 @@ def segmentize_ring(outline: np.ndarray, max_length: float) -> np.ndarray:
 
 def simplify_ring(outline: np.ndarray, tolerance: float) -> np.ndarray:
     """The closed outline (N, 2) thinned by Douglas-Peucker to ``tolerance`` mm, topology kept."""
-    ring = shapely.simplify(shapely.LinearRing(outline), tolerance, preserve_topology=True)
-    return np.asarray(ring.coords)[:-1]
+    return np.asarray(_simplified_ring(shapely.LinearRing(outline), tolerance).coords)[:-1]
+
+
+def _simplified_ring(ring, tolerance: float):
+    """``ring`` (a shapely LinearRing) simplified as ``shapely.simplify(..., preserve_topology=True)``
+    gives it.
+
+    The topology-preserving simplifier costs about ten times plain Douglas-Peucker on a
+    dense gear outline (0.18 s for the 184 k-point wheel). Where plain Douglas-Peucker
+    leaves a simple ring there was nothing for the topology checks to keep, and both keep
+    the same points; they differ only in where the ring starts when its first point is
+    dropped (plain: the next kept point; topology-preserving: the last kept one before
+    it), which is matched here so the written bytes do not change. A non-simple result
+    goes the slow way.
+    """
+    plain = shapely.simplify(ring, tolerance, preserve_topology=False)
+    if plain.is_empty or not plain.is_simple:
+        return shapely.simplify(ring, tolerance, preserve_topology=True)
+    coords = shapely.get_coordinates(plain)[:-1]
+    if len(coords) < 3:
+        return shapely.simplify(ring, tolerance, preserve_topology=True)
+    if not np.array_equal(coords[0], shapely.get_coordinates(ring)[0]):
+        coords = np.roll(coords, 1, axis=0)
+    return shapely.LinearRing(coords)
 
 
 # polygon queries for the meshing check
@@ -181,7 +203,7 @@ def offset_outline(outline: np.ndarray, distance: float, what: str = "outline",
     grown = shapely.Polygon(outline).buffer(float(distance), quad_segs=8, join_style="round")
     if grown.is_empty or grown.geom_type != "Polygon":
         raise DesignError(what, f"offset {distance:g} mm", "splits or empties the outline")
-    ring = shapely.simplify(grown.exterior, thin, preserve_topology=True) if thin > 0 else grown.exterior
+    ring = _simplified_ring(grown.exterior, thin) if thin > 0 else grown.exterior
     return check_outline(np.asarray(ring.coords, dtype=float)[:-1], what)
 
 def spoked_pockets(r_in: float, r_out: float, spokes: int, spoke_width: float, direction: float,

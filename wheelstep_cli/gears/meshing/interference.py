@@ -33,14 +33,45 @@ def overlap_area(p_world: np.ndarray, w_world: np.ndarray, box: MeshWindow) -> n
     return clipped_overlap_areas(p_world, w_world, (box.x_lo, -half, box.x_hi, half))
 
 
+#: Search radii (mm) of the penetration depth's near pass, tried in turn before all edges.
+DEPTH_RADII = (0.25, 1.0, 4.0)
+
+
 def depth(points: np.ndarray, pose: np.ndarray, edges: Window, max_pairs: int) -> np.ndarray:
     """Distance (mm) of each point to the nearest window edge of the same pose.
 
-    Point/edge pairs are measured in chunks of about ``max_pairs``.
+    Exact, and the same bits as measuring every edge of the pose: a point whose nearest
+    edge lies within r mm is settled by the edges whose bounding box comes within r of it
+    (the nearest is among them, measured by the same formula); the radii of
+    ``DEPTH_RADII`` are tried in turn, the few points farther than the last from every
+    edge meet all of their pose's edges. Point/edge pairs are measured in chunks of about
+    ``max_pairs``.
     """
     best = np.full(len(points), np.inf)
     if len(points) == 0:
         return np.zeros(0)
+    todo = np.arange(len(points))
+    for radius in DEPTH_RADII:
+        near = _near_depth(points[todo], pose[todo], edges, radius, max_pairs)
+        best[todo] = near
+        todo = todo[~(near <= radius)]
+        if len(todo) == 0:
+            return best
+    best[todo] = _all_depth(points[todo], pose[todo], edges, max_pairs)
+    return best
+
+
+def _segment_distance(q: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distance (mm) of points q (K, 2) to the segments a-b (K, 2)."""
+    d = b - a
+    t = np.clip(np.einsum("ij,ij->i", q - a, d)
+                / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0, 1.0)
+    return np.hypot(*(a + t[:, None] * d - q).T)
+
+
+def _all_depth(points: np.ndarray, pose: np.ndarray, edges: Window, max_pairs: int) -> np.ndarray:
+    """:func:`depth` measured against every edge of each point's pose."""
+    best = np.full(len(points), np.inf)
     # edges come grouped by pose: each point meets its pose's run
     first = np.searchsorted(edges.e_pose, pose, side="left")
     counts = np.searchsorted(edges.e_pose, pose, side="right") - first
@@ -51,11 +82,59 @@ def depth(points: np.ndarray, pose: np.ndarray, edges: Window, max_pairs: int) -
         i1 = max(int(np.searchsorted(ends, done + max_pairs, side="right")), i0 + 1)
         rows, cols = expand(first[i0:i1], counts[i0:i1], np.arange(len(edges.e_pose)))
         rows += i0
-        a, b, q = edges.e0[cols], edges.e1[cols], points[rows]
-        d = b - a
-        t = np.clip(np.einsum("ij,ij->i", q - a, d)
-                    / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0, 1.0)
-        dist = np.hypot(*(a + t[:, None] * d - q).T)
-        np.minimum.at(best, rows, dist)
+        np.minimum.at(best, rows, _segment_distance(points[rows], edges.e0[cols], edges.e1[cols]))
+        i0 = i1
+    return best
+
+
+def _near_depth(points: np.ndarray, pose: np.ndarray, edges: Window, radius: float,
+                max_pairs: int) -> np.ndarray:
+    """Least distance (mm) of each point to the edges of its pose whose bounding box, grown
+    by ``radius`` mm, holds it (inf when none does).
+
+    Without a dense table: points are sorted by (pose, x cell of ``radius`` mm, y); each
+    edge looks up, in every x cell its grown box spans, the run of points within its
+    grown y extent.
+    """
+    best = np.full(len(points), np.inf)
+    if len(points) == 0 or len(edges.e_pose) == 0:
+        return best
+    e0, e1 = edges.e0, edges.e1
+    x_lo, x_hi = np.minimum(e0[:, 0], e1[:, 0]) - radius, np.maximum(e0[:, 0], e1[:, 0]) + radius
+    y_lo, y_hi = np.minimum(e0[:, 1], e1[:, 1]) - radius, np.maximum(e0[:, 1], e1[:, 1]) + radius
+    origin = float(min(points[:, 0].min(), x_lo.min()))
+    cell = np.floor((points[:, 0] - origin) / radius).astype(np.int64)
+    c0 = np.floor((x_lo - origin) / radius).astype(np.int64)
+    c1 = np.floor((x_hi - origin) / radius).astype(np.int64)
+    cells = int(max(cell.max(), c1.max())) + 1
+    y_min = float(min(points[:, 1].min(), y_lo.min()))
+    stride = float(max(points[:, 1].max(), y_hi.max())) - y_min + 1.0
+    key = (pose.astype(np.int64) * cells + cell) * stride + (points[:, 1] - y_min)
+    order = np.argsort(key, kind="stable")
+    key_sorted = key[order]
+    # only the edges of poses that have points
+    wanted = np.zeros(int(max(pose.max(), edges.e_pose.max())) + 1, dtype=bool)
+    wanted[pose] = True
+    live = np.flatnonzero(wanted[edges.e_pose])
+    span = (c1 - c0 + 1)[live]
+    q_edge, k = expand(np.zeros(len(live), dtype=np.intp), span, np.arange(int(span.max())))
+    q_edge = live[q_edge]
+    base = (edges.e_pose[q_edge].astype(np.int64) * cells + c0[q_edge] + k) * stride - y_min
+    tol = 1e-9 * stride
+    first = np.searchsorted(key_sorted, base + y_lo[q_edge] - tol, side="left")
+    counts = np.searchsorted(key_sorted, base + y_hi[q_edge] + tol, side="right") - first
+    ends = np.cumsum(counts)
+    i0 = 0
+    while i0 < len(counts):
+        done = ends[i0 - 1] if i0 else 0
+        i1 = max(int(np.searchsorted(ends, done + max_pairs, side="right")), i0 + 1)
+        queries, rows = expand(first[i0:i1], counts[i0:i1], order)
+        cols = q_edge[queries + i0]
+        q = points[rows]
+        # the exact grown-box test (the key's rounding only widened the runs)
+        keep = ((q[:, 0] >= x_lo[cols]) & (q[:, 0] <= x_hi[cols])
+                & (q[:, 1] >= y_lo[cols]) & (q[:, 1] <= y_hi[cols]))
+        rows, cols = rows[keep], cols[keep]
+        np.minimum.at(best, rows, _segment_distance(points[rows], e0[cols], e1[cols]))
         i0 = i1
     return best
