@@ -196,6 +196,35 @@ def clipped_overlap_areas(first: np.ndarray, second: np.ndarray,
     return shapely.area(shapely.intersection(a, b))
 
 
+def body_clipped_overlap_areas(first, second, to_world, body_boxes: np.ndarray,
+                               box: tuple[float, float, float, float]) -> np.ndarray:
+    """Per pose: the area (mm^2) two posed polygons share inside the rectangle ``box`` =
+    (x_lo, y_lo, x_hi, y_hi) mm, as :func:`clipped_overlap_areas` of the posed outlines
+    gives it, without posing the whole outlines.
+
+    ``first``, ``second``: :func:`prepared_polygon` handles in their own (body) frames;
+    ``body_boxes`` (2, P, 4): per polygon and pose, a body-frame rectangle whose posed
+    image holds ``box`` grown by more than the polygon's longest edge;
+    ``to_world(which, points, pose)``: the points (M, 2) of polygon ``which`` (0, 1) posed
+    at the poses (M,) into the world, exactly as the posed outlines are. Each polygon is
+    first cut to its body box: every edge that meets ``box`` keeps both its vertices there,
+    so it is posed to the very same coordinates and the region in ``box`` is the same.
+    """
+    areas = np.zeros(body_boxes.shape[1])
+    pieces = [[shapely.clip_by_rect(body, *rect) for rect in body_boxes[which]]
+              for which, body in enumerate((first, second))]
+    posed = []
+    for which in (0, 1):
+        cut = np.array(pieces[which], dtype=object)
+        coords, index = shapely.get_coordinates(cut, return_index=True)
+        # the cut pieces are this function's own: their coordinates are replaced in place
+        posed.append(shapely.set_coordinates(cut, to_world(which, coords, index)))
+    a = shapely.clip_by_rect(posed[0], *box)
+    b = shapely.clip_by_rect(posed[1], *box)
+    areas[:] = shapely.area(shapely.intersection(a, b))
+    return areas
+
+
 def offset_outline(outline: np.ndarray, distance: float, what: str = "outline",
                    thin: float = 1e-4) -> np.ndarray:
     """The exact offset (mm) of a closed outline (N, 2) mm along its normals: every point at

@@ -346,3 +346,25 @@ def test_penetration_depth_near_search_equals_all_edges():
     plain = _all_depth(points, pose, edges, max_pairs=1 << 12)
     assert np.array_equal(fast, plain)
     assert (plain > DEPTH_RADII[-1]).sum() >= 5 and (plain < DEPTH_RADII[0]).sum() > 1000
+
+
+def test_overlap_area_of_body_cut_pieces_equals_the_whole_posed_outlines(paper_pair):
+    """The overlap area measured on pieces cut from each outline in its own frame is the area
+    of the whole posed outlines in the window (to rounding), where they overlap and not."""
+    from wheelstep_cli.gears.meshing.check import mesh_window
+    from wheelstep_cli.gears.meshing.interference import overlap_area, posed_overlap_area
+    from wheelstep_cli.gears.meshing.outlines import rotate
+    from wheelstep_cli.geometry.planar import prepared_polygon
+
+    pinion, wheel = paper_pair.pinion_outline, paper_pair.wheel_outline
+    distance = 143.5       # closer than installed: the paper teeth overlap at most poses
+    box = mesh_window(pinion, wheel, distance)
+    theta = np.linspace(0.0, paper_pair.law.theta_period, 40, endpoint=False)
+    phi = np.asarray(paper_pair.law.carrier_angle(theta), dtype=float)
+    centre = np.array([distance, 0.0])
+    whole = overlap_area(rotate(pinion[None], -theta[:, None]),
+                         rotate(wheel[None], np.pi + phi[:, None]) + centre, box)
+    cut = posed_overlap_area((prepared_polygon(pinion), prepared_polygon(wheel)), (pinion, wheel),
+                             theta, phi, centre, box)
+    assert (whole > 1e-3).sum() >= 10
+    np.testing.assert_allclose(cut, whole, rtol=1e-12, atol=1e-12)

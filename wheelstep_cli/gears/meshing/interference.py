@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from wheelstep_cli.gears.meshing.outlines import MeshWindow, RadialBand, Window, band_at, expand
-from wheelstep_cli.geometry.planar import clipped_overlap_areas, points_inside
+from wheelstep_cli.gears.meshing.outlines import MeshWindow, RadialBand, Window, band_at, expand, rotate
+from wheelstep_cli.geometry.planar import body_clipped_overlap_areas, clipped_overlap_areas, points_inside
 
 
 def contains(polygon, body: np.ndarray, band: RadialBand | None, seen=None) -> np.ndarray:
@@ -31,6 +31,43 @@ def overlap_area(p_world: np.ndarray, w_world: np.ndarray, box: MeshWindow) -> n
     """Areas (mm^2) where the posed outlines (poses, N, 2) overlap inside the mesh window."""
     half = box.half_height
     return clipped_overlap_areas(p_world, w_world, (box.x_lo, -half, box.x_hi, half))
+
+
+def posed_overlap_area(bodies: tuple, points: tuple, theta: np.ndarray, phi: np.ndarray,
+                       centre: np.ndarray, box: MeshWindow) -> np.ndarray:
+    """:func:`overlap_area` of the pinion posed at ``theta`` and the wheel at ``phi`` (rad)
+    about ``centre`` (mm), without posing the whole outlines.
+
+    ``bodies``: the prepared (pinion, wheel) polygons, ``points`` their outlines (N, 2) mm.
+    Each outline is cut in its own frame to a rectangle whose posed image holds the window
+    grown by its longest edge, then the pieces are posed exactly as the whole outlines
+    would be: the same region in the window, a fraction of the points.
+    """
+    half = box.half_height
+    rect = (box.x_lo, -half, box.x_hi, half)
+    p_angle = -theta[:, None]          # the very angles, shapes and order of rotate() below
+    w_angle = np.pi + phi[:, None]
+    turns = ((np.cos(p_angle), np.sin(p_angle)), (np.cos(w_angle), np.sin(w_angle)))
+    body_boxes = np.empty((2, len(theta), 4))
+    for which, outline in enumerate(points):
+        longest = float(np.hypot(*(np.roll(outline, -1, axis=0) - outline).T).max())
+        grow = longest + 1e-3 * (1.0 + half)
+        corners = np.array([[rect[0] - grow, rect[1] - grow], [rect[2] + grow, rect[1] - grow],
+                            [rect[2] + grow, rect[3] + grow], [rect[0] - grow, rect[3] + grow]])
+        # the corners in the outline's own frame (inverse pose; only bounds, not exact bits)
+        if which == 0:
+            body = rotate(corners[None, :, :], -p_angle)
+        else:
+            body = rotate(corners[None, :, :] - centre, -w_angle)
+        body_boxes[which] = np.column_stack([body[..., 0].min(axis=1), body[..., 1].min(axis=1),
+                                             body[..., 0].max(axis=1), body[..., 1].max(axis=1)])
+
+    def to_world(which: int, pts: np.ndarray, pose: np.ndarray) -> np.ndarray:
+        c, s = turns[which][0][pose, 0], turns[which][1][pose, 0]
+        world = np.stack([c * pts[:, 0] - s * pts[:, 1], s * pts[:, 0] + c * pts[:, 1]], axis=-1)
+        return world if which == 0 else world + centre
+
+    return body_clipped_overlap_areas(bodies[0], bodies[1], to_world, body_boxes, rect)
 
 
 #: Search radii (mm) of the penetration depth's near pass, tried in turn before all edges.

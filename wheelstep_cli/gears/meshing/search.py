@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from wheelstep_cli.gears.meshing.contacts import edge_table, gaps, rotations_to_touch
-from wheelstep_cli.gears.meshing.interference import contains, depth, overlap_area
+from wheelstep_cli.gears.meshing.interference import contains, depth, posed_overlap_area
 from wheelstep_cli.gears.meshing.outlines import (MeshWindow, Pose, RadialBand, SortedOutline,
                                                   Window, band_at, near_band, posed_window,
                                                   radial_band, rotate, sector, sorted_outline)
@@ -176,10 +176,10 @@ def batch_contacts(pair: Pair, theta: np.ndarray, phi: np.ndarray,
     area = np.zeros(poses)
     deepest = np.zeros(poses)
     if interference.any():
-        p_world = rotate(pair.pinion.points[None, :, :], -theta[interference][:, None])
-        w_world = (rotate(pair.wheel.points[None, :, :], np.pi + phi[interference][:, None])
-                   + pair.centre)
-        area[interference] = overlap_area(p_world, w_world, pair.box)
+        area[interference] = posed_overlap_area((pair.pinion_body, pair.wheel_body),
+                                                (pair.pinion.points, pair.wheel.points),
+                                                theta[interference], phi[interference],
+                                                pair.centre, pair.box)
         for side in sides:
             verts, inside = side.verts, side.inside
             np.maximum.at(deepest, verts.v_pose[inside],
