@@ -136,6 +136,10 @@ def _near_depth(points: np.ndarray, pose: np.ndarray, edges: Window, radius: flo
     best = np.full(len(points), np.inf)
     if len(points) == 0 or len(edges.e_pose) == 0:
         return best
+    near = np.flatnonzero(_edges_by_points(points, pose, edges, radius))
+    if len(near) == 0:
+        return best
+    edges = Window(edges.e_pose[near], edges.e0[near], edges.e1[near], edges.v_pose, edges.v)
     e0, e1 = edges.e0, edges.e1
     x_lo, x_hi = np.minimum(e0[:, 0], e1[:, 0]) - radius, np.maximum(e0[:, 0], e1[:, 0]) + radius
     y_lo, y_hi = np.minimum(e0[:, 1], e1[:, 1]) - radius, np.maximum(e0[:, 1], e1[:, 1]) + radius
@@ -149,13 +153,8 @@ def _near_depth(points: np.ndarray, pose: np.ndarray, edges: Window, radius: flo
     key = (pose.astype(np.int64) * cells + cell) * stride + (points[:, 1] - y_min)
     order = np.argsort(key, kind="stable")
     key_sorted = key[order]
-    # only the edges of poses that have points
-    wanted = np.zeros(int(max(pose.max(), edges.e_pose.max())) + 1, dtype=bool)
-    wanted[pose] = True
-    live = np.flatnonzero(wanted[edges.e_pose])
-    span = (c1 - c0 + 1)[live]
-    q_edge, k = expand(np.zeros(len(live), dtype=np.intp), span, np.arange(int(span.max())))
-    q_edge = live[q_edge]
+    span = c1 - c0 + 1
+    q_edge, k = expand(np.zeros(len(span), dtype=np.intp), span, np.arange(int(span.max())))
     base = (edges.e_pose[q_edge].astype(np.int64) * cells + c0[q_edge] + k) * stride - y_min
     tol = 1e-9 * stride
     first = np.searchsorted(key_sorted, base + y_lo[q_edge] - tol, side="left")
@@ -175,3 +174,32 @@ def _near_depth(points: np.ndarray, pose: np.ndarray, edges: Window, radius: flo
         np.minimum.at(best, rows, _segment_distance(points[rows], e0[cols], e1[cols]))
         i0 = i1
     return best
+
+
+def _edges_by_points(points: np.ndarray, pose: np.ndarray, edges: Window, radius: float) -> np.ndarray:
+    """Per edge, False where no point of its pose lies in its bounding box grown by ``radius``
+    mm (found on a coarse grid of the points' cells: an edge is kept when its grown box
+    spans an occupied cell, or more than two cells either way)."""
+    coarse = 4.0 * radius
+    x0, y0 = points.min(axis=0)
+    nx, ny = (np.floor((points.max(axis=0) - (x0, y0)) / coarse).astype(np.int64) + 1)
+    poses = int(pose.max()) + 1
+    while poses * nx * ny > (1 << 22):            # a very spread-out set: coarser cells
+        coarse *= 2.0
+        nx, ny = (np.floor((points.max(axis=0) - (x0, y0)) / coarse).astype(np.int64) + 1)
+    occupied = np.zeros((poses, nx, ny), dtype=bool)
+    occupied[pose, np.floor((points[:, 0] - x0) / coarse).astype(np.int64),
+             np.floor((points[:, 1] - y0) / coarse).astype(np.int64)] = True
+    e0, e1, e_pose = edges.e0, edges.e1, edges.e_pose
+    span = []
+    for axis, origin, count in ((0, x0, nx), (1, y0, ny)):
+        lo = np.floor((np.minimum(e0[:, axis], e1[:, axis]) - radius - origin) / coarse).astype(np.int64)
+        hi = np.floor((np.maximum(e0[:, axis], e1[:, axis]) + radius - origin) / coarse).astype(np.int64)
+        span.append((np.clip(lo, 0, count - 1), np.clip(hi, 0, count - 1), (hi >= 0) & (lo < count)))
+    (ix0, ix1, inx), (iy0, iy1, iny) = span
+    live = inx & iny & (e_pose < poses)
+    p = np.minimum(e_pose, poses - 1)
+    hit = (occupied[p, ix0, iy0] | occupied[p, ix1, iy0] | occupied[p, ix0, iy1]
+           | occupied[p, ix1, iy1])
+    wide = (ix1 - ix0 > 1) | (iy1 - iy0 > 1)
+    return live & (hit | wide)
