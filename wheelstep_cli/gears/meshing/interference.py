@@ -129,9 +129,10 @@ def _near_depth(points: np.ndarray, pose: np.ndarray, edges: Window, radius: flo
     """Least distance (mm) of each point to the edges of its pose whose bounding box, grown
     by ``radius`` mm, holds it (inf when none does).
 
-    Without a dense table: points are sorted by (pose, x cell of ``radius`` mm, y); each
-    edge looks up, in every x cell its grown box spans, the run of points within its
-    grown y extent.
+    Without a dense table: edges whose grown box meets no point of their pose are dropped
+    first (:func:`_edges_by_points`); points are sorted by (pose, x cell of ``radius`` mm,
+    y); each edge looks up, in every x cell its grown box spans, the run of points within
+    its grown y extent.
     """
     best = np.full(len(points), np.inf)
     if len(points) == 0 or len(edges.e_pose) == 0:
