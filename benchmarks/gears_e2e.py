@@ -18,6 +18,7 @@ end to end at most 1.5 s median on the 2-core machine.
 from __future__ import annotations
 
 import argparse
+import os
 import resource
 import statistics
 import subprocess
@@ -110,9 +111,11 @@ def main() -> None:
     parser.add_argument("--no-stages", action="store_true", help="only the end-to-end runs")
     parser.add_argument("extra", nargs="*", help="more options for `wheelstep gears`")
     args = parser.parse_args()
+    before = os.getloadavg()
     walls, cpus = end_to_end(args.runs, args.extra)
     label = " ".join(["wheelstep gears --z 48", *args.extra])
-    print(f"{label}, {args.runs} runs: wall {_spread(walls)}; CPU (user+sys) {_spread(cpus)}")
+    print(f"{label}, {args.runs} runs: wall {_spread(walls)}; CPU (user+sys) {_spread(cpus)}; "
+          "load average %.1f before, %.1f after (1 min)" % (before[0], os.getloadavg()[0]))
     if not args.no_stages:
         rows = stages()
         for name, wall, cpu in rows:

@@ -316,3 +316,55 @@ def test_fast_path_equals_plain_search_on_coarse_polygons(gap, tilt, offset, sid
         fast = check_meshing(pinion, wheel, swinging, 50.0, base)
         plain = check_meshing(pinion, wheel, swinging, 50.0, replace(base, reach=np.inf))
         _reports_equal(fast, plain)
+
+
+def test_penetration_depth_near_search_equals_all_edges():
+    """The depth's near search (grown edge boxes, radii in turn) gives bit for bit the
+    distance to the nearest of all the pose's edges, for points on, near and far from the
+    edges (the far ones beyond every radius take the plain path)."""
+    from wheelstep_cli.gears.meshing.interference import DEPTH_RADII, _all_depth, depth
+    from wheelstep_cli.gears.meshing.outlines import Window
+
+    rng = np.random.default_rng(7)
+    poses = 5
+    ring = np.column_stack([np.cos(np.linspace(0, 2 * np.pi, 400)), np.sin(np.linspace(0, 2 * np.pi, 400))])
+    e0, e1, e_pose = [], [], []
+    for k in range(poses):
+        pts = (20.0 + k) * ring + rng.normal(0.0, 0.02, ring.shape)
+        e0.append(pts[:-1]), e1.append(pts[1:]), e_pose.append(np.full(len(pts) - 1, k))
+    edges = Window(np.concatenate(e_pose), np.concatenate(e0), np.concatenate(e1),
+                   np.zeros(0, dtype=int), np.zeros((0, 2)))
+    pose = rng.integers(0, poses, 3000)
+    radius = (20.0 + pose) * (1.0 + rng.choice([0.0, 1e-3, 0.01, 0.05, 0.2, 0.6], len(pose))
+                              * rng.uniform(-1.0, 1.0, len(pose)))
+    angle = rng.uniform(0.0, 2 * np.pi, len(pose))
+    points = np.column_stack([radius * np.cos(angle), radius * np.sin(angle)])
+    points[:5] = [0.0, 0.0]                     # farther than every radius from every edge
+    order = np.argsort(pose, kind="stable")
+    points, pose = points[order], pose[order]
+    fast = depth(points, pose, edges, max_pairs=1 << 12)
+    plain = _all_depth(points, pose, edges, max_pairs=1 << 12)
+    assert np.array_equal(fast, plain)
+    assert (plain > DEPTH_RADII[-1]).sum() >= 5 and (plain < DEPTH_RADII[0]).sum() > 1000
+
+
+def test_overlap_area_of_body_cut_pieces_equals_the_whole_posed_outlines(paper_pair):
+    """The overlap area measured on pieces cut from each outline in its own frame is the area
+    of the whole posed outlines in the window (to rounding), where they overlap and not."""
+    from wheelstep_cli.gears.meshing.check import mesh_window
+    from wheelstep_cli.gears.meshing.interference import overlap_area, posed_overlap_area
+    from wheelstep_cli.gears.meshing.outlines import rotate
+    from wheelstep_cli.geometry.planar import prepared_polygon
+
+    pinion, wheel = paper_pair.pinion_outline, paper_pair.wheel_outline
+    distance = 143.5       # closer than installed: the paper teeth overlap at most poses
+    box = mesh_window(pinion, wheel, distance)
+    theta = np.linspace(0.0, paper_pair.law.theta_period, 40, endpoint=False)
+    phi = np.asarray(paper_pair.law.carrier_angle(theta), dtype=float)
+    centre = np.array([distance, 0.0])
+    whole = overlap_area(rotate(pinion[None], -theta[:, None]),
+                         rotate(wheel[None], np.pi + phi[:, None]) + centre, box)
+    cut = posed_overlap_area((prepared_polygon(pinion), prepared_polygon(wheel)), (pinion, wheel),
+                             theta, phi, centre, box)
+    assert (whole > 1e-3).sum() >= 10
+    np.testing.assert_allclose(cut, whole, rtol=1e-12, atol=1e-12)

@@ -11,7 +11,13 @@ from wheelstep_cli.gears.generation.envelope import PolarGrid, outline_from_radi
 from wheelstep_cli.gears.generation.outline import polar_sweep
 from wheelstep_cli.gears.generation.rack import (RackCutter, RackRolling, RackTeeth, rack_poses,
                                                  rack_tooth_polygons)
-from wheelstep_cli.geometry.planar import grown_minus_rotated_union, intersect_outlines, open_outline
+from wheelstep_cli.gears.threads import thread_map
+from wheelstep_cli.geometry.planar import (grown_minus_rotated_union, intersect_outlines, open_outline,
+                                          polygon_union)
+
+
+#: Piles of consecutive rack poses united separately (on threads), then together.
+UNION_PILES = 2
 
 
 def pinion_by_rack(rolling: RackRolling, cutter: RackCutter, module: float) -> np.ndarray:
@@ -33,8 +39,11 @@ def pinion_by_rack(rolling: RackRolling, cutter: RackCutter, module: float) -> n
     curve = rolling.curve
     body = np.concatenate([curve[:-1] @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
                            for a in angles])
+    # the poses' union in UNION_PILES piles of consecutive poses on threads (a fixed count,
+    # so the outline does not depend on the machine's cores)
+    regions = list(thread_map(polygon_union, np.array_split(pieces, UNION_PILES)))
     # bevel joins: a chord across each pitch-curve corner relieves the corner teeth's tips
-    return grown_minus_rotated_union(body, cutter.addendum * module, pieces, angles)
+    return grown_minus_rotated_union(body, cutter.addendum * module, regions, angles)
 
 
 def round_tips(outline: np.ndarray, radius: float) -> np.ndarray:

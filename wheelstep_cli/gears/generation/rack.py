@@ -195,10 +195,13 @@ def place_rack(frames: Frames, teeth: RackTeeth, rel_shift: np.ndarray, tilt_of_
     rx = rack[None, :, 0] + rel_shift[:, None]
     ry = np.broadcast_to(rack[None, :, 1], rx.shape)
     if tilt_of_arc is not None:
-        centre = teeth.tooth_x[None, :] + rel_shift[:, None]
-        tau = tilt_of_arc(arc_at_contact[:, None] + centre)
+        # a tooth's tilt is one angle for all its points: found per tooth, then spread
+        centres, tooth = np.unique(teeth.tooth_x, return_inverse=True)
+        per_tooth = centres[None, :] + rel_shift[:, None]
+        tau = tilt_of_arc(arc_at_contact[:, None] + per_tooth)
+        centre = per_tooth[:, tooth]
         dx = rx - centre
-        c, s = np.cos(tau), np.sin(tau)
+        c, s = np.cos(tau)[:, tooth], np.sin(tau)[:, tooth]
         rx, ry = centre + c * dx - s * ry, s * dx + c * ry
     return (frames.origin[:, None, :] + rx[..., None] * frames.tangent[:, None, :]
             + ry[..., None] * frames.normal[:, None, :])

@@ -132,9 +132,10 @@ def rotations_to_touch(v: np.ndarray, v_pose: np.ndarray, edges: EdgeTable, sign
         a, b, c = edges.dd[cols], edges.ed[cols], edges.ee[cols] - radius[rows] ** 2
         disc = np.sqrt(np.maximum(b * b - a * c, 0.0))
         e0, d = edges.e0[cols], edges.d[cols]
+        divisor, proper = np.where(a > 0, a, 1.0), a > 0
         for root in (-1.0, 1.0):
-            t = (-b + root * disc) / np.where(a > 0, a, 1.0)
-            ok = (t >= 0.0) & (t <= 1.0) & (a > 0)
+            t = (-b + root * disc) / divisor
+            ok = (t >= 0.0) & (t <= 1.0) & proper
             t, r = t[ok], rows[ok]
             angle = np.arctan2(e0[ok, 1] + t * d[ok, 1], e0[ok, 0] + t * d[ok, 0])
             delta = wrap(sign * (angle - own[r]))  # > 0: met turning the wheel backwards

@@ -183,20 +183,26 @@ def posed_window(outline: SortedOutline, pose: Pose, box: MeshWindow) -> Window:
     n = len(outline.points)
     v_pose, v_idx, e_pose, e_idx = _candidates(outline, pose)
     c, s = np.cos(pose.angle), np.sin(pose.angle)
+    px, py = outline.points[:, 0], outline.points[:, 1]
 
-    def pose_points(which, idx):
-        x, y = outline.points[idx, 0], outline.points[idx, 1]
-        world = np.stack([c[which] * x - s[which] * y, s[which] * x + c[which] * y], axis=-1)
-        return world if pose.shift is None else world + pose.shift
+    def pose_xy(cw, sw, idx):
+        x, y = px[idx], py[idx]
+        wx, wy = cw * x - sw * y, sw * x + cw * y
+        if pose.shift is not None:
+            wx, wy = wx + pose.shift[0], wy + pose.shift[1]
+        return wx, wy
 
     xlo, xhi, half, margin = box.x_lo, box.x_hi, box.half_height, box.margin
-    v = pose_points(v_pose, v_idx)
-    vertex = (v[:, 0] >= xlo) & (v[:, 0] <= xhi) & (np.abs(v[:, 1]) <= half)
-    e0, e1 = pose_points(e_pose, e_idx), pose_points(e_pose, (e_idx + 1) % n)
-    x, y, x1, y1 = e0[:, 0], e0[:, 1], e1[:, 0], e1[:, 1]
-    edge = ((np.minimum(x, x1) <= xhi + margin) & (np.maximum(x, x1) >= xlo - margin)
-            & (np.minimum(y, y1) <= half + margin) & (np.maximum(y, y1) >= -half - margin))
-    return Window(e_pose[edge], e0[edge], e1[edge], v_pose[vertex], v[vertex])
+    vx, vy = pose_xy(c[v_pose], s[v_pose], v_idx)
+    vertex = np.flatnonzero((vx >= xlo) & (vx <= xhi) & (np.abs(vy) <= half))
+    ce, se = c[e_pose], s[e_pose]
+    x, y = pose_xy(ce, se, e_idx)
+    x1, y1 = pose_xy(ce, se, (e_idx + 1) % n)
+    edge = np.flatnonzero((np.minimum(x, x1) <= xhi + margin) & (np.maximum(x, x1) >= xlo - margin)
+                          & (np.minimum(y, y1) <= half + margin) & (np.maximum(y, y1) >= -half - margin))
+    # only the kept points are gathered into (M, 2) arrays (the same values, fewer copies)
+    return Window(e_pose[edge], np.column_stack([x[edge], y[edge]]), np.column_stack([x1[edge], y1[edge]]),
+                  v_pose[vertex], np.column_stack([vx[vertex], vy[vertex]]))
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from wheelstep_cli.gears.meshing.contacts import edge_table, gaps, rotations_to_touch
-from wheelstep_cli.gears.meshing.interference import contains, depth, overlap_area
+from wheelstep_cli.gears.meshing.interference import contains, depth, posed_overlap_area
 from wheelstep_cli.gears.meshing.outlines import (MeshWindow, Pose, RadialBand, SortedOutline,
                                                   Window, band_at, near_band, posed_window,
                                                   radial_band, rotate, sector, sorted_outline)
@@ -101,19 +101,19 @@ def posed_sides(pair: Pair, theta: np.ndarray, phi: np.ndarray, reach: float) ->
     rho_w = np.hypot(ww.v[:, 0], ww.v[:, 1])
     p_near = near_band(pv_body, 1e-9, pair.wheel_band, pv_seen)
     w_near = near_band(wv_body, reach * rho_w + 1e-9, pair.pinion_band, wv_seen)
-    half = lambda e: 0.5 * np.hypot(*(e.e1 - e.e0).T)  # noqa: E731
+    w_half, p_half = (0.5 * np.hypot(*(e.e1 - e.e0).T) for e in (ww, pw))
     mid = lambda e: 0.5 * (e.e0 + e.e1)  # noqa: E731
     # wheel edges: crossed by a pinion vertex that turned at most the reach about the wheel axis
     we_near = near_band(rotate(mid(ww) + centre, theta[ww.e_pose]),
                         reach * np.sqrt(np.maximum(np.einsum("ij,ij->i", ww.e0, ww.e0),
                                                    np.einsum("ij,ij->i", ww.e1, ww.e1)))
-                        + half(ww) + 1e-9, pair.pinion_band)
+                        + w_half + 1e-9, pair.pinion_band)
     # pinion edges: crossed by a wheel vertex at the same radius and within the reach of angle
-    pe_near = near_band(rotate(mid(pw), -(np.pi + phi[pw.e_pose])), half(pw) + 1e-9,
+    pe_near = near_band(rotate(mid(pw), -(np.pi + phi[pw.e_pose])), p_half + 1e-9,
                         pair.wheel_band)
     # the bands' angular margins allow for short edges only: never skip a longer one
-    we_near |= half(ww) > 0.5 * pair.wheel.e_length
-    pe_near |= half(pw) > 0.5 * pair.pinion.e_length
+    we_near |= w_half > 0.5 * pair.wheel.e_length
+    pe_near |= p_half > 0.5 * pair.pinion.e_length
     return (Side(pw, p_inside, p_near, ww, we_near, 1.0),
             Side(ww, w_inside, w_near, pw, pe_near, -1.0))
 
@@ -176,10 +176,10 @@ def batch_contacts(pair: Pair, theta: np.ndarray, phi: np.ndarray,
     area = np.zeros(poses)
     deepest = np.zeros(poses)
     if interference.any():
-        p_world = rotate(pair.pinion.points[None, :, :], -theta[interference][:, None])
-        w_world = (rotate(pair.wheel.points[None, :, :], np.pi + phi[interference][:, None])
-                   + pair.centre)
-        area[interference] = overlap_area(p_world, w_world, pair.box)
+        area[interference] = posed_overlap_area((pair.pinion_body, pair.wheel_body),
+                                                (pair.pinion.points, pair.wheel.points),
+                                                theta[interference], phi[interference],
+                                                pair.centre, pair.box)
         for side in sides:
             verts, inside = side.verts, side.inside
             np.maximum.at(deepest, verts.v_pose[inside],
