@@ -1,0 +1,50 @@
+"""``mesh-check --gcode``: the gear pair as PrusaSlicer's G-code prints it (SPEC §11)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from wheelstep_cli.cli.output import Output
+
+
+def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design: dict,
+                how: tuple, band: tuple, writing: tuple) -> bool:
+    """Read the pair of ``plates`` (default: FILE.3mf beside each FILE.gcode) back from the
+    G-code files and check it; ``how`` = (samples, window, plot), ``band`` = (--tolerance,
+    --printer), ``writing`` = (dry run, quiet, force). True when the print would not mesh."""
+    from wheelstep_cli.cli.commands.meshcheck import _band_printer, lines, no_design_options
+    from wheelstep_cli.cli.progress import with_progress
+    from wheelstep_cli.errors import require
+    from wheelstep_cli.parts.gcode_check import (band_prediction, default_plates, gcode_lines,
+                                                 run_gcode_check, within_band)
+    from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, written_pair_files
+    from wheelstep_cli.parts.plate_pairs import find_plate_pairs
+    from wheelstep_cli.parts.tolerance_cli import tolerance_lines
+
+    samples, window, plot = how
+    dry_run, quiet, force = writing
+    no_design_options(design)
+    require(len(gcode) <= 2, "gcode", " ".join(map(str, gcode)), "takes one file, or the two "
+                                                                   "files of the pair's two plates")
+    chosen = _band_printer(*band)
+    found = find_plate_pairs(plates or default_plates(gcode), pair)
+    require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID)")
+    report, summary, read = with_progress(not quiet, "G-code read-back", run_gcode_check, gcode,
+                                          found[0], samples, window)
+    if chosen is not None:
+        summary["tolerance"] = with_progress(not quiet, "band check", band_prediction, read, chosen)
+        summary["gcode"]["inside_band"] = within_band(summary, summary["tolerance"])
+    files = written_pair_files(WrittenPairCheck(summary["pinion"], summary["wheel"], found[0].spec,
+                                                samples, window, plot), report)
+    named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
+    show.report(summary, lambda: lines(summary, summary["distance_mm"], samples)[:1]
+                + gcode_lines(summary) + _rest(summary, samples, tolerance_lines))
+    show.files(named, dry_run)
+    return report.interferes or report.contact_lost
+
+
+def _rest(summary: dict, samples: int, tolerance_lines) -> list[str]:
+    from wheelstep_cli.parts.mesh_check import meshing_lines
+
+    return meshing_lines(summary) + (tolerance_lines(summary["tolerance"]) if "tolerance" in summary
+                                     else [])
