@@ -73,6 +73,22 @@ def read_gcode_file(path: Path) -> GcodeLayers:
     return read_gcode(text, str(path))
 
 
+def require_gcode_files(paths: list[Path]) -> None:
+    """Refuse (DesignError naming ``gcode``) a missing file, or one that is not a whole
+    PrusaSlicer G-code file, reading only its head and tail: before any plate is read."""
+    from wheelstep_cli.formats.gcode import check_prusaslicer
+
+    for path in paths:
+        if not path.is_file():
+            raise DesignError("gcode", str(path), "no such file")
+        size = path.stat().st_size
+        with open(path, "rb") as handle:
+            head = handle.read(2000)
+            handle.seek(max(0, size - 200000))
+            tail = handle.read()
+        check_prusaslicer(head.decode(errors="replace") + "\n" + tail.decode(errors="replace"), str(path))
+
+
 def mid_layer(layers: GcodeLayers, height: float) -> float:
     """The layer (its top z, mm) whose middle is nearest to ``height`` mm."""
     if not layers.layers:
@@ -244,7 +260,7 @@ def run_gcode_check(gcode_files: list[Path], pair, samples: int, window: float |
     return report, summary, read
 
 
-def band_prediction(read: GcodeCheck, printer) -> dict:
+def band_prediction(read: GcodeCheck, printer, progress=None) -> dict:
     """The band check (SPEC §11) of the designed pair on ``printer``'s band, and the range of
     least backlash (mm) it predicts for a print: the tight corner's to the loose corner's."""
     from wheelstep_cli.parts.tolerance import band_record

@@ -16,7 +16,7 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.errors import require
     from wheelstep_cli.parts.gcode_check import (band_prediction, default_plates, gcode_lines,
-                                                 run_gcode_check, within_band)
+                                                 require_gcode_files, run_gcode_check, within_band)
     from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, written_pair_files
     from wheelstep_cli.parts.plate_pairs import find_plate_pairs
     from wheelstep_cli.parts.tolerance_cli import tolerance_lines
@@ -27,6 +27,7 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     require(len(gcode) <= 2, "gcode", " ".join(map(str, gcode)), "takes one file, or the two "
                                                                    "files of the pair's two plates")
     chosen = _band_printer(*band)
+    require_gcode_files(gcode)
     found = find_plate_pairs(plates or default_plates(gcode), pair)
     require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID)")
     report, summary, read = with_progress(not quiet, "G-code read-back", run_gcode_check, gcode,
