@@ -41,6 +41,20 @@ def band_pair(spec, printer, check: bool, fit: str | None):
     return pair, record, nominal
 
 
+def printer_band_record(pair, printer) -> dict:
+    """The band record of a pair built for ``printer`` with its tooth clearance (as batch
+    builds it), or, when the printer states no band, a record saying to add one (a printer
+    without a band is not taken as perfect)."""
+    if printer.band is None:
+        return {"printer": printer.name, "checked": False, "jams": None,
+                "note": f"printer {printer.name} has no dimensional band: add a `band:` section "
+                        "(outline, hole_shrink, center_distance, mm) to its profile to check the "
+                        "pair over it"}
+    sections = sectioned_pair(pair)
+    record = band_record(sections, printer.band, printer.name, check_case(sections, NOMINAL))
+    return {"checked": True, "tooth_clearance_mm": printer.tooth_clearance, **record}
+
+
 def tolerance_lines(record: dict) -> list[str]:
     """Text lines of a band record (with its fit when there is one)."""
     lines = band_lines(record)
