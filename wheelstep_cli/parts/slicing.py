@@ -36,7 +36,8 @@ def slice_plates(plates: dict[Path, bytes], folder: Path) -> dict[Path, Path]:
         local = folder / plate.name
         local.write_bytes(data)
         gcode = local.with_suffix(".gcode")
-        runs[plate] = (gcode, subprocess.Popen([binary, "--export-gcode", str(local), "--output", str(gcode)],
+        runs[plate] = (gcode, subprocess.Popen([binary, "--export-gcode", "--dont-arrange", str(local),
+                                                "--output", str(gcode)],
                                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True))
     out = {}
     for plate, (gcode, run) in runs.items():
