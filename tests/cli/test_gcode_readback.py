@@ -117,3 +117,9 @@ def test_slice_without_prusaslicer_is_refused_in_one_line(cli, tmp_path, monkeyp
     result = cli("gears", "--slice", "--out", tmp_path / "out")
     assert "--slice = on: needs PrusaSlicer" in error_line(result)
     assert not (tmp_path / "out").exists()
+
+
+def test_slice_without_plates_is_refused_in_one_line(cli, tmp_path):
+    result = cli("gears", "--slice", "--format", "stl", "--out", tmp_path / "out")
+    assert "--slice = on: slices the 3MF plates" in error_line(result)
+    assert not (tmp_path / "out").exists()

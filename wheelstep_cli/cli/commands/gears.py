@@ -172,7 +172,7 @@ def gears(
                           fillet=fillet, clearance=clearance, blend=blend, corner=_value(corner),
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
-    _require_slicer(slice_)
+    _require_slicer(slice_, fmt.value)
     _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force,
                 checked_extras(plot, gif, dxf, svg, step),
                 (tolerance or fit is not None, fit.value if fit else None), slice_)
@@ -190,11 +190,15 @@ def _printer(name: str | None):
     return load_printer_profile(name) if name else None
 
 
-def _require_slicer(slice_: bool) -> None:
-    """--slice is refused up front (one line) when PrusaSlicer is not installed."""
+def _require_slicer(slice_: bool, fmt: str) -> None:
+    """--slice is refused up front (one line) when PrusaSlicer is not installed or no 3MF
+    plate is written."""
     if slice_:
+        from wheelstep_cli.errors import DesignError
         from wheelstep_cli.parts.slicing import require_slicer
 
+        if fmt == "stl":
+            raise DesignError("slice_", "on", "slices the 3MF plates: give --format 3mf or both")
         require_slicer()
 
 
