@@ -123,3 +123,9 @@ def test_slice_without_plates_is_refused_in_one_line(cli, tmp_path):
     result = cli("gears", "--slice", "--format", "stl", "--out", tmp_path / "out")
     assert "--slice = on: slices the 3MF plates" in error_line(result)
     assert not (tmp_path / "out").exists()
+
+
+def test_slice_for_a_resin_printer_is_refused_in_one_line(cli, tmp_path):
+    result = cli("gears", "--slice", "--printer", "resin-0.05-standard", "--out", tmp_path / "out")
+    assert "--slice = on: reads back FDM G-code; resin-0.05-standard is a resin printer" in error_line(result)
+    assert not (tmp_path / "out").exists()

@@ -89,10 +89,11 @@ def require_gcode_files(paths: list[Path]) -> None:
         check_prusaslicer(head.decode(errors="replace") + "\n" + tail.decode(errors="replace"), str(path))
 
 
-def mid_layer(layers: GcodeLayers, height: float) -> float:
+def mid_layer(layers: GcodeLayers, height: float, source: str = "gcode") -> float:
     """The layer (its top z, mm) whose middle is nearest to ``height`` mm."""
     if not layers.layers:
-        raise DesignError("gcode", "layers", "has no external perimeter on any layer")
+        raise DesignError("gcode", source, "has no external perimeter on any layer (nothing an "
+                                           "outline can be read from)")
     step = float(layers.config.get("layer_height", "0.2") or 0.2)
     return min(layers.heights(), key=lambda z: abs(z - 0.5 * step - height))
 
@@ -100,7 +101,7 @@ def mid_layer(layers: GcodeLayers, height: float) -> float:
 def printed_parts(layers: GcodeLayers, source: str, height: float) -> list[PrintedPart]:
     """The parts printed at mid-``height`` (mm): each outermost loop with the loops inside it
     (its holes), offset by half their extrusion width away from the material."""
-    z = mid_layer(layers, height)
+    z = mid_layer(layers, height, source)
     loops = [(np.asarray(loop.points, float), loop.width) for loop in layers.layers[z]]
     loops = [(p if signed_area(p) > 0 else p[::-1], w) for p, w in loops if abs(signed_area(p)) > 1e-6]
     loops.sort(key=lambda item: -signed_area(item[0]))

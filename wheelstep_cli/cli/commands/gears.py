@@ -172,8 +172,9 @@ def gears(
                           fillet=fillet, clearance=clearance, blend=blend, corner=_value(corner),
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
-    _require_slicer(slice_, fmt.value)
-    _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force,
+    chosen = _printer(printer)
+    _require_slicer(slice_, fmt.value, chosen)
+    _make_gears(spec, chosen, show, out, fmt.value, allow_interference, dry_run, force,
                 checked_extras(plot, gif, dxf, svg, step),
                 (tolerance or fit is not None, fit.value if fit else None), slice_)
 
@@ -190,15 +191,17 @@ def _printer(name: str | None):
     return load_printer_profile(name) if name else None
 
 
-def _require_slicer(slice_: bool, fmt: str) -> None:
-    """--slice is refused up front (one line) when PrusaSlicer is not installed or no 3MF
-    plate is written."""
+def _require_slicer(slice_: bool, fmt: str, printer) -> None:
+    """--slice is refused up front (one line) when PrusaSlicer is not installed, no 3MF
+    plate is written or the printer is a resin one (sliced to layers images, not G-code)."""
     if slice_:
         from wheelstep_cli.errors import DesignError
         from wheelstep_cli.parts.slicing import require_slicer
 
         if fmt == "stl":
             raise DesignError("slice_", "on", "slices the 3MF plates: give --format 3mf or both")
+        if printer is not None and printer.technology == "resin":
+            raise DesignError("slice_", "on", f"reads back FDM G-code; {printer.name} is a resin printer")
         require_slicer()
 
 
