@@ -130,14 +130,17 @@ def find_gear(parts: list[PrintedPart], design: np.ndarray, gear: str, pair: str
                                           f"'{pair}' (section {want:.0f} mm2; {len(parts)} printed "
                                           f"part(s) at mid-height: {found} mm2): slice both gears of "
                                           "this pair (one plate, or the files of both plates)")
-    part = near[0]
-    fit = register(part.outline, design)
-    if fit.rms > RMS or fit.largest > LARGEST:
-        raise DesignError("gcode", part.source, f"its part of {part.area:.0f} mm2 is not the {gear} "
-                                                f"of pair '{pair}': after the best fit it departs by "
-                                                f"{fit.largest:.2f} mm (rms {fit.rms:.3f} mm; a print "
-                                                f"stays within {LARGEST:g}): another design")
-    return PrintedGear(part, fit.apply(part.outline), fit)
+    best = None
+    for part in near:       # nearest in area first; a plate may hold gears of other pairs
+        fit = register(part.outline, design)
+        if fit.rms <= RMS and fit.largest <= LARGEST:
+            return PrintedGear(part, fit.apply(part.outline), fit)
+        best = best or (part, fit)
+    part, fit = best
+    raise DesignError("gcode", part.source, f"its part of {part.area:.0f} mm2 is not the {gear} "
+                                            f"of pair '{pair}': after the best fit it departs by "
+                                            f"{fit.largest:.2f} mm (rms {fit.rms:.3f} mm; a print "
+                                            f"stays within {LARGEST:g}): another design")
 
 
 def gear_record(gear: PrintedGear, design_hole: float | None) -> dict:
@@ -267,9 +270,14 @@ def band_prediction(read: GcodeCheck, printer, progress=None) -> dict:
     from wheelstep_cli.parts.tolerance import band_record
 
     record = band_record(read.design, printer.band, printer.name, read.nominal, read.settings)
-    least = [c["backlash_min_mm"] for c in record["cases"] if c["backlash_min_mm"] is not None]
-    record["least_backlash_range_mm"] = [min(least), max(least)] if least else None
+    record["least_backlash_range_mm"] = least_backlash_range(record)
     return record
+
+
+def least_backlash_range(band: dict) -> list | None:
+    """The least backlash (mm) a band record predicts for a print: its cases' lowest to highest."""
+    least = [c["backlash_min_mm"] for c in band.get("cases", []) if c["backlash_min_mm"] is not None]
+    return [min(least), max(least)] if least else None
 
 
 def within_band(summary: dict, band: dict) -> bool | None:
@@ -293,7 +301,7 @@ def gcode_lines(summary: dict) -> list[str]:
                      f"from the drawn one (rms {r['outline_rms_mm']:.3f}, largest "
                      f"{r['outline_largest_mm']:.3f}){bore}")
     band = summary.get("tolerance")
-    if band and band.get("least_backlash_range_mm"):
+    if band and band.get("least_backlash_range_mm") and summary["backlash_min_mm"] is not None:
         lo, hi = band["least_backlash_range_mm"]
         inside = summary["gcode"].get("inside_band")
         lines.append(f"printed least backlash {summary['backlash_min_mm']:.3f} mm: "

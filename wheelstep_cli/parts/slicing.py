@@ -53,10 +53,12 @@ def slice_plates(plates: dict[Path, bytes], folder: Path) -> dict[Path, Path]:
     return out
 
 
-def slice_and_check(files: dict[Path, bytes], progress=None) -> tuple[dict[Path, bytes], dict, bool]:
+def slice_and_check(files: dict[Path, bytes], band: dict | None = None,
+                    progress=None) -> tuple[dict[Path, bytes], dict, bool]:
     """Slice the 3MF plates among ``files`` and check the pair as their G-code prints it:
     (G-code path beside each plate -> bytes, the report record, whether it meshes);
-    ``progress(done, total)`` hears of each stage (slicing, the check)."""
+    with ``band`` (the pair's band record, ``--tolerance``) also whether the printed least
+    backlash lies in the range it predicts. ``progress(done, total)`` hears of each stage."""
     from wheelstep_cli.gears.meshing import MeshingSettings
     from wheelstep_cli.parts.gcode_check import run_gcode_check
     from wheelstep_cli.parts.plate_pairs import find_plate_pairs
@@ -78,6 +80,12 @@ def slice_and_check(files: dict[Path, bytes], progress=None) -> tuple[dict[Path,
         summary["gcode"][gear]["gcode"] = names[source]
         summary[gear] = f"{names[source]}:{gear}"
     record = {"slicer": header.lstrip("; "), "gcode_files": sorted(names.values()), **summary}
+    if band is not None:
+        from wheelstep_cli.parts.gcode_check import least_backlash_range, within_band
+
+        record["tolerance"] = {"printer": band["printer"],
+                               "least_backlash_range_mm": least_backlash_range(band)}
+        record["gcode"]["inside_band"] = within_band(record, record["tolerance"])
     return written, record, bool(summary["meshes"])
 
 

@@ -258,7 +258,7 @@ def _slice(show: Output, pair, record: dict, files: dict, out: Path) -> dict:
     from wheelstep_cli.parts.slicing import slice_and_check
 
     gcode, sliced, meshes = with_progress(not show.quiet, "slicing and G-code read-back",
-                                          slice_and_check, files)
+                                          slice_and_check, files, record.get("tolerance"))
     files.update(gcode)
     files[out / "gears.json"] = json_bytes({**gear_pair_report(pair, record), "slice": sliced})
     if not meshes:

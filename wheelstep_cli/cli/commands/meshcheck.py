@@ -22,7 +22,7 @@ Gcode = Annotated[Optional[List[Path]], opt(
                     "design (law, installed distance) comes from the plate(s) it was sliced from: "
                     "PINION [WHEEL] name them, else FILE.3mf beside each FILE.gcode. With "
                     "--tolerance, also the band's prediction of the least backlash.",
-    callback=None)]
+    callback=None, metavar="<FILE.gcode>")]
 
 
 def mesh_check(
