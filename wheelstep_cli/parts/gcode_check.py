@@ -108,24 +108,32 @@ def printed_parts(layers: GcodeLayers, source: str, height: float) -> list[Print
     shells: list[tuple] = []
     for points, width in loops:
         owner = next((s for s in shells if points_inside(s[2], points[:1])[0]), None)
+        try:
+            printed = offset_outline(points, 0.5 * width if owner is None else -0.5 * width, "gcode")
+        except DesignError:
+            continue    # a loop crossing itself is no gear outline (a gear's is then not found)
         if owner is None:
-            printed = offset_outline(points, 0.5 * width, "gcode")
             shells.append((printed, width, prepared_polygon(points), []))
         else:
-            owner[3].append(offset_outline(points, -0.5 * width, "gcode"))
+            owner[3].append(printed)
     return [PrintedPart(source, z, width, outline, tuple(holes)) for outline, width, _, holes in shells]
 
 
 def find_gear(parts: list[PrintedPart], design: np.ndarray, gear: str, pair: str,
               taken: list) -> PrintedGear:
-    """The printed part that is ``design`` (the gear's mid-thickness section, own frame):
-    nearest in area, then fitted; DesignError naming the G-code when none is."""
+    """The printed part that is ``design`` (the gear's mid-thickness outer ring, own frame):
+    nearest in the area its outer outline bounds (holes and pockets aside), then fitted;
+    DesignError naming the G-code when none is."""
     want = signed_area(design)
+
+    def outer(part):
+        return signed_area(part.outline)
+
     near = sorted((p for p in parts if not any(p is t for t in taken)
-                   and abs(p.area / want - 1.0) < AREA_SHARE), key=lambda p: abs(p.area - want))
+                   and abs(outer(p) / want - 1.0) < AREA_SHARE), key=lambda p: abs(outer(p) - want))
     where = " + ".join(sorted({p.source for p in parts})) or "the G-code"
     if not near:
-        found = ", ".join(f"{p.area:.0f}" for p in parts) or "none"
+        found = ", ".join(f"{outer(p):.0f}" for p in parts) or "none"
         raise DesignError("gcode", where, f"has no printed part the size of the {gear} of pair "
                                           f"'{pair}' (section {want:.0f} mm2; {len(parts)} printed "
                                           f"part(s) at mid-height: {found} mm2): slice both gears of "
@@ -137,7 +145,7 @@ def find_gear(parts: list[PrintedPart], design: np.ndarray, gear: str, pair: str
             return PrintedGear(part, fit.apply(part.outline), fit)
         best = best or (part, fit)
     part, fit = best
-    raise DesignError("gcode", part.source, f"its part of {part.area:.0f} mm2 is not the {gear} "
+    raise DesignError("gcode", part.source, f"its part of {outer(part):.0f} mm2 is not the {gear} "
                                             f"of pair '{pair}': after the best fit it departs by "
                                             f"{fit.largest:.2f} mm (rms {fit.rms:.3f} mm; a print "
                                             f"stays within {LARGEST:g}): another design")
