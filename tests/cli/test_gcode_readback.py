@@ -129,3 +129,16 @@ def test_slice_for_a_resin_printer_is_refused_in_one_line(cli, tmp_path):
     result = cli("gears", "--slice", "--printer", "resin-0.05-standard", "--out", tmp_path / "out")
     assert "--slice = on: reads back FDM G-code; resin-0.05-standard is a resin printer" in error_line(result)
     assert not (tmp_path / "out").exists()
+
+
+def test_the_design_may_come_from_the_two_meshes_and_the_design_options(cli, sliced):
+    folder, report = sliced
+    result = cli("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode", folder / "gears-2.gcode",
+                 folder / "pinion.stl", folder / "wheel.stl", "--samples", "256", "--json")
+    assert result.exit_code == 0, result.stderr
+    summary = json.loads(result.stdout)
+    assert summary["distance_mm"] == 144 and not summary["interference"]
+    assert summary["gcode"]["pinion"]["gcode"].endswith("gears-2.gcode")
+    result = cli("mesh-check", "--gcode", folder / "gears-1.gcode", folder / "pinion.stl",
+                 folder / "wheel.stl", "--pair", "gears")
+    assert "--pair = gears: picks a pair on plates" in error_line(result)

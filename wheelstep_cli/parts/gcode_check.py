@@ -196,6 +196,26 @@ def printed_pair(gcode_files: list[Path], pair) -> tuple[dict, dict]:
     return found, records
 
 
+@dataclass(frozen=True)
+class MeshPair:
+    """Two gear meshes named on the command line and the design they were drawn for: the
+    stand-in of a plate pair (parts.plate_pairs.PlatePair) for STL files."""
+
+    pair: str
+    pinion: object      # formats.mesh_read.MeshObject, own frame
+    wheel: object
+    spec: object
+
+
+def mesh_pair(pinion: str, wheel: str, spec) -> MeshPair:
+    """Read the two meshes (FILE.stl, FILE.3mf[:NAME]) the G-code was sliced from."""
+    from wheelstep_cli.formats.mesh_read import MeshObject, read_mesh
+
+    objects = [MeshObject(gear, *read_mesh(given, gear, default_name=gear), np.eye(4, 3), {})
+               for gear, given in (("pinion", pinion), ("wheel", wheel))]
+    return MeshPair(f"{Path(pinion).name} + {Path(wheel).name}", objects[0], objects[1], spec)
+
+
 def default_plates(gcode_files: list[Path]) -> list[str]:
     """The plates a G-code read-back takes its design from when none is named: FILE.3mf
     beside each FILE.gcode (as ``gears --slice`` and ``prusa-slicer -g FILE.3mf`` write)."""

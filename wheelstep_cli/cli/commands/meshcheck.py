@@ -20,7 +20,8 @@ Gcode = Annotated[Optional[List[Path]], opt(
                     "repeat --gcode for the files of both plates). The external perimeter of the "
                     "mid-height layer, offset by half its width, is each printed outline; the "
                     "design (law, installed distance) comes from the plate(s) it was sliced from: "
-                    "PINION [WHEEL] name them, else FILE.3mf beside each FILE.gcode. With "
+                    "PINION [WHEEL] name them, else FILE.3mf beside each FILE.gcode; or from "
+                    "the two meshes named (PINION.stl WHEEL.stl) and the design options. With "
                     "--tolerance, also the band's prediction of the least backlash.",
     callback=None, metavar="<FILE.gcode>")]
 
@@ -104,11 +105,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     if _same_mesh(pinion, wheel):
         raise DesignError("wheel", wheel, f"is the same mesh as the pinion ({pinion}): give the "
                                           "pinion and the wheel of one pair")
-    law_csv = design["law_csv"]
-    spec = gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
-                          turns=design["turns"], center_distance=design["center_distance"],
-                          install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
-                          blend=design["blend"])
+    spec = design_spec(design)
     check = WrittenPairCheck(pinion, wheel, spec, samples, window, plot)
     show.parameters(vars(spec))
     chosen = _band_printer(*band)
@@ -124,6 +121,17 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     show.report(summary, lambda: _lines(summary, spec.install_distance, samples))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
+
+
+def design_spec(design: dict):
+    """The design the meshes were drawn for, from the design options (mm, deg at the edge)."""
+    from wheelstep_cli.config.resolve import gear_pair_spec
+
+    law_csv = design["law_csv"]
+    return gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
+                          turns=design["turns"], center_distance=design["center_distance"],
+                          install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
+                          blend=design["blend"])
 
 
 def _band_printer(tolerance: bool, printer):

@@ -23,12 +23,11 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
 
     samples, window, plot = how
     dry_run, quiet, force = writing
-    no_design_options(design)
     require(len(gcode) <= 2, "gcode", " ".join(map(str, gcode)), "takes one file, or the two "
                                                                    "files of the pair's two plates")
     chosen = _band_printer(*band)
     require_gcode_files(gcode)
-    found = find_plate_pairs(plates or default_plates(gcode), pair)
+    found = _designs(plates, gcode, pair, design)
     require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID)")
     report, summary, read = with_progress(not quiet, "G-code read-back", run_gcode_check, gcode,
                                           found[0], samples, window)
@@ -42,6 +41,23 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
                 + gcode_lines(summary) + _rest(summary, samples, tolerance_lines))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
+
+
+def _designs(args: list[str], gcode: list[Path], pair, design: dict) -> list:
+    """The pair(s) the G-code was sliced from: two meshes (STL, FILE.3mf:NAME) drawn for the
+    design the options give, else plates (the design from their metadata; default FILE.3mf
+    beside each FILE.gcode)."""
+    from wheelstep_cli.cli.commands.meshcheck import design_spec, no_design_options
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.gcode_check import default_plates, mesh_pair
+    from wheelstep_cli.parts.plate_pairs import find_plate_pairs, is_plate_input
+
+    if len(args) == 2 and not is_plate_input(*args):
+        if pair is not None:
+            raise DesignError("pair", pair, "picks a pair on plates; the meshes named are one pair")
+        return [mesh_pair(args[0], args[1], design_spec(design))]
+    no_design_options(design)
+    return find_plate_pairs(args or default_plates(gcode), pair)
 
 
 def _rest(summary: dict, samples: int, tolerance_lines) -> list[str]:
