@@ -41,6 +41,9 @@ def test_batch_tolerance_records_the_band_per_case_and_names_a_printer_without_o
     # the printer's clearance does not cover the FDM band's tight corner on this pair
     assert band["jams"] is True and band["cases"][0]["jams"] is True
     assert band["cases"][-1]["case"] == "loose" and band["cases"][-1]["jams"] is False
+    # hole shrink: the desk shaft (5 mm) in its bore drawn 0.2 mm larger, at the band's extremes
+    assert band["bore"]["shaft_mm"] == 5 and band["bore"]["drawn_mm"] == 5.2
+    assert band["bore"]["clearance_mm"] == [0.0, 0.2]
     manifest = json.loads((out / "manifest.json").read_text())
     entries = {e["name"]: e for e in manifest["entries"]}
     assert entries["banded"]["tolerance"]["cases"]["loose"]["backlash_min_mm"] > 0
