@@ -71,6 +71,8 @@ def test_one_part_is_refused(cli, sliced):
     result = cli("mesh-check", "--gcode", folder / "gears-2.gcode", folder / "gears-1.3mf",
                  folder / "gears-2.3mf")
     assert "has no printed part the size of the wheel of pair 'gears'" in error_line(result)
+    result = cli("mesh-check", "--gcode", folder / "gears-2.gcode")     # its plate: the pinion only
+    assert "its plate holds no whole gear pair" in error_line(result)
 
 
 def test_a_different_pair_is_refused(cli, sliced, tmp_path):

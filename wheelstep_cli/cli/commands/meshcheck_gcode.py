@@ -57,7 +57,16 @@ def _designs(args: list[str], gcode: list[Path], pair, design: dict) -> list:
             raise DesignError("pair", pair, "picks a pair on plates; the meshes named are one pair")
         return [mesh_pair(args[0], args[1], design_spec(design))]
     no_design_options(design)
-    return find_plate_pairs(args or default_plates(gcode), pair)
+    if args or len(gcode) != 1:
+        return find_plate_pairs(args or default_plates(gcode), pair)
+    try:
+        return find_plate_pairs(default_plates(gcode), pair)
+    except DesignError as err:
+        if err.param != "pinion":       # the plate beside holds no whole pair
+            raise
+        raise DesignError("gcode", str(gcode[0]), "its plate holds no whole gear pair (a pair too "
+                                                  "large for one bed is on two): give the other "
+                                                  "plate's G-code too (--gcode FILE2.gcode)") from None
 
 
 def _rest(summary: dict, samples: int, tolerance_lines) -> list[str]:
