@@ -45,11 +45,13 @@ class EntryResult:
     error: str | None = None
     param: str | None = None
     mating: dict | None = None   # a gear pair's meshing record (parts.mesh_check.meshing_record)
+    band: dict | None = None     # its band record with ``batch --tolerance`` (parts.tolerance_cli)
 
 
-def build_entry(entry: Entry) -> EntryResult:
+def build_entry(entry: Entry, tolerance: bool = False) -> EntryResult:
     """Build one entry's parts for its printer and check them as written, alone and (a gear
-    pair's meshing) together (worker-process entry point; never raises)."""
+    pair's meshing) together, with ``tolerance`` also over the printer's band (SPEC §11;
+    worker-process entry point; never raises)."""
     from wheelstep_cli.geometry.solids import footprint
 
     try:
@@ -62,12 +64,23 @@ def build_entry(entry: Entry) -> EntryResult:
         report = kind.report_of(built)
         if mating is not None:
             report["meshing"] = mating
-        result = EntryResult(entry.index, parts, report, mating=mating)
+        band = _band(built, entry) if tolerance and mating is not None else None
+        if band is not None:
+            report["tolerance"] = band
+        result = EntryResult(entry.index, parts, report, mating=mating, band=band)
         return _refused(entry, result) or result
     except DesignError as err:
         return EntryResult(entry.index, error=yaml_message(err), param=err.param)
     except Exception as err:  # an unexpected failure must not stop the other entries
         return EntryResult(entry.index, error=f"internal error: {type(err).__name__}: {err}")
+
+
+def _band(built, entry: Entry) -> dict:
+    """The band record of a built gear pair on its entry's printer (a note to add a band
+    when the printer has none)."""
+    from wheelstep_cli.parts.tolerance_cli import printer_band_record
+
+    return printer_band_record(built, entry.printer)
 
 
 def _checks(check) -> dict[str, bool]:

@@ -50,6 +50,7 @@ def entry_report_bytes(entry: Entry, result: EntryResult) -> bytes:
         "printer_geometry": entry.printer.geometry(),
         "printed_parts": {p.name: part_summary(p, entry.printer) for p in result.parts},
         **({"meshing": result.mating} if result.mating is not None else {}),
+        **({"tolerance": result.band} if result.band is not None else {}),
         "design_report": result.report,
     })
 
@@ -80,7 +81,27 @@ def _meshing(result: EntryResult) -> dict:
     """The entry's meshing check in brief (gear pairs, built or refused), else nothing."""
     if result.mating is None:
         return {}
-    return {"meshing": {key: result.mating[key] for key in MESHING_KEYS}}
+    brief = {"meshing": {key: result.mating[key] for key in MESHING_KEYS}}
+    if result.band is not None:
+        band = result.band
+        brief["tolerance"] = {"printer": band["printer"], "checked": band["checked"], "jams": band["jams"],
+                              **({"note": band["note"]} if "note" in band else {
+                                  "least_backlash_mm": band["least_backlash_mm"],
+                                  "largest_backlash_mm": band["largest_backlash_mm"],
+                                  "cases": {c["case"]: {"jams": c["jams"], "backlash_min_mm": c["backlash_min_mm"],
+                                                        "backlash_max_mm": c["backlash_max_mm"]}
+                                            for c in band["cases"]}})}
+    return brief
+
+
+def _band_checks(built, results) -> dict:
+    """With ``batch --tolerance``: whether every gear pair meshes over its printer's band,
+    and the printers that state none (told to add one, not taken as perfect)."""
+    bands = [results[e.index].band for e in built if results[e.index].band is not None]
+    if not bands:
+        return {}
+    return {"gear_pairs_mesh_over_printer_bands": not any(b["jams"] for b in bands if b["checked"]),
+            "printers_without_band": sorted({b["printer"] for b in bands if not b["checked"]})}
 
 
 def manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
@@ -115,7 +136,7 @@ def manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
                    "gear_pairs_without_interference": not any(m["interference"] for m in meshes),
                    "every_part_on_a_bed": not any(
             "does not fit" in reason for _, _, reason in failed),
-            "validated_before_build": True},
+            "validated_before_build": True, **_band_checks(built, results)},
         "outputs": {p.relative_to(out).as_posix(): hashlib.sha256(data).hexdigest()
                     for p, data in sorted(files.items(), key=lambda kv: kv[0].as_posix())},
     })

@@ -3,7 +3,7 @@ in one atomic step."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
 
@@ -19,17 +19,21 @@ class BatchOutcome:
     plates: list[Plate]
     failed: list[tuple[Entry, str, str]]     # entry, where (file:line), reason
     built: list[Entry]
+    results: dict = field(default_factory=dict)   # entry index -> EntryResult
 
 
 def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
               progress: Callable[[str, int], Any] | None = None, force: bool = False,
-              scheduler: str | None = None) -> BatchOutcome:
+              scheduler: str | None = None, tolerance: bool = False) -> BatchOutcome:
     """Build, pack, render and write a checked batch; ``progress(stage, total)`` -> advance().
 
     Files of an earlier batch in ``out`` (per its manifest, verified by SHA-256) that this one
     does not write are removed; any other file in the way is refused unless ``force``
     (DesignError, before anything is written). With ``scheduler`` the parts are built on
-    that Dask cluster instead of ``jobs`` local processes."""
+    that Dask cluster instead of ``jobs`` local processes. With ``tolerance`` each gear pair
+    is also checked over its printer's band (SPEC §11)."""
+    from functools import partial
+
     from wheelstep_cli.formats.atomic import remove_files, write_files_atomic
     from wheelstep_cli.formats.owned import check_collisions, stale_files
 
@@ -40,7 +44,8 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
     with executor(jobs, scheduler) as pool:
         step = advance("building parts", len(plan.entries))
         results: dict[int, EntryResult] = {}
-        for result in map_items(pool, build_entry, plan.entries, step):
+        build = partial(build_entry, tolerance=True) if tolerance else build_entry
+        for result in map_items(pool, build, plan.entries, step):
             results[result.index] = result
         plates, dropped = plan_plates(plan.entries, results)
         step = advance("writing plates", 2 * len(plates))
@@ -57,7 +62,7 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
     check_folder(out, files, force)
     written = write_files_atomic(files)
     remove_files(stale_files(out, files, record))
-    return BatchOutcome(written, plates, failed, built)
+    return BatchOutcome(written, plates, failed, built, results)
 
 
 def check_folder(out: Path, paths, force: bool) -> None:

@@ -18,6 +18,36 @@ def band_printer(printer):
     return chosen
 
 
+def bore_fit(pair, band) -> dict | None:
+    """The shaft fit of the pair's bores over the band (SPEC §11: holes shrink): the shaft
+    is the designed bore, the hole is drawn larger by the printer's hole compensation and
+    comes out up to ``band.hole_shrink`` smaller than drawn, so the diametral clearance
+    runs from compensation - shrink (the band's tight extreme) to the compensation (mm;
+    below zero the shaft must be pressed in). None for a pair without bores."""
+    printing = getattr(pair, "printing", None)
+    shaft = float((printing.design if printing is not None else pair.spec).bore or 0.0)
+    drawn = float(pair.spec.bore or 0.0)
+    if shaft <= 0.0:
+        return None
+    shrink = float(band.hole_shrink)
+    # rounded to the nanometre: 8.2 - 0.2 - 8 is a zero, not a press fit of 2e-15 mm
+    least, most = round(drawn - shrink - shaft, 9), round(drawn - shaft, 9)
+    return {"bore_shape": str(getattr(pair.spec.bore_shape, "value", pair.spec.bore_shape)),
+            "shaft_mm": shaft, "drawn_mm": drawn, "hole_compensation_mm": most,
+            "printed_mm": [round(drawn - shrink, 9), drawn], "clearance_mm": [least, most],
+            "shaft_fits": bool(least >= 0.0),
+            "note": "diameters (across flats for a hex bore); a bore printed smaller than the shaft "
+                    "needs reaming or a press fit"}
+
+
+def bore_line(record: dict) -> str:
+    lo, hi = record["clearance_mm"]
+    return (f"  bore: shaft {record['shaft_mm']:g} mm in a bore drawn {record['drawn_mm']:g} mm, "
+            f"printed {record['printed_mm'][0]:g}..{record['printed_mm'][1]:g} mm: clearance "
+            f"{lo:+.3f}..{hi:+.3f} mm " + ("(slides on)" if record["shaft_fits"] else
+                                          "(TIGHT at the band's extreme: ream or press)"))
+
+
 def band_pair(spec, printer, check: bool, fit: str | None):
     """(pair, band record, nominal report): the pair of ``spec`` built for ``printer`` (None:
     as designed) and, when ``check`` (or a ``fit``), its band record and meshing report as
@@ -30,15 +60,31 @@ def band_pair(spec, printer, check: bool, fit: str | None):
     chosen = band_printer(printer)
     if fit is not None:
         result = fit_pair(spec, chosen, fit, lambda s, p: build_for_printer("gear-pair", s, p))
-        return (result.pair, {**result.band, "fit": fit_record(result, fit, spec.backlash_mm)},
-                result.nominal)
+        return (result.pair, {**result.band, "fit": fit_record(result, fit, spec.backlash_mm),
+                              "bore": bore_fit(result.pair, chosen.band)}, result.nominal)
     pair = build_for_printer("gear-pair", spec, printer)
     sections = sectioned_pair(pair)
     nominal = check_case(sections, NOMINAL)
     record = band_record(sections, chosen.band, chosen.name, nominal)
+    record["bore"] = bore_fit(pair, chosen.band)
     if printer is None:
         record["note"] = "the default printer's band on the pair as designed (no --printer)"
     return pair, record, nominal
+
+
+def printer_band_record(pair, printer) -> dict:
+    """The band record of a pair built for ``printer`` with its tooth clearance (as batch
+    builds it), or, when the printer states no band, a record saying to add one (a printer
+    without a band is not taken as perfect)."""
+    if printer.band is None:
+        return {"printer": printer.name, "checked": False, "jams": None,
+                "note": f"printer {printer.name} has no dimensional band: add a `band:` section "
+                        "(outline, hole_shrink, center_distance, mm) to its profile to check the "
+                        "pair over it"}
+    sections = sectioned_pair(pair)
+    record = band_record(sections, printer.band, printer.name, check_case(sections, NOMINAL))
+    return {"checked": True, "tooth_clearance_mm": printer.tooth_clearance, **record,
+            "bore": bore_fit(pair, printer.band)}
 
 
 def tolerance_lines(record: dict) -> list[str]:
@@ -46,6 +92,8 @@ def tolerance_lines(record: dict) -> list[str]:
     lines = band_lines(record)
     if "fit" in record:
         lines.insert(0, fit_line(record["fit"]))
+    if record.get("bore"):
+        lines.append(bore_line(record["bore"]))
     if "note" in record:
         lines.append(f"  ({record['note']})")
     return lines

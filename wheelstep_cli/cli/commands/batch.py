@@ -8,6 +8,11 @@ from typing import Annotated, Optional
 import typer
 
 from wheelstep_cli.cli.options import DryRun, Force, Json, Out, Quiet, Verbose, opt
+
+BatchTolerance = Annotated[bool, opt(
+    "--tolerance", help="Also check every gear pair over its printer's dimensional band (SPEC "
+                        "§11), as drawn with the printer's tooth clearance: per case in its report "
+                        "and the manifest. A printer profile without a band is told to add one.")]
 from wheelstep_cli.cli.output import Output
 
 
@@ -18,7 +23,7 @@ def batch(
     scheduler: Annotated[Optional[str], opt(
         "--scheduler", help="Build on the Dask cluster of this scheduler (tcp://HOST:8786) "
                             "instead of --jobs local processes.")] = None,
-    force: Force = False,
+    force: Force = False, tolerance: BatchTolerance = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Build every part of a batch file into packed 3MF plates with PNG previews,
@@ -40,9 +45,10 @@ def batch(
         for line in err.lines():
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
-    outcome, written = _run(plan, out, jobs, show, dry_run, force, scheduler)
+    outcome, written = _run(plan, out, jobs, show, dry_run, force, scheduler, tolerance)
     show.report(_summary(file, out, plan, outcome, [] if dry_run else written),
                 lambda: _lines(out, plan, outcome))
+    _band_warnings(show, outcome)
     if dry_run:
         show.files(written, dry_run=True)
     if outcome.failed:
@@ -52,7 +58,8 @@ def batch(
         raise typer.Exit(1)
 
 
-def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, scheduler=None):
+def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, scheduler=None,
+         tolerance: bool = False):
     """Build the batch into ``out`` (a dry run: into a scratch folder, then discarded);
     returns the outcome and the files written (or that would be, named inside ``out``)."""
     import os
@@ -68,10 +75,11 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, s
     try:
         with Progress(not show.quiet, transient=False) as bars:
             if not dry_run:
-                outcome = run_batch(plan, out, workers, bars, force, scheduler)
+                outcome = run_batch(plan, out, workers, bars, force, scheduler, tolerance)
                 return outcome, outcome.written
             with tempfile.TemporaryDirectory(prefix="wheelstep-dry-run-") as scratch:
-                outcome = run_batch(plan, Path(scratch), workers, bars, scheduler=scheduler)
+                outcome = run_batch(plan, Path(scratch), workers, bars, scheduler=scheduler,
+                                    tolerance=tolerance)
                 written = [out / p.relative_to(scratch) for p in outcome.written]
                 check_folder(out, written, force)   # what the real run would refuse
                 return outcome, written
@@ -90,7 +98,27 @@ def _summary(file: Path, out: Path, plan, outcome, written: list[Path]) -> dict:
         "failed": [{"entry": entry.name, "where": where, "reason": reason}
                    for entry, where, reason in outcome.failed],
         "written": [str(p) for p in written],
+        **({"tolerance": bands} if (bands := _bands(outcome)) else {}),
     }
+
+
+def _bands(outcome) -> list[dict]:
+    """Per built gear pair checked over its printer's band: jams or not, least backlash."""
+    return [{"entry": e.name, "printer": b["printer"], "checked": b["checked"], "jams": b["jams"],
+             "least_backlash_mm": b.get("least_backlash_mm"), **({"note": b["note"]} if "note" in b else {})}
+            for e in outcome.built if (b := outcome.results[e.index].band) is not None]
+
+
+def _band_warnings(show: Output, outcome) -> None:
+    """One stderr line per gear pair that jams over its band or whose printer has none."""
+    for band in _bands(outcome):
+        if not band["checked"]:
+            show.warning(f"{band['entry']}: {band['note']}")
+        elif band["jams"]:
+            least = band["least_backlash_mm"]
+            show.warning(f"WARNING: {band['entry']} jams over the band of {band['printer']} (least "
+                         f"backlash {'n/a' if least is None else format(least, '.3f')} mm): gears "
+                         "--fit auto finds the tooth clearance")
 
 
 def _lines(out: Path, plan, outcome) -> list[str]:

@@ -25,6 +25,10 @@ Gif = Annotated[Optional[Path], opt("--gif", help="Write the pair turning throug
                                                   "with contact point, TE and hub speed (GIF).")]
 Dxf = Annotated[bool, opt("--dxf", help="Also write pinion.dxf and wheel.dxf (mm outlines) in --out.")]
 Svg = Annotated[bool, opt("--svg", help="Also write pinion.svg and wheel.svg (mm outlines) in --out.")]
+Slice = Annotated[bool, opt("--slice", help="Slice the 3MF plate(s) with PrusaSlicer (prusa-slicer on "
+                                            "PATH), write the G-code beside them and check the pair "
+                                            "as it prints (mesh-check --gcode); in gears.json under "
+                                            "'slice'. Exit 1 if the printed pair does not mesh.")]
 Step = Annotated[bool, opt("--step", help="Also write pinion.step and wheel.step (solids) in --out; "
                                           "needs pip install wheelstep[cad].")]
 
@@ -146,7 +150,7 @@ def gears(
     clearance: Clearance = None, blend: Blend = None, corner: CornerOpt = None, tilt: Tilt = None,
     law_csv: LawCsv = None, allow_interference: AllowInterference = False,
     plot: Plot = None, gif: Gif = None, dxf: Dxf = False, svg: Svg = False, step: Step = False,
-    force: Force = False, tolerance: Tolerance = False, fit: FitChoice = None,
+    force: Force = False, tolerance: Tolerance = False, fit: FitChoice = None, slice_: Slice = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Write the gear pair as printable STL/3MF meshes, gears.json and the exports asked for.
@@ -168,9 +172,11 @@ def gears(
                           fillet=fillet, clearance=clearance, blend=blend, corner=_value(corner),
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
     show.parameters(vars(spec))
-    _make_gears(spec, _printer(printer), show, out, fmt.value, allow_interference, dry_run, force,
+    chosen = _printer(printer)
+    _require_slicer(slice_, fmt.value, chosen)
+    _make_gears(spec, chosen, show, out, fmt.value, allow_interference, dry_run, force,
                 checked_extras(plot, gif, dxf, svg, step),
-                (tolerance or fit is not None, fit.value if fit else None))
+                (tolerance or fit is not None, fit.value if fit else None), slice_)
 
 
 def _value(choice):
@@ -185,11 +191,26 @@ def _printer(name: str | None):
     return load_printer_profile(name) if name else None
 
 
+def _require_slicer(slice_: bool, fmt: str, printer) -> None:
+    """--slice is refused up front (one line) when PrusaSlicer is not installed, no 3MF
+    plate is written or the printer is a resin one (sliced to layers images, not G-code)."""
+    if slice_:
+        from wheelstep_cli.errors import DesignError
+        from wheelstep_cli.parts.slicing import require_slicer
+
+        if fmt == "stl":
+            raise DesignError("slice_", "on", "slices the 3MF plates: give --format 3mf or both")
+        if printer is not None and printer.technology == "resin":
+            raise DesignError("slice_", "on", f"reads back FDM G-code; {printer.name} is a resin printer")
+        require_slicer()
+
+
 def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interference: bool,
                 dry_run: bool, force: bool, extras: GearExtras = GearExtras(),
-                band: tuple = (False, None)) -> None:
+                band: tuple = (False, None), slice_: bool = False) -> None:
     """Build, check, write (unless refused or a dry run) and report the pair of ``spec``;
-    ``band`` = (check over the printer's band, the --fit or None)."""
+    ``band`` = (check over the printer's band, the --fit or None); ``slice_``: slice the
+    plates and check the G-code."""
     import typer
 
     from wheelstep_cli.cli.progress import with_progress
@@ -217,12 +238,41 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                              extras, out)}
     pictures = with_progress(bool(extras.gif) and not show.quiet, "GIF frames", picture_files, pair,
                              extras, check)
+    sliced = _slice(show, pair, record, files, out) if slice_ else None
     written = show.write_owned(out, "gears", files, dry_run, force)
     written += list(pictures) if dry_run else show.write(pictures, dry_run)
-    report = {**gear_pair_report(pair, record), "written": [] if dry_run else [str(p) for p in written]}
-    show.report(report, lambda: _gears_lines(pair, record))
+    report = {**gear_pair_report(pair, record), **({"slice": sliced} if sliced else {}),
+              "written": [] if dry_run else [str(p) for p in written]}
+    show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
     _warn_interference(show, record)
     show.files(written, dry_run, joined=True)
+    if sliced is not None and not sliced["meshes"]:
+        raise typer.Exit(1)
+
+
+def _slice(show: Output, pair, record: dict, files: dict, out: Path) -> dict:
+    """Slice the plates among ``files``, add the G-code to them and the read-back to gears.json."""
+    from wheelstep_cli.cli.progress import with_progress
+    from wheelstep_cli.formats.jsonio import json_bytes
+    from wheelstep_cli.parts.gear_pair import gear_pair_report
+    from wheelstep_cli.parts.slicing import slice_and_check
+
+    gcode, sliced, meshes = with_progress(not show.quiet, "slicing and G-code read-back",
+                                          slice_and_check, files, record.get("tolerance"))
+    files.update(gcode)
+    files[out / "gears.json"] = json_bytes({**gear_pair_report(pair, record), "slice": sliced})
+    if not meshes:
+        show.warning("WARNING: as PrusaSlicer's G-code prints it, the pair does not mesh "
+                     "(see 'slice' in gears.json)")
+    return sliced
+
+
+def _slice_lines(sliced: dict | None) -> list[str]:
+    if sliced is None:
+        return []
+    from wheelstep_cli.parts.slicing import slice_lines
+
+    return slice_lines(sliced)
 
 
 def _gears_lines(pair, record: dict) -> list[str]:

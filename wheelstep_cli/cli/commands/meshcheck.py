@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Optional
+from pathlib import Path
+from typing import Annotated, List, Optional
 
 import typer
 
@@ -14,12 +15,22 @@ Plot = plot_option("the transfer function, the position error of both flanks and
 BandPrinter = Annotated[Optional[str], opt(
     "--printer", help="Printer profile (a name in profiles/ or a YAML path) whose dimensional "
                       "band --tolerance checks.", shown="the default printer")]
+Gcode = Annotated[Optional[List[Path]], opt(
+    "--gcode", help="Check the pair as PrusaSlicer prints it: G-code of the pair (one plate, or "
+                    "repeat --gcode for the files of both plates). The external perimeter of the "
+                    "mid-height layer, offset by half its width, is each printed outline; the "
+                    "design (law, installed distance) comes from the plate(s) it was sliced from: "
+                    "PINION [WHEEL] name them, else FILE.3mf beside each FILE.gcode; or from "
+                    "the two meshes named (PINION.stl WHEEL.stl) and the design options. With "
+                    "--tolerance, also the band's prediction of the least backlash.",
+    callback=None, metavar="<FILE.gcode>")]
 
 
 def mesh_check(
-    pinion: str = typer.Argument(..., help="Pinion mesh: FILE.stl, FILE.3mf or FILE.3mf:NAME; "
-                                           "alone, a plate (3MF) whose gear pairs are found by "
-                                           "their metadata."),
+    pinion: Optional[str] = typer.Argument(None, help="Pinion mesh: FILE.stl, FILE.3mf or "
+                                                      "FILE.3mf:NAME; alone, a plate (3MF) whose "
+                                                      "gear pairs are found by their metadata; "
+                                                      "with --gcode, the plate it was sliced from."),
     wheel: Optional[str] = typer.Argument(None, help="Wheel mesh: FILE.stl, FILE.3mf or "
                                                      "FILE.3mf:NAME; or a second plate."),
     distance: Annotated[Optional[float], opt("--distance", "-d", help="Installed centre distance, mm.",
@@ -34,7 +45,7 @@ def mesh_check(
                                                             "the line of centres, mm.",
                                            shown="0.25 x the smaller outer radius")] = None,
     plot: Plot = None, tolerance: Tolerance = False, printer: BandPrinter = None,
-    force: Force = False,
+    gcode: Gcode = None, force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Section two gear meshes at mid-thickness and check them over one period of the law:
@@ -42,14 +53,24 @@ def mesh_check(
     the hub speed ripple of 3 tooth harmonics (SPEC §10). The law is the crank law of the
     design, or any law given as --law-csv, blended by --blend as the teeth were cut. Given plates (3MF written by wheelstep),
     the pinion and wheel of each pair are found by their metadata and checked with the law and
-    installed distance stored there. Exit 1 if they interfere or lose contact."""
+    installed distance stored there. With --gcode, the pair as PrusaSlicer's G-code prints it
+    (SPEC §11). Exit 1 if they interfere or lose contact."""
     from wheelstep_cli.parts.plate_pairs import is_plate_input
 
     show = Output(json, quiet, verbose)
     design = {"distance": distance, "a": a, "b": b, "c": c, "turns": turns,
               "center_distance": center_distance, "law_csv": law_csv, "blend": blend, "profile": profile}
     band = (tolerance, printer)
-    if is_plate_input(pinion, wheel):
+    if gcode:
+        from wheelstep_cli.cli.commands.meshcheck_gcode import check_gcode
+
+        failed = check_gcode(show, gcode, [a for a in (pinion, wheel) if a], pair, design,
+                             (samples, window, plot), band, (dry_run, quiet, force))
+    elif pinion is None:
+        from wheelstep_cli.errors import DesignError
+
+        raise DesignError("pinion", "none", "give the PINION and WHEEL meshes, a plate, or --gcode FILE")
+    elif is_plate_input(pinion, wheel):
         _no_band_on_plates(tolerance, printer)
         failed = _check_plates(show, [pinion] + ([wheel] if wheel else []), pair, design, samples,
                                window, plot, dry_run, quiet, force)
@@ -84,11 +105,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     if _same_mesh(pinion, wheel):
         raise DesignError("wheel", wheel, f"is the same mesh as the pinion ({pinion}): give the "
                                           "pinion and the wheel of one pair")
-    law_csv = design["law_csv"]
-    spec = gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
-                          turns=design["turns"], center_distance=design["center_distance"],
-                          install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
-                          blend=design["blend"])
+    spec = design_spec(design)
     check = WrittenPairCheck(pinion, wheel, spec, samples, window, plot)
     show.parameters(vars(spec))
     chosen = _band_printer(*band)
@@ -104,6 +121,17 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     show.report(summary, lambda: _lines(summary, spec.install_distance, samples))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
+
+
+def design_spec(design: dict):
+    """The design the meshes were drawn for, from the design options (mm, deg at the edge)."""
+    from wheelstep_cli.config.resolve import gear_pair_spec
+
+    law_csv = design["law_csv"]
+    return gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
+                          turns=design["turns"], center_distance=design["center_distance"],
+                          install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
+                          blend=design["blend"])
 
 
 def _band_printer(tolerance: bool, printer):
@@ -129,10 +157,7 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
     from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, run_plate_pair_check, written_pair_files
     from wheelstep_cli.parts.plate_pairs import find_plate_pairs
 
-    for name, value in design.items():
-        if value is not None:
-            raise DesignError(name, value, "comes from the plate's metadata; to give it, name the "
-                                           "two meshes (PINION WHEEL) instead of plates")
+    no_design_options(design)
     pairs = find_plate_pairs(plates, pair)
     require(plot is None or len(pairs) == 1, "plot", str(plot), "draws one pair: add --pair ID")
     summaries, failed, files = [], False, {}
@@ -148,6 +173,16 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
                                                for line in _lines(s, s["distance_mm"], samples)])
     show.files(named, dry_run)
     return failed
+
+
+def no_design_options(design: dict) -> None:
+    """Refuse design options where the design comes from the plates' metadata."""
+    from wheelstep_cli.errors import DesignError
+
+    for name, value in design.items():
+        if value is not None:
+            raise DesignError(name, value, "comes from the plate's metadata; to give it, name the "
+                                           "two meshes (PINION WHEEL) instead of plates")
 
 
 def _same_mesh(pinion: str, wheel: str | None) -> bool:
@@ -177,6 +212,11 @@ def _split(given: str) -> tuple[str, str]:
 
 def summary_files(summary: dict) -> tuple[str, str]:
     return summary["pinion"], summary["wheel"]
+
+
+def lines(summary: dict, distance: float, samples: int) -> list[str]:
+    """The text report of one checked pair (shared with the G-code read-back)."""
+    return _lines(summary, distance, samples)
 
 
 def _lines(summary: dict, distance: float, samples: int) -> list[str]:

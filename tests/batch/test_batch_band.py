@@ -1,0 +1,65 @@
+"""`wheelstep batch --tolerance`: every gear pair checked over its printer's band, per case in
+its report and the manifest; a printer without a band is told to add one (SPEC §11)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from tests.helpers.files import write
+
+PROFILES = Path(__file__).resolve().parents[2] / "profiles"
+
+
+def _without_band(folder: Path) -> Path:
+    kept, skipping = [], False
+    for line in (PROFILES / "fdm-0.4-pla.yaml").read_text(encoding="utf-8").splitlines():
+        if line.startswith("band:"):
+            skipping = True
+            continue
+        if skipping and (line.startswith(" ") or line.startswith("#")):
+            continue
+        skipping = False
+        kept.append(line)
+    path = folder / "no-band.yaml"
+    path.write_text("\n".join(kept) + "\n", encoding="utf-8")
+    return path
+
+
+def test_batch_tolerance_records_the_band_per_case_and_names_a_printer_without_one(cli, tmp_path):
+    bare = _without_band(tmp_path)
+    batch = write(tmp_path / "band.yaml", "parts:\n"
+                  "  - name: banded\n    kind: gear-pair\n    design: desk-demo\n    printer: fdm-0.4-pla\n"
+                  f"  - name: bare\n    kind: gear-pair\n    design: desk-demo\n    printer: {bare}\n")
+    out = tmp_path / "out"
+    result = cli("batch", batch, "--out", out, "--jobs", "1", "--tolerance")
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((out / "reports" / "banded.json").read_text())
+    band = report["tolerance"]
+    assert band["checked"] and band["printer"] == "fdm-0.4-pla" and band["tooth_clearance_mm"] == 0.15
+    assert [c["case"] for c in band["cases"]][0] == "tight" and len(band["cases"]) == 4
+    # the printer's clearance does not cover the FDM band's tight corner on this pair
+    assert band["jams"] is True and band["cases"][0]["jams"] is True
+    assert band["cases"][-1]["case"] == "loose" and band["cases"][-1]["jams"] is False
+    # hole shrink: the desk shaft (5 mm) in its bore drawn 0.2 mm larger, at the band's extremes
+    assert band["bore"]["shaft_mm"] == 5 and band["bore"]["drawn_mm"] == 5.2
+    assert band["bore"]["clearance_mm"] == [0.0, 0.2]
+    manifest = json.loads((out / "manifest.json").read_text())
+    entries = {e["name"]: e for e in manifest["entries"]}
+    assert entries["banded"]["tolerance"]["cases"]["loose"]["backlash_min_mm"] > 0
+    assert entries["bare"]["tolerance"]["checked"] is False
+    assert "add a `band:` section" in entries["bare"]["tolerance"]["note"]
+    assert manifest["checks"]["gear_pairs_mesh_over_printer_bands"] is False
+    assert manifest["checks"]["printers_without_band"] == [str(bare)] or \
+        manifest["checks"]["printers_without_band"][0].endswith("no-band.yaml")
+    assert "banded jams over the band of fdm-0.4-pla" in result.stderr
+    assert "has no dimensional band: add a `band:` section" in result.stderr
+
+
+def test_without_tolerance_batch_runs_no_band_check(cli, tmp_path):
+    batch = write(tmp_path / "plain.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"
+                                           "    design: desk-demo\n    printer: fdm-0.4-pla\n")
+    out = tmp_path / "out"
+    assert cli("batch", batch, "--out", out, "--jobs", "1").exit_code == 0
+    assert "tolerance" not in json.loads((out / "reports" / "pair.json").read_text())
+    assert "gear_pairs_mesh_over_printer_bands" not in json.loads((out / "manifest.json").read_text())["checks"]

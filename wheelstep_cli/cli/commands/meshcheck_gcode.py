@@ -1,0 +1,76 @@
+"""``mesh-check --gcode``: the gear pair as PrusaSlicer's G-code prints it (SPEC §11)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from wheelstep_cli.cli.output import Output
+
+
+def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design: dict,
+                how: tuple, band: tuple, writing: tuple) -> bool:
+    """Read the pair of ``plates`` (default: FILE.3mf beside each FILE.gcode) back from the
+    G-code files and check it; ``how`` = (samples, window, plot), ``band`` = (--tolerance,
+    --printer), ``writing`` = (dry run, quiet, force). True when the print would not mesh."""
+    from wheelstep_cli.cli.commands.meshcheck import _band_printer, lines, no_design_options
+    from wheelstep_cli.cli.progress import with_progress
+    from wheelstep_cli.errors import require
+    from wheelstep_cli.parts.gcode_check import (band_prediction, default_plates, gcode_lines,
+                                                 require_gcode_files, run_gcode_check, within_band)
+    from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, written_pair_files
+    from wheelstep_cli.parts.plate_pairs import find_plate_pairs
+    from wheelstep_cli.parts.tolerance_cli import tolerance_lines
+
+    samples, window, plot = how
+    dry_run, quiet, force = writing
+    require(len(gcode) <= 2, "gcode", " ".join(map(str, gcode)), "takes one file, or the two "
+                                                                   "files of the pair's two plates")
+    chosen = _band_printer(*band)
+    require_gcode_files(gcode)
+    found = _designs(plates, gcode, pair, design)
+    require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID)")
+    report, summary, read = with_progress(not quiet, "G-code read-back", run_gcode_check, gcode,
+                                          found[0], samples, window)
+    if chosen is not None:
+        summary["tolerance"] = with_progress(not quiet, "band check", band_prediction, read, chosen)
+        summary["gcode"]["inside_band"] = within_band(summary, summary["tolerance"])
+    files = written_pair_files(WrittenPairCheck(summary["pinion"], summary["wheel"], found[0].spec,
+                                                samples, window, plot), report)
+    named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
+    show.report(summary, lambda: lines(summary, summary["distance_mm"], samples)[:1]
+                + gcode_lines(summary) + _rest(summary, samples, tolerance_lines))
+    show.files(named, dry_run)
+    return report.interferes or report.contact_lost
+
+
+def _designs(args: list[str], gcode: list[Path], pair, design: dict) -> list:
+    """The pair(s) the G-code was sliced from: two meshes (STL, FILE.3mf:NAME) drawn for the
+    design the options give, else plates (the design from their metadata; default FILE.3mf
+    beside each FILE.gcode)."""
+    from wheelstep_cli.cli.commands.meshcheck import design_spec, no_design_options
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.gcode_check import default_plates, mesh_pair
+    from wheelstep_cli.parts.plate_pairs import find_plate_pairs, is_plate_input
+
+    if len(args) == 2 and not is_plate_input(*args):
+        if pair is not None:
+            raise DesignError("pair", pair, "picks a pair on plates; the meshes named are one pair")
+        return [mesh_pair(args[0], args[1], design_spec(design))]
+    no_design_options(design)
+    if args or len(gcode) != 1:
+        return find_plate_pairs(args or default_plates(gcode), pair)
+    try:
+        return find_plate_pairs(default_plates(gcode), pair)
+    except DesignError as err:
+        if err.param != "pinion":       # the plate beside holds no whole pair
+            raise
+        raise DesignError("gcode", str(gcode[0]), "its plate holds no whole gear pair (a pair too "
+                                                  "large for one bed is on two): give the other "
+                                                  "plate's G-code too (--gcode FILE2.gcode)") from None
+
+
+def _rest(summary: dict, samples: int, tolerance_lines) -> list[str]:
+    from wheelstep_cli.parts.mesh_check import meshing_lines
+
+    return meshing_lines(summary) + (tolerance_lines(summary["tolerance"]) if "tolerance" in summary
+                                     else [])

@@ -1,0 +1,338 @@
+"""The meshing check of what PrusaSlicer will print (SPEC §11): a gear pair read back from
+its G-code.
+
+Of each G-code file the layer at mid-height of the teeth (the design's mid-thickness) is
+taken; its external perimeters, offset outward by half their extrusion width (an exact
+polygon offset), are the printed outlines. The G-code carries no design, so the design is
+the pair on the wheelstep plate(s) the G-code was sliced from (3MF metadata: law, installed
+distance). Each designed gear is found among the printed parts by its section area, then
+laid back into its own frame by the rigid motion that best fits the printed outline to the
+designed one (the slicer or its user may have moved and turned the parts on the bed): a
+part that fits no designed gear is refused, so a file of another pair, or one part, is
+named as such. The printed outlines are then checked at the installed distance, in phase,
+as ``mesh-check`` checks written meshes. Lengths in mm, angles in radians.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.formats.gcode import GcodeLayers, read_gcode
+from wheelstep_cli.geometry.planar import offset_outline, points_inside, prepared_polygon, signed_area
+from wheelstep_cli.geometry.registration import Registration, register
+
+#: A printed part is taken for a designed gear when their section areas differ by less than
+#: this share: the band's +-0.1 mm changes a gear's area by about 1 %, another tooth count
+#: or design of a similar size by more than the fit below accepts anyway.
+AREA_SHARE = 0.1
+#: After the best rigid fit, a printed outline must follow the designed one to this rms
+#: (mm) and never depart by more than LARGEST (mm) from its mean offset: a printer's
+#: outline wobbles by tenths of a millimetre at most, a tooth of another pair by its height.
+RMS = 0.1
+LARGEST = 0.5
+
+
+@dataclass(frozen=True)
+class PrintedPart:
+    """One printed part of a layer: the outer outline and holes (bed mm) as printed (the
+    external perimeters offset by half ``width``), from G-code ``source`` at height ``z``."""
+
+    source: str
+    z: float
+    width: float
+    outline: np.ndarray
+    holes: tuple
+
+    @property
+    def area(self) -> float:
+        return signed_area(self.outline) - sum(abs(signed_area(h)) for h in self.holes)
+
+
+@dataclass(frozen=True)
+class PrintedGear:
+    """A designed gear found in the G-code: the printed part, its outline in the gear's own
+    frame (mm) and the fit that put it there."""
+
+    part: PrintedPart
+    outline: np.ndarray
+    fit: Registration
+
+
+def read_gcode_file(path: Path) -> GcodeLayers:
+    """The external perimeters of a PrusaSlicer G-code file (DesignError naming ``gcode``)."""
+    if not path.is_file():
+        raise DesignError("gcode", str(path), "no such file")
+    try:
+        text = path.read_text(errors="replace")
+    except OSError as err:
+        raise DesignError("gcode", str(path), f"cannot be read ({err.strerror or err})") from None
+    return read_gcode(text, str(path))
+
+
+def require_gcode_files(paths: list[Path]) -> None:
+    """Refuse (DesignError naming ``gcode``) a missing file, or one that is not a whole
+    PrusaSlicer G-code file, reading only its head and tail: before any plate is read."""
+    from wheelstep_cli.formats.gcode import check_prusaslicer
+
+    for path in paths:
+        if not path.is_file():
+            raise DesignError("gcode", str(path), "no such file")
+        size = path.stat().st_size
+        with open(path, "rb") as handle:
+            head = handle.read(2000)
+            handle.seek(max(0, size - 200000))
+            tail = handle.read()
+        check_prusaslicer(head.decode(errors="replace") + "\n" + tail.decode(errors="replace"), str(path))
+
+
+def mid_layer(layers: GcodeLayers, height: float, source: str = "gcode") -> float:
+    """The layer (its top z, mm) whose middle is nearest to ``height`` mm."""
+    if not layers.layers:
+        raise DesignError("gcode", source, "has no external perimeter on any layer (nothing an "
+                                           "outline can be read from)")
+    step = float(layers.config.get("layer_height", "0.2") or 0.2)
+    return min(layers.heights(), key=lambda z: abs(z - 0.5 * step - height))
+
+
+def printed_parts(layers: GcodeLayers, source: str, height: float) -> list[PrintedPart]:
+    """The parts printed at mid-``height`` (mm): each outermost loop with the loops inside it
+    (its holes), offset by half their extrusion width away from the material."""
+    z = mid_layer(layers, height, source)
+    loops = [(np.asarray(loop.points, float), loop.width) for loop in layers.layers[z]]
+    loops = [(p if signed_area(p) > 0 else p[::-1], w) for p, w in loops if abs(signed_area(p)) > 1e-6]
+    loops.sort(key=lambda item: -signed_area(item[0]))
+    shells: list[tuple] = []
+    for points, width in loops:
+        owner = next((s for s in shells if points_inside(s[2], points[:1])[0]), None)
+        try:
+            printed = offset_outline(points, 0.5 * width if owner is None else -0.5 * width, "gcode")
+        except DesignError:
+            continue    # a loop crossing itself is no gear outline (a gear's is then not found)
+        if owner is None:
+            shells.append((printed, width, prepared_polygon(points), []))
+        else:
+            owner[3].append(printed)
+    return [PrintedPart(source, z, width, outline, tuple(holes)) for outline, width, _, holes in shells]
+
+
+def find_gear(parts: list[PrintedPart], design: np.ndarray, gear: str, pair: str,
+              taken: list) -> PrintedGear:
+    """The printed part that is ``design`` (the gear's mid-thickness outer ring, own frame):
+    nearest in the area its outer outline bounds (holes and pockets aside), then fitted;
+    DesignError naming the G-code when none is."""
+    want = signed_area(design)
+
+    def outer(part):
+        return signed_area(part.outline)
+
+    near = sorted((p for p in parts if not any(p is t for t in taken)
+                   and abs(outer(p) / want - 1.0) < AREA_SHARE), key=lambda p: abs(outer(p) - want))
+    where = " + ".join(sorted({p.source for p in parts})) or "the G-code"
+    if not near:
+        found = ", ".join(f"{outer(p):.0f}" for p in parts) or "none"
+        raise DesignError("gcode", where, f"has no printed part the size of the {gear} of pair "
+                                          f"'{pair}' (section {want:.0f} mm2; {len(parts)} printed "
+                                          f"part(s) at mid-height: {found} mm2): slice both gears of "
+                                          "this pair (one plate, or the files of both plates)")
+    best = None
+    for part in near:       # nearest in area first; a plate may hold gears of other pairs
+        fit = register(part.outline, design)
+        if fit.rms <= RMS and fit.largest <= LARGEST:
+            return PrintedGear(part, fit.apply(part.outline), fit)
+        best = best or (part, fit)
+    part, fit = best
+    raise DesignError("gcode", part.source, f"its part of {outer(part):.0f} mm2 is not the {gear} "
+                                            f"of pair '{pair}': after the best fit it departs by "
+                                            f"{fit.largest:.2f} mm (rms {fit.rms:.3f} mm; a print "
+                                            f"stays within {LARGEST:g}): another design")
+
+
+def gear_record(gear: PrintedGear, design_hole: float | None) -> dict:
+    """What the report says of one printed gear (mm): where it was read, how it fits the
+    design, and the printed bore (area-equivalent diameter) against the designed one."""
+    bore = None
+    for hole in gear.part.holes:      # the bore holds the axis (pockets of --lighten do not)
+        placed = gear.fit.apply(hole)
+        if points_inside(prepared_polygon(placed), np.zeros((1, 2)))[0]:
+            bore = float(np.sqrt(4.0 * abs(signed_area(placed)) / np.pi))
+    return {"gcode": gear.part.source, "layer_z_mm": gear.part.z,
+            "extrusion_width_mm": gear.part.width, "printed_area_mm2": gear.part.area,
+            "outline_offset_mm": gear.fit.offset, "outline_rms_mm": gear.fit.rms,
+            "outline_largest_mm": gear.fit.largest,
+            "bore_printed_mm": bore, "bore_drawn_mm": design_hole,
+            "bore_shrink_mm": None if bore is None or design_hole is None else design_hole - bore}
+
+
+def design_sections(pair) -> dict:
+    """Per gear of a plate pair (parts.plate_pairs.PlatePair): (outer ring, area-equivalent
+    bore diameter or None) at mid-thickness, mm, own frame."""
+    from wheelstep_cli.geometry.solids import section_outline, section_rings
+
+    mid = 0.5 * float(pair.spec.thickness)
+    out = {}
+    for gear, obj in (("pinion", pair.pinion), ("wheel", pair.wheel)):
+        holes = [abs(signed_area(r)) for r in section_rings(obj, mid) if signed_area(r) < 0]
+        out[gear] = (section_outline(obj.vertices, obj.faces, gear, mid),
+                     float(np.sqrt(4.0 * max(holes) / np.pi)) if holes else None)
+    return out
+
+
+def printed_pair(gcode_files: list[Path], pair) -> tuple[dict, dict]:
+    """The pinion and wheel of plate pair ``pair`` as printed by the G-code files:
+    ({gear: PrintedGear}, {gear: record})."""
+    designs = design_sections(pair)
+    parts = []
+    for path in gcode_files:
+        parts += printed_parts(read_gcode_file(path), str(path), 0.5 * float(pair.spec.thickness))
+    found, records = {}, {}
+    for gear in ("wheel", "pinion"):         # the larger first: its area is the surer
+        found[gear] = find_gear(parts, designs[gear][0], gear, pair.pair,
+                                [g.part for g in found.values()])
+        records[gear] = gear_record(found[gear], designs[gear][1])
+    return found, records
+
+
+@dataclass(frozen=True)
+class MeshPair:
+    """Two gear meshes named on the command line and the design they were drawn for: the
+    stand-in of a plate pair (parts.plate_pairs.PlatePair) for STL files."""
+
+    pair: str
+    pinion: object      # formats.mesh_read.MeshObject, own frame
+    wheel: object
+    spec: object
+
+
+def mesh_pair(pinion: str, wheel: str, spec) -> MeshPair:
+    """Read the two meshes (FILE.stl, FILE.3mf[:NAME]) the G-code was sliced from."""
+    from wheelstep_cli.formats.mesh_read import MeshObject, read_mesh
+
+    objects = [MeshObject(gear, *read_mesh(given, gear, default_name=gear), np.eye(4, 3), {})
+               for gear, given in (("pinion", pinion), ("wheel", wheel))]
+    return MeshPair(f"{Path(pinion).name} + {Path(wheel).name}", objects[0], objects[1], spec)
+
+
+def default_plates(gcode_files: list[Path]) -> list[str]:
+    """The plates a G-code read-back takes its design from when none is named: FILE.3mf
+    beside each FILE.gcode (as ``gears --slice`` and ``prusa-slicer -g FILE.3mf`` write)."""
+    plates = []
+    for path in gcode_files:
+        plate = path.with_suffix(".3mf")
+        if not plate.is_file():
+            raise DesignError("gcode", str(path), f"has no plate {plate.name} beside it to take "
+                                                  "the design from: name the plate(s) it was sliced "
+                                                  "from (PINION [WHEEL] arguments)")
+        if str(plate) not in plates:
+            plates.append(str(plate))
+    return plates
+
+
+@dataclass(frozen=True)
+class GcodeCheck:
+    """A pair read back from G-code: the designed and printed sections (tolerance.SectionedPair,
+    the printed starting in the designed pair's play), the designed pair's meshing report,
+    the meshing settings and the per gear read-back records."""
+
+    design: object
+    printed: object
+    nominal: object
+    settings: object
+    records: dict
+    sources: tuple
+
+
+def gcode_sections(gcode_files: list[Path], pair, samples: int, window: float | None,
+                   progress=None) -> GcodeCheck:
+    """Read the pair back from the G-code files and check the designed pair once (its play
+    is where the printed pair's poses start: generated teeth may keep their play on one
+    side, where the law's own pose touches a flank)."""
+    from dataclasses import replace
+
+    from wheelstep_cli.gears.meshing import MeshingSettings
+    from wheelstep_cli.parts.gear_pair import design_law, generation_law
+    from wheelstep_cli.parts.tolerance import NOMINAL, SectionedPair, check_case, mid_play
+
+    design_law(pair.spec)
+    found, records = printed_pair(gcode_files, pair)
+    designs = design_sections(pair)
+    _, blended = generation_law(pair.spec)
+    settings = replace(MeshingSettings(), samples=samples, window=window)
+    design = SectionedPair(designs["pinion"][0], designs["wheel"][0], blended,
+                           float(pair.spec.install_distance), int(pair.spec.z))
+    nominal = check_case(design, NOMINAL, settings)
+    printed = mid_play(replace(design, pinion=found["pinion"].outline, wheel=found["wheel"].outline),
+                       nominal)
+    return GcodeCheck(design, printed, nominal, settings, records,
+                      (found["pinion"].part.source, found["wheel"].part.source))
+
+
+def run_gcode_check(gcode_files: list[Path], pair, samples: int, window: float | None,
+                    progress=None):
+    """The meshing check of plate pair ``pair`` as the G-code files print it: (report,
+    summary with the per gear read-back under ``gcode``, the GcodeCheck)."""
+    from wheelstep_cli.parts.gear_pair import generation_law, law_record
+    from wheelstep_cli.parts.tolerance import NOMINAL, check_case
+
+    read = gcode_sections(gcode_files, pair, samples, window)
+    report = check_case(read.printed, NOMINAL, read.settings)
+    law, _ = generation_law(pair.spec)
+    source = ("external perimeters of the mid-height layer, offset outward by half their "
+              "extrusion width, fitted into each gear's frame; poses start in the middle of the "
+              "designed pair's play (SPEC §11)")
+    summary = {"pair": pair.pair, "distance_mm": pair.spec.install_distance,
+               "pinion": f"{read.sources[0]}:pinion", "wheel": f"{read.sources[1]}:wheel",
+               "law": {**law_record(pair.spec, law), "blend_deg": pair.spec.blend}, **report.to_dict(),
+               "gcode": {"source": source, "pinion": read.records["pinion"],
+                         "wheel": read.records["wheel"]}}
+    summary["meshes"] = not (report.interferes or report.contact_lost)
+    return report, summary, read
+
+
+def band_prediction(read: GcodeCheck, printer, progress=None) -> dict:
+    """The band check (SPEC §11) of the designed pair on ``printer``'s band, and the range of
+    least backlash (mm) it predicts for a print: the tight corner's to the loose corner's."""
+    from wheelstep_cli.parts.tolerance import band_record
+
+    record = band_record(read.design, printer.band, printer.name, read.nominal, read.settings)
+    record["least_backlash_range_mm"] = least_backlash_range(record)
+    return record
+
+
+def least_backlash_range(band: dict) -> list | None:
+    """The least backlash (mm) a band record predicts for a print: its cases' lowest to highest."""
+    least = [c["backlash_min_mm"] for c in band.get("cases", []) if c["backlash_min_mm"] is not None]
+    return [min(least), max(least)] if least else None
+
+
+def within_band(summary: dict, band: dict) -> bool | None:
+    """Whether the printed pair's least backlash lies in the range the band predicts."""
+    span, least = band.get("least_backlash_range_mm"), summary.get("backlash_min_mm")
+    if span is None or least is None:
+        return None
+    return bool(span[0] <= least <= span[1])
+
+
+def gcode_lines(summary: dict) -> list[str]:
+    """Text lines of the read-back: per gear where it was read and how it follows the
+    drawing, and (with a band) whether the print's least backlash is where the band says."""
+    lines = []
+    for gear in ("pinion", "wheel"):
+        r = summary["gcode"][gear]
+        bore = ("" if r["bore_printed_mm"] is None else f", bore {r['bore_printed_mm']:.3f} mm"
+                + ("" if r["bore_drawn_mm"] is None else f" (drawn {r['bore_drawn_mm']:.3f})"))
+        lines.append(f"printed {gear}: {Path(r['gcode']).name} layer z {r['layer_z_mm']:g} mm, "
+                     f"width {r['extrusion_width_mm']:.3f} mm; outline {r['outline_offset_mm']:+.3f} mm "
+                     f"from the drawn one (rms {r['outline_rms_mm']:.3f}, largest "
+                     f"{r['outline_largest_mm']:.3f}){bore}")
+    band = summary.get("tolerance")
+    if band and band.get("least_backlash_range_mm") and summary["backlash_min_mm"] is not None:
+        lo, hi = band["least_backlash_range_mm"]
+        inside = summary["gcode"].get("inside_band")
+        lines.append(f"printed least backlash {summary['backlash_min_mm']:.3f} mm: "
+                     + ("inside" if inside else "OUTSIDE")
+                     + f" the band's prediction {lo:.3f}..{hi:.3f} mm (tight to loose corner)")
+    return lines
