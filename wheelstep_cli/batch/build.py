@@ -63,7 +63,7 @@ def build_entry(entry: Entry) -> EntryResult:
         if mating is not None:
             report["meshing"] = mating
         result = EntryResult(entry.index, parts, report, mating=mating)
-        return _refused(entry, result) or result
+        return _refused(entry, result) or _out_of_bounds(entry, built, result) or result
     except DesignError as err:
         return EntryResult(entry.index, error=yaml_message(err), param=err.param)
     except Exception as err:  # an unexpected failure must not stop the other entries
@@ -87,6 +87,21 @@ def _refused(entry: Entry, result: EntryResult) -> EntryResult | None:
               f"{mating['samples']} poses at {printed.install_distance:g} mm (max overlap "
               f"{mating['max_overlap_area_mm2']:.3f} mm2); allow_interference: true builds it anyway")
     return EntryResult(entry.index, report=result.report, error=reason, param="teeth", mating=mating)
+
+
+def _out_of_bounds(entry: Entry, built, result: EntryResult) -> EntryResult | None:
+    """The entry refused (no parts) when its generated gear pair meshes outside the SPEC §10
+    bounds, as ``wheelstep gears`` refuses it (the reason names the option and its remedy)."""
+    if result.mating is None or result.mating["interference"]:
+        return None
+    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml, require_within_bounds
+
+    try:
+        require_within_bounds(built, result.mating)
+    except DesignError as err:
+        return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
+                           param=err.param, mating=result.mating)
+    return None
 
 
 class _Serial:

@@ -115,9 +115,25 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
     param = next(iter(remedy))
     options = " ".join(f"--{name.replace('_', '-')} {value:g}" for name, value in remedy.items())
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
-    raise DesignError(param, value,
-                      f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
-                      f"written; use {options}")
+    error = DesignError(param, value,
+                        f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
+                        f"written; use {options}")
+    error.remedy = remedy   # name -> value, for a batch file to state as its keys
+    raise error
+
+
+def remedy_in_yaml(err) -> str:
+    """A bounds refusal (:func:`require_within_bounds`) as a batch file states it: the
+    remedy as the entry's override keys (``z: 90, backlash: 0.239``), not as flags."""
+    from wheelstep_cli.config.names import yaml_message
+
+    message = yaml_message(err)
+    remedy = getattr(err, "remedy", None)
+    if not remedy:
+        return message
+    flags = " ".join(f"--{name.replace('_', '-')} {value:g}" for name, value in remedy.items())
+    keys = ", ".join(f"{name}: {value:g}" for name, value in remedy.items())
+    return message.replace(f"use {flags}", f"use overrides {{{keys}}}")
 
 
 def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds) -> dict:
