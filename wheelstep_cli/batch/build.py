@@ -84,7 +84,7 @@ def _refused(entry: Entry, result: EntryResult) -> EntryResult | None:
     printed = entry.printed
     teeth = getattr(printed.teeth, "value", printed.teeth)
     reason = (f"teeth = {teeth}: the teeth interfere at {mating['interfering_poses']} of "
-              f"{mating['samples']} poses at {printed.install_distance:g} mm (max overlap "
+              f"{mating['samples']} poses at {mating['distance_mm']:g} mm (max overlap "
               f"{mating['max_overlap_area_mm2']:.3f} mm2); allow_interference: true builds it anyway")
     return EntryResult(entry.index, report=result.report, error=reason, param="teeth", mating=mating)
 
