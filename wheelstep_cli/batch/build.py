@@ -91,13 +91,16 @@ def _refused(entry: Entry, result: EntryResult) -> EntryResult | None:
 
 def _out_of_bounds(entry: Entry, built, result: EntryResult) -> EntryResult | None:
     """The entry refused (no parts) when its generated gear pair meshes outside the SPEC §10
-    bounds, as ``wheelstep gears`` refuses it (the reason names the option and its remedy)."""
+    bounds or its teeth are too thin for the entry's printer, as ``wheelstep gears`` refuses
+    it (the reason names the option and its remedy)."""
     if result.mating is None or result.mating["interference"]:
         return None
     from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml, require_within_bounds
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     try:
         require_within_bounds(built, result.mating)
+        require_printable_teeth(built, entry.printer)
     except DesignError as err:
         return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
                            param=err.param, mating=result.mating)

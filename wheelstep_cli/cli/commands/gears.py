@@ -199,6 +199,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.mesh_bounds import opening_remedy, require_within_bounds
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
     from wheelstep_cli.parts.tolerance_cli import band_pair
 
     pair, tolerance, check = band_pair(spec, printer, *band)
@@ -212,6 +213,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                    "written (--allow-interference writes them anyway)")
         raise typer.Exit(1)
     require_within_bounds(pair, record)
+    require_printable_teeth(pair)
     if tolerance is not None:
         record["tolerance"] = tolerance
     files = {**gear_pair_files(pair, out, fmt, record),
