@@ -154,10 +154,10 @@ def gears(
     """Write the gear pair as printable STL/3MF meshes, gears.json and the exports asked for.
 
     The written meshes are checked first (SPEC §10); overlapping teeth are refused (exit 1,
-    nothing written) unless --allow-interference. Generated teeth roll at the installed
-    distance, their module following from the perimeter and --z; or at the distance a
-    --module fits (SPEC §9). Each gear carries an engraved timing mark; gears.json states
-    the assembly phase the marks and keyed bores build in."""
+    nothing written) unless --allow-interference. Generated teeth roll at --center-distance
+    (or the distance a --module fits, SPEC §9) and are checked at --install-distance. Each
+    gear carries an engraved timing mark; gears.json states the assembly phase the marks
+    and keyed bores build in."""
     show = Output(json, quiet, verbose)
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                           install_distance=install_distance, module=module, backlash=backlash,
