@@ -158,3 +158,21 @@ def test_generated_teeth_roll_at_the_center_distance_and_mount_at_the_install_di
     assert measured["distance_mm"] == 72.1
     assert measured["drive"]["F_i_total_um"] == pytest.approx(report["meshing"]["drive"]["F_i_total_um"],
                                                              abs=0.5)
+
+
+def test_a_module_sets_where_the_presets_pair_rolls_and_the_plate_is_checked_there(cli, tmp_path):
+    """--module on the desk preset (which gives an installed distance): the module's distance
+    replaces the preset's (generated teeth roll and are mounted where the module fits), and
+    mesh-check of the written plate mounts the pair there from its metadata."""
+    out = tmp_path / "m"
+    result = cli("gears", "--profile", "desk-demo", "--module", "1.25", "--out", out, "--json", "-q")
+    assert result.exit_code == 0, result.stderr
+    report = json.loads(result.stdout)
+    rolling = report["generated"]["rolling_center_distance_mm"]
+    assert rolling > 73.0 and report["generated"]["module_mm"] == pytest.approx(1.25)
+    assert report["parameters"]["install_distance"] == report["meshing"]["distance_mm"] == rolling
+    checked = cli("mesh-check", out / "gears.3mf", "--json")
+    assert checked.exit_code == 0, checked.stderr
+    (measured,) = json.loads(checked.stdout)["pairs"]
+    assert measured["distance_mm"] == pytest.approx(rolling, abs=1e-6)
+    assert measured["interference"] is False
