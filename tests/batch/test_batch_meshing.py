@@ -60,3 +60,33 @@ def test_allow_interference_is_refused_on_an_entry_without_teeth(cli, tmp_path):
     assert (f"{batch}:{line_of(batch, 'allow_interference')}: parts[0].allow_interference = true: "
             "only gear-pair entries have teeth to check, not shoe") in result.stderr
     assert not (tmp_path / "out").exists()
+
+
+SOURCE_Z24 = """\
+  - name: source24
+    kind: gear-pair
+    printer: fdm-0.4-pla
+    overrides:
+      z: 24
+      thickness: 2
+"""
+
+
+def test_pair_outside_the_bounds_is_refused_like_gears_with_its_remedy(cli, tmp_path):
+    """The source design at z 24, which `gears` refuses by the SPEC §10 bounds (remedy
+    --z 90), fails alone in a batch: named with its line, the remedy as override keys, no
+    report or plate of it, exit 1; the other entries are written."""
+    batch = write(tmp_path / "b.yaml", SMALL_BATCH + SOURCE_Z24)
+    out = tmp_path / "out"
+    result = cli("batch", batch, "--out", out, "--jobs", "1")
+    assert result.exit_code == 1
+    line = line_of(batch, "z: 24")
+    assert f"source24 ({batch}:{line}): z = 24: the pair would mesh outside the bounds (" in result.stderr
+    assert "F'i" in result.stderr and "use overrides {z: 90" in result.stderr
+    assert sorted(p.name for p in (out / "reports").iterdir()) == ["pair.json", "shoes.json"]
+    manifest = json.loads((out / "manifest.json").read_text())
+    entries = {e["name"]: e for e in manifest["entries"]}
+    assert entries["source24"]["status"] == "failed"
+    assert entries["source24"]["meshing"]["interference"] is False
+    assert [f["name"] for f in manifest["failed"]] == ["source24"]
+    assert "| source24 |" in (out / "print-sheet.md").read_text().split("## Parts")[0]

@@ -115,7 +115,8 @@ def test_verbose_adds_detail_on_stderr_only(cli):
 
 
 @pytest.mark.parametrize("args, shown", [
-    (["gears", "--install-distance", "140"], "--install-distance = 140"),
+    (["gears", "--teeth", "paper", "--center-distance", "143.5", "--install-distance", "140"],
+     "--install-distance = 140"),
     (["shoe", "--rmin", "-1"], "--rmin = -1"),
     (["kinematics", "--motor-rpm", "0"], "--motor-rpm = 0"),
     (["stairs", "--sweep", "--sweep-radii", "0"], "--sweep-radii = 0"),

@@ -48,6 +48,26 @@ def test_desk_demo_preset_is_written_within_the_bounds(cli, tmp_path):
     assert bound_violations(json.loads((tmp_path / "gears.json").read_text())["meshing"]) == []
 
 
+def test_teeth_too_thin_for_the_printer_are_refused_with_a_remedy_that_prints(cli, tmp_path):
+    """The desk demonstrator at z 44 meshes within the bounds, but on a 0.4 mm nozzle its
+    pinion's teeth beside the handover corners keep a tip land under two lines: refused for
+    that printer (not for resin, which lays no lines) with a tooth count that, applied, is
+    written for the printer within the bounds."""
+    out = tmp_path / "out"
+    design = ["--profile", "desk-demo", "--z", "44", "--thickness", "2", "--format", "stl"]
+    line = error_line(cli("gears", *design, "--printer", "fdm-0.4-petg", "--out", out))
+    assert line.startswith("wheelstep: error: --z = 44: the teeth are too thin for printer "
+                           "'fdm-0.4-petg' (tip land under two 0.4 mm extrusion lines; pinion: ")
+    assert "nothing written" in line and not out.exists()
+    remedy = line.rsplit("; use ", 1)[1].split()[:2]
+    assert remedy == ["--z", "42"]
+    result = cli("gears", *design, *remedy, "--printer", "fdm-0.4-petg", "--out", out)
+    assert result.exit_code == 0, result.stderr
+    assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
+    resin = cli("gears", *design, "--printer", "resin-0.05-standard", "--out", tmp_path / "resin")
+    assert resin.exit_code == 0, resin.stderr
+
+
 @seed(13)
 @settings(max_examples=3, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])

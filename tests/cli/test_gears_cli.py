@@ -102,7 +102,9 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_pa
     (["--a", "-60"], "a ="),                       # negative length
     (["--a", "sixty"], "'--a'"),                   # not a number
     (["--thickness", "0"], "thickness ="),
-    (["--install-distance", "140"], "install-distance ="),
+    (["--teeth", "paper", "--center-distance", "143.5", "--install-distance", "140"],
+     "install-distance ="),                       # paper sectors mounted closer than they roll
+    (["--module", "2.5", "--center-distance", "144"], "center-distance ="),  # the module sets it
     (["--turns", "3"], "turns ="),
     (["--backlash", "5"], "--backlash = 5:"),      # pointed teeth: the rule named for the backlash
     (["--profile", "no-such-design"], "profile ="),
@@ -122,3 +124,56 @@ def test_unwritable_output_is_one_line(cli, tmp_path):
     line = error_line(result, code=2)                     # a bad output path is bad input
     assert f"--out = {blocker / 'sub'}: cannot be written ({blocker}: is a file, not a folder)" in line
     assert blocker.read_text() == "not a folder"
+
+
+def test_generated_teeth_roll_at_the_center_distance_and_mount_at_the_install_distance(cli, tmp_path):
+    """--center-distance is where the pitch curves roll, --install-distance where the pair is
+    mounted and checked. Off the rolling distance the pitch curves do not roll: 25 um
+    farther (opening backlash) breaks the bounds, 25 um closer interferes; both are refused
+    with the remedy, which applied is written, stored and re-checked on the plate there."""
+    farther = cli("gears", "--profile", "desk-demo", "--center-distance", "72.1", "--out", tmp_path / "a")
+    line = error_line(farther)
+    assert line.startswith("wheelstep: error: --install-distance = 72.125: the pair would mesh outside")
+    assert "0.025 mm farther than the pitch curves roll (72.1 mm)" in line
+    assert line.endswith("use --install-distance 72.1")
+    closer = cli("gears", "--profile", "desk-demo", "--center-distance", "72.15", "--out", tmp_path / "b")
+    line = error_line(closer, code=1)
+    assert "the teeth interfere" in line and "0.025 mm closer than the pitch curves roll" in line
+    assert "--install-distance 72.15" in line
+    assert not (tmp_path / "a").exists() and not (tmp_path / "b").exists()
+    out = tmp_path / "c"
+    assert cli("gears", "--profile", "desk-demo", "--center-distance", "72.1", "--install-distance",
+               "72.1", "--out", out, "-q").exit_code == 0
+    report = json.loads((out / "gears.json").read_text())
+    assert report["parameters"]["center_distance"] == report["parameters"]["install_distance"] == 72.1
+    assert report["generated"]["rolling_center_distance_mm"] == 72.1
+    assert report["generated"]["backlash"]["center_distance_opening_mm"] == 0.0
+    assert report["meshing"]["distance_mm"] == 72.1
+    from wheelstep_cli.formats.mesh_read import read_3mf_objects
+
+    for obj in read_3mf_objects(out / "gears.3mf", "x"):
+        assert (obj.metadata["center_distance"], obj.metadata["install_distance"]) == ("72.1", "72.1")
+    checked = cli("mesh-check", out / "gears.3mf", "--json")
+    assert checked.exit_code == 0, checked.stderr
+    (measured,) = json.loads(checked.stdout)["pairs"]
+    assert measured["distance_mm"] == 72.1
+    assert measured["drive"]["F_i_total_um"] == pytest.approx(report["meshing"]["drive"]["F_i_total_um"],
+                                                             abs=0.5)
+
+
+def test_a_module_sets_where_the_presets_pair_rolls_and_the_plate_is_checked_there(cli, tmp_path):
+    """--module on the desk preset (which gives an installed distance): the module's distance
+    replaces the preset's (generated teeth roll and are mounted where the module fits), and
+    mesh-check of the written plate mounts the pair there from its metadata."""
+    out = tmp_path / "m"
+    result = cli("gears", "--profile", "desk-demo", "--module", "1.25", "--out", out, "--json", "-q")
+    assert result.exit_code == 0, result.stderr
+    report = json.loads(result.stdout)
+    rolling = report["generated"]["rolling_center_distance_mm"]
+    assert rolling > 73.0 and report["generated"]["module_mm"] == pytest.approx(1.25)
+    assert report["parameters"]["install_distance"] == report["meshing"]["distance_mm"] == rolling
+    checked = cli("mesh-check", out / "gears.3mf", "--json")
+    assert checked.exit_code == 0, checked.stderr
+    (measured,) = json.loads(checked.stdout)["pairs"]
+    assert measured["distance_mm"] == pytest.approx(rolling, abs=1e-6)
+    assert measured["interference"] is False

@@ -108,7 +108,7 @@ def test_specs_refuse_unknown_and_wrong_typed_values_naming_the_parameter():
     from wheelstep_cli.errors import DesignError
 
     with pytest.raises(DesignError) as info:
-        gear_pair_spec(None, install_distance=140.0)
+        gear_pair_spec(None, teeth="paper", center_distance=143.5, install_distance=140.0)
     assert info.value.param == "install_distance"
     with pytest.raises(DesignError) as info:
         shoe_spec(None, strut_diameter=-1.0)

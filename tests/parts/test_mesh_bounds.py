@@ -7,7 +7,7 @@ import pytest
 
 from wheelstep_cli.gears.generation.play import largest_play, play_angle, play_ripple
 from wheelstep_cli.gears.pitch_curves import pitch_curves
-from wheelstep_cli.parts.gear_pair import GearPairSpec, design_backlash, generation_law
+from wheelstep_cli.parts.gear_pair import GearPairSpec, design_backlash, generation_law, installed_distance
 from wheelstep_cli.parts.mesh_bounds import bound_violations, teeth_remedy
 
 
@@ -47,7 +47,7 @@ def test_a_constant_play_costs_hub_speed_ripple_at_the_handover_corners():
     spec = GearPairSpec()
     _, law = generation_law(spec)
     assert play_ripple(law, 0.0) < 0.002                  # the law alone is (nearly) flat
-    curves = pitch_curves(law, spec.install_distance)
+    curves = pitch_curves(law, installed_distance(spec))
     quarter, half = (play_ripple(law, play_angle(j, curves.wheel, np.radians(20.0))) for j in (0.25, 0.5))
     assert 0.004 < quarter < half < 0.012                 # grows with the play, about linearly
     limit = largest_play(law, 0.005)

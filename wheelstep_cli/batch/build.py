@@ -64,11 +64,14 @@ def build_entry(entry: Entry, tolerance: bool = False) -> EntryResult:
         report = kind.report_of(built)
         if mating is not None:
             report["meshing"] = mating
+        result = EntryResult(entry.index, parts, report, mating=mating)
+        refused = _refused(entry, result) or _out_of_bounds(entry, built, result)
+        if refused is not None:
+            return refused
         band = _band(built, entry) if tolerance and mating is not None else None
         if band is not None:
             report["tolerance"] = band
-        result = EntryResult(entry.index, parts, report, mating=mating, band=band)
-        return _refused(entry, result) or result
+        return EntryResult(entry.index, parts, report, mating=mating, band=band)
     except DesignError as err:
         return EntryResult(entry.index, error=yaml_message(err), param=err.param)
     except Exception as err:  # an unexpected failure must not stop the other entries
@@ -97,9 +100,27 @@ def _refused(entry: Entry, result: EntryResult) -> EntryResult | None:
     printed = entry.printed
     teeth = getattr(printed.teeth, "value", printed.teeth)
     reason = (f"teeth = {teeth}: the teeth interfere at {mating['interfering_poses']} of "
-              f"{mating['samples']} poses at {printed.install_distance:g} mm (max overlap "
+              f"{mating['samples']} poses at {mating['distance_mm']:g} mm (max overlap "
               f"{mating['max_overlap_area_mm2']:.3f} mm2); allow_interference: true builds it anyway")
     return EntryResult(entry.index, report=result.report, error=reason, param="teeth", mating=mating)
+
+
+def _out_of_bounds(entry: Entry, built, result: EntryResult) -> EntryResult | None:
+    """The entry refused (no parts) when its generated gear pair meshes outside the SPEC §10
+    bounds or its teeth are too thin for the entry's printer, as ``wheelstep gears`` refuses
+    it (the reason names the option and its remedy)."""
+    if result.mating is None or result.mating["interference"]:
+        return None
+    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml, require_within_bounds
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
+
+    try:
+        require_within_bounds(built, result.mating)
+        require_printable_teeth(built, entry.printer)
+    except DesignError as err:
+        return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
+                           param=err.param, mating=result.mating)
+    return None
 
 
 class _Serial:

@@ -39,14 +39,23 @@ def part_summary(part: BuiltPart, printer: Printer) -> dict:
             "estimated_mass_g": estimated_mass(part, printer), "checks": part.checks}
 
 
+def _distances_resolved(values: dict, report: dict | None, key: str) -> dict:
+    """``values`` with a gear pair's centre distances as its design report resolved them
+    (the distance it rolls and is mounted at, mm), as ``wheelstep gears`` reports them."""
+    resolved = ((report or {}).get(key) or {})
+    return {**values, **{name: resolved[name] for name in ("center_distance", "install_distance")
+                         if name in resolved and name in values}}
+
+
 def entry_report_bytes(entry: Entry, result: EntryResult) -> bytes:
     from wheelstep_cli.formats.jsonio import json_bytes
 
     return json_bytes({
         "entry": entry.name, "kind": entry.kind, "design_profile": entry.design_label,
         "printer_profile": entry.printer.name, "quantity": entry.quantity,
-        "parameters": entry.spec.model_dump(),
-        "printed_parameters": entry.printed.model_dump(),
+        "parameters": _distances_resolved(entry.spec.model_dump(), result.report, "parameters"),
+        "printed_parameters": _distances_resolved(entry.printed.model_dump(), result.report,
+                                                  "printed_parameters"),
         "printer_geometry": entry.printer.geometry(),
         "printed_parts": {p.name: part_summary(p, entry.printer) for p in result.parts},
         **({"meshing": result.mating} if result.mating is not None else {}),

@@ -81,7 +81,12 @@ def _metadata(entry: Entry, part: str, copy: int) -> dict[str, str]:
             "design_profile": entry.design_label, "printer_profile": entry.printer.name}
     if entry.kind == "gear-pair":
         meta["pair"] = f"{entry.name}/{copy}"
-    meta.update(design_metadata(entry.printed.model_dump()))
+    if entry.kind == "gear-pair":   # where it is mounted, for mesh-check of the plate
+        from wheelstep_cli.parts.gear_laws import distance_record
+
+        meta.update(design_metadata({**entry.printed.model_dump(), **distance_record(entry.printed)}))
+    else:
+        meta.update(design_metadata(entry.printed.model_dump()))
     for name, value in entry.printer.geometry().items():
         meta[f"printer.{name}"] = f"{value:g}"
     return meta

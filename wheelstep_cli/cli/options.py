@@ -70,9 +70,10 @@ Z = Annotated[Optional[int], opt("--z", help="Pinion tooth count; the wheel gets
                                  shown="48")]
 Turns = Annotated[Optional[int], opt("--turns", "-n", help="Pinion turns per carrier turn, 2 or 4.",
                                      shown="the profile's gears.turns, else 2")]
-CenterDistance = Annotated[Optional[float], opt("--center-distance",
-                                                help="Design centre distance L_p, mm.",
-                                                shown="143.5")]
+CenterDistance = Annotated[Optional[float], opt(
+    "--center-distance", help="Centre distance the pitch curves roll at, mm (generated teeth; "
+                              "paper teeth: the sectors' L_p).",
+    shown="the installed distance; paper 0.5 less, 143.5")]
 # --- where values and files come from and go
 Blend = Annotated[Optional[float], opt(
     "--blend", help="Half-width (carrier deg) of the ratio blend at each handover: the law the "

@@ -15,6 +15,16 @@ from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
 from wheelstep_cli.errors import DesignError
 
 STRUT = ("c", "r_min")
+#: Where generated teeth roll and are mounted, which a --module sets instead (mm).
+DISTANCES = ("center_distance", "install_distance")
+
+
+def _generated(values: dict[str, Any], spec: type[BaseModel]) -> bool:
+    """Whether ``values`` of a gear-pair spec give generated teeth (the default)."""
+    if "teeth" not in spec.model_fields:
+        return False
+    teeth = values.get("teeth", spec.model_fields["teeth"].default)
+    return getattr(teeth, "value", teeth) == "generated"
 
 
 def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any]) -> dict[str, Any]:
@@ -29,6 +39,11 @@ def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any
         given = {k: v for k, v in layer.items() if v is not None}
         if any(k in given for k in STRUT):
             for key in STRUT:
+                merged.pop(key, None)
+        if "module" in given and _generated({**merged, **given}, spec):
+            # generated teeth roll where the module fits (SPEC §9) and are mounted there:
+            # a lower layer's distances (a preset's) give way, as a strut does
+            for key in DISTANCES:
                 merged.pop(key, None)
         merged.update(given)
     fields = spec.model_fields

@@ -23,6 +23,9 @@ MECHANISM_KEYS = ("a", "b", "c", "r_min")
 DEFAULT_R_MIN = 20.0
 #: Longest mechanism length taken, mm (a 10 m mover; bounds the work and the part sizes).
 MAX_LENGTH = 10_000.0
+#: Installed centre distance when none is given (the source's, mm), and how much closer the
+#: source's paper sectors roll (its L_p = 143.5 mm, installed 0.5 mm apart for backlash).
+DEFAULT_INSTALL, PAPER_OPENING = 144.0, 0.5
 #: Pinion tooth counts taken: the generator's floor, and a ceiling that bounds its work.
 MIN_TEETH, MAX_TEETH = 6, 240
 
@@ -64,8 +67,13 @@ class GearPairSpec(BaseModel):
     z: int = quantity(48, limit=f"must be {MIN_TEETH}..{MAX_TEETH} (pinion teeth)", strict=True,
                       ge=MIN_TEETH, le=MAX_TEETH)
     turns: int = Field(2, strict=True)
-    center_distance: Number = length(143.5, gt=0)
-    install_distance: Number = length(144.0, gt=0)
+    # generated teeth: the distance the pitch curves roll at (None: the installed distance, or
+    # the one a --module fits); paper teeth: the sectors' design distance L_p (None: the
+    # installed less the source's 0.5 mm opening, 143.5)
+    center_distance: Optional[Number] = length(None, gt=0)
+    # the distance the pair is mounted and checked at (None: where generated teeth roll;
+    # paper teeth L_p + 0.5 mm; 144 when neither is given)
+    install_distance: Optional[Number] = length(None, gt=0)
     # generated teeth: None takes the module from the pitch curves at the distance; a module
     # solves the design centre distance for it (SPEC §9). Paper teeth: None is 2 mm.
     module: Optional[Number] = None
@@ -107,17 +115,24 @@ class GearPairSpec(BaseModel):
     def _distances(self) -> "GearPairSpec":
         require(self.law_csv is None or self.teeth == Teeth.generated, "law_csv", self.law_csv,
                 "needs generated teeth")
-        if not self.install_distance >= self.center_distance:
-            raise DesignError("install_distance", self.install_distance,
-                              f"must be >= the centre distance {self.center_distance:g} mm",
-                              {"center_distance": (self.center_distance, "must be <= the installed "
-                                                   f"distance {self.install_distance:g} mm")})
         if self.teeth == Teeth.paper:
-            require(self.install_distance <= self.center_distance + self.paper_module, "install_distance",
-                    self.install_distance,
-                    f"must be <= the centre distance + module = "
-                    f"{self.center_distance + self.paper_module:g} mm "
+            center, install = self.paper_distances
+            if not install >= center:
+                raise DesignError("install_distance", install,
+                                  f"must be >= the centre distance {center:g} mm",
+                                  {"center_distance": (center, "must be <= the installed "
+                                                       f"distance {install:g} mm")})
+            require(install <= center + self.paper_module, "install_distance", install,
+                    f"must be <= the centre distance + module = {center + self.paper_module:g} mm "
                     "(farther apart the teeth lose contact)")
+        elif self.module is not None and self.center_distance is not None:
+            # the module fixes the perimeter, so the distance the pitch curves roll at
+            raise DesignError("center_distance", self.center_distance,
+                              "cannot be combined with --module: generated teeth roll at the "
+                              "distance the module fits (SPEC §9)",
+                              {"module": (self.module, "cannot be combined with --center-distance: "
+                                          "generated teeth roll at the distance the module "
+                                          "fits (SPEC §9)")})
         self._bore_fits()
         return self
 
@@ -149,6 +164,17 @@ class GearPairSpec(BaseModel):
         if self.hub_d is None:
             return 0.0, 0.0
         return float(self.hub_d), 8.0 if self.hub_length is None else float(self.hub_length)
+
+    @property
+    def paper_distances(self) -> tuple[float, float]:
+        """The paper teeth's design distance L_p and installed distance (mm): as given, else
+        the source's 0.5 mm apart (143.5 and 144 when neither is given)."""
+        if self.center_distance is not None:
+            center = float(self.center_distance)
+            given = self.install_distance
+            return center, float(given) if given is not None else center + PAPER_OPENING
+        install = DEFAULT_INSTALL if self.install_distance is None else float(self.install_distance)
+        return install - PAPER_OPENING, install
 
     @property
     def backlash_mm(self) -> float:

@@ -264,3 +264,25 @@ def spoked_pockets(r_in: float, r_out: float, spokes: int, spoke_width: float, d
     # order by angle so the result does not depend on shapely's ordering
     return sorted(rings, key=lambda r: float(np.mod(np.arctan2(*r.mean(axis=0)[::-1]) - direction,
                                                     2.0 * np.pi)))
+
+
+def tooth_heights_lost(outline: np.ndarray, module: float, line_width: float) -> np.ndarray:
+    """Per tooth of a gear outline (mm): how much of its height is lost when every feature
+    narrower than ``line_width`` mm is taken away (a morphological opening: what extrusion
+    lines of that width can lay down). The teeth are what a 1.2 module opening cuts off."""
+    gear = shapely.Polygon(outline)
+    # the gear with its teeth taken off (their tips lie within 1.2 module of the body)
+    body = gear.buffer(-1.2 * module).buffer(1.2 * module)
+    opened = gear.buffer(-line_width / 2).buffer(line_width / 2)
+    teeth = gear.difference(body)
+    lost = []
+    for tooth in getattr(teeth, "geoms", [teeth]):
+        if tooth.area < 0.05 * module**2:
+            continue   # slivers where the opened body differs from the outline, not teeth
+        height = shapely.distance(body.boundary, shapely.points(np.asarray(tooth.exterior.coords))).max()
+        kept = opened.intersection(tooth)
+        rings = [np.asarray(g.exterior.coords) for g in getattr(kept, "geoms", [kept])
+                 if g.geom_type == "Polygon" and not g.is_empty]
+        left = shapely.distance(body.boundary, shapely.points(np.vstack(rings))).max() if rings else 0.0
+        lost.append(height - left)
+    return np.array(lost)

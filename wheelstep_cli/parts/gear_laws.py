@@ -41,10 +41,18 @@ def design_backlash(spec: GearPairSpec) -> float:
 def generated_backlash(spec: GearPairSpec, law, distance: float, settings) -> float:
     """Default normal backlash (mm) of generated teeth rolling at ``distance`` mm on ``law``:
     the play a flank carries steps the hub speed at the law's handover corners
-    (gears.generation.play), so it is the most that costs ``settings.backlash_ripple``."""
+    (gears.generation.play), so it is the most that costs ``settings.backlash_ripple``.
+
+    The cost is taken on the design's own law, not on its --blend form: measured beyond a
+    blended law's own ripple (9 % at 10 deg) the play costs almost nothing, so the default
+    would jump to 0.25 module (0.52 mm on the source design from 2 deg of blend), and teeth
+    thinned by that much lose contact next to the blended corners (a 15 um TE dip at each
+    handover, F'i 17 um at z 48 with 10 deg). A blend must not widen the play."""
     from wheelstep_cli.gears.generation.play import default_backlash
     from wheelstep_cli.gears.pitch_curves import pitch_curves
 
+    if spec.blend:
+        law = design_law(spec)
     curves = pitch_curves(law, distance)
     module = curves.period_arc / max(1, spec.z // law.pinion_periods) / np.pi
     return default_backlash(law, curves.wheel, np.radians(spec.pressure_angle), settings.backlash_ripple,
@@ -52,14 +60,42 @@ def generated_backlash(spec: GearPairSpec, law, distance: float, settings) -> fl
 
 
 def rolling_distance(spec: GearPairSpec, law) -> float:
-    """The distance (mm) generated teeth roll and are mounted at: the one a given module
-    fits (SPEC §9: the pitch curves' perimeter is proportional to it), else the installed
-    distance."""
+    """The distance (mm) generated teeth roll at (their pitch curves' centre distance): the
+    one a given module fits (SPEC §9: the pitch curves' perimeter is proportional to it),
+    else --center-distance, else the installed distance (144 when neither is given)."""
+    from wheelstep_cli.config.specs import DEFAULT_INSTALL
     from wheelstep_cli.errors import require
     from wheelstep_cli.gears.pitch_curves import center_distance_for_module
 
     if spec.module is None:
-        return float(spec.install_distance)
+        given = spec.center_distance if spec.center_distance is not None else spec.install_distance
+        return float(given) if given is not None else DEFAULT_INSTALL
     require(spec.module > 0, "module", spec.module, "must be > 0 mm")
     per_period = max(1, spec.z // law.pinion_periods)
     return float(center_distance_for_module(law, per_period, spec.module))
+
+
+def installed_distance(spec: GearPairSpec, law=None) -> float:
+    """The distance (mm) the pair is mounted and checked at: --install-distance, else where
+    generated teeth roll (:func:`rolling_distance` on ``law``, the blended generation law
+    when None), paper teeth their L_p + 0.5 mm."""
+    if spec.teeth != "generated":
+        return spec.paper_distances[1]
+    if spec.install_distance is not None:
+        return float(spec.install_distance)
+    if spec.module is None:
+        return rolling_distance(spec, None)
+    return rolling_distance(spec, law if law is not None else generation_law(spec)[1])
+
+
+def distance_record(spec: GearPairSpec, law=None) -> dict[str, float]:
+    """The design's distances as a part's metadata stores them (mm): the installed one, and
+    the rolling (paper: L_p) one unless a module fixes it; a design rebuilt from them is the
+    same and a check of the written gears mounts them where they are mounted."""
+    if spec.teeth != "generated":
+        center, install = spec.paper_distances
+        return {"center_distance": center, "install_distance": install}
+    install = installed_distance(spec, law)
+    if spec.module is not None:
+        return {"install_distance": install}
+    return {"center_distance": rolling_distance(spec, None), "install_distance": install}

@@ -14,8 +14,9 @@ from wheelstep_cli.gears.sectors import SectorPartition, sector_partition, secto
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
 from wheelstep_cli.formats.jsonio import json_bytes
 from wheelstep_cli.formats.stl import stl_bytes
-from wheelstep_cli.parts.gear_laws import (design_backlash, design_law, generated_backlash,  # noqa: F401
-                                           generation_law, rolling_distance)
+from wheelstep_cli.parts.gear_laws import (design_backlash, design_law, distance_record,  # noqa: F401
+                                           generated_backlash, generation_law, installed_distance,
+                                           rolling_distance)
 from wheelstep_cli.parts.plate_layout import bed_plates, design_metadata, plate_files, require_on_bed
 
 FORMATS = ("stl", "3mf", "both")
@@ -39,14 +40,29 @@ class GearPair:
     checks: dict[str, MeshReport] = field(default_factory=dict)
     generated: object = None   # gears.generated.GeneratedPair for generated teeth
     printing: object = None    # parts.kinds.Printing when drawn for a printer (spec: the printed one)
+    installed: float | None = None  # mm, generated teeth: parts.gear_laws.installed_distance
 
     @property
     def mounted_distance(self) -> float:
-        """Centre distance (mm) the pair is mounted and checked at: generated teeth where they
-        roll (the module's distance when a module is given), paper teeth the installed one."""
+        """Centre distance (mm) the pair is mounted and checked at: --install-distance, else
+        generated teeth where they roll, paper teeth L_p + 0.5 mm."""
+        if self.installed is not None:
+            return float(self.installed)
+        return self.spec.paper_distances[1]
+
+    @property
+    def design_distance(self) -> float:
+        """Centre distance (mm) the pitch curves roll at: generated teeth the one they were
+        generated for (--center-distance, the installed one, or the one --module fits),
+        paper teeth the sectors' L_p."""
         if self.generated is not None:
             return float(self.generated.center_distance)
-        return float(self.spec.install_distance)
+        return self.spec.paper_distances[0]
+
+    @property
+    def opening(self) -> float:
+        """How much farther (mm) the pair is mounted than its pitch curves roll (< 0: closer)."""
+        return self.mounted_distance - self.design_distance
 
     @property
     def wheel_teeth(self) -> int:
@@ -61,7 +77,7 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
         return _build_generated(spec)
     law = spec.law()
     count = sectors_per_quarter(spec.z, spec.turns)
-    partition = sector_partition(law, count, spec.center_distance)
+    partition = sector_partition(law, count, spec.paper_distances[0])
     form = spec.tooth_form()
     check_tooth_form(partition, form)
     p_outline = pinion_outline(partition, form)
@@ -109,7 +125,8 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     pinion, wheel = _plates(spec, gen.law, p_outline, w_outline, gen.module)
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     crank = spec.law() if spec.law_csv is None else None
-    return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen)
+    return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen,
+                    installed=installed_distance(spec, law))
 
 
 def partition_rows(partition: SectorPartition) -> list[dict]:
@@ -126,7 +143,7 @@ def partition_rows(partition: SectorPartition) -> list[dict]:
 def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
     """Everything about the pair a person or a machine may want: inputs, partition, parts,
     and the meshing check of the written meshes when given."""
-    spec = pair.spec.model_dump()
+    spec = {**pair.spec.model_dump(), **_distances(pair)}
     spec["backlash"] = pair.spec.backlash_mm
     parts = {}
     for part in (pair.pinion, pair.wheel):
@@ -152,6 +169,11 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
     return report
 
 
+def _distances(pair: GearPair) -> dict[str, float]:
+    """The distances (mm) the pair rolls and is mounted at, as the parameters report them."""
+    return {"center_distance": pair.design_distance, "install_distance": pair.mounted_distance}
+
+
 def _phase(pair: GearPair) -> dict:
     """The assembly phase (deg) and how the shaft holes sit on it."""
     from wheelstep_cli.gears.phase import assembly_phase, phase_record
@@ -175,22 +197,42 @@ def _printing(pair: GearPair) -> dict:
         # the design's backlash: what is drawn less the printer's tooth clearance
         record["parameters"]["backlash"] = pair.spec.backlash_mm - pair.printing.printer.tooth_clearance
         record["printed_parameters"]["backlash"] = pair.spec.backlash_mm
+        for name in ("parameters", "printed_parameters"):
+            if record[name] is not None:
+                record[name].update(_distances(pair))
     return record
+
+
+def _rolling_source(spec: GearPairSpec) -> str:
+    """What chose the distance generated teeth roll at."""
+    if spec.module is not None:
+        return "the module (SPEC §9)"
+    if spec.center_distance is not None:
+        return "--center-distance"
+    return "the installed distance"
+
+
+def _metadata_distances(pair: GearPair) -> dict[str, float]:
+    """The distances a plate's metadata stores (parts.gear_laws.distance_record)."""
+    if pair.generated is None:
+        return distance_record(pair.spec)
+    return {"install_distance": pair.mounted_distance,
+            **({} if pair.spec.module is not None else {"center_distance": pair.design_distance})}
 
 
 def generated_report(pair: GearPair) -> dict:
     """Generated-teeth figures: pitch, module, backlash budget, undercut and tip-land margins."""
     gen = pair.generated
     alpha = gen.cutter.pressure_angle
-    opening = pair.spec.install_distance - pair.spec.center_distance
+    opening = pair.opening
     return {
         "method": "pinion cut by a rolling rack with teeth tilted towards the radius (pivoting "
                   "at pitch-curve corners); wheel carved by the pinion moving along the exact law, "
                   "widened by a constant angular backlash",
         "tilt": pair.spec.tilt,
         "rolling_center_distance_mm": gen.center_distance,
-        "center_distance_chosen_by": ("the module (SPEC §9)" if pair.spec.module is not None
-                                      else "the installed distance"),
+        "installed_center_distance_mm": pair.mounted_distance,
+        "center_distance_chosen_by": _rolling_source(pair.spec),
         "pitch_mm": gen.pitch,
         "module_mm": gen.module,
         "pinion_teeth": gen.pinion_teeth,
@@ -200,11 +242,13 @@ def generated_report(pair: GearPair) -> dict:
         "backlash": {
             "normal_backlash_mm": gen.cutter.backlash,
             "wheel_angular_play_arcmin": float(np.degrees(gen.play) * 60.0 * 2.0),
-            "center_distance_opening_mm": 0.0,
-            "opening_would_add_normal_mm": 2.0 * opening * float(np.sin(alpha)),
-            "note": "teeth generated for the installed distance; backlash by thinning (pinion "
-                    "teeth by j_n/2, wheel by a constant angular play worth j_n/2 at its mean "
-                    "pitch radius), none by opening the centre distance",
+            "center_distance_opening_mm": opening,
+            "opening_adds_normal_mm": 2.0 * opening * float(np.sin(alpha)),
+            "note": "backlash by thinning (pinion teeth by j_n/2, wheel by a constant angular "
+                    "play worth j_n/2 at its mean pitch radius); mounting the pair farther than "
+                    "it rolls (the opening) adds about 2 x opening x sin(alpha) of normal "
+                    "backlash, but off the rolling distance the pitch curves no longer roll, "
+                    "so the meshing check at the installed distance decides",
         },
         "tip_clearance": {
             "pinion_spaces_mm": (gen.cutter.dedendum - gen.cutter.addendum) * gen.module,
@@ -242,7 +286,7 @@ def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both", meshing: dict 
         for part in parts:
             files[out / f"{part.name}.stl"] = stl_bytes(part.vertices, part.faces, f"wheelstep {part.name}")
     if fmt in ("3mf", "both"):
-        meta = design_metadata(pair.spec.model_dump())
+        meta = design_metadata({**pair.spec.model_dump(), **_metadata_distances(pair)})
         plates = bed_plates(parts, printer, [{"part": p.name, "pair": "gears", **meta} for p in parts])
         for name, data in plate_files("gears", plates, printer, "wheelstep gear pair").items():
             files[out / name] = data

@@ -17,7 +17,7 @@ def pitch_report(spec: GearPairSpec) -> dict:
     """The equal-arc sector partition of one carrier quarter (SPEC §4): ``u``, the common arc
     (mm) and one row per sector (degrees and mm)."""
     law = spec.law()
-    part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns), spec.center_distance)
+    part = sector_partition(law, sectors_per_quarter(spec.z, spec.turns), spec.paper_distances[0])
     return {"u": law.u, "arc_mm": part.arc, "sectors": partition_rows(part)}
 
 
@@ -35,7 +35,7 @@ def _flank_rows(flanks, angle: str) -> list[dict]:
 def teeth_report(spec: GearPairSpec) -> dict:
     """The sector-involute tooth points of both gears (SPEC §5): ``{"pinion": [...],
     "wheel": [...]}``; raises DesignError for teeth that cannot be formed."""
-    part = sector_partition(spec.law(), sectors_per_quarter(spec.z, spec.turns), spec.center_distance)
+    part = sector_partition(spec.law(), sectors_per_quarter(spec.z, spec.turns), spec.paper_distances[0])
     form = spec.tooth_form()
     check_tooth_form(part, form)
     flanks = {"pinion": pinion_flanks(part, form), "wheel": wheel_flanks(part, form)}

@@ -108,16 +108,58 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
         return
     design = pair.printing.design if pair.printing is not None else pair.spec
     law, remedy = pair.generated.law, {}
-    if any("F'i" in text or "f'i" in text for text in broken):
-        remedy["z"] = teeth_remedy(record, design.z, law.pinion_periods, bounds)
-    if any("ripple" in text for text in broken):
-        remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
+    if abs(pair.opening) > OPENING_TOLERANCE:
+        # off the distance they roll at the pitch curves do not roll: mount them there
+        broken.append(opening_phrase(pair))
+        remedy["install_distance"] = pair.design_distance
+    else:
+        if any("F'i" in text or "f'i" in text for text in broken):
+            remedy["z"] = teeth_remedy(record, design.z, law.pinion_periods, bounds)
+        if any("ripple" in text for text in broken):
+            remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
     param = next(iter(remedy))
     options = " ".join(f"--{name.replace('_', '-')} {value:g}" for name, value in remedy.items())
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
-    raise DesignError(param, value,
-                      f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
-                      f"written; use {options}")
+    error = DesignError(param, value,
+                        f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
+                        f"written; use {options}")
+    error.remedy = remedy   # name -> value, for a batch file to state as its keys
+    raise error
+
+
+#: Largest difference (mm) of the installed and rolling distances taken as none (a float's
+#: round trip through %g metadata).
+OPENING_TOLERANCE = 1e-9
+
+
+def opening_phrase(pair) -> str:
+    """What mounting ``pair`` off its rolling distance does, for a refusal (mm)."""
+    side = "farther" if pair.opening > 0 else "closer"
+    return (f"mounted at {pair.mounted_distance:g} mm, {abs(pair.opening):g} mm {side} than the "
+            f"pitch curves roll ({pair.design_distance:g} mm), where they do not follow the law")
+
+
+def opening_remedy(pair) -> str:
+    """The remedy clause (starting '; ') for a generated pair mounted off its rolling
+    distance, else ''."""
+    if pair.generated is None or abs(pair.opening) <= OPENING_TOLERANCE:
+        return ""
+    return (f"; {opening_phrase(pair)}: mount them where they roll, --install-distance "
+            f"{pair.design_distance:g} (more play by --backlash)")
+
+
+def remedy_in_yaml(err) -> str:
+    """A bounds refusal (:func:`require_within_bounds`) as a batch file states it: the
+    remedy as the entry's override keys (``z: 90, backlash: 0.239``), not as flags."""
+    from wheelstep_cli.config.names import yaml_message
+
+    message = yaml_message(err)
+    remedy = getattr(err, "remedy", None)
+    if not remedy:
+        return message
+    flags = " ".join(f"--{name.replace('_', '-')} {value:g}" for name, value in remedy.items())
+    keys = ", ".join(f"{name}: {value:g}" for name, value in remedy.items())
+    return message.replace(f"use {flags}", f"use overrides {{{keys}}}")
 
 
 def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds) -> dict:

@@ -11,7 +11,8 @@ import numpy as np
 
 from wheelstep_cli.errors import require
 from wheelstep_cli.gears.meshing import MeshingReport
-from wheelstep_cli.parts.gear_pair import GearPairSpec, design_law, generation_law, law_record
+from wheelstep_cli.parts.gear_pair import (GearPairSpec, design_law, generation_law, installed_distance,
+                                          law_record)
 
 
 MAX_SAMPLES = 20000     # poses over one period: 13 x the default 1536
@@ -33,7 +34,7 @@ class WrittenPairCheck:
 
     def validate(self) -> None:
         """Raise DesignError for a distance, pose count, window or plot name that cannot work."""
-        dist = self.spec.install_distance
+        dist = installed_distance(self.spec)
         require(dist > 0, "distance", dist, "must be > 0 mm")
         # each pose sections and intersects both outlines: the count bounds the run time
         require(16 <= self.samples <= MAX_SAMPLES, "samples", self.samples, f"must be in [16, {MAX_SAMPLES}]")
@@ -79,7 +80,7 @@ def run_written_pair_check(check: WrittenPairCheck, outlines: tuple[np.ndarray, 
     from wheelstep_cli.parts.mesh_check import check_outlines
 
     law, blended = generation_law(check.spec)
-    report = check_outlines(*outlines, blended, check.spec.install_distance, check.samples,
+    report = check_outlines(*outlines, blended, installed_distance(check.spec, blended), check.samples,
                             check.window, progress=progress)
     record = {**law_record(check.spec, law), "blend_deg": check.spec.blend}
     summary = {"pinion": str(check.pinion), "wheel": str(check.wheel), "law": record,
@@ -93,7 +94,7 @@ def written_pair_files(check: WrittenPairCheck, report: MeshingReport) -> dict[P
 
     if check.plot is None:
         return {}
-    title = f"{Path(check.pinion).name} + {Path(check.wheel).name} at {check.spec.install_distance:g} mm"
+    title = f"{Path(check.pinion).name} + {Path(check.wheel).name} at {installed_distance(check.spec):g} mm"
     return {check.plot: meshing_plot_png(report, title)}
 
 
@@ -116,4 +117,4 @@ def run_plate_pair_check(pair, samples: int, window: float | None,
     design_law(pair.spec)
     check.validate()
     report, summary = run_written_pair_check(check, plate_pair_outlines(pair), progress)
-    return report, {"pair": pair.pair, "distance_mm": pair.spec.install_distance, **summary}
+    return report, {"pair": pair.pair, "distance_mm": installed_distance(pair.spec), **summary}

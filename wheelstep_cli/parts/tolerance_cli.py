@@ -105,10 +105,10 @@ def outline_band(outlines, check, nominal, printer) -> dict:
     from dataclasses import replace
 
     from wheelstep_cli.gears.meshing import MeshingSettings
-    from wheelstep_cli.parts.gear_pair import generation_law
+    from wheelstep_cli.parts.gear_pair import generation_law, installed_distance
 
     _, blended = generation_law(check.spec)
-    sections = SectionedPair(outlines[0], outlines[1], blended, float(check.spec.install_distance),
+    sections = SectionedPair(outlines[0], outlines[1], blended, installed_distance(check.spec, blended),
                              int(nominal.teeth))
     settings = replace(MeshingSettings(), samples=check.samples, window=check.window)
     return band_record(sections, printer.band, printer.name, nominal, settings)

@@ -85,7 +85,7 @@ def test_default_pair_figures_converge_with_the_poses_per_tooth(default_sections
     per_period = pair.spec.z * pair.law.theta_period / (2 * np.pi)
     figures = []
     for poses in (16, 32, 64):
-        report = check_outlines(pinion, wheel, pair.law, pair.spec.install_distance,
+        report = check_outlines(pinion, wheel, pair.law, pair.mounted_distance,
                                 samples=int(poses * per_period))
         assert not report.interferes and report.teeth == pair.spec.z
         figures.append((report.drive.total_um, report.drive.tooth_um, report.drive.ripple))

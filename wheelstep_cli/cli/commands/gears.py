@@ -87,8 +87,10 @@ def _teeth_lines(report: dict) -> list[str]:
     return lines
 
 
-InstallDistance = Annotated[Optional[float], opt("--install-distance", help="Installed centre distance, mm.",
-                                                 shown="144")]
+InstallDistance = Annotated[Optional[float], opt(
+    "--install-distance", help="Centre distance the pair is mounted and checked at, mm; "
+                               "farther than --center-distance opens backlash.",
+    shown="where generated teeth roll; 144")]
 Thickness = Annotated[Optional[float], opt("--thickness", help="Face width, mm.", shown="10")]
 Bore = Annotated[Optional[float], opt("--bore", help="Shaft diameter, mm (a hex bore: across flats); "
                                                      "0 for none.", shown="8")]
@@ -156,10 +158,10 @@ def gears(
     """Write the gear pair as printable STL/3MF meshes, gears.json and the exports asked for.
 
     The written meshes are checked first (SPEC §10); overlapping teeth are refused (exit 1,
-    nothing written) unless --allow-interference. Generated teeth roll at the installed
-    distance, their module following from the perimeter and --z; or at the distance a
-    --module fits (SPEC §9). Each gear carries an engraved timing mark; gears.json states
-    the assembly phase the marks and keyed bores build in."""
+    nothing written) unless --allow-interference. Generated teeth roll at --center-distance
+    (or the distance a --module fits, SPEC §9) and are checked at --install-distance. Each
+    gear carries an engraved timing mark; gears.json states the assembly phase the marks
+    and keyed bores build in."""
     show = Output(json, quiet, verbose)
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                           install_distance=install_distance, module=module, backlash=backlash,
@@ -216,8 +218,9 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
-    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+    from wheelstep_cli.parts.mesh_bounds import opening_remedy, require_within_bounds
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
     from wheelstep_cli.parts.tolerance_cli import band_pair
 
     pair, tolerance, check = band_pair(spec, printer, *band)
@@ -227,10 +230,11 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     if record["interference"] and not allow_interference:
         show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
                    f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
-                   f"{record['max_overlap_area_mm2']:.3f} mm2); nothing written "
-                   "(--allow-interference writes them anyway)")
+                   f"{record['max_overlap_area_mm2']:.3f} mm2){opening_remedy(pair)}; nothing "
+                   "written (--allow-interference writes them anyway)")
         raise typer.Exit(1)
     require_within_bounds(pair, record)
+    require_printable_teeth(pair)
     if tolerance is not None:
         record["tolerance"] = tolerance
     files = {**gear_pair_files(pair, out, fmt, record),
@@ -292,6 +296,7 @@ def _gears_lines(pair, record: dict) -> list[str]:
                      f"{gen.center_distance:g} mm"
                      + (f" (the centre distance module {pair.spec.module:g} mm fits)"
                         if pair.spec.module is not None else "")
+                     + _opening_text(pair)
                      + f", backlash j_n = {gen.cutter.backlash:g} mm")
     lines.append(f"meshing at {pair.mounted_distance:g} mm: backlash "
                  f"{_num(record, 'backlash_min_mm', '.3f')}..{_num(record, 'backlash_max_mm', '.3f')}"
@@ -303,6 +308,18 @@ def _gears_lines(pair, record: dict) -> list[str]:
 
         lines.extend(tolerance_lines(record["tolerance"]))
     return lines + _lighten_lines(pair)
+
+
+def _opening_text(pair) -> str:
+    """The installed distance and the normal backlash (mm) its opening adds, when the pair
+    is not mounted where it rolls."""
+    import math
+
+    if not pair.opening:
+        return ""
+    added = 2.0 * pair.opening * math.sin(pair.generated.cutter.pressure_angle)
+    return (f", mounted at {pair.mounted_distance:g} mm (opening {pair.opening:+.3f} mm: about "
+            f"{added:+.3f} mm of normal backlash)")
 
 
 def _lighten_lines(pair) -> list[str]:

@@ -97,6 +97,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.config.resolve import gear_pair_spec
     from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.gear_laws import installed_distance
     from wheelstep_cli.parts.mesh_check_files import (WrittenPairCheck, read_written_pair,
                                                       run_written_pair_check, written_pair_files)
 
@@ -118,7 +119,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
         summary["tolerance"] = outline_band(outlines, check, report, chosen)
     files = written_pair_files(check, report)
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
-    show.report(summary, lambda: _lines(summary, spec.install_distance, samples))
+    show.report(summary, lambda: _lines(summary, installed_distance(spec), samples))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
 

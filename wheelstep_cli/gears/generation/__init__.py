@@ -26,7 +26,7 @@ pointed teeth), ``outline`` (blanks, simplification), ``envelope`` (polar ray ma
 from wheelstep_cli.gears.generation.envelope import PolarGrid, polyline_envelope
 from wheelstep_cli.gears.generation.limits import curvature_radius, top_pointed_teeth, undercut_limit
 from wheelstep_cli.gears.generation.outline import blank_radii, simplify_outline
-from wheelstep_cli.gears.generation.pair import GeneratedPair, generate_pair
+from wheelstep_cli.gears.generation.pair import GeneratedPair, generate_pair, generate_pinion
 from wheelstep_cli.gears.generation.pinion import pinion_by_rack, round_tips
 from wheelstep_cli.gears.generation.rack import RackCutter, RackRolling, rack_profile, rack_tooth_polygons, radial_tilt
 from wheelstep_cli.gears.generation.settings import BACKLASH_MODES, CORNER_MODES, GenerationSettings
@@ -35,6 +35,7 @@ from wheelstep_cli.gears.generation.wheel import Carving, carve_by_pinion
 __all__ = [
     "BACKLASH_MODES", "CORNER_MODES", "Carving", "GeneratedPair", "GenerationSettings", "PolarGrid",
     "RackCutter", "RackRolling", "blank_radii", "carve_by_pinion", "curvature_radius", "generate_pair",
+    "generate_pinion",
     "pinion_by_rack", "polyline_envelope", "rack_profile", "rack_tooth_polygons", "radial_tilt",
     "round_tips", "simplify_outline", "top_pointed_teeth", "undercut_limit",
 ]

@@ -103,13 +103,8 @@ def generate_pair(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, *
     undercut and pointed teeth (False: generate anyway). Raises DesignError (with the remedy)
     for undercut or pointed teeth and for tooth counts that do not divide the law's periods.
     """
-    require(corner in CORNER_MODES, "corner", corner, "must be 'space' or 'tooth'")
-    periods = law.pinion_periods
-    require(pinion_teeth >= 6 and pinion_teeth % periods == 0, "z", pinion_teeth,
-            f"must be a multiple of {periods} (law periods per pinion turn) and >= 6")
-    per_period = pinion_teeth // periods
-    curves = pitch_curves(law, center_distance)
-    job = _Job(law, curves, cutter, pinion_teeth, per_period, curves.period_arc / per_period, settings, strict)
+    job = _job(law, pinion_teeth, cutter, corner, settings, strict, center_distance)
+    curves, per_period = job.curves, job.per_period
     limit, rho_min = _check_undercut(job)
     # teeth too thin at the tip (the few next to a pitch-curve corner) are topped to the
     # land floor when that costs at most max_topping x m of height; otherwise refuse. The
@@ -127,6 +122,30 @@ def generate_pair(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, *
         pinion_tip_land=pinion.land, wheel_tip_land=wheel.land,
         topping={"pinion": pinion.topping, "wheel": wheel.topping},
         center_distance=float(center_distance), play=wheel.play, settings=settings)
+
+
+def generate_pinion(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, *, corner: str = "space",
+                    settings: GenerationSettings = GenerationSettings(),
+                    center_distance: float) -> tuple[np.ndarray, float]:
+    """The pinion alone as :func:`generate_pair` cuts it (outline (N, 2) mm, module mm),
+    without carving the wheel: for checks of the pinion's teeth (a printer's tip land)."""
+    job = _job(law, pinion_teeth, cutter, corner, settings, True, center_distance)
+    _check_undercut(job)
+    return _cut_pinion(job, corner).outline, job.module
+
+
+def _job(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, corner: str,
+         settings: GenerationSettings, strict: bool, center_distance: float) -> _Job:
+    """What the stages of one generation share; refuses a corner mode or tooth count that
+    cannot be generated."""
+    require(corner in CORNER_MODES, "corner", corner, "must be 'space' or 'tooth'")
+    periods = law.pinion_periods
+    require(pinion_teeth >= 6 and pinion_teeth % periods == 0, "z", pinion_teeth,
+            f"must be a multiple of {periods} (law periods per pinion turn) and >= 6")
+    per_period = pinion_teeth // periods
+    curves = pitch_curves(law, center_distance)
+    return _Job(law, curves, cutter, pinion_teeth, per_period, curves.period_arc / per_period,
+                settings, strict)
 
 
 def _check_undercut(job: _Job) -> tuple[float, float]:

@@ -1,0 +1,113 @@
+"""Whether an FDM printer can lay down a generated pair's teeth (issue 13): a tooth whose tip
+land is narrower than two extrusion lines loses its tip when printed, so the pair is refused
+for that printer, with a tooth count it can print. Lengths in mm.
+
+A tooth's loss is how much of its height a morphological opening of two lines' width
+takes away (geometry.planar.tooth_heights_lost): what the lines can fill. The nozzle is
+the narrowest line a slicer lays (PrusaSlicer's default width is 1.125 x nozzle, its thin
+walls go down to about the nozzle), so two lines are 2 x nozzle_diameter.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError
+
+#: Height (mm) the typical (median) tooth may lose: the rounding of a tip land's two
+#: corners, as even wide teeth have.
+TYPICAL_LOSS = 0.1
+#: Height (mm) any other tooth may lose (about one layer, a tenth of the working depth at
+#: module 1): beyond, its tip land is under two lines and the tip is not printed.
+MAX_LOSS = 0.2
+#: Teeth on each side of each handover corner (SPEC §3) that may lose more: they are
+#: topped to the generator's land floor by design (the pitch curve's corner narrows them).
+CORNER_TEETH = 2
+#: Fewer-teeth counts tried (in steps of the law's periods) for the remedy.
+TRIES = 6
+
+
+def two_lines(printer) -> float | None:
+    """Width (mm) of two extrusion lines of ``printer``; None for a printer that lays no
+    lines (resin)."""
+    if printer is None or printer.technology != "fdm":
+        return None
+    return 2.0 * float(printer.slicer.get("nozzle_diameter", 0.4))
+
+
+def thin_teeth(outline: np.ndarray, module: float, width: float, corners: int) -> str | None:
+    """Why a gear outline's teeth are too thin for lines ``width`` mm wide (None: they are
+    not); ``corners``: handover corners round the gear."""
+    from wheelstep_cli.geometry.planar import tooth_heights_lost
+
+    lost = tooth_heights_lost(outline, module, width)
+    allowed = 2 * CORNER_TEETH * corners
+    over = int((lost > MAX_LOSS).sum())
+    if len(lost) and np.median(lost) > TYPICAL_LOSS:
+        return f"the typical tooth loses {np.median(lost):.2f} mm of its height (> {TYPICAL_LOSS:g})"
+    if over > allowed:
+        return (f"{over} teeth lose more than {MAX_LOSS:g} mm of their height (up to {lost.max():.2f}; "
+                f"{allowed} beside the {corners} handover corners may)")
+    return None
+
+
+def require_printable_teeth(pair, printer=None) -> None:
+    """Refuse (DesignError naming --z) a generated pair whose pinion or wheel teeth keep a tip
+    land under two extrusion lines of ``printer`` (default: the printer it was drawn for),
+    with the largest smaller tooth count whose pinion keeps it, when one is found."""
+    printer = printer or (pair.printing.printer if pair.printing is not None else None)
+    width = two_lines(printer)
+    if width is None or pair.generated is None:
+        return
+    gen, law = pair.generated, pair.generated.law
+    found = [f"{name}: {why}" for name, outline, corners in (
+        ("pinion", pair.pinion_outline, law.pinion_periods),
+        ("wheel", pair.wheel_outline, law.wheel_periods))
+        if (why := thin_teeth(outline, gen.module, width, corners)) is not None]
+    if not found:
+        return
+    design = pair.printing.design if pair.printing is not None else pair.spec
+    z = fewer_teeth(pair, design, printer, width)
+    remedy = (f"use --z {z} (fewer, larger teeth)" if z is not None else
+              "use fewer teeth (--z) or a larger --module")
+    error = DesignError("z", design.z,
+                        f"the teeth are too thin for printer '{printer.name}' (tip land under two "
+                        f"{width / 2:g} mm extrusion lines; {'; '.join(found)}); nothing written; "
+                        f"{remedy}, or a printer with a finer nozzle")
+    if z is not None:
+        error.remedy = {"z": z}
+    raise error
+
+
+def fewer_teeth(pair, design, printer, width: float) -> int | None:
+    """The largest tooth count below the design's (in whole law periods) whose pinion, drawn
+    for ``printer``, keeps its tips under two lines ``width`` mm wide; None if none of
+    :data:`TRIES` does. (The wheel, carved by that pinion, gets the larger module too.)"""
+    from wheelstep_cli.parts.kinds import KINDS, printed_spec
+
+    law = pair.generated.law
+    for step in range(1, TRIES + 1):
+        z = design.z - step * law.pinion_periods
+        if z < 6:
+            return None
+        printed = printed_spec(KINDS["gear-pair"], design.model_copy(update={"z": z}),
+                               printer.hole_compensation, printer.tooth_clearance)
+        outline, module = _pinion(printed)
+        if thin_teeth(outline, module, width, law.pinion_periods) is None:
+            return z
+    return None
+
+
+def _pinion(spec) -> tuple[np.ndarray, float]:
+    """The pinion of ``spec`` as the pair's pipeline cuts it (outline mm, module mm)."""
+    from dataclasses import replace
+
+    from wheelstep_cli.gears.generation import GenerationSettings, generate_pinion
+    from wheelstep_cli.parts.gear_laws import design_backlash, generation_law, rolling_distance
+
+    if spec.backlash is None:   # a printer without tooth clearance: the design's default
+        spec = spec.model_copy(update={"backlash": design_backlash(spec)})
+    _, law = generation_law(spec)
+    settings = replace(GenerationSettings(), tilt=spec.tilt)
+    return generate_pinion(law, spec.z, spec.cutter(), corner=spec.corner, settings=settings,
+                           center_distance=rolling_distance(spec, law))
