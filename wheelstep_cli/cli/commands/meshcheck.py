@@ -9,6 +9,8 @@ import typer
 
 from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Force, Json, LawCsv,
                                        Profile, Quiet, Tolerance, Turns, Verbose, opt, plot_option)
+from wheelstep_cli.cli.commands.meshcheck_shared import (band_printer_of, design_spec, no_design_options,
+                                                    pair_lines)
 from wheelstep_cli.cli.output import Output
 
 Plot = plot_option("the transfer function, the position error of both flanks and hub speed")
@@ -95,7 +97,6 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     """Two meshes named on the command line, the design from the options; with
     ``band`` = (--tolerance, --printer) also over the printer's band (SPEC §11)."""
     from wheelstep_cli.cli.progress import with_progress
-    from wheelstep_cli.config.resolve import gear_pair_spec
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.gear_laws import installed_distance
     from wheelstep_cli.parts.mesh_check_files import (WrittenPairCheck, read_written_pair,
@@ -109,7 +110,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     spec = design_spec(design)
     check = WrittenPairCheck(pinion, wheel, spec, samples, window, plot)
     show.parameters(vars(spec))
-    chosen = _band_printer(*band)
+    chosen = band_printer_of(*band)
     outlines = read_written_pair(check)
     report, summary = with_progress(not quiet, "meshing check", run_written_pair_check, check,
                                     outlines)
@@ -119,42 +120,16 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
         summary["tolerance"] = outline_band(outlines, check, report, chosen)
     files = written_pair_files(check, report)
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
-    show.report(summary, lambda: _lines(summary, installed_distance(spec), samples))
+    show.report(summary, lambda: pair_lines(summary, installed_distance(spec), samples))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
-
-
-def design_spec(design: dict):
-    """The design the meshes were drawn for, from the design options (mm, deg at the edge)."""
-    from wheelstep_cli.config.resolve import gear_pair_spec
-
-    law_csv = design["law_csv"]
-    return gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
-                          turns=design["turns"], center_distance=design["center_distance"],
-                          install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
-                          blend=design["blend"])
-
-
-def _band_printer(tolerance: bool, printer):
-    """The printer whose band --tolerance checks (None: no band check); --printer alone is
-    refused (it only says whose band)."""
-    from wheelstep_cli.errors import DesignError
-    from wheelstep_cli.parts.tolerance_cli import band_printer
-
-    if not tolerance:
-        if printer is not None:
-            raise DesignError("printer", printer, "names the band --tolerance checks: add --tolerance")
-        return None
-    from wheelstep_cli.config.profiles import load_printer_profile
-
-    return band_printer(load_printer_profile(printer) if printer else None)
 
 
 def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: int, window, plot,
                   dry_run: bool, quiet: bool, force: bool) -> bool:
     """Every gear pair of the plates (or the one --pair names), designs from their metadata."""
     from wheelstep_cli.cli.progress import with_progress
-    from wheelstep_cli.errors import DesignError, require
+    from wheelstep_cli.errors import require
     from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, run_plate_pair_check, written_pair_files
     from wheelstep_cli.parts.plate_pairs import find_plate_pairs
 
@@ -171,19 +146,9 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
                                                          window, plot), report))
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report({"pairs": summaries}, lambda: [line for s in summaries
-                                               for line in _lines(s, s["distance_mm"], samples)])
+                                               for line in pair_lines(s, s["distance_mm"], samples)])
     show.files(named, dry_run)
     return failed
-
-
-def no_design_options(design: dict) -> None:
-    """Refuse design options where the design comes from the plates' metadata."""
-    from wheelstep_cli.errors import DesignError
-
-    for name, value in design.items():
-        if value is not None:
-            raise DesignError(name, value, "comes from the plate's metadata; to give it, name the "
-                                           "two meshes (PINION WHEEL) instead of plates")
 
 
 def _same_mesh(pinion: str, wheel: str | None) -> bool:
@@ -213,28 +178,6 @@ def _split(given: str) -> tuple[str, str]:
 
 def summary_files(summary: dict) -> tuple[str, str]:
     return summary["pinion"], summary["wheel"]
-
-
-def lines(summary: dict, distance: float, samples: int) -> list[str]:
-    """The text report of one checked pair (shared with the G-code read-back)."""
-    return _lines(summary, distance, samples)
-
-
-def _lines(summary: dict, distance: float, samples: int) -> list[str]:
-    from wheelstep_cli.parts.mesh_check import meshing_lines
-
-    pair = f"pair {summary['pair']}: " if "pair" in summary else ""
-    return [f"meshing check: {pair}{summary['pinion']} + {summary['wheel']} at {distance:g} mm, "
-            f"{samples} poses over {summary['period_deg']:g} deg of pinion", *meshing_lines(summary),
-            *_band_lines(summary)]
-
-
-def _band_lines(summary: dict) -> list[str]:
-    if "tolerance" not in summary:
-        return []
-    from wheelstep_cli.parts.tolerance_cli import tolerance_lines
-
-    return tolerance_lines(summary["tolerance"])
 
 
 def register(app: typer.Typer) -> None:

@@ -12,20 +12,19 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     """Read the pair of ``plates`` (default: FILE.3mf beside each FILE.gcode) back from the
     G-code files and check it; ``how`` = (samples, window, plot), ``band`` = (--tolerance,
     --printer), ``writing`` = (dry run, quiet, force). True when the print would not mesh."""
-    from wheelstep_cli.cli.commands.meshcheck import _band_printer, lines, no_design_options
+    from wheelstep_cli.cli.commands.meshcheck_shared import band_printer_of, pair_lines
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.errors import require
-    from wheelstep_cli.parts.gcode_check import (band_prediction, default_plates, gcode_lines,
+    from wheelstep_cli.parts.gcode_check import (band_prediction, gcode_lines,
                                                  require_gcode_files, run_gcode_check, within_band)
     from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, written_pair_files
-    from wheelstep_cli.parts.plate_pairs import find_plate_pairs
     from wheelstep_cli.parts.tolerance_cli import tolerance_lines
 
     samples, window, plot = how
     dry_run, quiet, force = writing
     require(len(gcode) <= 2, "gcode", " ".join(map(str, gcode)), "takes one file, or the two "
                                                                    "files of the pair's two plates")
-    chosen = _band_printer(*band)
+    chosen = band_printer_of(*band)
     require_gcode_files(gcode)
     found = _designs(plates, gcode, pair, design)
     require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID)")
@@ -37,7 +36,7 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     files = written_pair_files(WrittenPairCheck(summary["pinion"], summary["wheel"], found[0].spec,
                                                 samples, window, plot), report)
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
-    show.report(summary, lambda: lines(summary, summary["distance_mm"], samples)[:1]
+    show.report(summary, lambda: pair_lines(summary, summary["distance_mm"], samples)[:1]
                 + gcode_lines(summary) + _rest(summary, samples, tolerance_lines))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
@@ -47,7 +46,7 @@ def _designs(args: list[str], gcode: list[Path], pair, design: dict) -> list:
     """The pair(s) the G-code was sliced from: two meshes (STL, FILE.3mf:NAME) drawn for the
     design the options give, else plates (the design from their metadata; default FILE.3mf
     beside each FILE.gcode)."""
-    from wheelstep_cli.cli.commands.meshcheck import design_spec, no_design_options
+    from wheelstep_cli.cli.commands.meshcheck_shared import design_spec, no_design_options
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.gcode_check import default_plates, mesh_pair
     from wheelstep_cli.parts.plate_pairs import find_plate_pairs, is_plate_input

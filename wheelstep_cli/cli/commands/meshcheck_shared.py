@@ -1,0 +1,58 @@
+"""What ``mesh-check``'s three forms share (meshes, plates, G-code): the design from the
+options, the printer whose band --tolerance checks, and the text report of a checked pair."""
+
+from __future__ import annotations
+
+
+def design_spec(design: dict):
+    """The design the meshes were drawn for, from the design options (mm, deg at the edge)."""
+    from wheelstep_cli.config.resolve import gear_pair_spec
+
+    law_csv = design["law_csv"]
+    return gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
+                          turns=design["turns"], center_distance=design["center_distance"],
+                          install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
+                          blend=design["blend"])
+
+
+def band_printer_of(tolerance: bool, printer):
+    """The printer whose band --tolerance checks (None: no band check); --printer alone is
+    refused (it only says whose band)."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.tolerance_cli import band_printer
+
+    if not tolerance:
+        if printer is not None:
+            raise DesignError("printer", printer, "names the band --tolerance checks: add --tolerance")
+        return None
+    from wheelstep_cli.config.profiles import load_printer_profile
+
+    return band_printer(load_printer_profile(printer) if printer else None)
+
+
+def no_design_options(design: dict) -> None:
+    """Refuse design options where the design comes from the plates' metadata."""
+    from wheelstep_cli.errors import DesignError
+
+    for name, value in design.items():
+        if value is not None:
+            raise DesignError(name, value, "comes from the plate's metadata; to give it, name the "
+                                           "two meshes (PINION WHEEL) instead of plates")
+
+
+def pair_lines(summary: dict, distance: float, samples: int) -> list[str]:
+    """The text report of one checked pair (mm, deg at the edge)."""
+    from wheelstep_cli.parts.mesh_check import meshing_lines
+
+    pair = f"pair {summary['pair']}: " if "pair" in summary else ""
+    return [f"meshing check: {pair}{summary['pinion']} + {summary['wheel']} at {distance:g} mm, "
+            f"{samples} poses over {summary['period_deg']:g} deg of pinion", *meshing_lines(summary),
+            *_band_lines(summary)]
+
+
+def _band_lines(summary: dict) -> list[str]:
+    if "tolerance" not in summary:
+        return []
+    from wheelstep_cli.parts.tolerance_cli import tolerance_lines
+
+    return tolerance_lines(summary["tolerance"])
