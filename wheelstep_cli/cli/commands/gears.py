@@ -103,8 +103,11 @@ MarkDepth = Annotated[Optional[float], opt("--mark-depth", help="Timing mark eng
                                                                 "for none.", shown="0.5")]
 Lighten = Annotated[bool, opt("--lighten", help="Cut spoked pockets into the wheel (and the pinion "
                                                   "where it has room), keeping a 2.5 module rim.")]
-Chamfer = Annotated[Optional[float], opt("--chamfer", help="45 deg chamfer of the top and bottom "
-                                                          "edges (teeth, bore, pockets), mm.", shown="0")]
+Chamfer = Annotated[Optional[float], opt(
+    "--chamfer", help="45 deg chamfer of the top and bottom edges (teeth, bore, pockets; with a "
+                      "hub not the bore's top edge), mm; 0 for none. With --printer it replaces "
+                      "the elephant-foot inset, so it must be 0 or at least that inset plus its "
+                      "height.", shown="the --printer's chamfer, else 0")]
 HubD = Annotated[Optional[float], opt("--hub-d", help="Hub (boss) diameter on the top face, mm.")]
 HubLength = Annotated[Optional[float], opt("--hub-length", help="Hub height above the top face, mm.",
                                            shown="8 with --hub-d")]
