@@ -134,7 +134,7 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
         parts[part.name] = {"teeth": pair.spec.z if part.name == "pinion" else pair.wheel_teeth,
                             **part_record(part, check)}
     report = {"tool": "wheelstep gears", "parameters": spec, **_printing(pair), "parts": parts,
-              "chamfer": _chamfer(pair)}
+              "chamfer": chamfer_report(pair)}
     if pair.law is not None:
         report["u"] = pair.law.u
     if pair.partition is not None:
@@ -167,7 +167,7 @@ def _phase(pair: GearPair) -> dict:
     return record
 
 
-def _chamfer(pair: GearPair) -> dict:
+def chamfer_report(pair: GearPair) -> dict:
     """The edge chamfer drawn (mm), where it came from, what became of the elephant foot."""
     from wheelstep_cli.parts.kinds import chamfer_record
 

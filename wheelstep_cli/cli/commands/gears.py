@@ -255,7 +255,18 @@ def _gears_lines(pair, record: dict) -> list[str]:
         from wheelstep_cli.parts.tolerance_cli import tolerance_lines
 
         lines.extend(tolerance_lines(record["tolerance"]))
-    return lines + _lighten_lines(pair)
+    return lines + _chamfer_lines(pair) + _lighten_lines(pair)
+
+
+def _chamfer_lines(pair) -> list[str]:
+    """The edge chamfer (mm) and where it came from, when there is one or a printer."""
+    from wheelstep_cli.parts.gear_pair import chamfer_report
+
+    chamfer = chamfer_report(pair)
+    if not chamfer["mm"] and pair.printing is None:
+        return []
+    return [f"chamfer {chamfer['mm']:g} mm ({chamfer['from']}); elephant-foot inset "
+            f"{chamfer['elephant_foot_inset']}"]
 
 
 def _lighten_lines(pair) -> list[str]:
