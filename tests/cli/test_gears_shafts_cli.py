@@ -45,3 +45,41 @@ def test_keyway_for_a_printer_states_phase_and_compensates_the_key(cli, tmp_path
     assert report["meshing"]["in_phase"] is True
     for name in ("pinion", "wheel"):
         assert_printable_stl(out / f"{name}.stl")
+
+
+def _figures(record: dict) -> dict:
+    """The meshing figures that must agree between gears.json and mesh-check of the files."""
+    return {"backlash_min_mm": record["backlash_min_mm"], "in_phase": record["in_phase"],
+            "interference": record["interference"],
+            **{f"{side}_{key}": record[side][key] for side in ("drive", "coast")
+               for key in ("F_i_total_um", "f_i_tooth_um")}}
+
+
+def test_hub_with_the_printers_chamfer_is_one_shell_and_mesh_check_cuts_the_teeth(cli, tmp_path):
+    """A hub taller than the plate (a section half-way up the mesh would cut the hub) with the
+    printer's chamfer: each gear one closed shell of the volume gears.json states, and
+    mesh-check of the written STL and 3MF files sections the teeth and finds the figures of
+    gears.json."""
+    out = tmp_path / "hub"
+    result = cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--hub-d", "16",
+                 "--hub-length", "10", "--out", out, "-q")
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((out / "gears.json").read_text())
+    assert report["chamfer"]["mm"] == 0.4 and report["chamfer"]["from"] == "printer profile fdm-0.4-pla"
+    assert report["chamfer"]["elephant_foot_inset"].startswith("replaced by the chamfer")
+    assert report["parameters"]["chamfer"] is None and report["printed_parameters"]["chamfer"] == 0.4
+    for name in ("pinion", "wheel"):
+        mesh = assert_printable_stl(out / f"{name}.stl")
+        assert mesh.body_count == 1
+        assert mesh.bounds[1][2] == pytest.approx(16.0, abs=1e-4)
+        assert mesh.volume == pytest.approx(report["parts"][name]["volume_mm3"], rel=1e-5)
+    expected = _figures(report["meshing"])
+    stl = cli("mesh-check", out / "pinion.stl", out / "wheel.stl", "--profile", "desk-demo",
+              "--distance", str(report["meshing"]["distance_mm"]), "--json", "-q")
+    plate = cli("mesh-check", out / "gears.3mf", "--json", "-q")
+    assert stl.exit_code == 0 and plate.exit_code == 0, stl.stderr + plate.stderr
+    for found in (json.loads(stl.stdout), json.loads(plate.stdout)["pairs"][0]):
+        figures = _figures(found)   # (the files hold float32 vertices: a few nm off)
+        assert figures.pop("backlash_min_mm") == pytest.approx(expected.pop("backlash_min_mm"), abs=1e-3)
+        assert figures == pytest.approx(expected, abs=0.2)
+        expected = _figures(report["meshing"])

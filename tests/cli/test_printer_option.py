@@ -61,5 +61,48 @@ def test_gears_for_a_printer_match_the_batch_entry_figures(cli, tmp_path):
     entry = json.loads((tmp_path / "b" / "reports" / "pair.json").read_text())
     assert entry["meshing"] == gears["meshing"]
     assert entry["printed_parameters"] == gears["printed_parameters"]
+    # the printer's chamfer (profile key printer.chamfer) when the design gives none, in both
+    assert gears["printed_parameters"]["chamfer"] == 0.4 and gears["parameters"]["chamfer"] is None
+    assert entry["design_report"]["chamfer"] == gears["chamfer"] == {
+        "mm": 0.4, "from": "printer profile fdm-0.4-pla", "elephant_foot_inset": gears["chamfer"][
+            "elephant_foot_inset"]}
     for name, part in gears["parts"].items():
         assert part["volume_mm3"] == pytest.approx(entry["printed_parts"][name]["volume_mm3"], rel=1e-12)
+
+
+@pytest.mark.parametrize("args, mm, source, foot", [
+    (["--chamfer", "0"], 0.0, "the design", "applied: the lowest 0.2 mm drawn 0.2 mm smaller"),
+    (["--chamfer", "0.6"], 0.6, "the design", "replaced by the chamfer"),
+    ([], 0.4, "printer profile fdm-0.4-pla", "replaced by the chamfer"),
+])
+def test_an_explicit_chamfer_overrides_the_printers_and_the_foot_follows(cli, tmp_path, args, mm,
+                                                                         source, foot):
+    out = tmp_path / "g"
+    result = cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", *args, "--format", "stl",
+                 "--out", out, "-q")
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((out / "gears.json").read_text())
+    assert report["chamfer"]["mm"] == mm and report["printed_parameters"]["chamfer"] == mm
+    assert report["chamfer"]["from"].startswith(source)
+    assert report["chamfer"]["elephant_foot_inset"].startswith(foot)
+    mesh = trimesh.load(out / "wheel.stl")
+    bottom = np.hypot(*mesh.vertices[np.isclose(mesh.vertices[:, 2], 0.0, atol=1e-6)][:, :2].T).max()
+    tips = np.hypot(*mesh.vertices[:, :2].T).max()
+    # the bed-side edge is drawn in by the chamfer, else by the elephant-foot inset (0.2 mm)
+    assert tips - bottom == pytest.approx(mm or 0.2, abs=0.03)
+
+
+def test_no_printer_no_chamfer_says_so(cli, tmp_path):
+    result = cli("gears", "--profile", "desk-demo", "--dry-run", "--json", "-q")
+    assert result.exit_code == 0, result.stderr
+    assert json.loads(result.stdout)["chamfer"] == {
+        "mm": 0.0, "from": "none given (no --chamfer, no --printer)", "elephant_foot_inset": "none (no printer)"}
+
+
+@pytest.mark.parametrize("command", [["gears", "--printer", "fdm-0.4-pla"], ["gears", "--printer", "resin-0.05-standard"]])
+def test_a_chamfer_too_small_to_replace_the_foot_is_refused(cli, tmp_path, command):
+    out = tmp_path / "out"
+    line = error_line(cli(*command, "--chamfer", "0.2", "--out", out))
+    least = "0.4" if "fdm" in command[2] else "0.35"
+    assert line.startswith(f"wheelstep: error: --chamfer = 0.2: must be 0 or >= {least} mm on printer {command[2]}")
+    assert not out.exists()

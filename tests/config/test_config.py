@@ -115,3 +115,19 @@ def test_specs_refuse_unknown_and_wrong_typed_values_naming_the_parameter():
     assert (info.value.param, info.value.limit) == ("strut_diameter", "must be > 0 mm")
     assert gear_pair_spec(None, a=80).a == 80 and isinstance(gear_pair_spec(None, a=80).a, int)
     assert isinstance(shoe_spec(None, a=80).a, float)
+
+
+def test_a_printer_chamfer_too_small_to_replace_its_foot_is_refused_at_its_line(cli, tmp_path):
+    """printer.chamfer must be 0 or at least elephant_foot_inset + elephant_foot_height."""
+    from pathlib import Path
+
+    from wheelstep_cli.config.profiles import shipped_profiles
+
+    text = (Path(shipped_profiles()) / "fdm-0.4-pla.yaml").read_text()
+    assert "\n  chamfer: 0.4\n" in text
+    printer = write(tmp_path / "p.yaml", text.replace("\n  chamfer: 0.4\n", "\n  chamfer: 0.3\n"))
+    line_no = printer.read_text().splitlines().index("  chamfer: 0.3") + 1
+    result = cli("gears", "--printer", printer, "--out", tmp_path / "out")
+    assert error_line(result).startswith(f"wheelstep: error: {printer}:{line_no}: printer.chamfer = 0.3: "
+                                         "must be 0 or >= 0.4 mm")
+    assert not (tmp_path / "out").exists()

@@ -72,3 +72,30 @@ def test_set_screw_opens_the_hub_wall_and_a_nut_slot_from_the_top():
     assert len(section_rings(part, 5.0)) == len(section_rings(plain, 5.0))   # plate untouched
     with pytest.raises(DesignError, match="set_screw"):
         extrude_gear("pinion", toothed(), 10.0, hole, [], 0.5, hub=(14.0, 10.0), set_screw=screw)
+
+
+def test_chamfer_with_a_hub_keeps_the_teeth_chamfered_and_the_bore_straight_into_the_hub():
+    hole = keyway_hole(8.0, 2.0, 1.0, 0.3, 64)
+    marks = [arrow_mark(12.0, 25.0, 0.3)]
+    part = extrude_gear("pinion", toothed(), 10.0, hole, marks, 0.5, chamfer=0.5, hub=(20.0, 6.0))
+    plain = extrude_gear("pinion", toothed(), 10.0, hole, marks, 0.5, hub=(20.0, 6.0))
+    # one closed body whose volume is the one summed from the 2D sections
+    assert require_printable(part).watertight and len(manifold_of(part).decompose()) == 1
+    assert part.bounds[1, 2] == pytest.approx(16.0)
+
+    def rings(z):
+        """Areas (mm2) of the outer ring and of the shaft hole (the ring nearest the axis)."""
+        found = section_rings(part, z)
+        outer = max(found, key=lambda r: abs(signed_area(r)))
+        hole = min(found, key=lambda r: np.max(np.hypot(*r.T)))
+        return abs(signed_area(outer)), abs(signed_area(hole))
+
+    teeth_mid, bore = rings(5.0)
+    teeth_top, bore_top = rings(9.95)
+    teeth_bottom, bore_bottom = rings(0.05)
+    assert teeth_top < teeth_mid - 5.0 and teeth_bottom < teeth_mid - 5.0   # teeth chamfered
+    assert bore_top == pytest.approx(bore, rel=1e-6)     # the hub fills the bore's top chamfer
+    assert bore_bottom > bore + 5.0                        # its bottom edge keeps the chamfer
+    # the same hub and hole on the plain plate: only the teeth's chamfers differ
+    assert section_outline(plain.vertices, plain.faces, "p").shape == \
+        section_outline(part.vertices, part.faces, "c").shape

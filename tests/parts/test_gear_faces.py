@@ -53,7 +53,7 @@ def test_nominal_shaft_fits_the_compensated_hole_with_clearance_and_not_turned(s
     printer = load_printer_profile("fdm-0.4-pla")
     assert printer.hole_compensation > 0
     design = GearPairSpec(bore_shape=shape, bore=8, key_angle=30)
-    printed = printed_spec(KINDS["gear-pair"], design, printer.hole_compensation, printer.tooth_clearance)
+    printed = printed_spec(KINDS["gear-pair"], design, printer)
     mark = 0.7                                   # the mark's direction in the gear frame, rad
     plate = extrude_gear("pinion", circle(30.0, 256), 10.0, shaft_hole(printed, mark), [], 0.0)
     key = mark + np.radians(30.0)

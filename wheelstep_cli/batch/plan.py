@@ -219,7 +219,7 @@ def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
         problems = kind.problems(spec)
         if problems:
             return None, None, problems
-        printed = printed_spec(kind, spec, printer.hole_compensation, printer.tooth_clearance)
+        printed = printed_spec(kind, spec, printer)
         problems = kind.problems(printed)
     except DesignError as err:
         return None, None, [err]

@@ -86,7 +86,7 @@ Profile = Annotated[Optional[str], opt("--profile",
 Printer = Annotated[Optional[str], opt(
     "--printer", help="Printer profile (a name in profiles/ or a YAML path): draw the part as it "
                       "must be printed there (bores + hole compensation, backlash + tooth "
-                      "clearance, elephant-foot inset), as batch does.",
+                      "clearance, elephant-foot inset or its edge chamfer), as batch does.",
     shown="none: the geometry as designed")]
 Out = Annotated[Path, opt("--out", "-o", help="Output folder.")]
 AllowInterference = Annotated[bool, opt(

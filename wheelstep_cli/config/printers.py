@@ -1,7 +1,8 @@
 """Printer/material profiles (``profiles/*.yaml`` with a ``printer`` section).
 
 They hold what changes the printed geometry (bed size and height, hole compensation, extra
-tooth clearance, elephant-foot inset, material density), the skirt and brim, and the slicer
+tooth clearance, elephant-foot inset, the gears' edge chamfer, material density), the skirt
+and brim, and the slicer
 settings (PrusaSlicer option names), which every plate carries as PrusaSlicer's
 configuration and the print sheet lists.
 """
@@ -14,12 +15,13 @@ from enum import Enum
 from pathlib import Path
 from typing import Annotated, Any, Optional
 
-from pydantic import AfterValidator, BaseModel, Field
+from pydantic import AfterValidator, BaseModel, Field, ValidationInfo, field_validator
 from pydantic_core import PydanticCustomError
 
 from wheelstep_cli.config.fields import STRICT, Real, length, quantity
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
 from wheelstep_cli.config.schema import InvalidInput, Issue, validate_file
+from wheelstep_cli.errors import DesignError
 
 
 class Technology(str, Enum):
@@ -54,6 +56,32 @@ class PrinterSection(BaseModel):
     tooth_clearance: Real = length(0.0, ge=0, le=1)
     elephant_foot_height: Real = length(0.0, ge=0, le=2)
     elephant_foot_inset: Real = length(0.0, ge=0, le=1)
+    # after the foot: its rule reads the foot's values
+    chamfer: Real = length(0.0, ge=0, le=5)
+
+    @field_validator("chamfer")
+    @classmethod
+    def _chamfer_covers_the_foot(cls, value: float, info: ValidationInfo) -> float:
+        least = least_chamfer(info.data.get("elephant_foot_inset", 0.0),
+                              info.data.get("elephant_foot_height", 0.0))
+        if 0 < value < least:
+            raise PydanticCustomError("chamfer_foot", chamfer_limit(least))
+        return value
+
+
+def least_chamfer(inset: float, height: float) -> float:
+    """The least 45 deg chamfer (mm) that stands for an elephant-foot inset of ``inset`` mm
+    over the lowest ``height`` mm: at height z the chamfer draws the bed-side edges in by
+    (chamfer - z), so over the foot's height it draws them in by at least ``inset`` only from
+    inset + height on. 0 when the printer has no foot."""
+    return float(inset) + float(height) if inset > 0 and height > 0 else 0.0
+
+
+def chamfer_limit(least: float, printer: str = "") -> str:
+    """The limit a chamfer too small to replace the elephant-foot inset is refused with."""
+    on = f" on printer {printer}" if printer else ""
+    return (f"must be 0 or >= {least:g} mm{on} (the elephant-foot inset plus its height: a "
+            "chamfer replaces the inset, so a smaller one would leave the first layers bulging)")
 
 
 class BandSection(BaseModel):
@@ -136,12 +164,23 @@ class Printer:
     file_name: str
     sha256: str
     band: Optional[Band] = None
+    chamfer: float = 0.0       # 45 deg edge chamfer of the gears' tooth faces (--chamfer default)
 
     def geometry(self) -> dict[str, float]:
         """The settings that change the printed geometry (for reports and 3MF metadata)."""
         return {"hole_compensation": self.hole_compensation, "tooth_clearance": self.tooth_clearance,
                 "elephant_foot_height": self.elephant_foot_height,
-                "elephant_foot_inset": self.elephant_foot_inset}
+                "elephant_foot_inset": self.elephant_foot_inset, "chamfer": self.chamfer}
+
+    def chamfer_for(self, given: float | None, param: str = "chamfer") -> float:
+        """The chamfer (mm) a part gets on this printer: ``given`` (the design's, None: not
+        given) else the printer's; DesignError naming ``param`` for one that is too small to
+        replace the elephant-foot inset (see :func:`least_chamfer`)."""
+        value = self.chamfer if given is None else given
+        least = least_chamfer(self.elephant_foot_inset, self.elephant_foot_height)
+        if 0 < value < least:
+            raise DesignError(param, value, chamfer_limit(least, self.name))
+        return value
 
     @property
     def edge_margin(self) -> float:
@@ -191,7 +230,7 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
                    hole_compensation=section.hole_compensation, tooth_clearance=section.tooth_clearance,
                    elephant_foot_height=section.elephant_foot_height,
                    elephant_foot_inset=section.elephant_foot_inset, material=material.name,
-                   density=material.density, slicer=dict(profile.slicer),
+                   density=material.density, slicer=dict(profile.slicer), chamfer=section.chamfer,
                    file_name=Path(path).name, sha256=hashlib.sha256(raw).hexdigest(),
                    band=None if profile.band is None else Band(**profile.band.model_dump()))
 

@@ -87,7 +87,8 @@ class GearPairSpec(BaseModel):
     key_angle: Number = quantity(0.0, unit="deg", limit="must be -360..360 deg", ge=-360, le=360)
     mark_depth: Number = length(0.5, ge=0, le=2)       # timing mark engraving, 0: none
     lighten: bool = Field(False, strict=True)          # spoked pockets in the wheel (and pinion)
-    chamfer: Number = length(0.0, ge=0, le=5)          # 45 deg top/bottom edges, 0: none
+    # 45 deg top/bottom edges, 0: none; None: the printer's (config.printers), else none
+    chamfer: Optional[Number] = length(None, ge=0, le=5)
     hub_d: Optional[Number] = length(None, gt=0)       # boss on the top face round the bore
     set_screw: Optional[str] = Field(None, strict=True)  # M2..M6 radial screw + nut in the hub
     hub_length: Optional[Number] = length(None, gt=0, le=MAX_LENGTH)  # None: 8 mm with a hub
@@ -138,7 +139,7 @@ class GearPairSpec(BaseModel):
 
     def _bore_fits(self) -> None:
         """Key narrower than the bore, flat shallower than its radius, a hub with its
-        diameter and no chamfer under it (mm)."""
+        diameter (mm)."""
         require(self.hub_length is None or self.hub_d is not None, "hub_length", self.hub_length,
                 "needs --hub-d")
         from wheelstep_cli.gears.bore_shapes import SET_SCREWS
@@ -147,8 +148,6 @@ class GearPairSpec(BaseModel):
                 f"must be one of {', '.join(SET_SCREWS)}")
         require(self.set_screw is None or self.hub_d is not None, "set_screw", self.set_screw,
                 "needs --hub-d (the screw goes through the hub)")
-        require(self.hub_d is None or self.chamfer == 0, "hub_d", self.hub_d,
-                "cannot be combined with --chamfer (the chamfer would cut under the hub)")
         if self.bore_shape == BoreShape.keyway:
             require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a keyway")
             require(self.key_width < self.bore, "key_width", self.key_width,
@@ -175,6 +174,12 @@ class GearPairSpec(BaseModel):
             return center, float(given) if given is not None else center + PAPER_OPENING
         install = DEFAULT_INSTALL if self.install_distance is None else float(self.install_distance)
         return install - PAPER_OPENING, install
+
+    @property
+    def chamfer_mm(self) -> float:
+        """The edge chamfer drawn (mm): the one given, 0 when none is (a printer's fills it in
+        parts.kinds.printed_spec before the part is built)."""
+        return 0.0 if self.chamfer is None else float(self.chamfer)
 
     @property
     def backlash_mm(self) -> float:

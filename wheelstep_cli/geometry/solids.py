@@ -66,7 +66,8 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
     ``pockets`` (CCW rings inside the web, checked by their maker) cut through; every edge
     of the top and bottom faces chamfered 45 deg by ``chamfer`` mm (see :func:`_chamfered`);
     ``hub`` = (diameter, length) mm: a boss round the hole on the top face (none for 0), which
-    must leave MIN_HOLE_WALL mm to the root and round the hole (DesignError naming hub_d).
+    must leave MIN_HOLE_WALL mm to the root and round the hole (DesignError naming hub_d); it
+    fills the chamfer of the hole's top edge (see :func:`_with_hub`).
     ``set_screw`` = (name, direction rad, teardrop ring, nut across flats, nut height) mm: a
     radial screw hole through the hub along ``direction`` and a nut slot open to the hub's
     top (see :func:`_set_screw`).
@@ -89,15 +90,13 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         area -= signed_area(pocket)
     section = m3d.CrossSection([np.ascontiguousarray(p, dtype=np.float64) for p in polygons],
                                m3d.FillRule.Positive)
-    body, volume = _chamfered(section, thickness, chamfer) if chamfer > 0 else \
-        (m3d.Manifold.extrude(section, thickness), area * thickness)
+    if chamfer > 0:
+        body, volume, layers = _chamfered(section, thickness, chamfer)
+    else:
+        body, volume, layers = m3d.Manifold.extrude(section, thickness), area * thickness, \
+            [(section, 0.0)]
     if hub[0] > 0:
-        ring, hub_area = _hub_ring(outline, hole, hub[0])
-        # the boss starts 1 mm inside the plate: solids that only touch at a plane stay two
-        # shells; that millimetre is material of both, counted once
-        boss = m3d.Manifold.extrude(ring, hub[1] + 1.0).translate((0.0, 0.0, thickness - 1.0))
-        body = body + boss
-        volume += hub_area * hub[1]
+        body, volume = _with_hub(body, volume, layers, outline, hole, hub, thickness, chamfer)
     if set_screw is not None:
         body, volume = _set_screw(body, volume, hole, hub, thickness, set_screw)
     if marks and mark_depth > 0:
@@ -155,6 +154,32 @@ def _require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: 
                           f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
 
 
+def _with_hub(body, volume: float, layers: list, outline: np.ndarray, hole: np.ndarray | None,
+              hub: tuple[float, float], thickness: float, chamfer: float):
+    """``body`` (the plate, of ``volume`` mm3, made of the nested ``layers`` = [(section, z)]:
+    each section extruded from z to thickness - z) with the hub = (diameter, length) mm
+    standing on its top face round the hole, and the volume of the union (mm3).
+
+    The boss reaches down into the plate, below the top chamfer: solids that only touch at
+    a plane stay two shells, and it fills the chamfer round the hole's top edge, so the hole
+    runs straight on into the hub (the teeth, pockets and the hole's bottom edge keep their
+    chamfer). The material of both is counted once: the plate's share inside the boss's
+    ring is summed layer by layer from the same nested sections."""
+    import manifold3d as m3d
+
+    ring, hub_area = _hub_ring(outline, hole, hub[0])
+    # without a chamfer 1 mm; with one, between the bottom chamfer and the top one
+    base = thickness - chamfer - min(1.0, 0.5 * (thickness - 2.0 * chamfer)) if chamfer > 0 \
+        else thickness - 1.0
+    boss = m3d.Manifold.extrude(ring, thickness + hub[1] - base).translate((0.0, 0.0, base))
+    shared, previous = 0.0, 0.0
+    for layer, z in layers:
+        inside = (layer ^ ring).area()
+        shared += (inside - previous) * (thickness - z - base)
+        previous = inside
+    return body + boss, volume + hub_area * (thickness + hub[1] - base) - shared
+
+
 def _hub_ring(outline: np.ndarray, hole: np.ndarray | None, diameter: float):
     """The hub's cross-section (manifold3d) and area (mm2), its diameter checked."""
     import manifold3d as m3d
@@ -180,15 +205,16 @@ CHAMFER_STEP = 0.1
 
 def _chamfered(section, thickness: float, chamfer: float):
     """The section extruded by ``thickness`` mm with its top and bottom edges chamfered 45 deg
-    by ``chamfer`` mm, and its volume (mm3). The chamfer is a staircase of steps no taller than
-    CHAMFER_STEP (finer than any printed layer, so the print is the slope); the steps are
-    nested prisms that overlap in volume, so their union is one closed body."""
+    by ``chamfer`` mm, its volume (mm3) and its layers [(section, z)]. The chamfer is a
+    staircase of steps no taller than CHAMFER_STEP (finer than any printed layer, so the print
+    is the slope); the steps are nested prisms (each layer's section extruded from z to
+    thickness - z) that overlap in volume, so their union is one closed body."""
     import manifold3d as m3d
 
     if not 2.0 * chamfer < thickness:
         raise DesignError("chamfer", chamfer, f"must be < half the thickness {thickness / 2:g} mm")
     steps = max(2, int(np.ceil(chamfer / CHAMFER_STEP)))
-    body, volume, previous = None, 0.0, 0.0
+    body, volume, previous, layers = None, 0.0, 0.0, []
     for k in range(steps + 1):
         inset = chamfer * (1.0 - k / steps)
         # offsets leave vertex pairs nanometres apart; 0.1 micron simplification drops them
@@ -200,7 +226,8 @@ def _chamfered(section, thickness: float, chamfer: float):
         body = prism if body is None else body + prism
         volume += (layer.area() - previous) * (thickness - 2.0 * z)
         previous = layer.area()
-    return body, volume
+        layers.append((layer, z))
+    return body, volume, layers
 
 
 def section_rings(part: Part, z: float) -> list[np.ndarray]:
@@ -328,14 +355,15 @@ def section_outline(vertices: np.ndarray, faces: np.ndarray, param: str,
                     z: float | None = None) -> np.ndarray:
     """Outer boundary (N, 2), counter-clockwise, of the mesh's section at height ``z`` (mm).
 
-    ``z`` defaults to mid-thickness. Holes (the bore) are dropped: the outer boundary
-    is the ring of largest area.
+    ``z`` defaults to the middle of the tooth zone (:func:`tooth_zone_middle`), not of the
+    mesh: a hub stands above the teeth. Holes (the bore) are dropped: the outer boundary is
+    the ring of largest area.
     """
     import manifold3d as m3d
 
     vertices = np.asarray(vertices, dtype=np.float64)
     if z is None:
-        z = 0.5 * (vertices[:, 2].min() + vertices[:, 2].max())
+        z = tooth_zone_middle(vertices)
     mesh = m3d.Mesh(vert_properties=np.ascontiguousarray(vertices, dtype=np.float32),
                     tri_verts=np.ascontiguousarray(faces, dtype=np.uint32))
     solid = m3d.Manifold(mesh)
@@ -345,10 +373,26 @@ def section_outline(vertices: np.ndarray, faces: np.ndarray, param: str,
     rings = [np.asarray(r, dtype=float) for r in solid.slice(float(z)).to_polygons()]
     rings = [r for r in rings if len(r) >= 3]
     if not rings:
-        raise DesignError(param, "mesh", f"has no material at mid-thickness z = {z:g} mm")
+        raise DesignError(param, "mesh", f"has no material at z = {z:g} mm (the middle of its tooth zone)")
     areas = [signed_area(r) for r in rings]
     outer = _drop_collinear(rings[int(np.argmax(np.abs(areas)))])
     return outer if signed_area(outer) > 0 else outer[::-1]
+
+
+#: Vertices within this distance (mm) of the farthest one from the axis are tooth tips.
+TIP_BAND = 0.01
+
+
+def tooth_zone_middle(vertices: np.ndarray) -> float:
+    """Height (mm) half-way up a gear mesh's tooth zone, the part in its own frame (axis along
+    z through x = y = 0): the middle of the heights of the vertices within TIP_BAND of the
+    greatest distance from the axis, the tooth tips' vertical edges. A hub or boss, nearer
+    the axis, does not move it; chamfers and an elephant-foot inset draw the tips in, so it
+    stays in the straight part of the teeth."""
+    vertices = np.asarray(vertices, dtype=np.float64)
+    radius = np.hypot(vertices[:, 0], vertices[:, 1])
+    tips = vertices[radius >= radius.max() - TIP_BAND, 2]
+    return 0.5 * float(tips.min() + tips.max())
 
 
 def _drop_collinear(ring: np.ndarray, tol: float = 1e-5) -> np.ndarray:

@@ -123,7 +123,7 @@ def gear_part(face: GearFace, spec):
     param = {"keyway": "key_depth", "d-flat": "bore", "hex": "bore"}.get(spec.bore_shape, "bore")
     value = spec.key_depth if param == "key_depth" else spec.bore
     return extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
-                        spec.mark_depth, param, value, cut, spec.chamfer, spec.hub_mm,
+                        spec.mark_depth, param, value, cut, spec.chamfer_mm, spec.hub_mm,
                         _set_screw(spec, face.direction))
 
 

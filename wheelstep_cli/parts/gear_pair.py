@@ -150,7 +150,8 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
         check = pair.checks[part.name]
         parts[part.name] = {"teeth": pair.spec.z if part.name == "pinion" else pair.wheel_teeth,
                             **part_record(part, check)}
-    report = {"tool": "wheelstep gears", "parameters": spec, **_printing(pair), "parts": parts}
+    report = {"tool": "wheelstep gears", "parameters": spec, **_printing(pair), "parts": parts,
+              "chamfer": chamfer_report(pair)}
     if pair.law is not None:
         report["u"] = pair.law.u
     if pair.partition is not None:
@@ -186,6 +187,17 @@ def _phase(pair: GearPair) -> dict:
                                "mark (counter-clockwise seen from the top): shaft keys at the "
                                "two mark angles plus key_angle put the pair in phase"}
     return record
+
+
+def chamfer_report(pair: GearPair) -> dict:
+    """The edge chamfer drawn (mm), where it came from, what became of the elephant foot."""
+    from wheelstep_cli.parts.kinds import chamfer_record
+
+    printing = pair.printing
+    if printing is None:
+        return chamfer_record(pair.spec, pair.spec, None)
+    design = printing.design if printing.design is not None else pair.spec
+    return chamfer_record(design, pair.spec, printing.printer)
 
 
 def _printing(pair: GearPair) -> dict:

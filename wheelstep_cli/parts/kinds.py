@@ -3,7 +3,8 @@
 A kind is a part pipeline (``parts/<kind>.py``: a spec model from config -> build ->
 report) plus the few facts the batch needs: which design-profile section holds its
 options, which spec fields are bores (enlarged by the printer's hole compensation),
-how extra tooth clearance is added, and the domain checks that can run before building.
+how extra tooth clearance is added, which field takes the printer's edge chamfer, and the
+domain checks that can run before building.
 Pipelines are imported lazily, so a kind whose module is missing is reported as
 "not available" instead of breaking the others.
 """
@@ -35,6 +36,7 @@ class PartKind:
     checks: tuple[Callable[[Any], object], ...] = ()  # cheap domain checks, before building
     with_parts: Callable[[Any, list, dict], Any] = lambda built, parts, checks: built  # swap parts in
     mating_check: Callable[[Any], dict] | None = None  # check of the parts together, as written
+    chamfer_field: str | None = None               # edge chamfer (mm), the printer's when None
 
     def pipeline(self):
         """The kind's module; DesignError 'not available' if it is not installed."""
@@ -69,11 +71,17 @@ class PartKind:
         return getattr(self.pipeline(), self.report)(built)
 
 
-def printed_spec(kind: PartKind, spec, hole_compensation: float, tooth_clearance: float):
-    """The spec as it must be drawn for a printer: bores enlarged, tooth clearance added."""
-    changes = {name: getattr(spec, name) + hole_compensation
+def printed_spec(kind: PartKind, spec, printer):
+    """The spec as it must be drawn on ``printer`` (config.printers.Printer): bores enlarged by
+    its hole compensation, its tooth clearance added, and the edge chamfer the design leaves
+    open (None) set to the printer's (DesignError for a chamfer too small to replace the
+    elephant-foot inset, see config.printers.least_chamfer)."""
+    changes = {name: getattr(spec, name) + printer.hole_compensation
                for name in kind.hole_fields if (getattr(spec, name) or 0) > 0}
-    changes.update(kind.clearance(spec, tooth_clearance))
+    changes.update(kind.clearance(spec, printer.tooth_clearance))
+    if kind.chamfer_field is not None:
+        changes[kind.chamfer_field] = printer.chamfer_for(getattr(spec, kind.chamfer_field),
+                                                          kind.chamfer_field)
     return updated(spec, **changes)
 
 
@@ -87,15 +95,17 @@ class Printing:
 
 def for_printer(kind: PartKind, built, printer, design=None):
     """``built`` as it is printed on ``printer``: each part's bed-side edges compensated for
-    the elephant foot, the part lifted onto z = 0 and checked again (DesignError if it fails).
-    ``design`` (the spec before :func:`printed_spec`) is kept with the printer for reports."""
+    the elephant foot (unless the part is chamfered, see below), the part lifted onto z = 0
+    and checked again (DesignError if it fails). ``design`` (the spec before
+    :func:`printed_spec`) is kept with the printer for reports."""
     from wheelstep_cli.geometry.mesh_checks import Part, require_printable
     from wheelstep_cli.geometry.solids import inset_bottom
 
     parts = []
-    # a chamfered part's bed-side edges are already drawn in (and it is no prism there for
-    # the foot's step inset to follow): the chamfer replaces the elephant-foot inset
-    chamfered = (getattr(getattr(built, "spec", None), "chamfer", 0) or 0) > 0
+    # a chamfered part's bed-side edges are already drawn in, by at least the foot's inset
+    # over the foot's height (printed_spec refuses a smaller chamfer), and it is no prism
+    # there for the foot's step inset to follow: the chamfer replaces the elephant-foot inset
+    chamfered = chamfer_of(built) > 0
     for part in kind.parts(built):
         if not chamfered:
             part = inset_bottom(part, printer.elephant_foot_height, printer.elephant_foot_inset)
@@ -106,13 +116,43 @@ def for_printer(kind: PartKind, built, printer, design=None):
     return replace(compensated, printing=Printing(printer, design))
 
 
+def chamfer_of(built) -> float:
+    """The edge chamfer (mm) a built part was drawn with (0 for a kind without one)."""
+    return float(getattr(getattr(built, "spec", None), "chamfer_mm", 0.0) or 0.0)
+
+
+def chamfer_record(design, printed, printer) -> dict:
+    """What a report says of the edge chamfer: its size (mm), where it came from and what
+    became of the printer's elephant-foot inset. ``design``/``printed``: the spec as given and
+    as drawn (the same without a printer)."""
+    mm = float(printed.chamfer_mm)
+    if design.chamfer is not None:
+        source = "the design (--chamfer, the design profile or the batch entry)"
+    elif printer is not None:
+        source = f"printer profile {printer.name}"
+    else:
+        source = "none given (no --chamfer, no --printer)"
+    if printer is None:
+        foot = "none (no printer)"
+    elif mm > 0:
+        foot = ("replaced by the chamfer (it draws the bed-side edges in by at least the "
+                f"{printer.elephant_foot_inset:g} mm inset over the {printer.elephant_foot_height:g} "
+                "mm foot)")
+    elif printer.elephant_foot_inset > 0 and printer.elephant_foot_height > 0:
+        foot = (f"applied: the lowest {printer.elephant_foot_height:g} mm drawn "
+                f"{printer.elephant_foot_inset:g} mm smaller")
+    else:
+        foot = "none (the printer has no elephant foot)"
+    return {"mm": mm, "from": source, "elephant_foot_inset": foot}
+
+
 def build_for_printer(kind_name: str, spec, printer=None):
     """Build ``spec``'s part as batch builds it for ``printer`` (compensated by
     :func:`printed_spec` and :func:`for_printer`); without a printer exactly as designed."""
     kind = KINDS[kind_name]
     if printer is None:
         return kind.build_part(spec)
-    printed = printed_spec(kind, spec, printer.hole_compensation, printer.tooth_clearance)
+    printed = printed_spec(kind, spec, printer)
     for problem in kind.problems(printed):
         raise problem
     return for_printer(kind, kind.build_part(printed), printer, spec)
@@ -161,7 +201,7 @@ KINDS: dict[str, PartKind] = {
         name=KindName.gear_pair.value, module="wheelstep_cli.parts.gear_pair", spec_class="GearPairSpec",
         build="build_gear_pair", report="gear_pair_report", section="gears",
         parts=lambda pair: [pair.pinion, pair.wheel], hole_fields=("bore", "key_width"),
-        clearance=_gear_pair_clearance, mating_check=_gear_pair_meshing,
+        clearance=_gear_pair_clearance, mating_check=_gear_pair_meshing, chamfer_field="chamfer",
         with_parts=lambda pair, parts, checks: replace(pair, pinion=parts[0], wheel=parts[1], checks=checks),
         checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _sectors)),
     KindName.shoe.value: PartKind(

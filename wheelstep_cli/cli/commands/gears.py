@@ -109,8 +109,11 @@ MarkDepth = Annotated[Optional[float], opt("--mark-depth", help="Timing mark eng
                                                                 "for none.", shown="0.5")]
 Lighten = Annotated[bool, opt("--lighten", help="Cut spoked pockets into the wheel (and the pinion "
                                                   "where it has room), keeping a 2.5 module rim.")]
-Chamfer = Annotated[Optional[float], opt("--chamfer", help="45 deg chamfer of the top and bottom "
-                                                          "edges (teeth, bore, pockets), mm.", shown="0")]
+Chamfer = Annotated[Optional[float], opt(
+    "--chamfer", help="45 deg chamfer of the top and bottom edges (teeth, bore, pockets; with a "
+                      "hub not the bore's top edge), mm; 0 for none. With --printer it replaces "
+                      "the elephant-foot inset, so it must be 0 or at least that inset plus its "
+                      "height.", shown="the --printer's chamfer, else 0")]
 HubD = Annotated[Optional[float], opt("--hub-d", help="Hub (boss) diameter on the top face, mm.")]
 HubLength = Annotated[Optional[float], opt("--hub-length", help="Hub height above the top face, mm.",
                                            shown="8 with --hub-d")]
@@ -307,7 +310,18 @@ def _gears_lines(pair, record: dict) -> list[str]:
         from wheelstep_cli.parts.tolerance_cli import tolerance_lines
 
         lines.extend(tolerance_lines(record["tolerance"]))
-    return lines + _lighten_lines(pair)
+    return lines + _chamfer_lines(pair) + _lighten_lines(pair)
+
+
+def _chamfer_lines(pair) -> list[str]:
+    """The edge chamfer (mm) and where it came from, when there is one or a printer."""
+    from wheelstep_cli.parts.gear_pair import chamfer_report
+
+    chamfer = chamfer_report(pair)
+    if not chamfer["mm"] and pair.printing is None:
+        return []
+    return [f"chamfer {chamfer['mm']:g} mm ({chamfer['from']}); elephant-foot inset "
+            f"{chamfer['elephant_foot_inset']}"]
 
 
 def _opening_text(pair) -> str:

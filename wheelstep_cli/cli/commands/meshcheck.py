@@ -50,7 +50,7 @@ def mesh_check(
     gcode: Gcode = None, force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
-    """Section two gear meshes at mid-thickness and check them over one period of the law:
+    """Section two gear meshes half-way up their teeth and check them over one period of the law:
     interference, backlash, and per flank F'i, f'i (um along the wheel pitch curve) and
     the hub speed ripple of 3 tooth harmonics (SPEC §10). The law is the crank law of the
     design, or any law given as --law-csv, blended by --blend as the teeth were cut. Given plates (3MF written by wheelstep),
