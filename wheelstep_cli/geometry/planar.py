@@ -95,22 +95,26 @@ def _largest_exterior_ccw(polygon) -> np.ndarray:
     return outline if signed_area(outline) > 0 else outline[::-1]
 
 
-def grown_minus_rotated_union(body: np.ndarray, grow: float, pieces: np.ndarray,
-                              angles: np.ndarray) -> np.ndarray:
+def grown_minus_rotated_union(body: np.ndarray, grow: float | tuple[float, ...], pieces: np.ndarray,
+                              angles: np.ndarray) -> np.ndarray | list[np.ndarray]:
     """The polygon ``body`` (N, 2) grown by ``grow`` mm (bevel joins) minus a cutter region.
 
     The cutter region is the union of the closed polygons ``pieces`` (P, K, 2), taken
     once, and its copies rotated about the origin by each of ``angles`` (rad). The
     zero-area slivers a boolean leaves where pieces just touch are dropped. Returns the
-    CCW outline of the largest part left.
+    CCW outline of the largest part left; for a tuple of growths, one outline per growth
+    (the cutter region is built once).
     """
     from shapely import affinity
 
     region = shapely.union_all(shapely.polygons(pieces))
     cutter = shapely.union_all([affinity.rotate(region, a, origin=(0.0, 0.0), use_radians=True)
                                 for a in angles])
-    blank = shapely.Polygon(body).buffer(grow, join_style="bevel")
-    return _largest_exterior_ccw(blank.difference(cutter).buffer(0))
+    grows = grow if isinstance(grow, tuple) else (grow,)
+    polygon = shapely.Polygon(body)
+    outlines = [_largest_exterior_ccw(polygon.buffer(g, join_style="bevel").difference(cutter).buffer(0))
+                for g in grows]
+    return outlines if isinstance(grow, tuple) else outlines[0]
 
 
 def intersect_outlines(outline: np.ndarray, limit: np.ndarray) -> np.ndarray:

@@ -162,18 +162,22 @@ def widen(radii: np.ndarray, span: float, lead: float) -> np.ndarray:
     return widened
 
 
-def deepened_spaces(radii: np.ndarray, teeth: int, clearance: float, band: float) -> np.ndarray:
-    """The ray map (mm per ray, one period of ``teeth`` teeth) with its space bottoms
-    lowered by ``clearance`` mm.
+def relieved_corners(radii: np.ndarray, grid: PolarGrid, notches: np.ndarray, half_width: float,
+                     depth: float, max_angle: float) -> np.ndarray:
+    """The ray map (mm per ray of ``grid``) with its head-on surfaces lowered near the notches.
 
-    A ray's space bottom is the least radius within half a tooth of it; rays within
-    ``band`` mm above it are lowered by ``clearance`` times (1 - height / band), so the
-    bottom drops by the clearance and the fillet above the band (where the pinion's tip
-    corner passes, and the flank it drives) stays as carved.
+    Within ``half_width`` rad of a notch (wheel body angles ``notches``, rad; the last
+    quarter tapers), a ray whose surface normal makes an angle psi with its radius is
+    lowered by depth x (cos psi - cos max_angle) / (1 - cos max_angle) mm: tips and roots
+    by the full ``depth``, nothing that leans more than ``max_angle`` rad (the flanks that
+    drive). Only material is removed.
     """
-    if clearance <= 0 or band <= 0:
-        return radii
-    half = max(1, len(radii) // (2 * teeth))
-    padded = np.concatenate([radii[-half:], radii, radii[:half]])
-    bottom = np.lib.stride_tricks.sliding_window_view(padded, 2 * half + 1).min(axis=1)
-    return radii - clearance * np.clip(1.0 - (radii - bottom) / band, 0.0, 1.0)
+    angles = grid.start + grid.width * (np.arange(grid.count) + 0.5)
+    slope = (np.roll(radii, -1) - np.roll(radii, 1)) / (2.0 * grid.width)
+    cos_psi = radii / np.hypot(radii, slope)
+    floor = np.cos(max_angle)
+    weight = np.clip((cos_psi - floor) / (1.0 - floor), 0.0, 1.0)
+    off = np.abs(np.mod(angles[:, None] - notches[None, :] + 0.5 * grid.period, grid.period)
+                 - 0.5 * grid.period).min(axis=1)
+    taper = np.clip((half_width - off) / (0.25 * half_width), 0.0, 1.0)
+    return radii - depth * weight * taper
