@@ -95,32 +95,35 @@ def _largest_exterior_ccw(polygon) -> np.ndarray:
     return outline if signed_area(outline) > 0 else outline[::-1]
 
 
-def grown_minus_rotated_union(body: np.ndarray, grow: float | tuple[float, ...], pieces: np.ndarray,
-                              angles: np.ndarray) -> np.ndarray | list[np.ndarray]:
+def grown_minus_rotated_union(body: np.ndarray, grow: float, pieces: np.ndarray,
+                              angles: np.ndarray) -> np.ndarray:
     """The polygon ``body`` (N, 2) grown by ``grow`` mm (bevel joins) minus a cutter region.
 
     The cutter region is the union of the closed polygons ``pieces`` (P, K, 2), taken
     once, and its copies rotated about the origin by each of ``angles`` (rad). The
     zero-area slivers a boolean leaves where pieces just touch are dropped. Returns the
-    CCW outline of the largest part left; for a tuple of growths, one outline per growth
-    (the cutter region is built once).
+    CCW outline of the largest part left.
     """
     from shapely import affinity
 
     region = shapely.union_all(shapely.polygons(pieces))
     cutter = shapely.union_all([affinity.rotate(region, a, origin=(0.0, 0.0), use_radians=True)
                                 for a in angles])
-    grows = grow if isinstance(grow, tuple) else (grow,)
-    polygon = shapely.Polygon(body)
-    outlines = [_largest_exterior_ccw(polygon.buffer(g, join_style="bevel").difference(cutter).buffer(0))
-                for g in grows]
-    return outlines if isinstance(grow, tuple) else outlines[0]
+    blank = shapely.Polygon(body).buffer(grow, join_style="bevel")
+    return _largest_exterior_ccw(blank.difference(cutter).buffer(0))
 
 
 def intersect_outlines(outline: np.ndarray, limit: np.ndarray) -> np.ndarray:
     """CCW outline (N, 2) of the largest part of two closed outlines' intersection (slivers dropped)."""
     both = shapely.Polygon(outline).intersection(shapely.Polygon(limit))
     return _largest_exterior_ccw(both.buffer(0))
+
+
+def polylines_distance(first: list[np.ndarray], second: list[np.ndarray]) -> float:
+    """Least distance (mm) between two sets of open polylines (each (K, 2) mm); 0 when they cross."""
+    a = shapely.MultiLineString([line for line in first if len(line) > 1])
+    b = shapely.MultiLineString([line for line in second if len(line) > 1])
+    return float(shapely.distance(a, b))
 
 
 def open_outline(outline: np.ndarray, radius: float, thin: float, quad_segs: int = 8) -> np.ndarray:

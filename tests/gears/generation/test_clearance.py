@@ -7,10 +7,10 @@ import pytest
 
 from tests.helpers.clicheck import error_line
 from wheelstep_cli.gears.generation.envelope import PolarGrid
-from wheelstep_cli.gears.generation.wheel import relieved_corners
+from wheelstep_cli.gears.generation.wheel import head_on_relief, notch_weight
 
 
-def test_corner_relief_lowers_tips_and_roots_near_a_notch_and_keeps_the_flanks():
+def test_relief_lowers_head_on_tips_and_roots_where_asked_and_keeps_the_flanks():
     teeth, rays = 8, 8000
     grid = PolarGrid(0.0, 2 * np.pi, rays)
     j = np.arange(rays)
@@ -19,7 +19,8 @@ def test_corner_relief_lowers_tips_and_roots_near_a_notch_and_keeps_the_flanks()
     phase = np.mod(j, rays // teeth) / (rays // teeth)
     radii = 90.0 + 5.0 * np.clip(24.0 * np.minimum(phase, 1.0 - phase) - 3.0, 0.0, 1.0)
     notch = grid.angles[rays // teeth // 2]             # the middle of the first tooth's tip
-    out = relieved_corners(radii, grid, np.array([notch]), 2 * np.pi / teeth, 0.5, np.radians(35))
+    region = notch_weight(grid, np.array([notch]), 2 * np.pi / teeth)
+    out = head_on_relief(radii, grid, region, 0.5, np.radians(35))
     near = np.abs(grid.angles - notch) < 0.5 * np.pi / teeth
     before = np.abs(radii - np.roll(radii, 1)) > 1e-12
     after = np.abs(np.roll(radii, -1) - radii) > 1e-12

@@ -16,10 +16,11 @@ from wheelstep_cli.gears.generation.envelope import PolarGrid, outline_from_radi
 from wheelstep_cli.gears.generation.limits import (GearBody, ToppingLimits, min_convex_radius,
                                                    top_or_refuse, undercut_limit, undercut_remedy)
 from wheelstep_cli.gears.generation.outline import blank_radii, simplify_outline
-from wheelstep_cli.gears.generation.pinion import pinion_and_tall, pinion_by_rack, round_tips, topped_outline
+from wheelstep_cli.gears.generation.pinion import pinion_by_rack, round_tips, topped_outline
 from wheelstep_cli.gears.generation.rack import RackCutter, RackRolling
 from wheelstep_cli.gears.generation.settings import CORNER_MODES, GenerationSettings
-from wheelstep_cli.gears.generation.wheel import Carving, backlash_split, carve_by_pinion, relieved_corners
+from wheelstep_cli.gears.generation.wheel import (Carving, backlash_split, carve_by_pinion,
+                                                  head_on_relief, notch_weight)
 from wheelstep_cli.gears.pitch_curves import PitchCurves, pitch_curves
 from wheelstep_cli.gears.transmission import TransmissionLaw
 
@@ -89,7 +90,6 @@ class _GearCut:
     topping: tuple[int, float]
     land: float
     play: float = 0.0
-    shaper: np.ndarray | None = None   # pinion only: the outline (N, 2) mm that carves the wheel
 
 
 def generate_pair(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, *, corner: str = "space",
@@ -116,7 +116,7 @@ def generate_pair(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, *
     # pinion is topped before it carves the wheel, so the wheel is conjugate to the pinion
     # as written (a tip topped after carving leaves the wheel without contact there).
     pinion = _cut_pinion(job, corner)
-    wheel = _cut_wheel(job, pinion.shaper, center_distance)
+    wheel = _cut_wheel(job, pinion.outline, center_distance)
     return GeneratedPair(
         law=law, curves=curves, cutter=cutter, pinion_teeth=pinion_teeth,
         wheel_teeth=per_period * law.wheel_periods, module=job.module, pitch=job.pitch, corner=corner,
@@ -177,13 +177,7 @@ def _cut_pinion(job: _Job, corner: str) -> _GearCut:
     rolling = RackRolling(curves.pinion, curves.arc, job.pitch, offset + job.pitch / 2.0,
                           job.per_period * s.poses_per_tooth, 4 * s.poses_per_tooth, law.theta_period,
                           law.pinion_periods, s.tilt, s.pivot)
-    # the wheel is carved by the pinion's shaper: its teeth the tip clearance taller, so the
-    # wheel's spaces and fillets stay that far below the pinion's tips
-    tip_clearance = job.cutter.clearance * job.module
-    if tip_clearance > 0:
-        exact, tall = pinion_and_tall(rolling, job.cutter, job.module, tip_clearance)
-    else:
-        exact = tall = pinion_by_rack(rolling, job.cutter, job.module)
+    exact = pinion_by_rack(rolling, job.cutter, job.module)
     # its ray map (farthest crossing: the tips, also of teeth leaning over a neighbour's space)
     cut = polyline_envelope(grid, np.vstack([exact, exact[:1]])[None], nearest=False)
     cut_radii = np.minimum(blank, cut)
@@ -191,27 +185,43 @@ def _cut_pinion(job: _Job, corner: str) -> _GearCut:
     radii, topping, land = top_or_refuse(GearBody("pinion", grid, curves.pinion, blank), cut_radii,
                                          job.cutter, job.limits)
     # the outline as written (tips rounded; slivers and spikes a boolean can leave removed)
+    # carves the wheel
     rounded = round_tips(exact, s.tip_round * job.module)
     outline = simplify_outline(topped_outline(rounded, grid, radii, cut_radii, law.pinion_periods),
                                s.pinion_tolerance)
-    # the shaper's tips rounded alike: it holds the pinion as written (topping only lowers it)
-    shaper = (outline if tall is exact
-              else simplify_outline(round_tips(tall, s.tip_round * job.module), s.pinion_tolerance))
-    return _GearCut(outline, radii, grid, topping, land, shaper=shaper)
+    return _GearCut(outline, radii, grid, topping, land)
 
 
 def relief_angle(pressure_angle: float) -> float:
-    """Largest angle (rad) between a wheel surface's normal and its radius that the corner
-    relief lowers: half the angle a flank's normal makes with the radius at the pitch point
-    (90 deg less the ``pressure_angle``, rad). A drive contact's normal passes through the
-    pitch point, so it leans about that far or farther (the profile angle grows toward the
-    tips; the corner contacts measured lean 43-49 deg on the default pair)."""
+    """Largest angle (rad) between a wheel surface's normal and its radius that the tip
+    clearance relief lowers: half the angle a flank's normal makes with the radius at the
+    pitch point (90 deg less the ``pressure_angle``, rad). A drive contact's normal passes
+    through the pitch point, so it leans about that far or farther (the profile angle grows
+    toward the tips; the handover contacts of the default pair lean 43-49 deg)."""
     return 0.5 * (0.5 * np.pi - pressure_angle)
 
 
-def _cut_wheel(job: _Job, shaper: np.ndarray, distance: float) -> _GearCut:
-    """The wheel carved by the pinion's ``shaper`` (the outline as written, its tips lifted by
-    the tip clearance) rolling at ``distance`` mm, widened by the play, topped."""
+def _relief_region(job: _Job, grid: PolarGrid, radii: np.ndarray) -> np.ndarray:
+    """Per wheel ray (0..1): how much of the tip clearance relief applies.
+
+    Carved by the pinion's tips, the wheel's space bottoms end microns below them, sloping
+    along a non-circular space, so every head-on surface below the wheel's pitch curve is
+    lowered. At a handover notch also above it: the pinion's corner teeth and corner space
+    are cut by the pivoting rack, not by the blank, and the wheel blank's concave offset
+    stands the addendum / cos(half the turn) above the notch, as deep as the pinion's
+    corner space, so tips met spaces there on the line of centres with no clearance.
+    """
+    law, curves = job.law, job.curves
+    below = (radii < blank_radii(curves.wheel, grid, 1e-6)).astype(float)
+    if not law.corners:
+        return below
+    # the pitch point for carrier angle phi sits at the wheel's body angle -phi
+    reach = job.settings.corner_relief_pitches * job.pitch / float(np.min(np.hypot(*curves.wheel.T)))
+    return np.maximum(below, notch_weight(grid, -np.asarray(law.corners, dtype=float), reach))
+
+
+def _cut_wheel(job: _Job, pinion_outline: np.ndarray, distance: float) -> _GearCut:
+    """The wheel carved by ``pinion_outline`` rolling at ``distance`` mm, widened by the play, topped."""
     law, curves, s = job.law, job.curves, job.settings
     grid = PolarGrid(-float(curves.phi[-1]), law.phi_period, job.per_period * 2 * s.wheel_rays_per_tooth)
     blank = blank_radii(curves.wheel, grid, job.cutter.addendum * job.module)
@@ -219,31 +229,22 @@ def _cut_wheel(job: _Job, shaper: np.ndarray, distance: float) -> _GearCut:
     # a pitch beyond where the tip curves cross: the crossing is found at the pitch point's
     # own radii, the tip that meets the wheel there sits up to a pitch away
     pitch_angle = job.pitch / float(np.min(np.hypot(*curves.pinion.T)))
-    shaper_tip = (job.cutter.addendum + job.cutter.clearance) * job.module
-    window = max(s.window_pitches * pitch_angle, contact_window(curves, distance, shaper_tip) + pitch_angle)
+    window = max(s.window_pitches * pitch_angle,
+                 contact_window(curves, distance, job.cutter.addendum * job.module) + pitch_angle)
     # the lead only pays where the law has handover corners (the hub speed factor kinks there);
     # a smooth law keeps the play split evenly, as ordinary spur gears are thinned
     lead = s.lead if (law.corners or law.blended_corners) else 0.0
     carving = Carving(distance, clearance, job.per_period * s.carve_poses_per_tooth, window,
                       float(blank.max()), play, lead, s.path_run, s.carve_segment)
-    radii = np.minimum(blank, carve_by_pinion(law, shaper, grid, carving))
+    radii = np.minimum(blank, carve_by_pinion(law, pinion_outline, grid, carving))
     if s.mount_tolerance > 0:
         # carved again rolling that much closer: mounted closer by up to it, the pair still
         # clears (the tips' paths and the corner teeth), at the cost of a little backlash
         closer = replace(carving, distance=distance - s.mount_tolerance)
-        radii = np.minimum(radii, carve_by_pinion(law, shaper, grid, closer))
+        radii = np.minimum(radii, carve_by_pinion(law, pinion_outline, grid, closer))
     _require_no_gaps(radii, job.pinion_teeth)
-    if law.corners:
-        # at a handover corner the pinion's corner teeth are cut by the pivoting rack, not by
-        # the blank, so the shaper cannot lengthen them, and the wheel blank's concave offset
-        # stands addendum / cos(half the turn) above the notch, as deep as the pinion's corner
-        # space: both meet on the line of centres with no clearance. The wheel's surfaces there
-        # that face the pinion head-on (tips, roots: no drive contact leans so little) are
-        # lowered by the tip clearance; its flanks stay as carved
-        notches = -np.asarray(law.corners, dtype=float)     # the pitch point for phi sits at -phi
-        reach = s.corner_relief_pitches * job.pitch / float(np.min(np.hypot(*curves.wheel.T)))
-        radii = relieved_corners(radii, grid, notches, reach, job.cutter.clearance * job.module,
-                                 relief_angle(job.cutter.pressure_angle))
+    radii = head_on_relief(radii, grid, _relief_region(job, grid, radii), job.cutter.clearance * job.module,
+                           relief_angle(job.cutter.pressure_angle))
     radii, topping, land = top_or_refuse(GearBody("wheel", grid, curves.wheel, blank), radii,
                                          job.cutter, job.limits)
     return _GearCut(outline_from_radii(grid, radii, law.wheel_periods), radii, grid, topping, land, play)

@@ -23,24 +23,7 @@ def pinion_by_rack(rolling: RackRolling, cutter: RackCutter, module: float) -> n
     which a polar ray map cannot hold. The blank is the pitch curve grown by the
     addendum (``cutter.addendum`` x ``module`` mm).
     """
-    return _rack_cut(rolling, cutter, module, (0.0,))[0]
-
-
-def pinion_and_tall(rolling: RackRolling, cutter: RackCutter, module: float,
-                    extra: float) -> tuple[np.ndarray, np.ndarray]:
-    """The pinion of :func:`pinion_by_rack`, and the same rack's cut of a blank ``extra`` mm
-    taller (outlines (N, 2), CCW, mm): its flanks are the pinion's continued that much
-    farther out, as a shaper cutter's teeth are the gear's plus the tip clearance. The
-    rack region is built once for both.
-    """
-    pinion, tall = _rack_cut(rolling, cutter, module, (0.0, extra))
-    return pinion, tall
-
-
-def _rack_cut(rolling: RackRolling, cutter: RackCutter, module: float,
-              extras: tuple[float, ...]) -> list[np.ndarray]:
-    """Blanks grown by the addendum plus each of ``extras`` (mm), minus every rack-tooth pose."""
-    polygons, centres = rack_tooth_polygons(cutter, module, rolling.pitch, extra=max(extras))
+    polygons, centres = rack_tooth_polygons(cutter, module, rolling.pitch)
     k = polygons.shape[1]
     teeth = RackTeeth(polygons.reshape(-1, 2), np.repeat(centres, k))
     worlds = rack_poses(rolling, teeth)
@@ -51,8 +34,7 @@ def _rack_cut(rolling: RackRolling, cutter: RackCutter, module: float,
     body = np.concatenate([curve[:-1] @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
                            for a in angles])
     # bevel joins: a chord across each pitch-curve corner relieves the corner teeth's tips
-    return grown_minus_rotated_union(body, tuple(cutter.addendum * module + e for e in extras),
-                                     pieces, angles)
+    return grown_minus_rotated_union(body, cutter.addendum * module, pieces, angles)
 
 
 def round_tips(outline: np.ndarray, radius: float) -> np.ndarray:
@@ -78,6 +60,4 @@ def topped_outline(outline: np.ndarray, grid: PolarGrid, topped: np.ndarray, bef
         return outline
     cap = np.where(lowered, topped, 10.0 * float(before.max()))
     return intersect_outlines(outline, outline_from_radii(grid, cap, copies))
-
-
 

@@ -91,14 +91,12 @@ class Frames:
 
 
 def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
-                 flank_points: int = 60, extra: float = 0.0) -> np.ndarray:
+                 flank_points: int = 60) -> np.ndarray:
     """Cutter polyline (K, 2) in rack coordinates (x along the pitch line, y outward, mm).
 
     ``teeth`` cutter teeth centred at x = (j - (teeth-1)/2) p; each cuts one space
     of the gear, reaching y = -dedendum m with tip fillets; between teeth the
-    polyline runs at a height the gear blank never reaches, ``extra`` mm beyond the
-    addendum: a blank that much taller gets its flanks cut that far out (or to the
-    point where the rack's spaces close).
+    polyline runs at a height the gear blank never reaches.
     """
     a = cutter.pressure_angle
     tan_a, cos_a, sin_a = np.tan(a), np.cos(a), np.sin(a)
@@ -106,7 +104,7 @@ def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
     rho = cutter.fillet * module
     # cutter tooth half thickness at the pitch line: p/4 plus the pinion's thinning j_n/4 (normal)
     half = pitch / 4.0 + cutter.backlash / (4.0 * cos_a)
-    top = min(cutter.addendum * module + extra + 0.15 * module, (pitch / 2.0 - half) / tan_a - 1e-3)
+    top = min(cutter.addendum * module + 0.15 * module, (pitch / 2.0 - half) / tan_a - 1e-3)
     if top <= cutter.addendum * module:
         land = 2.0 * (pitch / 2.0 - half - cutter.addendum * module * tan_a)
         why = (f"the teeth come to a point (the rack's tooth spaces close below the tip line, tip "
@@ -135,14 +133,13 @@ def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
 
 
 def rack_tooth_polygons(cutter: RackCutter, module: float, pitch: float, teeth: int = 5,
-                        flank_points: int = 40, extra: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+                        flank_points: int = 40) -> tuple[np.ndarray, np.ndarray]:
     """Closed cutter teeth in rack coordinates, shape (teeth, K, 2), and their centres x (mm).
 
     Each tooth runs from its left top over the tip to its right top and closes far
-    outside the blank, so a tooth can be tilted about its pitch point on its own;
-    ``extra``: see :func:`rack_profile`.
+    outside the blank, so a tooth can be tilted about its pitch point on its own.
     """
-    one = rack_profile(cutter, module, pitch, 1, flank_points, extra)
+    one = rack_profile(cutter, module, pitch, 1, flank_points)
     far = one[:, 1].max() + 4.0 * module
     closed = np.vstack([one, [[one[-1, 0], far], [one[0, 0], far]]])
     centres = (np.arange(teeth) - (teeth - 1) / 2.0) * pitch

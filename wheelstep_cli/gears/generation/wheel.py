@@ -162,22 +162,29 @@ def widen(radii: np.ndarray, span: float, lead: float) -> np.ndarray:
     return widened
 
 
-def relieved_corners(radii: np.ndarray, grid: PolarGrid, notches: np.ndarray, half_width: float,
-                     depth: float, max_angle: float) -> np.ndarray:
-    """The ray map (mm per ray of ``grid``) with its head-on surfaces lowered near the notches.
+def notch_weight(grid: PolarGrid, notches: np.ndarray, half_width: float) -> np.ndarray:
+    """Per ray of ``grid``: 1 within ``half_width`` rad of a notch (body angles ``notches``,
+    rad), tapering to 0 over the last quarter of it, 0 beyond."""
+    if half_width <= 0 or len(notches) == 0:
+        return np.zeros(grid.count)
+    off = np.abs(np.mod(grid.angles[:, None] - notches[None, :] + 0.5 * grid.period, grid.period)
+                 - 0.5 * grid.period).min(axis=1)
+    return np.clip((half_width - off) / (0.25 * half_width), 0.0, 1.0)
 
-    Within ``half_width`` rad of a notch (wheel body angles ``notches``, rad; the last
-    quarter tapers), a ray whose surface normal makes an angle psi with its radius is
-    lowered by depth x (cos psi - cos max_angle) / (1 - cos max_angle) mm: tips and roots
-    by the full ``depth``, nothing that leans more than ``max_angle`` rad (the flanks that
-    drive). Only material is removed.
+
+def head_on_relief(radii: np.ndarray, grid: PolarGrid, region: np.ndarray, depth: float,
+                   max_angle: float) -> np.ndarray:
+    """The ray map (mm per ray of ``grid``) with the surfaces that face the pinion head-on
+    lowered by up to ``depth`` mm where ``region`` (per ray, 0..1) says.
+
+    A ray whose surface normal makes an angle psi with its radius is lowered by depth x
+    region x (cos psi - cos max_angle) / (1 - cos max_angle): space bottoms and tips by
+    the full depth, nothing that leans more than ``max_angle`` rad (the flanks that drive
+    stay as carved). Only material is removed.
     """
-    angles = grid.start + grid.width * (np.arange(grid.count) + 0.5)
+    if depth <= 0:
+        return radii
     slope = (np.roll(radii, -1) - np.roll(radii, 1)) / (2.0 * grid.width)
     cos_psi = radii / np.hypot(radii, slope)
     floor = np.cos(max_angle)
-    weight = np.clip((cos_psi - floor) / (1.0 - floor), 0.0, 1.0)
-    off = np.abs(np.mod(angles[:, None] - notches[None, :] + 0.5 * grid.period, grid.period)
-                 - 0.5 * grid.period).min(axis=1)
-    taper = np.clip((half_width - off) / (0.25 * half_width), 0.0, 1.0)
-    return radii - depth * weight * taper
+    return radii - depth * region * np.clip((cos_psi - floor) / (1.0 - floor), 0.0, 1.0)
