@@ -243,8 +243,8 @@ def _cut_wheel(job: _Job, pinion_outline: np.ndarray, distance: float) -> _GearC
         closer = replace(carving, distance=distance - s.mount_tolerance)
         radii = np.minimum(radii, carve_by_pinion(law, pinion_outline, grid, closer))
     _require_no_gaps(radii, job.pinion_teeth)
-    radii = head_on_relief(radii, grid, _relief_region(job, grid, radii), job.cutter.clearance * job.module,
-                           relief_angle(job.cutter.pressure_angle))
+    radii = head_on_relief(radii, grid, _relief_region(job, grid, radii),
+                           job.cutter.clearance * job.module, relief_angle(job.cutter.pressure_angle))
     radii, topping, land = top_or_refuse(GearBody("wheel", grid, curves.wheel, blank), radii,
                                          job.cutter, job.limits)
     return _GearCut(outline_from_radii(grid, radii, law.wheel_periods), radii, grid, topping, land, play)
