@@ -128,6 +128,13 @@ def intersect_outlines(outline: np.ndarray, limit: np.ndarray) -> np.ndarray:
     return _largest_exterior_ccw(both.buffer(0))
 
 
+def polylines_distance(first: list[np.ndarray], second: list[np.ndarray]) -> float:
+    """Least distance (mm) between two sets of open polylines (each (K, 2) mm); 0 when they cross."""
+    a = shapely.MultiLineString([line for line in first if len(line) > 1])
+    b = shapely.MultiLineString([line for line in second if len(line) > 1])
+    return float(shapely.distance(a, b))
+
+
 def open_outline(outline: np.ndarray, radius: float, thin: float, quad_segs: int = 8) -> np.ndarray:
     """Morphological opening of a closed outline: convex corners rounded to ``radius`` mm.
 

@@ -265,8 +265,11 @@ def generated_report(pair: GearPair) -> dict:
         "tip_clearance": {
             "pinion_spaces_mm": (gen.cutter.dedendum - gen.cutter.addendum) * gen.module,
             "wheel_spaces_mm": gen.cutter.clearance * gen.module,
-            "note": "below the other gear's tips on the line of centres; the wheel's spaces are "
-                    "carved by the pinion's tips and then deepened by the clearance",
+            "note": "below the other gear's tips on the line of centres; the wheel is carved by "
+                    "the pinion's shaper (its teeth cut by the same rack the clearance taller) and "
+                    "its tips and roots within 1.25 pitches of each handover notch are lowered "
+                    "by the clearance; how much closer the pair may be mounted: "
+                    "meshing.mounting.closer_mm",
         },
         "undercut_limit_mm": gen.undercut_limit,
         "pitch_curve_min_convex_radius_mm": gen.min_curvature_radius,

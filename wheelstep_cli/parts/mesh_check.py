@@ -21,7 +21,8 @@ def check_outlines(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, 
     """Run the meshing check of two outlines (mm, own frames) over one period of any law:
     ``samples`` poses, mesh window half-height ``window`` mm (None: the settings' default)."""
     settings = replace(MeshingSettings(), samples=samples, window=window)
-    return check_meshing(pinion, wheel, law, distance, settings, progress=progress)
+    report = check_meshing(pinion, wheel, law, distance, settings, progress=progress)
+    return replace(report, mounting=mounting_record(pinion, wheel, law, distance))
 
 
 def check_gear_pair(pair, settings: MeshingSettings = MeshingSettings(),
@@ -39,8 +40,35 @@ def check_gear_pair(pair, settings: MeshingSettings = MeshingSettings(),
     # generated teeth are checked against the law they were cut for (blended when --blend)
     generated = getattr(pair, "generated", None)
     law = generated.law if generated is not None else pair.law
-    return check_meshing(pinion, wheel, law, pair.mounted_distance, settings, progress=progress,
-                         teeth=pair.spec.z)
+    report = check_meshing(pinion, wheel, law, pair.mounted_distance, settings, progress=progress,
+                           teeth=pair.spec.z)
+    return replace(report, mounting=mounting_record(pinion, wheel, law, pair.mounted_distance, generated))
+
+
+def mounting_record(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, distance: float,
+                    generated=None) -> dict:
+    """How much closer than ``distance`` (mm) the outlines (mm, own frames) may be mounted:
+    their least separation over the law's poses (a wheel moved that little toward the
+    pinion cannot reach it), and for generated teeth the tip clearance cut for it (mm)."""
+    from wheelstep_cli.gears.meshing.mounting import least_separation
+
+    samples = 192
+    gap, theta = least_separation(pinion, wheel, law, distance, samples)
+    record = {"closer_mm": gap, "at_pinion_deg": float(np.degrees(theta)), "samples": samples, "refined": 24,
+              "how": "least separation of the two outlines over the law's poses: mounted up to "
+                     "that much closer, no point of one can reach the other"}
+    if generated is not None:
+        record["tip_clearance_mm"] = float(generated.cutter.clearance * generated.module)
+    return record
+
+
+def mounting_line(mounting: dict) -> str:
+    """One line saying how much closer the pair may be mounted (mm)."""
+    line = (f"mounting: clear when mounted up to {mounting['closer_mm']:.3f} mm closer (least gap "
+            f"between the outlines, at pinion angle {mounting['at_pinion_deg']:.1f} deg)")
+    if "tip_clearance_mm" in mounting:
+        line += f"; tip clearance {mounting['tip_clearance_mm']:.3f} mm"
+    return line
 
 
 def meshing_record(report: MeshingReport) -> dict:
@@ -81,6 +109,8 @@ def meshing_lines(summary: dict) -> list[str]:
                  f"{_fmt(summary['backlash_max_arcmin'], '.1f')}' at the wheel)")
     for side in ("drive", "coast"):
         lines.append(flank_line(side, summary[side]))
+    if "mounting" in summary:
+        lines.append(mounting_line(summary["mounting"]))
     lines.append(f"diagnostic: pointwise hub speed ripple {_fmt(summary['diagnostic_pointwise_ripple_pct'], '.2f')} % "
                  f"(drive side, grows with the sampling; the law alone: "
                  f"{summary['law_hub_speed_ripple_pct']:.2f} %)")

@@ -6,21 +6,30 @@ import numpy as np
 import pytest
 
 from tests.helpers.clicheck import error_line
-from wheelstep_cli.gears.generation.wheel import deepened_spaces
+from wheelstep_cli.gears.generation.envelope import PolarGrid
+from wheelstep_cli.gears.generation.wheel import head_on_relief, notch_weight
 
 
-def test_space_bottoms_drop_by_the_clearance_and_the_flanks_stay():
-    teeth, rays = 8, 800
+def test_relief_lowers_head_on_tips_and_roots_where_asked_and_keeps_the_flanks():
+    teeth, rays = 8, 8000
+    grid = PolarGrid(0.0, 2 * np.pi, rays)
     j = np.arange(rays)
-    # trapezoid teeth: bottom 90 mm, tips 95 mm, straight flanks between
+    # trapezoid teeth: bottom 90 mm, tips 95 mm, steep flanks between (5 mm over 42 rays:
+    # their normals lean ~60 deg from the radius)
     phase = np.mod(j, rays // teeth) / (rays // teeth)
-    radii = 90.0 + 5.0 * np.clip(4.0 * np.minimum(phase, 1.0 - phase) * 2.0 - 1.0, 0.0, 1.0)
-    out = deepened_spaces(radii, teeth, 0.5, 0.25)
-    bottom = radii == radii.min()
-    assert np.allclose(out[bottom], 89.5)
-    assert np.array_equal(out[radii > 90.25], radii[radii > 90.25])   # above the band: as carved
-    assert np.all(out <= radii) and np.all(np.diff(out[: rays // teeth // 2]) >= -1e-12)
-    assert np.array_equal(deepened_spaces(radii, teeth, 0.0, 0.25), radii)
+    radii = 90.0 + 5.0 * np.clip(24.0 * np.minimum(phase, 1.0 - phase) - 3.0, 0.0, 1.0)
+    notch = grid.angles[rays // teeth // 2]             # the middle of the first tooth's tip
+    region = notch_weight(grid, np.array([notch]), 2 * np.pi / teeth)
+    out = head_on_relief(radii, grid, region, 0.5, np.radians(35))
+    near = np.abs(grid.angles - notch) < 0.5 * np.pi / teeth
+    before = np.abs(radii - np.roll(radii, 1)) > 1e-12
+    after = np.abs(np.roll(radii, -1) - radii) > 1e-12
+    flat, flank = ~before & ~after, before & after                    # rays off the edges
+    assert np.allclose(out[near & flat], radii[near & flat] - 0.5)       # tip and roots lowered
+    assert np.allclose(out[flank], radii[flank])                        # flanks as carved
+    far = np.abs(np.mod(grid.angles - notch + np.pi, 2 * np.pi) - np.pi) > 2 * np.pi / teeth
+    assert np.array_equal(out[far], radii[far])                         # away from the notch: as is
+    assert np.all(out <= radii)
 
 
 def test_clearance_option_deepens_the_written_wheel_and_is_reported(cli, tmp_path):

@@ -284,7 +284,7 @@ def _slice_lines(sliced: dict | None) -> list[str]:
 
 def _gears_lines(pair, record: dict) -> list[str]:
     """Both parts, the generated teeth and the meshing check's figures of both flanks."""
-    from wheelstep_cli.parts.mesh_check import flank_line
+    from wheelstep_cli.parts.mesh_check import flank_line, mounting_line
 
     lines = []
     for part in (pair.pinion, pair.wheel):
@@ -306,6 +306,8 @@ def _gears_lines(pair, record: dict) -> list[str]:
                  f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
                  f"hub speed ripple {record['law_hub_speed_ripple_pct']:.2f} %")
     lines.extend(f"  {flank_line(side, record[side])}" for side in ("drive", "coast"))
+    if "mounting" in record:
+        lines.append(f"  {mounting_line(record['mounting'])}")
     if "tolerance" in record:
         from wheelstep_cli.parts.tolerance_cli import tolerance_lines
 

@@ -20,7 +20,7 @@ from wheelstep_cli.gears.generation.pinion import pinion_by_rack, round_tips, to
 from wheelstep_cli.gears.generation.rack import RackCutter, RackRolling
 from wheelstep_cli.gears.generation.settings import CORNER_MODES, GenerationSettings
 from wheelstep_cli.gears.generation.wheel import (Carving, backlash_split, carve_by_pinion,
-                                                  deepened_spaces)
+                                                  head_on_relief, notch_weight)
 from wheelstep_cli.gears.pitch_curves import PitchCurves, pitch_curves
 from wheelstep_cli.gears.transmission import TransmissionLaw
 
@@ -211,6 +211,34 @@ def _cut_pinion(job: _Job, corner: str) -> _GearCut:
     return _GearCut(outline, radii, grid, topping, land)
 
 
+def relief_angle(pressure_angle: float) -> float:
+    """Largest angle (rad) between a wheel surface's normal and its radius that the tip
+    clearance relief lowers: half the angle a flank's normal makes with the radius at the
+    pitch point (90 deg less the ``pressure_angle``, rad). A drive contact's normal passes
+    through the pitch point, so it leans about that far or farther (the profile angle grows
+    toward the tips; the handover contacts of the default pair lean 43-49 deg)."""
+    return 0.5 * (0.5 * np.pi - pressure_angle)
+
+
+def _relief_region(job: _Job, grid: PolarGrid, radii: np.ndarray) -> np.ndarray:
+    """Per wheel ray (0..1): how much of the tip clearance relief applies.
+
+    Carved by the pinion's tips, the wheel's space bottoms end microns below them, sloping
+    along a non-circular space, so every head-on surface below the wheel's pitch curve is
+    lowered. At a handover notch also above it: the pinion's corner teeth and corner space
+    are cut by the pivoting rack, not by the blank, and the wheel blank's concave offset
+    stands the addendum / cos(half the turn) above the notch, as deep as the pinion's
+    corner space, so tips met spaces there on the line of centres with no clearance.
+    """
+    law, curves = job.law, job.curves
+    below = (radii < blank_radii(curves.wheel, grid, 1e-6)).astype(float)
+    if not law.corners:
+        return below
+    # the pitch point for carrier angle phi sits at the wheel's body angle -phi
+    reach = job.settings.corner_relief_pitches * job.pitch / float(np.min(np.hypot(*curves.wheel.T)))
+    return np.maximum(below, notch_weight(grid, -np.asarray(law.corners, dtype=float), reach))
+
+
 def _cut_wheel(job: _Job, pinion_outline: np.ndarray, distance: float) -> _GearCut:
     """The wheel carved by ``pinion_outline`` rolling at ``distance`` mm, widened by the play, topped."""
     law, curves, s = job.law, job.curves, job.settings
@@ -234,9 +262,8 @@ def _cut_wheel(job: _Job, pinion_outline: np.ndarray, distance: float) -> _GearC
         closer = replace(carving, distance=distance - s.mount_tolerance)
         radii = np.minimum(radii, carve_by_pinion(law, pinion_outline, grid, closer))
     _require_no_gaps(radii, job.pinion_teeth)
-    # carved by the pinion's tips the spaces end microns below them: deepen their bottoms
-    radii = deepened_spaces(radii, job.per_period, job.cutter.clearance * job.module,
-                            s.clearance_band * job.cutter.clearance * job.module)
+    radii = head_on_relief(radii, grid, _relief_region(job, grid, radii),
+                           job.cutter.clearance * job.module, relief_angle(job.cutter.pressure_angle))
     radii, topping, land = top_or_refuse(GearBody("wheel", grid, curves.wheel, blank), radii,
                                          job.cutter, job.limits)
     return _GearCut(outline_from_radii(grid, radii, law.wheel_periods), radii, grid, topping, land, play)

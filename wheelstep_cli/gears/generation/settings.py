@@ -69,9 +69,10 @@ class GenerationSettings:
     Off by default: the flanks carved closer make the pair's TE at its own distance as bad
     as being mounted that far off (benchmarks/results.md, issue 13)."""
 
-    clearance_band: float = 0.1
-    """Height (x the tip clearance) above a wheel space's bottom over which the bottom is
-    lowered by the clearance, fading to nothing (the rest of the fillet stays as carved)."""
+    corner_relief_pitches: float = 1.25
+    """Wheel arc (x the tooth pitch, dimensionless) either side of a handover notch whose
+    head-on surfaces are lowered by the tip clearance: the corner space and the corner teeth
+    either side (the last quarter tapers)."""
 
     window_pitches: float = 1.8
     """Pinion outline taken into each carving pose: at least this many pitches (dimensionless)

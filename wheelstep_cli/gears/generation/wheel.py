@@ -162,18 +162,29 @@ def widen(radii: np.ndarray, span: float, lead: float) -> np.ndarray:
     return widened
 
 
-def deepened_spaces(radii: np.ndarray, teeth: int, clearance: float, band: float) -> np.ndarray:
-    """The ray map (mm per ray, one period of ``teeth`` teeth) with its space bottoms
-    lowered by ``clearance`` mm.
+def notch_weight(grid: PolarGrid, notches: np.ndarray, half_width: float) -> np.ndarray:
+    """Per ray of ``grid``: 1 within ``half_width`` rad of a notch (body angles ``notches``,
+    rad), tapering to 0 over the last quarter of it, 0 beyond."""
+    if half_width <= 0 or len(notches) == 0:
+        return np.zeros(grid.count)
+    off = np.abs(np.mod(grid.angles[:, None] - notches[None, :] + 0.5 * grid.period, grid.period)
+                 - 0.5 * grid.period).min(axis=1)
+    return np.clip((half_width - off) / (0.25 * half_width), 0.0, 1.0)
 
-    A ray's space bottom is the least radius within half a tooth of it; rays within
-    ``band`` mm above it are lowered by ``clearance`` times (1 - height / band), so the
-    bottom drops by the clearance and the fillet above the band (where the pinion's tip
-    corner passes, and the flank it drives) stays as carved.
+
+def head_on_relief(radii: np.ndarray, grid: PolarGrid, region: np.ndarray, depth: float,
+                   max_angle: float) -> np.ndarray:
+    """The ray map (mm per ray of ``grid``) with the surfaces that face the pinion head-on
+    lowered by up to ``depth`` mm where ``region`` (per ray, 0..1) says.
+
+    A ray whose surface normal makes an angle psi with its radius is lowered by depth x
+    region x (cos psi - cos max_angle) / (1 - cos max_angle): space bottoms and tips by
+    the full depth, nothing that leans more than ``max_angle`` rad (the flanks that drive
+    stay as carved). Only material is removed.
     """
-    if clearance <= 0 or band <= 0:
+    if depth <= 0:
         return radii
-    half = max(1, len(radii) // (2 * teeth))
-    padded = np.concatenate([radii[-half:], radii, radii[:half]])
-    bottom = np.lib.stride_tricks.sliding_window_view(padded, 2 * half + 1).min(axis=1)
-    return radii - clearance * np.clip(1.0 - (radii - bottom) / band, 0.0, 1.0)
+    slope = (np.roll(radii, -1) - np.roll(radii, 1)) / (2.0 * grid.width)
+    cos_psi = radii / np.hypot(radii, slope)
+    floor = np.cos(max_angle)
+    return radii - depth * region * np.clip((cos_psi - floor) / (1.0 - floor), 0.0, 1.0)

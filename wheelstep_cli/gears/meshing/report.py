@@ -41,6 +41,7 @@ class MeshingReport:
     period: float
     teeth: int
     track: Track
+    mounting: dict | None = None   # how much closer it may be mounted (parts.mesh_check), mm
 
     @cached_property
     def drive(self) -> FlankFigures:
@@ -134,7 +135,7 @@ class MeshingReport:
         arcmin = 60.0 * 180.0 / np.pi
         law_ripple = _peak_to_peak(self.hub_speed_law) / float(np.mean(self.hub_speed_law))
         drive = _flank_dict(self.drive, self.transmission_error * arcmin)
-        return {
+        summary = {
             "distance_mm": self.distance,
             "samples": int(len(self.theta)),
             "period_deg": float(np.degrees(self.period)),
@@ -159,6 +160,9 @@ class MeshingReport:
             "clear_poses": int(np.count_nonzero(self.clear)),
             "law_hub_speed_ripple_pct": float(100.0 * law_ripple),
         }
+        if self.mounting is not None:
+            summary["mounting"] = dict(self.mounting)
+        return summary
 
 
 def _flank_dict(figures: FlankFigures, te_arcmin: np.ndarray) -> dict:
