@@ -222,12 +222,76 @@ def _chamfered(section, thickness: float, chamfer: float):
         if layer.is_empty():
             raise DesignError("chamfer", chamfer, "removes a whole tooth or web")
         z = chamfer * k / steps
-        prism = m3d.Manifold.extrude(layer, thickness - 2.0 * z).translate((0.0, 0.0, z))
-        body = prism if body is None else body + prism
         volume += (layer.area() - previous) * (thickness - 2.0 * z)
         previous = layer.area()
         layers.append((layer, z))
+    body = _staircase(layers, thickness)
+    if body is None:
+        # layers whose rings the direct build cannot stitch: the union of the nested prisms
+        for layer, z in layers:
+            prism = m3d.Manifold.extrude(layer, thickness - 2.0 * z).translate((0.0, 0.0, z))
+            body = prism if body is None else body + prism
     return body, volume, layers
+
+
+def _staircase(layers, thickness: float):
+    """The union of the nested prisms of :func:`_chamfered` built directly as one mesh (the
+    boolean union of large outlines costs seconds): ``layers`` [(section, z)] from the most
+    inset (z = 0) to the full section; layer k is the body's section from z_k to z_(k+1) and,
+    mirrored, below the top. Its surface is the bottom and top caps of layer 0, each layer's
+    walls over its two heights, and at each step the ring between two layers, all on the
+    layers' own vertices. None when a layer's rings cannot be read (then the caller unites)."""
+    import manifold3d as m3d
+
+    rings = [[np.asarray(r, dtype=np.float64) for r in layer.to_polygons()] for layer, _ in layers]
+    if any(not rs or any(len(r) < 3 for r in rs) for rs in rings):
+        return None
+    steps = [z for _, z in layers]
+    points, triangles, count = [], [], 0
+
+    def add(xy: np.ndarray, z: float) -> int:
+        nonlocal count
+        points.append(np.column_stack([xy, np.full(len(xy), z)]))
+        count += len(xy)
+        return count - len(xy)
+
+    def level(k: int, z: float) -> list[np.ndarray]:
+        """Vertex indices of each ring of layer k placed at height z."""
+        return [add(r, z) + np.arange(len(r)) for r in rings[k]]
+
+    def cap(ring_sets: list[list[np.ndarray]], index_sets, up: bool) -> None:
+        flat = [r for rs in ring_sets for r in rs]
+        tri = np.asarray(m3d.triangulate(flat), dtype=np.int64)
+        lookup = np.concatenate([i for ids in index_sets for i in ids])
+        tri = lookup[tri]
+        triangles.append(tri if up else tri[:, ::-1])
+
+    def walls(low: list[np.ndarray], high: list[np.ndarray]) -> None:
+        for a, b in zip(low, high):
+            a1, b1 = np.roll(a, -1), np.roll(b, -1)
+            # rings run CCW round material: outward faces are (a, a1, b1), (a, b1, b)
+            triangles.append(np.column_stack([a, a1, b1]))
+            triangles.append(np.column_stack([a, b1, b]))
+
+    top = len(layers) - 1
+    # layer k spans [steps[k], steps[k+1]] at the bottom and the mirror at the top; the full
+    # layer spans [steps[top], thickness - steps[top]]
+    spans = [(k, steps[k], steps[k + 1]) for k in range(top)] + [(top, steps[top], thickness - steps[top])] + \
+            [(k, thickness - steps[k + 1], thickness - steps[k]) for k in reversed(range(top))]
+    placed = [(k, level(k, z0), level(k, z1)) for k, z0, z1 in spans]
+    cap([rings[0]], [placed[0][1]], up=False)
+    cap([rings[0]], [placed[-1][2]], up=True)
+    for _, low, high in placed:
+        walls(low, high)
+    for (k, _, high), (k1, low1, _) in zip(placed, placed[1:]):
+        if k1 > k:      # stepping out: the ring between layer k1 and layer k faces down
+            cap([rings[k1], [r[::-1] for r in rings[k]]], [low1, [i[::-1] for i in high]], up=False)
+        else:           # stepping in: the ring between layer k and layer k1 faces up
+            cap([rings[k], [r[::-1] for r in rings[k1]]], [high, [i[::-1] for i in low1]], up=True)
+    mesh = m3d.Mesh(vert_properties=np.ascontiguousarray(np.concatenate(points), dtype=np.float32),
+                    tri_verts=np.ascontiguousarray(np.concatenate(triangles), dtype=np.uint32))
+    body = m3d.Manifold(mesh)
+    return body if body.status() == m3d.Error.NoError and not body.is_empty() else None
 
 
 def section_rings(part: Part, z: float) -> list[np.ndarray]:

@@ -253,7 +253,7 @@ def gcode_sections(gcode_files: list[Path], pair, samples: int, window: float | 
     from dataclasses import replace
 
     from wheelstep_cli.gears.meshing import MeshingSettings
-    from wheelstep_cli.parts.gear_pair import design_law, generation_law
+    from wheelstep_cli.parts.gear_pair import design_law, generation_law, installed_distance
     from wheelstep_cli.parts.tolerance import NOMINAL, SectionedPair, check_case, mid_play
 
     design_law(pair.spec)
@@ -262,7 +262,7 @@ def gcode_sections(gcode_files: list[Path], pair, samples: int, window: float | 
     _, blended = generation_law(pair.spec)
     settings = replace(MeshingSettings(), samples=samples, window=window)
     design = SectionedPair(designs["pinion"][0], designs["wheel"][0], blended,
-                           float(pair.spec.install_distance), int(pair.spec.z))
+                           installed_distance(pair.spec, blended), int(pair.spec.z))
     nominal = check_case(design, NOMINAL, settings)
     printed = mid_play(replace(design, pinion=found["pinion"].outline, wheel=found["wheel"].outline),
                        nominal)
@@ -283,7 +283,7 @@ def run_gcode_check(gcode_files: list[Path], pair, samples: int, window: float |
     source = ("external perimeters of the mid-height layer, offset outward by half their "
               "extrusion width, fitted into each gear's frame; poses start in the middle of the "
               "designed pair's play (SPEC §11)")
-    summary = {"pair": pair.pair, "distance_mm": pair.spec.install_distance,
+    summary = {"pair": pair.pair, "distance_mm": read.design.distance,
                "pinion": f"{read.sources[0]}:pinion", "wheel": f"{read.sources[1]}:wheel",
                "law": {**law_record(pair.spec, law), "blend_deg": pair.spec.blend}, **report.to_dict(),
                "gcode": {"source": source, "pinion": read.records["pinion"],

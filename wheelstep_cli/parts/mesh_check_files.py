@@ -51,7 +51,7 @@ def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
     check.validate()
     outlines = (read_outline(check.pinion, "pinion", default_name="pinion"),
                 read_outline(check.wheel, "wheel", default_name="wheel"))
-    require_a_pair(outlines, check.spec.install_distance, check.wheel)
+    require_a_pair(outlines, installed_distance(check.spec), check.wheel)
     return outlines
 
 
