@@ -40,3 +40,21 @@ def test_a_flipped_triangle_is_watertight_but_inconsistently_wound(plate):
 def test_a_duplicated_triangle_is_refused(plate):
     report = _check(plate, np.vstack([plate.faces, plate.faces[:1]]))
     assert not report.watertight and not report.ok
+
+
+def test_vertices_that_coincide_once_written_are_merged_as_a_strict_reader_merges(plate):
+    """A vertex moved onto its neighbour once written (float32, as the STL stores it) makes
+    the triangles between them zero-area: the check reads the mesh as written and fails it,
+    while the same mesh with every vertex doubled (split but coincident) passes."""
+    far = Part("plate", plate.vertices + 100.0, plate.faces, plate.expected_volume)
+    assert check_part(far).watertight
+    a, b = plate.faces[0][:2]
+    collapsed = far.vertices.copy()
+    collapsed[b] = np.float32(collapsed[a]) + np.float32(1e-6) * (collapsed[a] > 0)
+    assert np.all(np.float32(collapsed[b]) == np.float32(collapsed[a]))
+    assert not check_part(Part("plate", collapsed, far.faces, far.expected_volume)).watertight
+    n = len(far.vertices)
+    doubled_faces = far.faces.copy()
+    doubled_faces[::2] += n
+    doubled = Part("plate", np.vstack([far.vertices, far.vertices]), doubled_faces, far.expected_volume)
+    assert check_part(doubled).watertight and check_part(doubled).winding_consistent

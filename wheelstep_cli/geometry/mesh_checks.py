@@ -54,10 +54,12 @@ VOLUME_TOLERANCE = 1e-3
 def check_part(part: Part) -> MeshReport:
     """Check a part is printable: watertight, consistently wound, expected positive volume.
 
-    Watertight: every undirected edge is shared by exactly two triangles.
-    Consistent winding: those two triangles traverse it in opposite directions.
+    Checked as a strict reader reads the written file: vertices that coincide once written
+    (float32, as STL stores them) are merged first, and a triangle that then repeats a vertex
+    (zero area) fails the check. Watertight: every undirected edge is shared by exactly two
+    triangles. Consistent winding: those two triangles traverse it in opposite directions.
     """
-    faces = np.asarray(part.faces, dtype=np.int64)
+    faces = _welded(part.vertices, np.asarray(part.faces, dtype=np.int64))
     start, end = faces.ravel(), np.roll(faces, -1, axis=1).ravel()
     # an edge (a, b) as the one integer a * n + b: a flat sort is much cheaper than a row-wise unique
     n = int(faces.max()) + 1 if len(faces) else 1
@@ -67,10 +69,25 @@ def check_part(part: Part) -> MeshReport:
     return MeshReport(
         watertight=watertight,
         winding_consistent=winding,
-        volume=mesh_volume(part.vertices, faces),
+        volume=mesh_volume(part.vertices, part.faces),
         expected_volume=part.expected_volume,
         triangles=len(faces),
     )
+
+
+def _welded(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """``faces`` re-indexed onto the distinct vertices as written (float32 coordinates); a
+    triangle left with a repeated vertex is given an index no edge shares, so it fails."""
+    if len(faces) == 0:
+        return faces
+    written = np.ascontiguousarray(np.asarray(vertices, dtype=np.float32)[:, :3])
+    _, index = np.unique(written.view(np.dtype((np.void, 12))).ravel(), return_inverse=True)
+    welded = index.ravel()[faces]
+    degenerate = (welded[:, 0] == welded[:, 1]) | (welded[:, 1] == welded[:, 2]) | (welded[:, 0] == welded[:, 2])
+    if np.any(degenerate):
+        welded[degenerate, 0] = -1 - np.arange(int(degenerate.sum()))
+        welded = welded - welded.min()
+    return welded
 
 
 def _uses(keys: np.ndarray) -> np.ndarray:

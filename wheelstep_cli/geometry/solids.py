@@ -91,7 +91,9 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
     section = m3d.CrossSection([np.ascontiguousarray(p, dtype=np.float64) for p in polygons],
                                m3d.FillRule.Positive)
     if chamfer > 0:
-        body, volume, layers = _chamfered(section, thickness, chamfer)
+        # a hub's bore meets the staircase's bore walls face to face, and its boolean with the
+        # direct mesh leaves edges of four faces once written in float32: hubbed plates unite
+        body, volume, layers = _chamfered(section, thickness, chamfer, direct=hub[0] <= 0)
     else:
         body, volume, layers = m3d.Manifold.extrude(section, thickness), area * thickness, \
             [(section, 0.0)]
@@ -203,12 +205,13 @@ def _hub_ring(outline: np.ndarray, hole: np.ndarray | None, diameter: float):
 CHAMFER_STEP = 0.1
 
 
-def _chamfered(section, thickness: float, chamfer: float):
+def _chamfered(section, thickness: float, chamfer: float, direct: bool = True):
     """The section extruded by ``thickness`` mm with its top and bottom edges chamfered 45 deg
     by ``chamfer`` mm, its volume (mm3) and its layers [(section, z)]. The chamfer is a
     staircase of steps no taller than CHAMFER_STEP (finer than any printed layer, so the print
     is the slope); the steps are nested prisms (each layer's section extruded from z to
-    thickness - z) that overlap in volume, so their union is one closed body."""
+    thickness - z) that overlap in volume, so their union is one closed body. ``direct``:
+    built as one mesh by :func:`_staircase` (else, and where that fails, as the union)."""
     import manifold3d as m3d
 
     if not 2.0 * chamfer < thickness:
@@ -225,7 +228,7 @@ def _chamfered(section, thickness: float, chamfer: float):
         volume += (layer.area() - previous) * (thickness - 2.0 * z)
         previous = layer.area()
         layers.append((layer, z))
-    body = _staircase(layers, thickness)
+    body = _staircase(layers, thickness) if direct else None
     if body is None:
         # layers whose rings the direct build cannot stitch: the union of the nested prisms
         for layer, z in layers:
