@@ -17,6 +17,7 @@ import pytest
 from tests.helpers.clicheck import error_line
 from tests.helpers.files import SMALL_BATCH as SMALL, line_of, write
 from tests.helpers.meshcheck import read_3mf_strict
+from wheelstep_cli.geometry.planar import tooth_heights_lost
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "shop-floor.yaml"
@@ -300,28 +301,6 @@ def test_bad_profile_is_located_in_the_profile(cli, tmp_path, file, text, replac
     assert result.exit_code == 2
     assert expect.format(profile=profile) in result.stderr
     assert not (tmp_path / "out").exists()
-
-
-def tooth_heights_lost(outline: np.ndarray, module: float, line_width: float) -> np.ndarray:
-    """Per tooth: how much height (mm) it loses when every feature narrower than ``line_width``
-    is removed (a morphological opening, what extrusion lines of that width can fill)."""
-    import shapely
-
-    gear = shapely.Polygon(outline)
-    body = gear.buffer(-1.2 * module).buffer(1.2 * module)  # the gear with its teeth taken off
-    opened = gear.buffer(-line_width / 2).buffer(line_width / 2)
-    teeth = gear.difference(body)
-    lost = []
-    for tooth in getattr(teeth, "geoms", [teeth]):
-        if tooth.area < 0.05 * module**2:
-            continue  # slivers where the opened body differs, not teeth
-        height = shapely.distance(body.boundary, shapely.points(np.asarray(tooth.exterior.coords))).max()
-        kept = opened.intersection(tooth)
-        rings = [np.asarray(g.exterior.coords) for g in getattr(kept, "geoms", [kept])
-                 if g.geom_type == "Polygon" and not g.is_empty]
-        left = shapely.distance(body.boundary, shapely.points(np.vstack(rings))).max() if rings else 0.0
-        lost.append(height - left)
-    return np.array(lost)
 
 
 @pytest.fixture(scope="module")

@@ -4,6 +4,7 @@ on the meshes as written, and refuses an interfering pair like any failing entry
 from __future__ import annotations
 
 import json
+import re
 
 from tests.helpers.files import SMALL_BATCH, line_of, write
 
@@ -73,16 +74,22 @@ SOURCE_Z24 = """\
 
 
 def test_pair_outside_the_bounds_is_refused_like_gears_with_its_remedy(cli, tmp_path):
-    """The source design at z 24, which `gears` refuses by the SPEC §10 bounds (remedy
-    --z 90), fails alone in a batch: named with its line, the remedy as override keys, no
-    report or plate of it, exit 1; the other entries are written."""
+    """The source design at z 24, which `gears` refuses by the SPEC §10 bounds with a remedy,
+    fails alone in a batch with the same reason and remedy (as override keys): named with its
+    line, no report or plate of it, exit 1; the other entries are written."""
+    alone = cli("gears", "--z", "24", "--thickness", "2", "--printer", "fdm-0.4-pla", "--dry-run")
+    assert alone.exit_code == 2
+    found = re.search(r"the pair would mesh outside the bounds \((.*)\); nothing written; "
+                      r"use --z (\d+) --backlash ([\d.]+)", alone.stderr)
+    reason, z, backlash = found.groups()
     batch = write(tmp_path / "b.yaml", SMALL_BATCH + SOURCE_Z24)
     out = tmp_path / "out"
     result = cli("batch", batch, "--out", out, "--jobs", "1")
     assert result.exit_code == 1
     line = line_of(batch, "z: 24")
-    assert f"source24 ({batch}:{line}): z = 24: the pair would mesh outside the bounds (" in result.stderr
-    assert "F'i" in result.stderr and "use overrides {z: 90" in result.stderr
+    assert f"source24 ({batch}:{line}): z = 24: the pair would mesh outside the bounds ({reason})" \
+        in result.stderr
+    assert f"use overrides {{z: {z}, backlash: {backlash}}}" in result.stderr
     assert sorted(p.name for p in (out / "reports").iterdir()) == ["pair.json", "shoes.json"]
     manifest = json.loads((out / "manifest.json").read_text())
     entries = {e["name"]: e for e in manifest["entries"]}

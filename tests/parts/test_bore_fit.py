@@ -18,7 +18,7 @@ def test_every_preset_states_hole_shrink_and_its_compensation_widens_the_bores(n
     printer = load_printer_profile(name)
     assert printer.band is not None and printer.band.hole_shrink > 0
     design = GearPairSpec()
-    printed = printed_spec(KINDS["gear-pair"], design, printer.hole_compensation, printer.tooth_clearance)
+    printed = printed_spec(KINDS["gear-pair"], design, printer)
     assert printed.bore == pytest.approx(design.bore + printer.hole_compensation)
     assert printed.key_width is None or printed.key_width == pytest.approx(
         (design.key_width or 0) + printer.hole_compensation)
@@ -27,7 +27,7 @@ def test_every_preset_states_hole_shrink_and_its_compensation_widens_the_bores(n
 def test_the_bore_fit_runs_from_compensation_minus_shrink_to_the_compensation():
     printer = load_printer_profile("fdm-0.4-pla")
     design = GearPairSpec()
-    printed = printed_spec(KINDS["gear-pair"], design, printer.hole_compensation, printer.tooth_clearance)
+    printed = printed_spec(KINDS["gear-pair"], design, printer)
     pair = SimpleNamespace(spec=printed, printing=Printing(printer, design))
     fit = bore_fit(pair, printer.band)
     assert fit["shaft_mm"] == 8.0 and fit["drawn_mm"] == pytest.approx(8.2)

@@ -157,7 +157,7 @@ def _model_part(zf: zipfile.ZipFile) -> str:
 
 def read_outline(spec: str, param: str, default_name: str | None = None) -> np.ndarray:
     """Read a gear mesh and return its outline (N, 2), mm, counter-clockwise, at the middle of
-    its tooth zone (geometry.solids.tooth_zone_middle: a hub above the teeth is not cut)."""
+    its tooth zone (geometry.mesh_checks.tooth_zone_middle: a hub above the teeth is not cut)."""
     vertices, faces = read_mesh(spec, param, default_name)
     try:
         return section_outline(vertices, faces, param)

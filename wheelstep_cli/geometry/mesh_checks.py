@@ -125,3 +125,19 @@ def require_printable(part: Part) -> MeshReport:
             f"winding={report.winding_consistent}, volume={report.volume:.1f} mm3, "
             f"expected {report.expected_volume:.1f} mm3)")
     return report
+
+
+#: Vertices within this distance (mm) of the farthest one from the axis are tooth tips.
+TIP_BAND = 0.01
+
+
+def tooth_zone_middle(vertices: np.ndarray) -> float:
+    """Height (mm) half-way up a gear mesh's tooth zone, the part in its own frame (axis along
+    z through x = y = 0): the middle of the heights of the vertices within TIP_BAND of the
+    greatest distance from the axis, the tooth tips' vertical edges. A hub or boss, nearer
+    the axis, does not move it; chamfers and an elephant-foot inset draw the tips in, so it
+    stays in the straight part of the teeth."""
+    vertices = np.asarray(vertices, dtype=np.float64)
+    radius = np.hypot(vertices[:, 0], vertices[:, 1])
+    tips = vertices[radius >= radius.max() - TIP_BAND, 2]
+    return 0.5 * float(tips.min() + tips.max())

@@ -281,11 +281,11 @@ def tooth_heights_lost(outline: np.ndarray, module: float, line_width: float) ->
     # the gear with its teeth taken off (their tips lie within 1.2 module of the body)
     body = gear.buffer(-1.2 * module).buffer(1.2 * module)
     opened = gear.buffer(-line_width / 2).buffer(line_width / 2)
-    teeth = gear.difference(body)
+    pieces = [t for t in getattr(gear.difference(body), "geoms", [gear.difference(body)])
+              # slivers where the opened body differs from the outline are not teeth
+              if t.area >= 0.05 * module**2]
     lost = []
-    for tooth in getattr(teeth, "geoms", [teeth]):
-        if tooth.area < 0.05 * module**2:
-            continue   # slivers where the opened body differs from the outline, not teeth
+    for tooth in _whole_teeth(pieces, 0.05 * module):
         height = shapely.distance(body.boundary, shapely.points(np.asarray(tooth.exterior.coords))).max()
         kept = opened.intersection(tooth)
         rings = [np.asarray(g.exterior.coords) for g in getattr(kept, "geoms", [kept])
@@ -293,3 +293,31 @@ def tooth_heights_lost(outline: np.ndarray, module: float, line_width: float) ->
         left = shapely.distance(body.boundary, shapely.points(np.vstack(rings))).max() if rings else 0.0
         lost.append(height - left)
     return np.array(lost)
+
+
+def _whole_teeth(pieces: list, gap: float) -> list:
+    """The tooth pieces (shapely polygons) with those nearer than ``gap`` mm to each other
+    joined: a tooth whose head dips to the cut (a relieved corner tooth) is one tooth, not two."""
+    joined: list = []
+    for piece in sorted(pieces, key=lambda t: np.arctan2(t.centroid.y, t.centroid.x)):
+        if joined and joined[-1].distance(piece) < gap:
+            joined[-1] = joined[-1].buffer(gap).union(piece.buffer(gap)).buffer(-gap)
+        else:
+            joined.append(piece)
+    if len(joined) > 1 and joined[-1].distance(joined[0]) < gap:
+        joined[0] = joined[0].buffer(gap).union(joined.pop().buffer(gap)).buffer(-gap)
+    return [t if t.geom_type == "Polygon" else max(t.geoms, key=lambda g: g.area) for t in joined]
+
+
+def drop_collinear(ring: np.ndarray, tol: float = 1e-5) -> np.ndarray:
+    """The ring without the points lying on the segment between their neighbours (within
+    ``tol`` mm). A section of an extruded wall cuts every side quad's diagonal at its
+    midpoint, doubling the points without changing the shape; the meshing check costs
+    in proportion to the points."""
+    prev, nxt = np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0)
+    a, b = ring - prev, nxt - ring
+    chord = np.hypot(*(nxt - prev).T)
+    off_line = np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) > tol * np.maximum(chord, 1e-300)
+    between = np.einsum("ij,ij->i", a, b) > 0.0
+    keep = off_line | ~between
+    return ring[keep] if np.count_nonzero(keep) >= 3 else ring

@@ -6,9 +6,10 @@ from __future__ import annotations
 import numpy as np
 
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.geometry.mesh_checks import Part
-from wheelstep_cli.geometry.planar import (check_outline, group_rings_by_shell, inset_area_lost,
-                                          min_radius, signed_area)
+from wheelstep_cli.geometry.mesh_checks import Part, tooth_zone_middle
+from wheelstep_cli.geometry.staircase import staircase_mesh
+from wheelstep_cli.geometry.planar import (check_outline, drop_collinear, group_rings_by_shell,
+                                          inset_area_lost, min_radius, signed_area)
 
 
 def circle(radius: float, segments: int) -> np.ndarray:
@@ -238,62 +239,15 @@ def _chamfered(section, thickness: float, chamfer: float, direct: bool = True):
 
 
 def _staircase(layers, thickness: float):
-    """The union of the nested prisms of :func:`_chamfered` built directly as one mesh (the
-    boolean union of large outlines costs seconds): ``layers`` [(section, z)] from the most
-    inset (z = 0) to the full section; layer k is the body's section from z_k to z_(k+1) and,
-    mirrored, below the top. Its surface is the bottom and top caps of layer 0, each layer's
-    walls over its two heights, and at each step the ring between two layers, all on the
-    layers' own vertices. None when a layer's rings cannot be read (then the caller unites)."""
+    """:func:`_chamfered`'s nested prisms as one solid (geometry.staircase); None when it
+    cannot be built closed (then the caller unites them)."""
     import manifold3d as m3d
-
     rings = [[np.asarray(r, dtype=np.float64) for r in layer.to_polygons()] for layer, _ in layers]
     if any(not rs or any(len(r) < 3 for r in rs) for rs in rings):
         return None
-    steps = [z for _, z in layers]
-    points, triangles, count = [], [], 0
-
-    def add(xy: np.ndarray, z: float) -> int:
-        nonlocal count
-        points.append(np.column_stack([xy, np.full(len(xy), z)]))
-        count += len(xy)
-        return count - len(xy)
-
-    def level(k: int, z: float) -> list[np.ndarray]:
-        """Vertex indices of each ring of layer k placed at height z."""
-        return [add(r, z) + np.arange(len(r)) for r in rings[k]]
-
-    def cap(ring_sets: list[list[np.ndarray]], index_sets, up: bool) -> None:
-        flat = [r for rs in ring_sets for r in rs]
-        tri = np.asarray(m3d.triangulate(flat), dtype=np.int64)
-        lookup = np.concatenate([i for ids in index_sets for i in ids])
-        tri = lookup[tri]
-        triangles.append(tri if up else tri[:, ::-1])
-
-    def walls(low: list[np.ndarray], high: list[np.ndarray]) -> None:
-        for a, b in zip(low, high):
-            a1, b1 = np.roll(a, -1), np.roll(b, -1)
-            # rings run CCW round material: outward faces are (a, a1, b1), (a, b1, b)
-            triangles.append(np.column_stack([a, a1, b1]))
-            triangles.append(np.column_stack([a, b1, b]))
-
-    top = len(layers) - 1
-    # layer k spans [steps[k], steps[k+1]] at the bottom and the mirror at the top; the full
-    # layer spans [steps[top], thickness - steps[top]]
-    spans = [(k, steps[k], steps[k + 1]) for k in range(top)] + [(top, steps[top], thickness - steps[top])] + \
-            [(k, thickness - steps[k + 1], thickness - steps[k]) for k in reversed(range(top))]
-    placed = [(k, level(k, z0), level(k, z1)) for k, z0, z1 in spans]
-    cap([rings[0]], [placed[0][1]], up=False)
-    cap([rings[0]], [placed[-1][2]], up=True)
-    for _, low, high in placed:
-        walls(low, high)
-    for (k, _, high), (k1, low1, _) in zip(placed, placed[1:]):
-        if k1 > k:      # stepping out: the ring between layer k1 and layer k faces down
-            cap([rings[k1], [r[::-1] for r in rings[k]]], [low1, [i[::-1] for i in high]], up=False)
-        else:           # stepping in: the ring between layer k and layer k1 faces up
-            cap([rings[k], [r[::-1] for r in rings[k1]]], [high, [i[::-1] for i in low1]], up=True)
-    mesh = m3d.Mesh(vert_properties=np.ascontiguousarray(np.concatenate(points), dtype=np.float32),
-                    tri_verts=np.ascontiguousarray(np.concatenate(triangles), dtype=np.uint32))
-    body = m3d.Manifold(mesh)
+    points, triangles = staircase_mesh(rings, [z for _, z in layers], thickness, m3d.triangulate)
+    body = m3d.Manifold(m3d.Mesh(np.ascontiguousarray(points, dtype=np.float32),
+                                 np.ascontiguousarray(triangles, dtype=np.uint32)))
     return body if body.status() == m3d.Error.NoError and not body.is_empty() else None
 
 
@@ -442,35 +396,5 @@ def section_outline(vertices: np.ndarray, faces: np.ndarray, param: str,
     if not rings:
         raise DesignError(param, "mesh", f"has no material at z = {z:g} mm (the middle of its tooth zone)")
     areas = [signed_area(r) for r in rings]
-    outer = _drop_collinear(rings[int(np.argmax(np.abs(areas)))])
+    outer = drop_collinear(rings[int(np.argmax(np.abs(areas)))])
     return outer if signed_area(outer) > 0 else outer[::-1]
-
-
-#: Vertices within this distance (mm) of the farthest one from the axis are tooth tips.
-TIP_BAND = 0.01
-
-
-def tooth_zone_middle(vertices: np.ndarray) -> float:
-    """Height (mm) half-way up a gear mesh's tooth zone, the part in its own frame (axis along
-    z through x = y = 0): the middle of the heights of the vertices within TIP_BAND of the
-    greatest distance from the axis, the tooth tips' vertical edges. A hub or boss, nearer
-    the axis, does not move it; chamfers and an elephant-foot inset draw the tips in, so it
-    stays in the straight part of the teeth."""
-    vertices = np.asarray(vertices, dtype=np.float64)
-    radius = np.hypot(vertices[:, 0], vertices[:, 1])
-    tips = vertices[radius >= radius.max() - TIP_BAND, 2]
-    return 0.5 * float(tips.min() + tips.max())
-
-
-def _drop_collinear(ring: np.ndarray, tol: float = 1e-5) -> np.ndarray:
-    """The ring without the points lying on the segment between their neighbours (within
-    ``tol`` mm). A section of an extruded wall cuts every side quad's diagonal at its
-    midpoint, doubling the points without changing the shape; the meshing check costs
-    in proportion to the points."""
-    prev, nxt = np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0)
-    a, b = ring - prev, nxt - ring
-    chord = np.hypot(*(nxt - prev).T)
-    off_line = np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) > tol * np.maximum(chord, 1e-300)
-    between = np.einsum("ij,ij->i", a, b) > 0.0
-    keep = off_line | ~between
-    return ring[keep] if np.count_nonzero(keep) >= 3 else ring

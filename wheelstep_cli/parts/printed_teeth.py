@@ -90,8 +90,7 @@ def fewer_teeth(pair, design, printer, width: float) -> int | None:
         z = design.z - step * law.pinion_periods
         if z < 6:
             return None
-        printed = printed_spec(KINDS["gear-pair"], design.model_copy(update={"z": z}),
-                               printer.hole_compensation, printer.tooth_clearance)
+        printed = printed_spec(KINDS["gear-pair"], design.model_copy(update={"z": z}), printer)
         outline, module = _pinion(printed)
         if thin_teeth(outline, module, width, law.pinion_periods) is None:
             return z
