@@ -31,14 +31,17 @@ def _peak_kb() -> int:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 
 
-def measure(plan, workers: int, out: Path) -> dict:
-    """Designs per minute and memory peaks (MB) of the sweep on ``workers`` local workers."""
+def measure(plan, workers: int, out: Path, threads: int | None = None) -> dict:
+    """Designs per minute and memory peaks (MB) of the sweep on ``workers`` local workers, each
+    with ``threads`` threads of its own (None: the cores shared between them, as sweep does)."""
     from distributed import Client, LocalCluster
 
+    from wheelstep_cli.batch.cluster import worker_env
     from wheelstep_cli.batch.sweep_run import run_sweep
 
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as cluster, Client(cluster) as client:
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                      env=worker_env(workers) if threads is None else
+                      {k: str(threads) for k in worker_env(workers)}) as cluster, Client(cluster) as client:
         start = time.perf_counter()
         outcome = run_sweep(plan, out, client)
         wall = time.perf_counter() - start
@@ -53,13 +56,15 @@ def main() -> None:
 
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--points", type=int, default=8)
+    parser.add_argument("--threads", type=int, default=None,
+                        help="threads per worker (default: the cores shared between the workers)")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         file = Path(tmp) / "sweep.yaml"
         file.write_text(sweep_text(args.points))
         plan = load_sweep(file)
         print(f"load average before: {os.getloadavg()}")
-        runs = [measure(plan, workers, Path(tmp) / f"out-{workers}") for workers in (1, 2)]
+        runs = [measure(plan, workers, Path(tmp) / f"out-{workers}", args.threads) for workers in (1, 2)]
         print(f"load average after: {os.getloadavg()}")
     for run in runs:
         print(f"{run['workers']} worker(s): {run['designs']} designs ({run['failures']} refused or "

@@ -18,7 +18,8 @@ RETRIES = 3
 @contextlib.contextmanager
 def dask_client(scheduler: str | None, workers: int = 0, option: str = "scheduler"):
     """A dask.distributed Client: of ``scheduler`` (or DASK_SCHEDULER_ADDRESS) when given,
-    else of a local cluster of ``workers`` processes (0: one per CPU core), 1 thread each.
+    else of a local cluster of ``workers`` processes (0: one per CPU core), 1 task thread each,
+    the cores' threads shared between them (:func:`worker_env`).
     An unreachable scheduler is a DesignError naming ``option``."""
     from distributed import Client, LocalCluster
 
@@ -28,9 +29,16 @@ def dask_client(scheduler: str | None, workers: int = 0, option: str = "schedule
             yield client
         return
     count = workers or os.cpu_count() or 1
-    with LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as cluster, Client(cluster) as client:
+    with LocalCluster(n_workers=count, threads_per_worker=1, processes=True, dashboard_address=None,
+                      env=worker_env(count)) as cluster, Client(cluster) as client:
         yield client
+
+
+def worker_env(workers: int) -> dict[str, str]:
+    """Environment of each of ``workers`` local worker processes: the cores shared between
+    them (the tooth generator's threads and BLAS's), so that they do not oversubscribe."""
+    share = str(max(1, (os.cpu_count() or 1) // workers))
+    return {"WHEELSTEP_THREADS": share, "OPENBLAS_NUM_THREADS": share, "OMP_NUM_THREADS": share}
 
 
 def _connect(address: str, option: str):

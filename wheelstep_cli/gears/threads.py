@@ -13,8 +13,15 @@ from typing import Callable, Iterable, Iterator, TypeVar
 T = TypeVar("T")
 R = TypeVar("R")
 
-#: Threads that share the work (one per core, at most 4).
-THREADS = max(1, min(4, os.cpu_count() or 1))
+def _threads() -> int:
+    """One per core, at most 4; WHEELSTEP_THREADS (a whole number >= 1) sets it, so that
+    processes sharing the cores (sweep workers) do not each start one thread per core."""
+    given = os.environ.get("WHEELSTEP_THREADS", "")
+    return int(given) if given.isdigit() and int(given) >= 1 else max(1, min(4, os.cpu_count() or 1))
+
+
+#: Threads that share the work.
+THREADS = _threads()
 
 
 def thread_map(fn: Callable[[T], R], items: Iterable[T], threads: int = THREADS) -> Iterator[R]:
