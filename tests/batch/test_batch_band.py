@@ -4,30 +4,12 @@ its report and the manifest; a printer without a band is told to add one (SPEC Â
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
-from tests.helpers.files import write
-
-PROFILES = Path(__file__).resolve().parents[2] / "profiles"
-
-
-def _without_band(folder: Path) -> Path:
-    kept, skipping = [], False
-    for line in (PROFILES / "fdm-0.4-pla.yaml").read_text(encoding="utf-8").splitlines():
-        if line.startswith("band:"):
-            skipping = True
-            continue
-        if skipping and (line.startswith(" ") or line.startswith("#")):
-            continue
-        skipping = False
-        kept.append(line)
-    path = folder / "no-band.yaml"
-    path.write_text("\n".join(kept) + "\n", encoding="utf-8")
-    return path
+from tests.helpers.files import printer_profile_without_band, write
 
 
 def test_batch_tolerance_records_the_band_per_case_and_names_a_printer_without_one(cli, tmp_path):
-    bare = _without_band(tmp_path)
+    bare = printer_profile_without_band(tmp_path)
     batch = write(tmp_path / "band.yaml", "parts:\n"
                   "  - name: banded\n    kind: gear-pair\n    design: desk-demo\n    printer: fdm-0.4-pla\n"
                   f"  - name: bare\n    kind: gear-pair\n    design: desk-demo\n    printer: {bare}\n")

@@ -2,33 +2,14 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 
 from tests.helpers.clicheck import error_line
-
-PROFILES = Path(__file__).resolve().parents[2] / "profiles"
-
-
-def _without_band(tmp_path: Path) -> Path:
-    text = (PROFILES / "fdm-0.4-pla.yaml").read_text(encoding="utf-8")
-    kept, skipping = [], False
-    for line in text.splitlines():
-        if line.startswith("band:"):
-            skipping = True
-            continue
-        if skipping and (line.startswith(" ") or line.startswith("#")):
-            continue
-        skipping = False
-        kept.append(line)
-    path = tmp_path / "no-band.yaml"
-    path.write_text("\n".join(kept) + "\n", encoding="utf-8")
-    return path
+from tests.helpers.files import printer_profile_without_band
 
 
 def test_a_printer_without_a_band_is_refused_by_tolerance_and_fit(cli, tmp_path):
-    printer = _without_band(tmp_path)
+    printer = printer_profile_without_band(tmp_path)
     for option in (["--tolerance"], ["--fit", "auto"]):
         result = cli("gears", "--printer", str(printer), *option, "--out", tmp_path / "out")
         line = error_line(result)

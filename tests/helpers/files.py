@@ -33,3 +33,20 @@ parts:
     quantity: 3
     overrides: {width: 12}
 """
+
+
+def printer_profile_without_band(folder: Path) -> Path:
+    """The FDM PLA printer preset with its ``band:`` block left out, written into ``folder``."""
+    profiles = Path(__file__).resolve().parents[2] / "profiles"
+    kept, skipping = [], False
+    for line in (profiles / "fdm-0.4-pla.yaml").read_text(encoding="utf-8").splitlines():
+        if line.startswith("band:"):
+            skipping = True
+            continue
+        if skipping and (line.startswith(" ") or line.startswith("#")):
+            continue
+        skipping = False
+        kept.append(line)
+    path = folder / "no-band.yaml"
+    path.write_text("\n".join(kept) + "\n", encoding="utf-8")
+    return path

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from wheelstep_cli.gears.meshing.outlines import Window, expand, wrap
+from wheelstep_cli.gears.meshing.outlines import Window, expand, pair_chunks, wrap
 
 
 @dataclass(frozen=True)
@@ -96,22 +96,14 @@ def near_pairs(radius: np.ndarray, own: np.ndarray, r_pose: np.ndarray, edges: E
     first = np.searchsorted(key_sorted, base + (edges.lo[q_edge] - tol), side="left")
     counts = np.searchsorted(key_sorted, base + (edges.hi[q_edge] + tol), side="right") - first
     del base
-    ends = np.cumsum(counts)
     slack = reach + 1e-9
-    i0 = 0
-    while i0 < len(counts):
-        done = ends[i0 - 1] if i0 else 0
-        i1 = max(int(np.searchsorted(ends, done + max_pairs, side="right")), i0 + 1)
-        queries, rows = expand(first[i0:i1], counts[i0:i1], order)
-        cols = q_edge[queries + i0]
-        del queries
+    for rows, cols in pair_chunks(first, counts, order, q_edge, max_pairs):
         keep = (edges.lo[cols] <= radius[rows]) & (edges.hi[cols] >= radius[rows])
         if np.isfinite(reach):
             # the crossing lies in the edge's angular extent, within reach of the vertex
             keep &= (np.mod(own[rows] - edges.start[cols] + slack, two_pi)
                      <= edges.sweep[cols] + 2.0 * slack)
         yield rows[keep], cols[keep]
-        i0 = i1
 
 
 def rotations_to_touch(v: np.ndarray, v_pose: np.ndarray, edges: EdgeTable, sign: float,

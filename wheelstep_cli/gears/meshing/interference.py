@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from wheelstep_cli.gears.meshing.outlines import MeshWindow, RadialBand, Window, band_at, expand, rotate
+from wheelstep_cli.gears.meshing.outlines import (MeshWindow, RadialBand, Window, band_at, expand,
+                                                  pair_chunks, rotate)
 from wheelstep_cli.geometry.planar import body_clipped_overlap_areas, clipped_overlap_areas, points_inside
 
 
@@ -160,20 +161,13 @@ def _near_depth(points: np.ndarray, pose: np.ndarray, edges: Window, radius: flo
     tol = 1e-9 * stride
     first = np.searchsorted(key_sorted, base + y_lo[q_edge] - tol, side="left")
     counts = np.searchsorted(key_sorted, base + y_hi[q_edge] + tol, side="right") - first
-    ends = np.cumsum(counts)
-    i0 = 0
-    while i0 < len(counts):
-        done = ends[i0 - 1] if i0 else 0
-        i1 = max(int(np.searchsorted(ends, done + max_pairs, side="right")), i0 + 1)
-        queries, rows = expand(first[i0:i1], counts[i0:i1], order)
-        cols = q_edge[queries + i0]
+    for rows, cols in pair_chunks(first, counts, order, q_edge, max_pairs):
         q = points[rows]
         # the exact grown-box test (the key's rounding only widened the runs)
         keep = ((q[:, 0] >= x_lo[cols]) & (q[:, 0] <= x_hi[cols])
                 & (q[:, 1] >= y_lo[cols]) & (q[:, 1] <= y_hi[cols]))
         rows, cols = rows[keep], cols[keep]
         np.minimum.at(best, rows, _segment_distance(points[rows], e0[cols], e1[cols]))
-        i0 = i1
     return best
 
 

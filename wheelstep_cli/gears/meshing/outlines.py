@@ -51,6 +51,21 @@ def expand(first: np.ndarray, counts: np.ndarray, table: np.ndarray):
     return owner, table[first[owner] + offsets]
 
 
+def pair_chunks(first: np.ndarray, counts: np.ndarray, order: np.ndarray, q_edge: np.ndarray,
+                max_pairs: int):
+    """The candidate (row, edge) pairs of sorted-key runs in chunks of about ``max_pairs``:
+    query j (of edge ``q_edge[j]``) holds rows ``order[first[j]:first[j] + counts[j]]``.
+    Yields (rows, cols) per chunk, so memory stays bounded whatever the outline sizes."""
+    ends = np.cumsum(counts)
+    i0 = 0
+    while i0 < len(counts):
+        done = ends[i0 - 1] if i0 else 0
+        i1 = max(int(np.searchsorted(ends, done + max_pairs, side="right")), i0 + 1)
+        queries, rows = expand(first[i0:i1], counts[i0:i1], order)
+        yield rows, q_edge[queries + i0]
+        i0 = i1
+
+
 @dataclass(frozen=True)
 class Window:
     """Edges and vertices (mm) of one outline inside the mesh window, for a batch of poses.
