@@ -60,11 +60,13 @@ def check_part(part: Part) -> MeshReport:
     triangles. Consistent winding: those two triangles traverse it in opposite directions.
     """
     faces = _welded(part.vertices, np.asarray(part.faces, dtype=np.int64))
+    zero_area = bool(np.any((faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2])
+                            | (faces[:, 0] == faces[:, 2])))
     start, end = faces.ravel(), np.roll(faces, -1, axis=1).ravel()
     # an edge (a, b) as the one integer a * n + b: a flat sort is much cheaper than a row-wise unique
     n = int(faces.max()) + 1 if len(faces) else 1
     undirected = np.minimum(start, end) * n + np.maximum(start, end)
-    watertight = bool(len(faces) > 0 and np.all(_uses(undirected) == 2))
+    watertight = bool(len(faces) > 0 and not zero_area and np.all(_uses(undirected) == 2))
     winding = bool(watertight and np.all(_uses(start * n + end) == 1))
     return MeshReport(
         watertight=watertight,
@@ -76,18 +78,12 @@ def check_part(part: Part) -> MeshReport:
 
 
 def _welded(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """``faces`` re-indexed onto the distinct vertices as written (float32 coordinates); a
-    triangle left with a repeated vertex is given an index no edge shares, so it fails."""
+    """``faces`` re-indexed onto the distinct vertices as written (float32 coordinates)."""
     if len(faces) == 0:
         return faces
     written = np.ascontiguousarray(np.asarray(vertices, dtype=np.float32)[:, :3])
     _, index = np.unique(written.view(np.dtype((np.void, 12))).ravel(), return_inverse=True)
-    welded = index.ravel()[faces]
-    degenerate = (welded[:, 0] == welded[:, 1]) | (welded[:, 1] == welded[:, 2]) | (welded[:, 0] == welded[:, 2])
-    if np.any(degenerate):
-        welded[degenerate, 0] = -1 - np.arange(int(degenerate.sum()))
-        welded = welded - welded.min()
-    return welded
+    return index.ravel()[faces]
 
 
 def _uses(keys: np.ndarray) -> np.ndarray:
