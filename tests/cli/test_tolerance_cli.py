@@ -47,3 +47,41 @@ def test_gears_tolerance_reports_every_case_and_the_loose_corner_has_more_play(c
     assert loose["distance_mm"] == pytest.approx(meshing["distance_mm"] + 0.03)
     assert not loose["jams"] and loose["backlash_min_mm"] > meshing["backlash_min_mm"]
     assert band["largest_backlash_mm"] == max(c["backlash_max_mm"] for c in band["cases"])
+
+
+
+def test_a_fit_the_band_cannot_meet_is_refused_as_the_fit_and_its_remedy_prints(cli, tmp_path):
+    """The default pair on the FDM PLA band: no clearance up to the search's cap frees the
+    band's tight case (its tips meet the wheel near the handovers, where turning the wheel
+    frees nothing), so `--fit auto` is refused naming --fit (not a --backlash the user did
+    not give), nothing is written, and the remedy it names, the printer's own clearance, is
+    written."""
+    from wheelstep_cli.parts.fit import FIT_MAX_CLEARANCE
+
+    out = tmp_path / "out"
+    line = error_line(cli("gears", "--printer", "fdm-0.4-pla", "--fit", "auto", "--out", out))
+    assert line.startswith("wheelstep: error: --fit = auto: no tooth clearance up to "
+                           f"{FIT_MAX_CLEARANCE:g} mm keeps the least backlash >= 0.01 mm over the "
+                           "band of fdm-0.4-pla (at ")
+    assert "print without --fit" in line and not out.exists()
+    result = cli("gears", "--printer", "fdm-0.4-pla", "--out", out, "-q")
+    assert result.exit_code == 0, result.stderr
+    assert (out / "gears.json").is_file()
+
+
+@pytest.mark.parametrize("option", [["--fit", "auto"], ["--tolerance"]])
+def test_a_pair_too_big_for_the_printer_is_refused_before_the_band(cli, tmp_path, monkeypatch, option):
+    """The default wheel (208 mm) on the resin printer's 218 x 123 mm bed: the bed refuses it
+    at once, before any meshing check of a fit search or band that the written files could
+    never use."""
+    import wheelstep_cli.parts.fit as fit
+    import wheelstep_cli.parts.tolerance_cli as tolerance_cli
+
+    def no_check(*args, **kwargs):
+        raise AssertionError("a band case was checked before the bed refused the part")
+
+    monkeypatch.setattr(fit, "check_case", no_check)
+    monkeypatch.setattr(tolerance_cli, "check_case", no_check)
+    line = error_line(cli("gears", "--printer", "resin-0.05-standard", *option, "--out", tmp_path / "o"))
+    assert line.startswith("wheelstep: error: --printer = resin-0.05-standard: part 'wheel'")
+    assert "does not fit the bed" in line and not (tmp_path / "o").exists()

@@ -141,3 +141,38 @@ def replace_printer():
     from dataclasses import replace
 
     return replace(load_printer_profile("fdm-0.4-pla"), tooth_clearance=0.0)
+
+
+def _fitted_band(least: float, jams: bool) -> dict:
+    case = {"case": "tight", "jams": jams, "interfering_poses": 7 if jams else 0,
+            "max_penetration_mm": 0.02 if jams else 0.0, "backlash_min_mm": least}
+    return {"printer": "p", "jams": jams, "least_backlash_mm": least, "cases": [case],
+            "fit": {"fit": "normal", "margin_mm": 0.1, "tooth_clearance_mm": 0.3, "backlash_mm": 0.5}}
+
+
+def test_a_fit_short_of_its_margin_or_jamming_is_refused_naming_the_fit():
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.fit import require_fit_met
+
+    require_fit_met(_fitted_band(0.1, False))
+    for least, jams, found in ((0.05, False, "keeps 0.050 mm"), (-0.2, True, "jams at 7 poses, 20 um deep")):
+        with pytest.raises(DesignError) as err:
+            require_fit_met(_fitted_band(least, jams))
+        assert err.value.param == "fit" and err.value.value == "normal"
+        assert found in err.value.limit and "print without --fit" in err.value.limit
+
+
+def test_a_fitted_pair_outside_the_bounds_is_refused_naming_the_fit():
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.fit import require_fit_within_bounds
+
+    flank = {"F_i_total_um": 6.0, "f_i_tooth_um": 5.0, "hub_speed_ripple_pct": 0.7}
+    record = {"interference": False, "contact_lost": False, "law_hub_speed_ripple_pct": 0.0,
+              "drive": dict(flank), "coast": dict(flank)}
+    require_fit_within_bounds(record, _fitted_band(0.1, False))
+    record["coast"]["hub_speed_ripple_pct"] = 1.2
+    with pytest.raises(DesignError) as err:
+        require_fit_within_bounds(record, _fitted_band(0.1, False))
+    assert err.value.param == "fit"
+    assert "needs (0.300 mm, backlash j_n 0.500 mm)" in err.value.limit
+    assert "coast flank" in err.value.limit and "1.20 %" in err.value.limit

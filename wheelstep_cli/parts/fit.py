@@ -92,3 +92,49 @@ def fit_line(record: dict) -> str:
     return (f"fit {record['fit']}: tooth clearance {record['tooth_clearance_mm']:.3f} mm (backlash "
             f"j_n {record['backlash_mm']:.3f} mm) keeps the band's least backlash >= "
             f"{record['margin_mm']:g} mm, found in {len(record['search'])} builds")
+
+
+#: What a refused fit suggests instead: the pair drawn with the printer's own clearance is
+#: within the design bounds, and --tolerance shows how it fares over the band.
+FIT_REMEDY = "print without --fit (the printer's own tooth clearance) and see its band with --tolerance"
+
+
+def require_fit_met(record: dict) -> None:
+    """Refuse (DesignError on ``fit``) a fit whose search ended short of its margin: at the
+    last clearance tried (mm) the band still jams, or keeps less least backlash than the
+    margin (``record``: a band record with its ``fit``, see :func:`fit_record`)."""
+    from wheelstep_cli.errors import DesignError
+
+    fit, tight = record["fit"], record["cases"][0]
+    least = record["least_backlash_mm"]
+    if not record["jams"] and least is not None and least >= fit["margin_mm"] - FIT_TOLERANCE:
+        return
+    if record["jams"]:
+        case = next(c for c in record["cases"] if c["jams"])
+        found = (f"the {case['case']} case jams at {case['interfering_poses']} poses, "
+                 f"{1000.0 * case['max_penetration_mm']:.0f} um deep")
+    else:
+        found = f"the {tight['case']} case keeps {least:.3f} mm"
+    raise DesignError("fit", fit["fit"],
+                      f"no tooth clearance up to {FIT_MAX_CLEARANCE:g} mm keeps the least backlash "
+                      f">= {fit['margin_mm']:g} mm over the band of {record['printer']} (at "
+                      f"{fit['tooth_clearance_mm']:.3f} mm {found}); nothing written; {FIT_REMEDY}")
+
+
+def require_fit_within_bounds(record: dict, band: dict) -> None:
+    """Refuse (DesignError on ``fit``) a fitted pair whose meshing ``record`` breaks the design
+    bounds (parts.mesh_bounds): the play the band needs costs each flank hub speed ripple
+    at the handovers, which no remedy on the backlash can give back without losing the fit
+    (``band``: its band record with the ``fit``)."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.mesh_bounds import bound_violations
+
+    broken = [text for text in bound_violations(record) if "interfere" not in text]
+    if not broken:
+        return
+    fit = band["fit"]
+    raise DesignError("fit", fit["fit"],
+                      f"the tooth clearance the band of {band['printer']} needs "
+                      f"({fit['tooth_clearance_mm']:.3f} mm, backlash j_n {fit['backlash_mm']:.3f} mm) "
+                      f"puts the pair outside the bounds ({'; '.join(broken)}); nothing written; "
+                      f"{FIT_REMEDY}")

@@ -59,10 +59,12 @@ def band_pair(spec, printer, check: bool, fit: str | None):
         return build_for_printer("gear-pair", spec, printer), None, None
     chosen = band_printer(printer)
     if fit is not None:
-        result = fit_pair(spec, chosen, fit, lambda s, p: build_for_printer("gear-pair", s, p))
+        result = fit_pair(spec, chosen, fit, lambda s, p: _on_bed(build_for_printer("gear-pair", s, p), p))
         return (result.pair, {**result.band, "fit": fit_record(result, fit, spec.backlash_mm),
                               "bore": bore_fit(result.pair, chosen.band)}, result.nominal)
     pair = build_for_printer("gear-pair", spec, printer)
+    if printer is not None:
+        _on_bed(pair, printer)
     sections = sectioned_pair(pair)
     nominal = check_case(sections, NOMINAL)
     record = band_record(sections, chosen.band, chosen.name, nominal)
@@ -70,6 +72,15 @@ def band_pair(spec, printer, check: bool, fit: str | None):
     if printer is None:
         record["note"] = "the default printer's band on the pair as designed (no --printer)"
     return pair, record, nominal
+
+
+def _on_bed(pair, printer):
+    """``pair``, refused (DesignError) before any band work when a gear cannot go on
+    ``printer``'s bed, as writing it would refuse it."""
+    from wheelstep_cli.parts.plate_layout import require_on_bed
+
+    require_on_bed([pair.pinion, pair.wheel], printer, "thickness", pair.spec.thickness)
+    return pair
 
 
 def printer_band_record(pair, printer) -> dict:

@@ -220,6 +220,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
 
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
+    from wheelstep_cli.parts.fit import require_fit_met, require_fit_within_bounds
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.mesh_bounds import opening_remedy, require_within_bounds
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
@@ -236,6 +237,10 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                    f"{record['max_overlap_area_mm2']:.3f} mm2){opening_remedy(pair)}; nothing "
                    "written (--allow-interference writes them anyway)")
         raise typer.Exit(1)
+    if band[1] is not None:
+        # a fit's play is set by the band: refused as the fit, not as the backlash it drew
+        require_fit_met(tolerance)
+        require_fit_within_bounds(record, tolerance)
     require_within_bounds(pair, record)
     require_printable_teeth(pair)
     if tolerance is not None:
