@@ -286,11 +286,18 @@ def tooth_heights_lost(outline: np.ndarray, module: float, line_width: float) ->
               if t.area >= 0.05 * module**2]
     lost = []
     for tooth in _whole_teeth(pieces, 0.05 * module):
-        height = shapely.distance(body.boundary, shapely.points(np.asarray(tooth.exterior.coords))).max()
-        kept = opened.intersection(tooth)
+        # each tooth meets only what lies round it: every point of a tooth is nearer to the body
+        # than the tooth's own extent (it stands on the body), so the body's boundary clipped
+        # to the tooth's box grown by that extent holds every nearest point, and the opened
+        # gear clipped to the box holds all of it that overlaps the tooth
+        x0, y0, x1, y1 = tooth.bounds
+        reach = float(np.hypot(x1 - x0, y1 - y0))
+        base = shapely.clip_by_rect(body.boundary, x0 - reach, y0 - reach, x1 + reach, y1 + reach)
+        height = shapely.distance(base, shapely.points(np.asarray(tooth.exterior.coords))).max()
+        kept = shapely.clip_by_rect(opened, x0 - reach, y0 - reach, x1 + reach, y1 + reach).intersection(tooth)
         rings = [np.asarray(g.exterior.coords) for g in getattr(kept, "geoms", [kept])
                  if g.geom_type == "Polygon" and not g.is_empty]
-        left = shapely.distance(body.boundary, shapely.points(np.vstack(rings))).max() if rings else 0.0
+        left = shapely.distance(base, shapely.points(np.vstack(rings))).max() if rings else 0.0
         lost.append(height - left)
     return np.array(lost)
 
