@@ -106,3 +106,16 @@ def test_a_chamfer_too_small_to_replace_the_foot_is_refused(cli, tmp_path, comma
     least = "0.4" if "fdm" in command[2] else "0.35"
     assert line.startswith(f"wheelstep: error: --chamfer = 0.2: must be 0 or >= {least} mm on printer {command[2]}")
     assert not out.exists()
+
+
+def test_the_backlash_line_says_how_the_printers_clearance_makes_it_up(cli):
+    import re
+
+    result = cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--dry-run")
+    assert result.exit_code == 0, result.stderr
+    found = re.search(r"backlash j_n = ([0-9.]+) mm \(([0-9.]+) designed \+ 0\.15 tooth clearance of "
+                      r"printer 'fdm-0.4-pla'\)", result.stdout)
+    assert found, result.stdout
+    assert float(found[1]) == pytest.approx(float(found[2]) + 0.15, abs=1e-4)
+    plain = cli("gears", "--profile", "desk-demo", "--dry-run")
+    assert "designed +" not in plain.stdout and "backlash j_n = " in plain.stdout

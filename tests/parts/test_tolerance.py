@@ -176,3 +176,22 @@ def test_a_fitted_pair_outside_the_bounds_is_refused_naming_the_fit():
     assert err.value.param == "fit"
     assert "needs (0.300 mm, backlash j_n 0.500 mm)" in err.value.limit
     assert "coast flank" in err.value.limit and "1.20 %" in err.value.limit
+
+
+def test_a_case_that_jams_gives_no_backlash_or_te_in_its_line():
+    from wheelstep_cli.parts.tolerance import band_lines
+
+    flank = {"F_i_total_um": 3771.0, "f_i_tooth_um": 900.0, "hub_speed_ripple_pct": 573.1}
+    cases = [{"case": "tight", "pinion_offset_mm": 0.1, "wheel_offset_mm": 0.1, "distance_mm": 143.95,
+              "jams": True, "interfering_poses": 1536, "max_penetration_mm": 0.229,
+              "backlash_min_mm": -4.248, "backlash_max_mm": -0.222, "drive": flank, "coast": flank},
+             {"case": "loose", "pinion_offset_mm": -0.1, "wheel_offset_mm": -0.1, "distance_mm": 144.05,
+              "jams": False, "interfering_poses": 0, "max_penetration_mm": 0.0,
+              "backlash_min_mm": 0.5, "backlash_max_mm": 0.7, "drive": dict(flank, F_i_total_um=20.0),
+              "coast": flank}]
+    record = {"printer": "p", "band": {"outline_mm": 0.1, "center_distance_mm": 0.05}, "jams": True,
+              "cases": cases}
+    head, tight, loose = band_lines(record)
+    assert "JAMS" in head and "JAMS (1536 poses, 229 um deep; no backlash or TE" in tight
+    assert "-4.248" not in tight and "3771" not in tight
+    assert "ok, backlash 0.500..0.700 mm, drive F'i 20.0 um" in loose

@@ -167,11 +167,14 @@ def band_lines(record: dict) -> list[str]:
         lines.append(
             f"  {case['case']:<28} {case['pinion_offset_mm']:+.3f}/{case['wheel_offset_mm']:+.3f} mm "
             f"at {case['distance_mm']:g} mm: "
-            + (f"JAMS ({case['interfering_poses']} poses, {1000 * case['max_penetration_mm']:.0f} um deep)"
-               if case['jams'] else "ok") + ", backlash "
-            f"{num(case['backlash_min_mm'])}..{num(case['backlash_max_mm'])} mm, drive F'i "
-            f"{num(case['drive']['F_i_total_um'], '.1f')} um f'i {num(case['drive']['f_i_tooth_um'], '.1f')}"
-            f" um ripple {num(case['drive']['hub_speed_ripple_pct'], '.2f')} %")
+            + (f"JAMS ({case['interfering_poses']} poses, {1000 * case['max_penetration_mm']:.0f} um deep"
+               # where the teeth overlap the contact angles are estimates, not a motion
+               + ("; no backlash or TE where rigid teeth cannot go)" if case['interfering_poses'] else ")")
+               if case['jams'] else "ok")
+            + ("" if case['interfering_poses'] else
+               f", backlash {num(case['backlash_min_mm'])}..{num(case['backlash_max_mm'])} mm, drive F'i "
+               f"{num(case['drive']['F_i_total_um'], '.1f')} um f'i {num(case['drive']['f_i_tooth_um'], '.1f')}"
+               f" um ripple {num(case['drive']['hub_speed_ripple_pct'], '.2f')} %"))
     return lines
 
 

@@ -15,10 +15,14 @@ from wheelstep_cli.config.specs import BoreShape, Corner, Teeth
 from wheelstep_cli.parts.gear_exports import GearExtras, checked_extras
 
 
-Module = Annotated[Optional[float], opt("--module", "-m", help="Module (tooth height unit), mm.",
-                                        shown="2")]
+Module = Annotated[Optional[float], opt("--module", "-m", help="Module (tooth height unit), mm. Generated "
+                                        "teeth take theirs from --z and the centre distance; a module given "
+                                        "sets the centre distance that fits it (SPEC §9).",
+                                        shown="2 for paper teeth; from --z and the distance for generated")]
 Backlash = Annotated[Optional[float], opt("--backlash", help="Normal backlash j_n, mm.",
-                                          shown="0.25 x module")]
+                                          shown="0.25 x module for paper teeth; for generated teeth the "
+                                                "most, up to that, whose play costs each flank at most "
+                                                "half the 1 % hub speed ripple bound")]
 Plot = Annotated[Optional[Path], opt("--plot", help="Write a picture of the pair in assembly phase "
                                                     "with its dimensions (PNG or SVG, by the extension).")]
 Gif = Annotated[Optional[Path], opt("--gif", help="Write the pair turning through a shoe handover, "
@@ -287,6 +291,17 @@ def _slice_lines(sliced: dict | None) -> list[str]:
     return slice_lines(sliced)
 
 
+def _clearance_text(pair) -> str:
+    """How a printer's tooth clearance makes up the backlash the teeth were cut with (mm)."""
+    printing = getattr(pair, "printing", None)
+    clearance = float(printing.printer.tooth_clearance) if printing is not None else 0.0
+    if clearance <= 0.0:
+        return ""
+    designed = pair.generated.cutter.backlash - clearance
+    return (f" ({designed:.4g} designed + {clearance:g} tooth clearance of printer "
+            f"'{printing.printer.name}')")
+
+
 def _gears_lines(pair, record: dict) -> list[str]:
     """Both parts, the generated teeth and the meshing check's figures of both flanks."""
     from wheelstep_cli.parts.mesh_check import flank_line, mounting_line
@@ -305,7 +320,7 @@ def _gears_lines(pair, record: dict) -> list[str]:
                      + (f" (the centre distance module {pair.spec.module:g} mm fits)"
                         if pair.spec.module is not None else "")
                      + _opening_text(pair)
-                     + f", backlash j_n = {gen.cutter.backlash:g} mm")
+                     + f", backlash j_n = {gen.cutter.backlash:g} mm" + _clearance_text(pair))
     lines.append(f"meshing at {pair.mounted_distance:g} mm: backlash "
                  f"{_num(record, 'backlash_min_mm', '.3f')}..{_num(record, 'backlash_max_mm', '.3f')}"
                  f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
