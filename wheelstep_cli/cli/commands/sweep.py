@@ -34,7 +34,8 @@ def sweep(
     """Compute every design of a sweep file (gears or shoe, meshing check included; the
     printer's tolerance band with ``tolerance: true``) into OUT/results.parquet, results.csv
     (rows in point order) and pareto.png. A rerun computes only the missing designs. Exit 1
-    if some designs failed, 2 if the input is invalid."""
+    if some designs were refused (outside the bounds, like ``gears`` refuses them) or failed
+    (their rows say why), 2 if the input is invalid."""
     from wheelstep_cli.batch.sweep_run import dask_client, run_sweep
     from wheelstep_cli.batch.sweep_store import owned_results
     from wheelstep_cli.config.schema import InvalidInput
@@ -162,7 +163,7 @@ class _Bar:
         from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
         self.bar = Progress(TextColumn("sweep"), BarColumn(), MofNCompleteColumn(),
-                            TextColumn("{task.fields[failures]} failed"),
+                            TextColumn("{task.fields[failures]} refused or failed"),
                             TextColumn("{task.fields[rate]}"), TimeElapsedColumn(),
                             console=Console(stderr=True), disable=not self.enabled)
         self.bar.__enter__()
