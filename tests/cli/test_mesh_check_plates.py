@@ -96,6 +96,10 @@ def test_full_scale_pair_goes_on_two_plates_and_checks_as_a_pair(cli, tmp_path):
     (measured,) = json.loads(check.stdout)["pairs"]
     assert measured["interference"] == stored["interference"]
     assert measured["backlash_max_mm"] == pytest.approx(stored["backlash_max_mm"], rel=0.01)
+    # one of the two plates alone: told which gear it holds and to name the other plate too
+    line = error_line(cli("mesh-check", plates[0]))
+    assert "holds no gear pair" in line and "it holds only the " in line
+    assert "of pair '" in line and "name the plate with the other gear too" in line
 
 
 def test_the_same_mesh_twice_is_refused_before_any_work(desk_pair, cli, tmp_path):

@@ -59,8 +59,12 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
     where = " + ".join(files)
     if not complete:
         what = "are not a gear pair" if len(files) == 2 else "holds no gear pair"
+        halves = sorted(f"the {next(iter(g))} of pair '{k}'" for k, g in groups.items() if len(g) == 1)
+        # a batch packs a pair's gears onto different plates when they do not fit one together
+        found = (f"; it holds only {', '.join(halves)}: name the plate with the other gear too "
+                 f"(mesh-check PLATE PLATE)" if halves and len(files) == 1 else "")
         raise DesignError(GEARS[len(files) - 1], where, f"{what}: no pinion and wheel share a "
-                          "wheelstep:pair id in the 3MF metadata")
+                          f"wheelstep:pair id in the 3MF metadata{found}")
     if pair is not None:
         if pair not in complete:
             raise DesignError("pair", pair, f"must be one of {', '.join(complete)}")
