@@ -139,3 +139,23 @@ def test_a_plot_over_a_users_file_is_refused_unless_forced(desk_pair, cli, tmp_p
     assert mine.read_bytes() == b"the user's picture"
     assert cli(*args, "--force").exit_code == 0
     assert mine.read_bytes().startswith(b"\x89PNG")
+
+
+def _model_metadata(plate) -> dict[str, str]:
+    import re
+    import zipfile
+    from xml.sax.saxutils import unescape
+
+    model = zipfile.ZipFile(plate).read("3D/3dmodel.model").decode()
+    head = model.split("<resources>")[0]
+    return {k: unescape(v) for k, v in re.findall(r'<metadata name="wheelstep:([^"]+)">([^<]*)</metadata>', head)}
+
+
+def test_a_plate_says_whether_its_parts_were_drawn_for_its_printer(desk_pair, cli, tmp_path):
+    # no --printer: laid out on the default printer's bed with its slicer settings, drawn as designed
+    plain = _model_metadata(desk_pair / "gears.3mf")
+    assert plain["printer"] == "fdm-0.4-pla" and plain["compensated"].startswith("no: drawn as designed")
+    out = tmp_path / "printed"
+    assert cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--format", "3mf",
+               "--out", out, "-q").exit_code == 0
+    assert _model_metadata(out / "gears.3mf")["compensated"] == "yes"

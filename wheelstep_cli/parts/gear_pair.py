@@ -303,7 +303,8 @@ def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both", meshing: dict 
     if fmt in ("3mf", "both"):
         meta = design_metadata({**pair.spec.model_dump(), **_metadata_distances(pair)})
         plates = bed_plates(parts, printer, [{"part": p.name, "pair": "gears", **meta} for p in parts])
-        for name, data in plate_files("gears", plates, printer, "wheelstep gear pair").items():
+        for name, data in plate_files("gears", plates, printer, "wheelstep gear pair",
+                                          pair.printing is not None).items():
             files[out / name] = data
     files[out / "gears.json"] = json_bytes(gear_pair_report(pair, meshing))
     return files

@@ -90,15 +90,22 @@ def bed_plates(parts, printer: Printer, metadata: list[dict[str, str]]) -> list[
     return [plates[bed] for bed in sorted(plates)]
 
 
+#: What a plate says when its parts are laid out on a printer's bed but drawn as designed.
+NOT_COMPENSATED = ("no: drawn as designed, laid out on this printer's bed with its slicer "
+                   "settings; --printer also compensates holes, tooth clearance and first layer")
+
+
 def plate_files(stem: str, plates: list[list[PlateObject]], printer: Printer,
-                title: str) -> dict[str, bytes]:
+                title: str, compensated: bool) -> dict[str, bytes]:
     """File name -> 3MF bytes: ``STEM.3mf`` for one plate, ``STEM-1.3mf``, ``STEM-2.3mf``, ...
-    for more; each carries the printer's PrusaSlicer configuration."""
+    for more; each carries the printer's PrusaSlicer configuration and says whether the
+    parts were drawn for that printer (``compensated``) or as designed."""
     from wheelstep_cli.formats.slicer_config import slic3r_config_bytes
     from wheelstep_cli.formats.threemf import threemf_bytes
 
     config = slic3r_config_bytes(printer.slicer_config(), f"wheelstep: printer {printer.name}")
     names = [f"{stem}.3mf"] if len(plates) == 1 else [f"{stem}-{i}.3mf" for i in range(1, len(plates) + 1)]
-    return {name: threemf_bytes(objects, {"Title": title, "Application": "wheelstep",
-                                          "printer": printer.name}, config)
+    meta = {"Title": title, "Application": "wheelstep", "printer": printer.name,
+            "compensated": "yes" if compensated else NOT_COMPENSATED}
+    return {name: threemf_bytes(objects, meta, config)
             for name, objects in zip(names, plates)}

@@ -183,7 +183,8 @@ def shoe_files(shoe: Shoe, out: Path, fmt: str = "both", printer=None) -> dict[P
     if fmt in ("3mf", "both"):
         meta = {"part": "shoe", **design_metadata(resolved_parameters(shoe))}
         plates = bed_plates([part], printer, [meta])
-        for name, data in plate_files("shoe", plates, printer, "wheelstep support shoe").items():
+        for name, data in plate_files("shoe", plates, printer, "wheelstep support shoe",
+                                          shoe.printing is not None).items():
             files[out / name] = data
     files[out / "shoe.json"] = json_bytes(shoe_report(shoe))
     files[out / "shoe-profile.csv"] = csv_bytes(["x_mm", "y_mm"], shoe.profile)
