@@ -35,6 +35,9 @@ def test_batch_tolerance_records_the_band_per_case_and_names_a_printer_without_o
     assert manifest["checks"]["printers_without_band"] == [str(bare)] or \
         manifest["checks"]["printers_without_band"][0].endswith("no-band.yaml")
     assert "banded jams over the band of fdm-0.4-pla" in result.stderr
+    # a jammed band's least "backlash" is an overlap estimate, not shown as a backlash
+    warning = next(l for l in result.stderr.splitlines() if "banded jams" in l)
+    assert "least backlash -" not in warning and "searches a tooth clearance" in warning
     assert "has no dimensional band: add a `band:` section" in result.stderr
 
 

@@ -52,7 +52,7 @@ def batch(
     if dry_run:
         show.files(written, dry_run=True)
     if outcome.failed:
-        show.error(f"{len(outcome.failed)} entries failed:")
+        show.error(f"{_count(len(outcome.failed), 'entry', 'entries')} failed:")
         for entry, where, reason in outcome.failed:
             show.error(f"  {entry.name} ({where}): {reason}")
         raise typer.Exit(1)
@@ -116,17 +116,25 @@ def _band_warnings(show: Output, outcome) -> None:
             show.warning(f"{band['entry']}: {band['note']}")
         elif band["jams"]:
             least = band["least_backlash_mm"]
-            show.warning(f"WARNING: {band['entry']} jams over the band of {band['printer']} (least "
-                         f"backlash {'n/a' if least is None else format(least, '.3f')} mm): gears "
-                         "--fit auto finds the tooth clearance")
+            # a jammed case's backlash is an estimate where rigid teeth cannot go
+            shown = "" if least is None or least <= 0.0 else f" (least backlash {least:.3f} mm)"
+            show.warning(f"WARNING: {band['entry']} jams over the band of {band['printer']}{shown}: "
+                         "its report's tolerance section says where; `gears --fit auto` searches "
+                         "a tooth clearance that clears the band")
 
 
 def _lines(out: Path, plan, outcome) -> list[str]:
     parts = sum(len(p.items) for p in outcome.plates)
     plates = len(outcome.plates)
-    return [f"built {len(outcome.built)} of {len(plan.entries)} entries: {parts} parts on "
-            f"{plates} plate{'' if plates == 1 else 's'} in {out}",
-            *(f"  {p.stem}.3mf ({p.printer.name}): {len(p.items)} parts" for p in outcome.plates)]
+    return [f"built {len(outcome.built)} of {_count(len(plan.entries), 'entry', 'entries')}: "
+            f"{_count(parts, 'part', 'parts')} on {_count(plates, 'plate', 'plates')} in {out}",
+            *(f"  {p.stem}.3mf ({p.printer.name}): {_count(len(p.items), 'part', 'parts')}"
+              for p in outcome.plates)]
+
+
+def _count(number: int, one: str, many: str) -> str:
+    """``number`` and the noun in the right number: 1 part, 2 parts."""
+    return f"{number} {one if number == 1 else many}"
 
 
 def register(app: typer.Typer) -> None:
