@@ -48,6 +48,11 @@ CASES: dict[str, list[str]] = {
                         "--json"],
 }
 
+#: The libraries whose floating-point results reach the written bytes: a golden record notes
+#: their versions, since another release may move a mesh vertex by one ulp (constraints.txt pins
+#: them for the test command).
+NUMERIC_LIBRARIES = ("numpy", "scipy", "shapely", "manifold3d", "trimesh")
+
 #: Lists longer than this (sector tables, paths) are hashed with the file, not flattened.
 LONG_LIST = 40
 
@@ -64,6 +69,13 @@ def _flatten(value, prefix: str, out: dict) -> None:
         out[prefix] = value
     elif isinstance(value, (int, float)):
         out[prefix] = value
+
+
+def library_versions() -> dict[str, str]:
+    """name -> installed version of each of :data:`NUMERIC_LIBRARIES`."""
+    from importlib.metadata import version
+
+    return {name: version(name) for name in NUMERIC_LIBRARIES}
 
 
 def _sha(data: bytes) -> str:
@@ -96,7 +108,7 @@ def run_case(name: str) -> dict:
         text = stdout.getvalue()
         if args[-1] == "--json":
             _flatten(json.loads(text), "stdout:", figures)
-        return {"args": CASES[name], "exit_code": code, "stdout_sha256": _sha(text.encode()) if
+        return {"args": CASES[name], "libraries": library_versions(), "exit_code": code, "stdout_sha256": _sha(text.encode()) if
                 args[-1] == "--json" else None, "files": files, "figures": figures}
 
 
@@ -126,6 +138,9 @@ def differences(stored: dict, new: dict, rel: float = 1e-9) -> list[str]:
                 lines.append(f"figure {key}: {old!r} -> {now!r}")
         elif old != now:
             lines.append(f"figure {key}: {old!r} -> {now!r}")
+    if lines and stored.get("libraries") != new["libraries"]:
+        lines.insert(0, f"recorded with {stored.get('libraries')}, run with {new['libraries']}: "
+                        "install with `-c constraints.txt` as the README's test command does")
     return lines
 
 
