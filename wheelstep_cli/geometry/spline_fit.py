@@ -22,7 +22,8 @@ DEGREE = 3
 #: A fit is kept when its sampled distance is within this share of the tolerance: the curve
 #: between two samples can stray a little further than at them.
 SAMPLING_MARGIN = 0.9
-#: Largest distance (mm) between two curve samples of a fit's check on a run's longest segment.
+#: Largest distance (mm) between two curve samples of a fit's check (a segment's length over
+#: its sample count; at least 8 a segment).
 SAMPLE_SPACING = 0.01
 
 
@@ -74,31 +75,33 @@ def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray
 
 def _deviation(run: np.ndarray, u: np.ndarray, tck) -> tuple[float, int]:
     """The Hausdorff distance (mm) between ``run`` (points at parameters ``u``) and the spline
-    ``tck``, sampled every SAMPLE_SPACING mm or finer, and the index of the run's segment
-    where it is largest.
+    ``tck``, the curve sampled at least 8 times a segment and every SAMPLE_SPACING mm, and the
+    index of the run's segment where it is largest.
 
     Each curve sample in [u_i, u_i+1] is measured against segments i-1..i+1 and each run
-    point against the curve samples near its own parameter: a nearest point outside these
+    point against the curve between its neighbours' parameters: a nearest point outside these
     windows is only closer, so the samples' distances are not underestimated."""
     m = len(run)
-    longest = float(np.linalg.norm(np.diff(run, axis=0), axis=1).max())
-    per = int(np.clip(np.ceil(longest / SAMPLE_SPACING), 8, 128))
-    steps = np.arange(per) / per
-    params = np.concatenate([(u[:-1, None] + np.diff(u)[:, None] * steps).ravel(), u[-1:]])
+    counts = np.maximum(np.ceil(np.linalg.norm(np.diff(run, axis=0), axis=1) / SAMPLE_SPACING), 8).astype(int)
+    starts = np.concatenate([[0], np.cumsum(counts)])          # the sample at run point i
+    owner = np.repeat(np.arange(m - 1), counts)                 # each sample's segment
+    step = (np.arange(starts[-1]) - starts[owner]) / counts[owner]
+    params = np.append(u[owner] + step * (u[owner + 1] - u[owner]), u[-1])
     curve = np.stack(splev(params, tck), 1)
-    spans = np.concatenate([curve[:-1].reshape(m - 1, per, 2), curve[per::per][:, None]], 1)
-    to_run = np.full((m - 1, per + 1), np.inf)
+    owner = np.append(owner, m - 2)
+    to_run = np.full(len(curve), np.inf)
     for shift in (-1, 0, 1):
-        i = np.clip(np.arange(m - 1) + shift, 0, m - 2)
-        to_run = np.minimum(to_run, _segment_distance(spans, run[i][:, None], run[i + 1][:, None]))
-    at = np.arange(m) * per
-    to_curve = np.full(m, np.inf)
-    for shift in range(-per - 1, per + 1):
-        j = np.clip(at + shift, 0, len(curve) - 2)
-        to_curve = np.minimum(to_curve, _segment_distance(run, curve[j], curve[j + 1]))
-    worst_span = to_run.max(1)
-    if worst_span.max() >= to_curve.max():
-        return float(worst_span.max()), int(np.argmax(worst_span))
+        i = np.clip(owner + shift, 0, m - 2)
+        to_run = np.minimum(to_run, _segment_distance(curve, run[i], run[i + 1]))
+    point = np.arange(m)
+    first, last = starts[np.maximum(point - 1, 0)], starts[np.minimum(point + 1, m - 1)]
+    window = last - first                                       # curve segments a run point meets
+    who = np.repeat(point, window)
+    j = first[who] + np.arange(window.sum()) - np.repeat(np.cumsum(window) - window, window)
+    to_curve = np.minimum.reduceat(_segment_distance(run[who], curve[j], curve[j + 1]),
+                                   np.cumsum(window) - window)
+    if to_run.max() >= to_curve.max():
+        return float(to_run.max()), int(owner[np.argmax(to_run)])
     return float(to_curve.max()), min(int(np.argmax(to_curve)), m - 2)
 
 
