@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from tests.helpers.cad import step_volume
 from tests.helpers.clicheck import error_line
 
 
@@ -109,17 +110,6 @@ def test_step_without_the_extra_is_refused_naming_it(cli, tmp_path, monkeypatch)
     line = error_line(cli("gears", "--step", "--out", tmp_path / "out"))
     assert line == "wheelstep: error: --step = on: needs the optional CAD extra: pip install wheelstep[cad]"
     assert not any(tmp_path.iterdir())
-
-
-def step_volume(solid) -> float:
-    """Volume (mm3) of a build123d solid by adaptive Gauss-Kronrod integration: OpenCASCADE's
-    default rule is off by up to 0.1 % on B-spline side faces with hundreds of knots."""
-    from OCP.BRepGProp import BRepGProp
-    from OCP.GProp import GProp_GProps
-
-    props = GProp_GProps()
-    BRepGProp.VolumePropertiesGK_s(solid.wrapped, props, 1e-6)
-    return props.Mass()
 
 
 def edge_points(edge, spacing: float = 0.005) -> np.ndarray:
