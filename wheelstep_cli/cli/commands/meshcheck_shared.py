@@ -8,11 +8,19 @@ def design_spec(design: dict):
     """The design the meshes were drawn for, from the design options (mm, deg at the edge)."""
     from wheelstep_cli.config.resolve import gear_pair_spec
 
+    from wheelstep_cli.errors import DesignError
+
     law_csv = design["law_csv"]
-    return gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
-                          turns=design["turns"], center_distance=design["center_distance"],
-                          install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
-                          blend=design["blend"])
+    try:
+        return gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
+                              turns=design["turns"], center_distance=design["center_distance"],
+                              install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
+                              blend=design["blend"])
+    except DesignError as err:
+        # mesh-check's --distance is the spec's installed distance: name it as the user typed it
+        if err.param == "install_distance" and design["distance"] is not None:
+            raise DesignError("distance", err.value, err.limit) from None
+        raise
 
 
 def band_printer_of(tolerance: bool, printer):
