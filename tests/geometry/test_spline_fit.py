@@ -77,3 +77,11 @@ def test_a_line_piece_is_the_segment():
     edges = fit_ring(np.array([[0.0, 0.0], [3.0, 0.0], [0.0, 4.0]]), FitSettings())
     assert isinstance(edges[0], BSpline)
     assert hausdorff(edges, np.array([[0.0, 0.0], [3.0, 0.0], [0.0, 4.0]])) == pytest.approx(0, abs=1e-12)
+
+
+def test_a_repeated_corner_point_keeps_the_corner():
+    square = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0], [0.0, 10.0]])
+    edges = fit_ring(square, FitSettings())
+    assert sorted(tuple(e.poles[0]) for e in edges) == [(0, 0), (0, 10), (10, 0), (10, 10)]
+    with pytest.raises(ValueError):
+        fit_ring(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 0.0]]), FitSettings())

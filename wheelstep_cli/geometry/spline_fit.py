@@ -204,6 +204,11 @@ def joined(pieces: list[BSpline]) -> BSpline:
 def fit_ring(ring: np.ndarray, settings: FitSettings = FitSettings()) -> list[BSpline]:
     """``ring`` (N, 2) mm as closed consecutive composite B-spline edges: one edge between
     joins turning more than ``edge_angle`` degrees, at most ``max_edges`` (the sharpest)."""
+    ring = np.asarray(ring, dtype=float)
+    # a repeated point would be a zero-length piece with no direction, hiding a corner beside it
+    ring = ring[np.linalg.norm(ring - np.roll(ring, -1, axis=0), axis=1) > 0.0]
+    if len(ring) < 3:
+        raise ValueError(f"a ring needs 3 distinct points, got {len(ring)}")
     pieces = fit_pieces(ring, settings)
     turns = np.array([_turn(pieces[k - 1], pieces[k]) for k in range(len(pieces))])
     sharp = np.flatnonzero(turns > settings.edge_angle)
