@@ -1,9 +1,8 @@
 """STEP (AP214, mm) of extruded gear faces, through the optional ``cad`` extra (build123d).
 
 The side faces are the outlines fitted as cubic B-splines within a stated distance of the
-written outline (geometry.spline_fit, 5 um by default): a few hundred faces a gear that a
-CAD kernel reads in seconds, where one planar face per outline segment (5 000-18 000 a gear)
-made files of tens of megabytes that took minutes to open."""
+written outline (geometry.spline_fit, 5 um by default), so a CAD kernel meets a few hundred
+faces a gear rather than one per outline segment (figures in benchmarks/results.md)."""
 
 from __future__ import annotations
 

@@ -18,6 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import splev, splprep
 
+from wheelstep_cli.geometry.planar import drop_repeated_points
+
 DEGREE = 3
 #: A fit is kept when its sampled distance is within this share of the tolerance: the curve
 #: between two samples can stray a little further than at them.
@@ -204,9 +206,8 @@ def joined(pieces: list[BSpline]) -> BSpline:
 def fit_ring(ring: np.ndarray, settings: FitSettings = FitSettings()) -> list[BSpline]:
     """``ring`` (N, 2) mm as closed consecutive composite B-spline edges: one edge between
     joins turning more than ``edge_angle`` degrees, at most ``max_edges`` (the sharpest)."""
-    ring = np.asarray(ring, dtype=float)
     # a repeated point would be a zero-length piece with no direction, hiding a corner beside it
-    ring = ring[np.linalg.norm(ring - np.roll(ring, -1, axis=0), axis=1) > 0.0]
+    ring = drop_repeated_points(ring, tol=0.0)
     if len(ring) < 3:
         raise ValueError(f"a ring needs 3 distinct points, got {len(ring)}")
     pieces = fit_pieces(ring, settings)
