@@ -228,10 +228,38 @@ def test_rerun_after_interruption_computes_only_the_missing_points(tmp_path, mon
     assert len(final) == POINTS and first.items() <= final.items()
 
 
+def test_ctrl_c_during_the_final_merge_still_leaves_the_results(tmp_path, monkeypatch):
+    """Every row computed, then Ctrl-C while they are merged: the merge is redone, so the
+    results file holds them all (the interruption message promises it)."""
+    from distributed import Client, LocalCluster
+
+    from wheelstep_cli.batch import sweep_store
+    from wheelstep_cli.batch.sweep_run import run_sweep
+    from wheelstep_cli.config.sweep_file import load_sweep
+
+    plan = load_sweep(write(tmp_path / "shoes.yaml", SHOES))
+    out = tmp_path / "out"
+    merge = sweep_store.ResultStore.consolidate
+    calls = []
+
+    def interrupted_once(store):
+        calls.append(1)
+        if len(calls) == 1:
+            store.flush()                      # rows on disk as parts, then Ctrl-C
+            raise KeyboardInterrupt
+        return merge(store)
+
+    monkeypatch.setattr(sweep_store.ResultStore, "consolidate", interrupted_once)
+    with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as lc, Client(lc) as client:
+        with pytest.raises(KeyboardInterrupt):
+            run_sweep(plan, out, client)
+    assert len(calls) == 2 and len(rows(out)) == POINTS and not (out / ".sweep-parts").exists()
+
+
 def test_ctrl_c_leaves_a_valid_results_file(cli, tmp_path):
-    """A real SIGINT to the sweep's process group (the command, its local cluster): exit 130
-    with the rows so far in a valid results file (none, if it came before the first), and a
-    rerun computes exactly the others."""
+    """A real SIGINT to the sweep's process group (the command, its local cluster) once rows
+    are on disk: exit 130 with the rows so far in a valid results file, and a rerun computes
+    exactly the others."""
     sweep = write(tmp_path / "shoes.yaml", SHOES.replace("stop: 14, step: 2", "stop: 22, step: 1"))
     out = tmp_path / "out"
     env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
@@ -239,8 +267,14 @@ def test_ctrl_c_leaves_a_valid_results_file(cli, tmp_path):
                             str(out), "--workers", "1", "-q"], env=env, stdout=subprocess.PIPE,
                            stderr=subprocess.PIPE, text=True,
                            preexec_fn=lambda: (signal.signal(signal.SIGINT, signal.SIG_DFL), os.setsid()))
-    time.sleep(6)
-    os.killpg(run.pid, signal.SIGINT)
+    # interrupted once the first rows are on disk (or it finished): a fixed sleep raced the
+    # libraries' loading on a loaded machine
+    deadline = time.monotonic() + 300
+    while (run.poll() is None and time.monotonic() < deadline
+           and not any((out / ".sweep-parts").glob("*.parquet"))):
+        time.sleep(0.1)
+    if run.poll() is None:
+        os.killpg(run.pid, signal.SIGINT)
     _, err = run.communicate(timeout=120)
     total = 2 * 13
     if run.returncode == 130:

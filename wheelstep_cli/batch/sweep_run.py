@@ -70,12 +70,13 @@ def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, 
             progress(finished, failures, len(todo))
             for nxt in _take(pending, 1):
                 by_future[_submit(client, futures, nxt)] = nxt
+        # inside the guard: a Ctrl-C while merging must still leave a results file
+        results = store.consolidate()
     except KeyboardInterrupt:
         for future in by_future:
             future.cancel()
         store.consolidate()
         raise
-    results = store.consolidate()
     return SweepOutcome(len(points), len(points) - len(todo), finished, failures, results)
 
 
