@@ -30,13 +30,23 @@ class DesignError(ValueError):
 
     def for_given(self, given: Iterable[str]) -> "DesignError":
         """This error restated for a parameter the user gave, when it names one they did not."""
-        given = set(given)
-        if self.param in given:
+        given = {name.replace("-", "_") for name in given}
+        if self.param.replace("-", "_") in given:
             return self
         for name, (value, limit) in self.alternatives.items():
-            if name in given:
+            if name.replace("-", "_") in given:
                 return DesignError(name, value, limit)
         return self
+
+    def tied_to(self, inputs: dict[str, object]) -> "DesignError":
+        """This error, also stated for each of ``inputs`` (name -> value, None: not set) that
+        shares the blame, so :meth:`for_given` can name the one the user gave."""
+        context = f"with {self.param} = {self.shown_value}, {self.limit}"
+        alternatives = dict(self.alternatives)
+        for name, value in inputs.items():
+            if value is not None and name.replace("-", "_") != self.param.replace("-", "_"):
+                alternatives.setdefault(name, (value, context))
+        return DesignError(self.param, self.value, self.limit, alternatives)
 
 
 def format_value(value: object) -> str:

@@ -121,7 +121,7 @@ def test_verbose_adds_detail_on_stderr_only(cli):
     (["kinematics", "--motor-rpm", "0"], "--motor-rpm = 0"),
     (["stairs", "--sweep", "--sweep-radii", "0"], "--sweep-radii = 0"),
     (["mesh-check", "missing.stl", "missing.stl"], "pinion = missing.stl"),   # an argument
-    (["linkage", "--l3", "100"], "crank-angle = "),                            # not an option
+    (["linkage", "--l3", "100"], "--l3 = 100"),          # the solver's crank angle: the link given
 ])
 def test_errors_name_the_parameter_as_written(cli, tmp_path, args, shown):
     assert error_line(cli(*args)).startswith(f"wheelstep: error: {shown}")

@@ -34,7 +34,10 @@ def test_cli_impossible_linkage_one_line_exit_2(cli, tmp_path):
     png = tmp_path / "x.png"
     res = cli("linkage", "--l3", "100", "--plot", png)
     line = error_line(res)
-    assert line.startswith("wheelstep: error: crank-angle = ")
-    assert "cannot close" in line and not png.exists()
+    # the solver stops at a crank angle, which nobody types: the line names the link given
+    assert line.startswith("wheelstep: error: --l3 = 100: ")
+    assert "cannot close" in line and "crank angle" in line and not png.exists()
+    line = error_line(cli("linkage", "--l1", "500", "--o1=567,615"))
+    assert line.startswith("wheelstep: error: --l1 = 500: ") and "crank angle 195.5 deg" in line
     res = cli("linkage", "--preset", "jansen", "--branch", "Q=+1")
     assert res.exit_code == 2 and res.stderr.startswith("wheelstep: error: --branch = Q")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
 import resource
 import subprocess
 import sys
@@ -87,6 +88,9 @@ def _findings(inv: Invocation, run, folder: Path, before: dict[str, str]) -> lis
             found.append("refusal is not 'wheelstep: error' lines: " + run.stderr.strip()[:200])
         if set(after) != set(before):
             found.append("refused but wrote: " + ", ".join(sorted(set(after) - set(before))))
+        for line in lines:
+            if line.startswith("wheelstep: error") and not names_a_given_parameter(line, inv.args):
+                found.append("refusal names no parameter the user gave: " + line[:200])
     if run.returncode == 0 and "--json" in inv.args:
         try:
             json.loads(run.stdout, parse_constant=_no_constant)
@@ -96,6 +100,41 @@ def _findings(inv: Invocation, run, folder: Path, before: dict[str, str]) -> lis
         if name.endswith(".stl") and run.returncode == 0:
             found.extend(_mesh_findings(folder / name))
     return found
+
+
+_PREFIX = re.compile(r"^wheelstep: error(?: \([^)]*\))?: ")
+_FLAG = re.compile(r"(?<![\w-])(--?[A-Za-z][\w-]*)")
+_FILE_PLACE = re.compile(r"^([^\s:=]+)(?::\d+)?:")
+#: Click's own words for a parameter that is missing (naming it is right: the user did not give it)
+_MISSING = ("Missing argument", "Missing option", "Got unexpected extra argument")
+
+
+def names_a_given_parameter(line: str, args: list[str]) -> bool:
+    """Whether the refusal ``line`` names what the user gave: a flag they typed (``--x =``,
+    Click's ``'--x'``), a file they gave with its place (``p.yaml:3: key = ...``), or an
+    argument by its name with the value they typed (``pinion = x.stl``)."""
+    text = _PREFIX.sub("", line, count=1)
+    typed = {arg.split("=", 1)[0] for arg in args if arg.startswith("-")}
+    values = set(args) | {arg.split("=", 1)[1] for arg in args if arg.startswith("-") and "=" in arg}
+    # arguments: the words after the command before its first flag (how the fuzz writes them)
+    arguments = set()
+    for arg in args[1:]:
+        if arg.startswith("-"):
+            break
+        arguments.add(arg)
+    if text.startswith(_MISSING):
+        return True
+    name, eq, rest = text.partition(" = ")
+    if eq and " " not in name:
+        if name in typed:
+            return True
+        if not name.startswith("-") and rest.partition(": ")[0] in arguments:
+            return True                                   # an argument: pinion = x.stl
+    place = _FILE_PLACE.match(text)
+    if place and place.group(1) in values:
+        return True                                       # p.yaml:1: gears.z = '48': ...
+    head = text.partition(" = ")[0] if eq and " " not in name else text
+    return any(flag in typed for flag in _FLAG.findall(head))
 
 
 def _no_constant(name: str):

@@ -6,8 +6,10 @@ import hashlib
 import subprocess
 import time
 
+import pytest
+
 from tests.fuzz.cases import Invocation, invocations
-from tests.fuzz.runner import _findings, check
+from tests.fuzz.runner import _findings, check, names_a_given_parameter
 
 SEED, COUNT, BUDGET_S = 20261201, 70, 150.0
 
@@ -41,6 +43,27 @@ def test_the_checker_catches_tracebacks_noise_bad_json_and_touched_files(tmp_pat
     ok = subprocess.CompletedProcess([], 0, stdout='{"a": NaN}', stderr="")
     assert any("not valid JSON" in f for f in _findings(Invocation(["pitch", "--json"]), ok, tmp_path,
                                                         {"notes.txt": _digest(b"mine")}))
+
+
+@pytest.mark.parametrize("line, args, named", [
+    ("wheelstep: error: --z = 1e+08: must be <= 400", ["gears", "--z", "1e8"], True),
+    ("wheelstep: error: --z = 1e+08: must be <= 400", ["gears", "--z=1e8"], True),
+    ("wheelstep: error (wheelstep gears): Invalid value for '--z': not a number", ["gears", "--z", "x"], True),
+    ("wheelstep: error (wheelstep gears): No such option: --nope", ["gears", "--nope"], True),
+    ("wheelstep: error: p.yaml:1: gears.z = '48': must be a whole number", ["gears", "--profile", "p.yaml"], True),
+    ("wheelstep: error: pinion = x.stl: no such file", ["mesh-check", "x.stl", "y.stl"], True),
+    # a derived quantity, a spec field, a flag the user did not type, an argument's name
+    # with a value that was an option's
+    ("wheelstep: error: crank-angle = 0: loop cannot close", ["linkage", "--l3", "5e-324"], False),
+    ("wheelstep: error: install_distance = -1: must be >= 0", ["mesh-check", "a", "b", "--distance", "-1"], False),
+    ("wheelstep: error: --r3 = 1: too short for --y0", ["trajectory", "--y0", "nan"], False),
+    ("wheelstep: error: addendum = 5: too big", ["gears", "--backlash", "5"], False),
+])
+def test_the_checker_knows_a_refusal_that_names_what_the_user_gave(tmp_path, line, args, named):
+    assert names_a_given_parameter(line, args) is named
+    run = subprocess.CompletedProcess([], 2, stdout="", stderr=line + "\n")
+    found = _findings(Invocation(args), run, tmp_path, {})
+    assert any(f.startswith("refusal names no parameter") for f in found) is not named
 
 
 def _digest(data: bytes) -> str:

@@ -22,7 +22,7 @@ BOMB = "a: &a [1,1,1,1,1,1,1,1,1]\n" + "".join(
 CASES = [  # (args, files, text the line must hold)
     (["gears", "--law-csv", "law.csv"], {"law.csv": b"\xff\xfe\x00phi"}, "--law-csv"),
     (["gears", "--law-csv", "missing.csv"], {}, "--law-csv"),
-    (["gears", "--profile", "p.yaml"], {"p.yaml": b"\xff\xfe not utf-8"}, "p.yaml"),
+    (["gears", "--profile", "p.yaml"], {"p.yaml": b"\xff\xfe not utf-8"}, "--profile = p.yaml"),
     (["gears", "--profile", "p.yaml"], {"p.yaml": b"gears: {z: '48'}\n"}, "gears.z"),
     (["gears", "--profile", "p.yaml"], {"p.yaml": b"mechanism: {c: text}\n"}, "mechanism.c"),
     (["gears", "--profile", "p.yaml"], {"p.yaml": b"gears: {thickness: {a: 1}}\n"}, "gears.thickness"),
@@ -44,6 +44,11 @@ CASES = [  # (args, files, text the line must hold)
     (["mesh-check", "h.stl", "p.stl", "--distance", "inf"], {"h.stl": HUGE, "p.stl": PNG}, "--distance"),
     # found by sampling the refusals of a seed-3 campaign (the fuzz runner does not check names)
     (["mesh-check", "h.stl", "p.stl", "--distance", "-1"], {"h.stl": HUGE, "p.stl": PNG}, "--distance = -1"),
+    # found by the runner's check that a refusal names a parameter the user gave
+    (["linkage", "--l3", "5e-324"], {}, "--l3 = 4.94066e-324"),
+    (["stairs", "--run", "0.5"], {}, "--run = 0.5"),
+    (["trajectory", "--r2", "1e-300"], {}, "--r2 = 1e-300"),
+    (["kinematics", "--b", "5e-324"], {}, "--b = 4.94066e-324"),
     (["mesh-check", "h.stl", "p.stl", "--samples", "2147483648"], {"h.stl": HUGE, "p.stl": PNG},
      "--samples"),
     (["mesh-check", "h.stl", "h2.stl"], {"h.stl": HUGE, "h2.stl": HUGE.replace(b"1e30", b"2e30")},

@@ -86,7 +86,13 @@ def _given(options: dict[str, list[str]], argv: list[str]) -> list[str]:
 
 def error_text(err: DesignError, options: dict[str, list[str]], argv: list[str]) -> str:
     """One line: the parameter as the user wrote it, the value and the limit."""
-    return f"{_as_typed(err.param, options, argv)} = {err.shown_value}: {err.limit}"
+    name = _as_typed(err.param, options, argv)
+    if name == err.param and isinstance(err.value, str):
+        # a file's problem named by the reader ("file"): the option that gave that file
+        found = _path_option(err.value, options, argv)
+        if found is not None and found[1] == err.value:
+            name = found[0]
+    return f"{name} = {err.shown_value}: {err.limit}"
 
 
 def _path_option(filename: str, options: dict[str, list[str]], argv: list[str]) -> tuple[str, str] | None:

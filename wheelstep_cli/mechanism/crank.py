@@ -58,8 +58,11 @@ class CrankMechanism:
                 f"must be >= {MIN_R_MIN:g} mm (a sole bent tighter has, in effect, a cusp)")
         _check_lengths(a=a, b=b)
         c = r_min - a + 4.0 * b
-        require(c > 0, "r_min", r_min,
-                f"must be > a - 4b = {a - 4.0 * b:g} mm (strut length c = R_min - a + 4b must be > 0)")
+        if not c > 0:
+            why = " (strut length c = R_min - a + 4b must be > 0)"
+            raise DesignError("r_min", r_min, f"must be > a - 4b = {a - 4.0 * b:g} mm" + why, {
+                "b": (b, f"must be > (a - R_min)/4 = {(a - r_min) / 4:g} mm" + why),
+                "a": (a, f"must be < R_min + 4b = {r_min + 4.0 * b:g} mm" + why)})
         return cls(float(a), float(b), float(c))
 
     @property

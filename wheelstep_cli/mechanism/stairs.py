@@ -79,12 +79,14 @@ def size_for_stair(run: float, rise: float, sole_radius: float, landing: float) 
                           "the sizing equations are singular here (alpha = 15 + k*60 deg)")
     b, y1, _ = _sizing_raw(run, rise, sole_radius, landing)
     b, y1 = float(b), float(y1)
+    # the stair and the sole share the blame with the landing angle
+    stair = {"run": run, "rise": rise, "sole_radius": sole_radius}
     if not b > 0:
-        raise DesignError("landing-angle", deg,
-                          f"gives crank b = {b:.1f} mm <= 0 for this stair and sole (no physical meaning)")
+        raise DesignError("landing-angle", deg, f"gives crank b = {b:.1f} mm <= 0 for this stair "
+                          "and sole (no physical meaning)").tied_to(stair)
     if not y1 > 0:
-        raise DesignError("landing-angle", deg,
-                          f"gives strut Y1 = {y1:.1f} mm <= 0 for this stair and sole (no physical meaning)")
+        raise DesignError("landing-angle", deg, f"gives strut Y1 = {y1:.1f} mm <= 0 for this stair "
+                          "and sole (no physical meaning)").tied_to(stair)
     return StairDesign(a=2 * b, b=b, y1=y1, y2=float(sole_radius))
 
 

@@ -166,6 +166,15 @@ def foot_path(support_length: float, r1: float, r2: float, r3: float | None = No
     """
     if (r3 is None) == (h_max is None):
         raise DesignError("r3", "given" if r3 is not None else "missing", "give exactly one of --r3 and --h-max")
+    try:
+        return _foot_path(support_length, r1, r2, r3, h_max, x0, y0, root)
+    except DesignError as err:   # every size of the path shares the blame for its shape
+        raise err.tied_to({"support_length": support_length, "r1": r1, "r2": r2, "r3": r3,
+                           "h_max": h_max}) from None
+
+
+def _foot_path(support_length: float, r1: float, r2: float, r3: float | None, h_max: float | None,
+               x0: float, y0: float, root: str) -> FootPath:
     if r3 is None:
         o3, r3 = top_arc_for_clearance(support_length, r1, r2, h_max, x0, y0)
     else:

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from wheelstep_cli.errors import require
+from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.mechanism.linkage.gait import Gait, gait
 from wheelstep_cli.mechanism.linkage.presets import PRESETS, four_bar
 from wheelstep_cli.mechanism.linkage.solver import Dyad, Linkage, Solution, cycle_angles, solve
@@ -80,10 +80,35 @@ def linkage_study(request: LinkageRequest) -> LinkageStudy:
     if request.ground_tol is not None:
         require(request.ground_tol >= 0, "ground-tol", request.ground_tol, "must be >= 0 mm")
     theta = cycle_angles(request.samples)
-    sol = solve(leg, theta)
+    try:
+        sol = solve(leg, theta)
+    except DesignError as err:
+        raise _for_the_inputs(err, request) from None
     probe = gait(leg, sol, rpm)
     tol = 0.02 * probe.lift if request.ground_tol is None else request.ground_tol
     return LinkageStudy(request, leg, rpm, sol, gait(leg, sol, rpm, tol))
+
+
+def _for_the_inputs(err: DesignError, request: LinkageRequest) -> DesignError:
+    """A solver error (it names a crank angle, which nobody types) restated for each input
+    that shapes the leg, so the command line names the one the user gave: a replaced
+    four-bar number first, then the branches, the scale, the preset."""
+    if err.param != "crank-angle":
+        return err
+    why = f"the leg cannot turn its crank fully with it: at crank angle {err.shown_value} deg, {err.limit}"
+    options = {"beta_deg": "beta"}
+    alternatives = {options.get(k, k): (_shown(v), why) for k, v in request.four_bar.items()
+                    if v is not None}
+    if request.branches:
+        alternatives["branch"] = (",".join(f"{k}={v:+d}" for k, v in request.branches.items()), why)
+    alternatives["scale"] = (request.scale, why)
+    alternatives["preset"] = (request.preset, why)
+    return DesignError(err.param, err.value, err.limit, alternatives)
+
+
+def _shown(value) -> object:
+    """A four-bar number as the user gave it (a pivot 'x,y' as typed)."""
+    return ",".join(f"{c:g}" for c in value) if isinstance(value, tuple) else value
 
 
 def _stats(values: np.ndarray) -> dict:
