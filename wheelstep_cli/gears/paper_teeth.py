@@ -115,7 +115,8 @@ def check_tooth_form(part: SectorPartition, form: ToothForm) -> None:
         pitch = part.arc
         raise DesignError("module", m, f"too large for the tooth pitch {pitch:.3f} mm: teeth come "
                           f"to a point (tip land {worst:.3f} mm < {MIN_TIP_LAND} mm); "
-                          "use a smaller module or more teeth")
+                          "use a smaller module (--module), less backlash (--backlash) or fewer "
+                          "teeth (--z: fewer teeth, longer pitch)")
     if min(pinion_gap.min(), wheel_gap.min()) <= 0:
         raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: "
                           "tooth spaces close at the root")

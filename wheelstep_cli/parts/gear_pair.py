@@ -79,12 +79,25 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
     count = sectors_per_quarter(spec.z, spec.turns)
     partition = sector_partition(law, count, spec.paper_distances[0])
     form = spec.tooth_form()
-    check_tooth_form(partition, form)
+    check_paper_teeth(partition, form, spec)
     p_outline = pinion_outline(partition, form)
     w_outline = wheel_outline(partition, form)
     pinion, wheel = _plates(spec, law, p_outline, w_outline, spec.paper_module)
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     return GearPair(spec, law, partition, p_outline, w_outline, pinion, wheel, checks)
+
+
+def check_paper_teeth(partition: SectorPartition, form, spec: GearPairSpec) -> None:
+    """The sector-involute teeth's form check (module against tooth pitch), its refusal also
+    stated for the inputs that set the pitch and the tooth thickness (more teeth, less
+    backlash, another mechanism), so it names the one the user gave."""
+    from wheelstep_cli.errors import DesignError
+
+    try:
+        check_tooth_form(partition, form)
+    except DesignError as err:
+        raise err.tied_to({"z": spec.z, "backlash": form.backlash, "turns": spec.turns, "a": spec.a,
+                           "b": spec.b, "c": spec.c}) from None
 
 
 def _plates(spec: GearPairSpec, law, p_outline: np.ndarray, w_outline: np.ndarray,

@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from wheelstep_cli.gears.paper_teeth import check_tooth_form, pinion_flanks, wheel_flanks
+from wheelstep_cli.gears.paper_teeth import pinion_flanks, wheel_flanks
 from wheelstep_cli.gears.sectors import sector_partition, sectors_per_quarter
-from wheelstep_cli.parts.gear_pair import GearPairSpec, partition_rows
+from wheelstep_cli.parts.gear_pair import GearPairSpec, check_paper_teeth, partition_rows
 
 #: gear -> the name of its angle in the tooth table.
 FLANK_ANGLES = {"pinion": "theta", "wheel": "phi"}
@@ -37,6 +37,6 @@ def teeth_report(spec: GearPairSpec) -> dict:
     "wheel": [...]}``; raises DesignError for teeth that cannot be formed."""
     part = sector_partition(spec.law(), sectors_per_quarter(spec.z, spec.turns), spec.paper_distances[0])
     form = spec.tooth_form()
-    check_tooth_form(part, form)
+    check_paper_teeth(part, form, spec)
     flanks = {"pinion": pinion_flanks(part, form), "wheel": wheel_flanks(part, form)}
     return {gear: _flank_rows(flanks[gear], angle) for gear, angle in FLANK_ANGLES.items()}

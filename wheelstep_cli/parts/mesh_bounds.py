@@ -123,6 +123,12 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
     error = DesignError(param, value,
                         f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
                         f"written; use {options}")
+    # every input that shapes the teeth or the law shares the blame: the line names the one
+    # the user gave (the remedy stays the remedy)
+    shaping = ("tilt", "pressure_angle", "blend", "corner", "addendum", "dedendum", "fillet",
+               "clearance", "module", "a", "b", "c", "turns", "center_distance", "law_csv")
+    error = error.tied_to({"backlash": design_backlash(design),
+                           **{name: getattr(design, name) for name in shaping}})
     error.remedy = remedy   # name -> value, for a batch file to state as its keys
     raise error
 
