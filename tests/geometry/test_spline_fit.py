@@ -85,3 +85,16 @@ def test_a_repeated_corner_point_keeps_the_corner():
     assert sorted(tuple(e.poles[0]) for e in edges) == [(0, 0), (0, 10), (10, 0), (10, 10)]
     with pytest.raises(ValueError):
         fit_ring(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 0.0]]), FitSettings())
+
+
+@pytest.mark.parametrize("lobes, most_poles", [(0, 40), (7, 120)])
+def test_a_smooth_ring_is_a_few_cubic_poles_not_its_points(lobes, most_poles):
+    """The fit does fit: a smooth 4000-point ring becomes one closed cubic edge with a few
+    dozen poles (a fit that failed everywhere would fall back to the polyline, 4000 poles,
+    and still pass the distance tests above)."""
+    t = np.linspace(0.0, 2 * np.pi, 4000, endpoint=False)
+    ring = (50.0 * (1.0 + 0.05 * np.cos(lobes * t)))[:, None] * np.stack([np.cos(t), np.sin(t)], 1)
+    edges = fit_ring(ring, FitSettings())
+    assert len(edges) == 1 and edges[0].degree == 3
+    assert len(edges[0].poles) <= most_poles
+    assert hausdorff(edges, ring) <= FitSettings().tolerance
