@@ -93,3 +93,24 @@ def test_step_is_the_extruded_face_and_deterministic(tmp_path):
     box = solid.bounding_box()
     assert (box.min.Z, box.max.Z) == pytest.approx((0.0, 8.0), abs=1e-6)   # plus its tolerance gap
     assert box.max.X == pytest.approx(25.0, abs=FitSettings().tolerance)
+
+
+def test_step_edges_keep_knots_closer_than_a_micro_unit():
+    """Four knots within 1e-6 (a C-1 join a cubic cannot have if merged, and a shift if two
+    are): the edge is the spline itself, each knot where it was."""
+    pytest.importorskip("build123d")
+    from OCP.BRep import BRep_Tool
+    from scipy.interpolate import splev
+
+    from wheelstep_cli.formats.step import _edge
+    from wheelstep_cli.geometry.spline_fit import BSpline
+
+    knots = np.array([0, 0, 0, 0, 0.3, 0.3 + 4e-7, 0.3 + 8e-7, 0.6, 1, 1, 1, 1.0])
+    poles = np.array([[0, 0], [1, 2], [2, -1], [3, 2], [4, 0], [5, 3], [6, 1], [7, 0.0]])
+    edge = _edge(BSpline(knots=knots, poles=poles, degree=3))
+    curve = BRep_Tool.Curve_s(edge.wrapped, 0.0, 1.0)
+    assert curve.NbKnots() == 6 and curve.NbPoles() == 8
+    for u in np.linspace(0.0, 1.0, 41):
+        p = curve.Value(float(u))
+        x, y = splev(u, (knots, [poles[:, 0], poles[:, 1]], 3))
+        assert (p.X(), p.Y(), p.Z()) == pytest.approx((float(x), float(y), 0.0), abs=1e-12)

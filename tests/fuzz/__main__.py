@@ -1,4 +1,6 @@
 """``python -m tests.fuzz --n 5000 --seed 1 --jobs 2``: a long stability-fuzz campaign with a summary.
+``python -m tests.fuzz --scan [--commands pitch,teeth]``: every numeric option alone with every
+fuzz value instead (``--n`` and ``--seed`` then do not apply).
 
 The seed fixes the invocations; ``--jobs`` runs that many at once (each still its own
 subprocess with a timeout and a memory cap); findings are printed in index order.
@@ -12,7 +14,7 @@ import time
 from collections import Counter
 from concurrent.futures import ThreadPoolExecutor
 
-from tests.fuzz.cases import invocations
+from tests.fuzz.cases import invocations, option_scan
 from tests.fuzz.runner import check
 
 
@@ -23,8 +25,13 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--slow-share", type=float, default=0.1)
     parser.add_argument("--jobs", type=int, default=1)
     parser.add_argument("--only", default="", help="comma-separated indices to rerun")
+    parser.add_argument("--scan", action="store_true", help="each option alone with each value")
+    parser.add_argument("--commands", default="", help="with --scan: comma-separated commands")
     args = parser.parse_args(argv)
-    cases = list(enumerate(invocations(args.seed, args.n, args.slow_share)))
+    if args.scan:
+        cases = list(enumerate(option_scan([c for c in args.commands.split(",") if c] or None)))
+    else:
+        cases = list(enumerate(invocations(args.seed, args.n, args.slow_share)))
     if args.only:
         wanted = {int(i) for i in args.only.split(",")}
         cases = [(i, inv) for i, inv in cases if i in wanted]
@@ -40,7 +47,8 @@ def main(argv: list[str]) -> int:
                 print(f"... {i + 1} done, {time.perf_counter() - start:.0f} s, findings {dict(findings)}, "
                       f"commands {dict(commands)}", flush=True)
     seconds = time.perf_counter() - start
-    print(f"{len(cases)} invocations (seed {args.seed}, n {args.n}, jobs {args.jobs}) in {seconds:.0f} s: "
+    what = "option scan" if args.scan else f"seed {args.seed}, n {args.n}"
+    print(f"{len(cases)} invocations ({what}, jobs {args.jobs}) in {seconds:.0f} s: "
           f"{sum(findings.values())} findings {dict(findings)}; commands {dict(commands)}")
     return 1 if findings else 0
 

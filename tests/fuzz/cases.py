@@ -126,3 +126,12 @@ def invocations(seed: int, count: int, slow_share: float = 0.1):
             yield _batch_case(rng)
         else:
             yield _command_case(rng, allow_slow=rng.random() < slow_share)
+
+
+def option_scan(commands: list[str] | None = None):
+    """Every numeric option of every command (or of ``commands``) alone with every value of
+    :data:`NUMBERS`: the boundary cases a random campaign may miss, in a fixed order."""
+    for command in commands or list(OPTIONS):
+        for option in OPTIONS[command]:
+            for value in NUMBERS:
+                yield Invocation([command, option, value])

@@ -52,6 +52,8 @@ CASES = [  # (args, files, text the line must hold)
     (["teeth", "--b", "0.5", "--c", "3", "--z", "144"], {}, "--z = 144"),
     (["teeth", "--backlash", "144"], {}, "--backlash = 144"),
     (["gears", "--tilt", "-0.0"], {}, "--tilt = -0"),
+    # found by a scan of every numeric option with every fuzz value, one at a time
+    (["pitch", "--center-distance", "5e-324"], {}, "--center-distance = 4.94066e-324"),
     (["mesh-check", "h.stl", "p.stl", "--samples", "2147483648"], {"h.stl": HUGE, "p.stl": PNG},
      "--samples"),
     (["mesh-check", "h.stl", "h2.stl"], {"h.stl": HUGE, "h2.stl": HUGE.replace(b"1e30", b"2e30")},

@@ -28,6 +28,9 @@ MAX_LENGTH = 10_000.0
 DEFAULT_INSTALL, PAPER_OPENING = 144.0, 0.5
 #: Pinion tooth counts taken: the generator's floor, and a ceiling that bounds its work.
 MIN_TEETH, MAX_TEETH = 6, 240
+#: Least centre distance (mm): a pair closer than this cannot be printed, and far below it the
+#: pitch-curve solvers meet floating-point underflow.
+MIN_DISTANCE = 1.0
 
 
 class Teeth(str, Enum):
@@ -70,10 +73,10 @@ class GearPairSpec(BaseModel):
     # generated teeth: the distance the pitch curves roll at (None: the installed distance, or
     # the one a --module fits); paper teeth: the sectors' design distance L_p (None: the
     # installed less the source's 0.5 mm opening, 143.5)
-    center_distance: Optional[Number] = length(None, gt=0)
+    center_distance: Optional[Number] = length(None, ge=MIN_DISTANCE)
     # the distance the pair is mounted and checked at (None: where generated teeth roll;
     # paper teeth L_p + 0.5 mm; 144 when neither is given)
-    install_distance: Optional[Number] = length(None, gt=0)
+    install_distance: Optional[Number] = length(None, ge=MIN_DISTANCE)
     # generated teeth: None takes the module from the pitch curves at the distance; a module
     # solves the design centre distance for it (SPEC §9). Paper teeth: None is 2 mm.
     module: Optional[Number] = None
