@@ -112,7 +112,7 @@ def test_specs_refuse_unknown_and_wrong_typed_values_naming_the_parameter():
     assert info.value.param == "install_distance"
     with pytest.raises(DesignError) as info:
         shoe_spec(None, strut_diameter=-1.0)
-    assert (info.value.param, info.value.limit) == ("strut_diameter", "must be > 0 mm")
+    assert (info.value.param, info.value.limit) == ("strut_diameter", "must be >= 1 mm")
     assert gear_pair_spec(None, a=80).a == 80 and isinstance(gear_pair_spec(None, a=80).a, int)
     assert isinstance(shoe_spec(None, a=80).a, float)
 

@@ -54,6 +54,11 @@ CASES = [  # (args, files, text the line must hold)
     (["gears", "--tilt", "-0.0"], {}, "--tilt = -0"),
     # found by a scan of every numeric option with every fuzz value, one at a time
     (["pitch", "--center-distance", "5e-324"], {}, "--center-distance = 4.94066e-324"),
+    (["mesh-check", "--distance", "0"], {}, "Missing argument 'PINION'"),
+    (["shoe", "--width", "3"], {}, "--width = 3: must be >= 16"),
+    (["shoe", "--strut-diameter", "1e-300"], {}, "--strut-diameter = 1e-300"),
+    (["shoe", "--rmin", "144"], {}, "--rmin = 144"),
+    (["gears", "--module", "1e-300"], {}, "--module = 1e-300"),
     (["mesh-check", "h.stl", "p.stl", "--samples", "2147483648"], {"h.stl": HUGE, "p.stl": PNG},
      "--samples"),
     (["mesh-check", "h.stl", "h2.stl"], {"h.stl": HUGE, "h2.stl": HUGE.replace(b"1e30", b"2e30")},

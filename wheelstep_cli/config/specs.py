@@ -31,6 +31,12 @@ MIN_TEETH, MAX_TEETH = 6, 240
 #: Least centre distance (mm): a pair closer than this cannot be printed, and far below it the
 #: pitch-curve solvers meet floating-point underflow.
 MIN_DISTANCE = 1.0
+#: Least socket bore (mm): a smaller hole does not print, and far below it the bore's polygon
+#: degenerates before the solid is made.
+MIN_BORE = 1.0
+#: Least module (mm): finer teeth do not print on any printer, and far below it the rack
+#: cutter's tooth degenerates.
+MIN_MODULE = 0.1
 
 
 class Teeth(str, Enum):
@@ -79,7 +85,7 @@ class GearPairSpec(BaseModel):
     install_distance: Optional[Number] = length(None, ge=MIN_DISTANCE)
     # generated teeth: None takes the module from the pitch curves at the distance; a module
     # solves the design centre distance for it (SPEC §9). Paper teeth: None is 2 mm.
-    module: Optional[Number] = None
+    module: Optional[Number] = length(None, ge=MIN_MODULE)
     backlash: Optional[Number] = None   # None: 0.25 * module (2 mm when none; bounds: the tooth form's)
     thickness: Number = length(10.0, gt=0)
     bore: Number = length(8.0, ge=0)   # shaft diameter; across flats for a hex bore
@@ -258,7 +264,7 @@ class ShoeSpec(BaseModel):
     c: Optional[Real] = length(None, le=MAX_LENGTH)
     r_min: Optional[Real] = length(None, le=MAX_LENGTH)
     width: Real = length(40.0, gt=0)            # across the track
-    strut_diameter: Real = length(12.0, gt=0)   # socket bore (circumscribed polygon, the strut fits)
+    strut_diameter: Real = length(12.0, ge=MIN_BORE)   # socket bore (circumscribed polygon, the strut fits)
     socket_depth: Real = length(25.0, gt=0)
     rim: Real = length(15.0, gt=0)              # body height above the sole's ends
 

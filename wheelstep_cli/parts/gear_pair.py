@@ -87,6 +87,12 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
     return GearPair(spec, law, partition, p_outline, w_outline, pinion, wheel, checks)
 
 
+def footprint(spec: GearPairSpec) -> dict[str, object]:
+    """The inputs that set the gears' size on the bed (name -> value, None: not set)."""
+    return {"a": spec.a, "b": spec.b, "c": spec.c, "center_distance": spec.center_distance,
+            "install_distance": spec.install_distance, "module": spec.module, "turns": spec.turns}
+
+
 def check_paper_teeth(partition: SectorPartition, form, spec: GearPairSpec) -> None:
     """The sector-involute teeth's form check (module against tooth pitch), its refusal also
     stated for the inputs that set the pitch and the tooth thickness (more teeth, less
@@ -309,7 +315,7 @@ def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both", meshing: dict 
     files: dict[Path, bytes] = {}
     parts = [pair.pinion, pair.wheel]
     if chosen is not None or fmt in ("3mf", "both"):
-        require_on_bed(parts, printer, "thickness", pair.spec.thickness)
+        require_on_bed(parts, printer, "thickness", pair.spec.thickness, footprint(pair.spec))
     if fmt in ("stl", "both"):
         for part in parts:
             files[out / f"{part.name}.stl"] = stl_bytes(part.vertices, part.faces, f"wheelstep {part.name}")

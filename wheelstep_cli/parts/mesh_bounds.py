@@ -126,7 +126,8 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
     # every input that shapes the teeth or the law shares the blame: the line names the one
     # the user gave (the remedy stays the remedy)
     shaping = ("tilt", "pressure_angle", "blend", "corner", "addendum", "dedendum", "fillet",
-               "clearance", "module", "a", "b", "c", "turns", "center_distance", "law_csv")
+               "clearance", "module", "a", "b", "c", "turns", "center_distance", "install_distance",
+               "law_csv")
     error = error.tied_to({"backlash": design_backlash(design),
                            **{name: getattr(design, name) for name in shaping}})
     error.remedy = remedy   # name -> value, for a batch file to state as its keys

@@ -34,9 +34,11 @@ def size_problem(name: str, bounds: np.ndarray, printer: Printer) -> str | None:
     return None
 
 
-def require_on_bed(parts, printer: Printer, height_param: str, height: float) -> None:
+def require_on_bed(parts, printer: Printer, height_param: str, height: float,
+                   footprint: dict[str, object] | None = None) -> None:
     """Refuse (DesignError) a part taller than the printer prints (named by ``height_param``,
-    the option that sets it) or larger than its bed (named ``printer``)."""
+    the option that sets it) or larger than its bed (named ``printer``, or the one of the
+    ``footprint`` inputs, name -> value, that set the part's size and the user gave)."""
     for part in parts:
         size = part.bounds[1] - part.bounds[0]
         if size[2] > printer.max_height:
@@ -44,7 +46,7 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float) ->
                               f"greatest height printer '{printer.name}' prints")
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
-            raise DesignError("printer", printer.name, problem)
+            raise DesignError("printer", printer.name, problem).tied_to(footprint or {})
 
 
 def pack_units(units: list[list[tuple[float, float]]], printer: Printer

@@ -70,9 +70,10 @@ def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
     limit = min(spec.width, length) - 2.0 * MIN_WALL
     if d > limit:
         across = "width" if spec.width <= length else f"sole length {length:.1f} mm"
-        raise DesignError("strut_diameter", d,
-                          f"must be <= {limit:.2f} mm (socket wider than the body: {across} "
-                          f"less {MIN_WALL:g} mm wall each side)")
+        why = f"(socket wider than the body: {across} less {MIN_WALL:g} mm wall each side)"
+        raise DesignError("strut_diameter", d, f"must be <= {limit:.2f} mm {why}",
+                          {"width": (spec.width, f"must be >= {d + 2.0 * MIN_WALL:.2f} mm {why}")}
+                          if spec.width <= length else {})
     floor = polyline_box_distance(sole_part, (-d / 2.0, top - spec.socket_depth, d / 2.0, top))
     if floor < MIN_WALL:
         # deepest socket that keeps the wall (the wall shrinks as the socket deepens): bisection
@@ -176,7 +177,9 @@ def shoe_files(shoe: Shoe, out: Path, fmt: str = "both", printer=None) -> dict[P
     printer = chosen or load_printer()
     part = shoe.part
     if chosen is not None or fmt in ("3mf", "both"):
-        require_on_bed([part], printer, "width", shoe.spec.width)
+        spec = shoe.spec
+        require_on_bed([part], printer, "width", spec.width, {
+            "a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min, "rim": spec.rim})
     files: dict[Path, bytes] = {}
     if fmt in ("stl", "both"):
         files[out / "shoe.stl"] = stl_bytes(part.vertices, part.faces, "wheelstep shoe")

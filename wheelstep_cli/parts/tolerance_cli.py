@@ -77,9 +77,11 @@ def band_pair(spec, printer, check: bool, fit: str | None):
 def _on_bed(pair, printer):
     """``pair``, refused (DesignError) before any band work when a gear cannot go on
     ``printer``'s bed, as writing it would refuse it."""
+    from wheelstep_cli.parts.gear_pair import footprint
     from wheelstep_cli.parts.plate_layout import require_on_bed
 
-    require_on_bed([pair.pinion, pair.wheel], printer, "thickness", pair.spec.thickness)
+    require_on_bed([pair.pinion, pair.wheel], printer, "thickness", pair.spec.thickness,
+                   footprint(pair.spec))
     return pair
 
 

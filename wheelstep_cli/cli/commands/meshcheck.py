@@ -69,9 +69,11 @@ def mesh_check(
         failed = check_gcode(show, gcode, [a for a in (pinion, wheel) if a], pair, design,
                              (samples, window, plot), band, (dry_run, quiet, force))
     elif pinion is None:
-        from wheelstep_cli.errors import DesignError
+        from wheelstep_cli.cli import click_errors
 
-        raise DesignError("pinion", "none", "give the PINION and WHEEL meshes, a plate, or --gcode FILE")
+        # worded as Click words a missing argument: the user did not give one to name
+        raise click_errors.UsageError("Missing argument 'PINION': give the PINION and WHEEL meshes, a "
+                               "plate, or --gcode FILE")
     elif is_plate_input(pinion, wheel):
         _no_band_on_plates(tolerance, printer)
         failed = _check_plates(show, [pinion] + ([wheel] if wheel else []), pair, design, samples,
