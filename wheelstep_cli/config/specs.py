@@ -31,12 +31,18 @@ MIN_TEETH, MAX_TEETH = 6, 240
 #: Least centre distance (mm): a pair closer than this cannot be printed, and far below it the
 #: pitch-curve solvers meet floating-point underflow.
 MIN_DISTANCE = 1.0
+#: Greatest centre distance (mm): beyond any printer's bed, and it bounds the work (outlines
+#: are sampled in micrometres: about 0.8 GB and 15 s at 1000 mm, linear in the distance).
+MAX_DISTANCE = 1000.0
 #: Least socket bore (mm): a smaller hole does not print, and far below it the bore's polygon
 #: degenerates before the solid is made.
 MIN_BORE = 1.0
 #: Least module (mm): finer teeth do not print on any printer, and far below it the rack
 #: cutter's tooth degenerates.
 MIN_MODULE = 0.1
+#: Least gear thickness (mm): a few layers of any printer; far below it the extrusion is flat
+#: and no solid.
+MIN_THICKNESS = 0.5
 
 
 class Teeth(str, Enum):
@@ -79,15 +85,15 @@ class GearPairSpec(BaseModel):
     # generated teeth: the distance the pitch curves roll at (None: the installed distance, or
     # the one a --module fits); paper teeth: the sectors' design distance L_p (None: the
     # installed less the source's 0.5 mm opening, 143.5)
-    center_distance: Optional[Number] = length(None, ge=MIN_DISTANCE)
+    center_distance: Optional[Number] = length(None, ge=MIN_DISTANCE, le=MAX_DISTANCE)
     # the distance the pair is mounted and checked at (None: where generated teeth roll;
     # paper teeth L_p + 0.5 mm; 144 when neither is given)
-    install_distance: Optional[Number] = length(None, ge=MIN_DISTANCE)
+    install_distance: Optional[Number] = length(None, ge=MIN_DISTANCE, le=MAX_DISTANCE)
     # generated teeth: None takes the module from the pitch curves at the distance; a module
     # solves the design centre distance for it (SPEC §9). Paper teeth: None is 2 mm.
     module: Optional[Number] = length(None, ge=MIN_MODULE)
     backlash: Optional[Number] = None   # None: 0.25 * module (2 mm when none; bounds: the tooth form's)
-    thickness: Number = length(10.0, gt=0)
+    thickness: Number = length(10.0, ge=MIN_THICKNESS)
     bore: Number = length(8.0, ge=0)   # shaft diameter; across flats for a hex bore
     bore_shape: BoreShape = BoreShape.round.value
     flat_depth: Optional[Number] = length(None, gt=0)  # d-flat; None: 0.1 x bore

@@ -63,8 +63,8 @@ def rolling_distance(spec: GearPairSpec, law) -> float:
     """The distance (mm) generated teeth roll at (their pitch curves' centre distance): the
     one a given module fits (SPEC §9: the pitch curves' perimeter is proportional to it),
     else --center-distance, else the installed distance (144 when neither is given)."""
-    from wheelstep_cli.config.specs import DEFAULT_INSTALL
-    from wheelstep_cli.errors import require
+    from wheelstep_cli.config.specs import DEFAULT_INSTALL, MAX_DISTANCE
+    from wheelstep_cli.errors import DesignError, require
     from wheelstep_cli.gears.pitch_curves import center_distance_for_module
 
     if spec.module is None:
@@ -72,7 +72,14 @@ def rolling_distance(spec: GearPairSpec, law) -> float:
         return float(given) if given is not None else DEFAULT_INSTALL
     require(spec.module > 0, "module", spec.module, "must be > 0 mm")
     per_period = max(1, spec.z // law.pinion_periods)
-    return float(center_distance_for_module(law, per_period, spec.module))
+    distance = float(center_distance_for_module(law, per_period, spec.module))
+    if distance > MAX_DISTANCE:
+        why = f"(module and teeth set the centre distance, {distance:.0f} mm > {MAX_DISTANCE:g} mm)"
+        most = np.floor(100.0 * spec.module * MAX_DISTANCE / distance) / 100.0   # a value that passes
+        raise DesignError("module", spec.module, f"must be <= {most:g} mm for {spec.z} teeth {why}",
+                          {"z": (spec.z, f"must be <= {int(spec.z * MAX_DISTANCE / distance)} at "
+                                         f"module {spec.module:g} mm {why}")})
+    return distance
 
 
 def installed_distance(spec: GearPairSpec, law=None) -> float:
