@@ -81,3 +81,18 @@ def test_written_implies_within_bounds_refused_implies_one_line(cli, tmp_path_fa
         line = error_line(result, result.exit_code)
         assert result.exit_code in (1, 2) and line.startswith("wheelstep: ")
         assert "; use --" in line or "--allow-interference" in line
+
+
+def test_a_remedy_beyond_the_tooth_limit_sets_the_changed_generator_setting_back(cli, tmp_path):
+    """Flat corners (--tilt 0) would need more teeth than a design may have: the refusal
+    names --tilt and its remedy is the default tilt, which passes."""
+    from wheelstep_cli.config.specs import GearPairSpec
+
+    out = tmp_path / "out"
+    line = error_line(cli("gears", "--tilt", "0", "--format", "stl", "--out", out))
+    assert line.startswith("wheelstep: error: --tilt = 0: ") and not out.exists()
+    remedy = remedy_options(line)
+    assert remedy == ["--tilt", f"{GearPairSpec.model_fields['tilt'].default:g}"]
+    result = cli("gears", "--tilt", "0", *remedy, "--format", "stl", "--out", out)
+    assert result.exit_code == 0, result.stderr
+    assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []

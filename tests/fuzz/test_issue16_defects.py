@@ -51,7 +51,7 @@ CASES = [  # (args, files, text the line must hold)
     (["kinematics", "--b", "5e-324"], {}, "--b = 4.94066e-324"),
     (["teeth", "--b", "0.5", "--c", "3", "--z", "144"], {}, "--z = 144"),
     (["teeth", "--backlash", "144"], {}, "--backlash = 144"),
-    (["gears", "--tilt", "-0.0"], {}, "--tilt = -0"),
+    (["gears", "--tilt", "-0.0"], {}, "--tilt = -0"),   # its remedy: tests/cli/test_design_bounds.py
     # found by a scan of every numeric option with every fuzz value, one at a time
     (["pitch", "--center-distance", "5e-324"], {}, "--center-distance = 4.94066e-324"),
     (["mesh-check", "--distance", "0"], {}, "Missing argument 'PINION'"),

@@ -117,8 +117,9 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
             remedy["z"] = teeth_remedy(record, design.z, law.pinion_periods, bounds)
         if any("ripple" in text for text in broken):
             remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
+        remedy = _within_the_tooth_limit(design, remedy)
     param = next(iter(remedy))
-    options = " ".join(f"--{name.replace('_', '-')} {value:g}" for name, value in remedy.items())
+    options = " ".join(f"--{name.replace('_', '-')} {_shown(value)}" for name, value in remedy.items())
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
     error = DesignError(param, value,
                         f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
@@ -132,6 +133,25 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
                            **{name: getattr(design, name) for name in shaping}})
     error.remedy = remedy   # name -> value, for a batch file to state as its keys
     raise error
+
+
+#: Generator settings a remedy may return to their defaults (the defaults give pairs within
+#: the bounds across the design space: benchmarks/design_space.py).
+GENERATOR_SETTINGS = ("tilt", "pressure_angle", "addendum", "dedendum", "fillet", "clearance",
+                      "blend", "corner")
+
+
+def _within_the_tooth_limit(design, remedy: dict) -> dict:
+    """``remedy``, or, when its tooth count is more than a design may have, the generator
+    settings the design changed set back to their defaults (those teeth are the cause)."""
+    from wheelstep_cli.config.specs import MAX_TEETH, GearPairSpec
+
+    if remedy.get("z", 0) <= MAX_TEETH:
+        return remedy
+    fields = GearPairSpec.model_fields
+    changed = {name: fields[name].default for name in GENERATOR_SETTINGS
+               if getattr(design, name) != fields[name].default}
+    return changed or {"z": MAX_TEETH}
 
 
 #: Largest difference (mm) of the installed and rolling distances taken as none (a float's
@@ -155,6 +175,11 @@ def opening_remedy(pair) -> str:
             f"{pair.design_distance:g} (more play by --backlash)")
 
 
+def _shown(value) -> str:
+    """A remedy's value as an option takes it (numbers in the shortest form, names as words)."""
+    return f"{value:g}" if isinstance(value, (int, float)) else str(getattr(value, "value", value))
+
+
 def remedy_in_yaml(err) -> str:
     """A bounds refusal (:func:`require_within_bounds`) as a batch file states it: the
     remedy as the entry's override keys (``z: 90, backlash: 0.239``), not as flags."""
@@ -164,8 +189,8 @@ def remedy_in_yaml(err) -> str:
     remedy = getattr(err, "remedy", None)
     if not remedy:
         return message
-    flags = " ".join(f"--{name.replace('_', '-')} {value:g}" for name, value in remedy.items())
-    keys = ", ".join(f"{name}: {value:g}" for name, value in remedy.items())
+    flags = " ".join(f"--{name.replace('_', '-')} {_shown(value)}" for name, value in remedy.items())
+    keys = ", ".join(f"{name}: {_shown(value)}" for name, value in remedy.items())
     return message.replace(f"use {flags}", f"use overrides {{{keys}}}")
 
 
