@@ -46,7 +46,11 @@ class DesignError(ValueError):
         for name, value in inputs.items():
             if value is not None and name.replace("-", "_") != self.param.replace("-", "_"):
                 alternatives.setdefault(name, (value, context))
-        return DesignError(self.param, self.value, self.limit, alternatives)
+        tied = DesignError(self.param, self.value, self.limit, alternatives)
+        for key, value in vars(self).items():       # e.g. a refusal's remedy
+            if key not in vars(tied):
+                setattr(tied, key, value)
+        return tied
 
 
 def format_value(value: object) -> str:

@@ -62,6 +62,8 @@ CASES = [  # (args, files, text the line must hold)
     (["gears", "--module", "144"], {}, "--module = 144: must be <= 14.64 mm"),     # 9.8 m apart: 9 GB
     (["gears", "--install-distance", "10000"], {}, "--install-distance = 10000"),
     (["gears", "--thickness", "1e-300"], {}, "--thickness = 1e-300: must be >= 0.5 mm"),
+    (["gears", "--install-distance", "3"], {}, "--install-distance = 3: "),
+    (["gears", "--install-distance", "20"], {}, "--install-distance = 20: "),
     (["mesh-check", "h.stl", "p.stl", "--samples", "2147483648"], {"h.stl": HUGE, "p.stl": PNG},
      "--samples"),
     (["mesh-check", "h.stl", "h2.stl"], {"h.stl": HUGE, "h2.stl": HUGE.replace(b"1e30", b"2e30")},

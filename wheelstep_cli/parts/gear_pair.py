@@ -72,7 +72,17 @@ class GearPair:
 
 
 def build_gear_pair(spec: GearPairSpec) -> GearPair:
-    """Compute, extrude and check both gears; raises DesignError for impossible designs."""
+    """Compute, extrude and check both gears; raises DesignError for impossible designs (its
+    rule also stated for the inputs that size the pair, so it names the one the user gave)."""
+    from wheelstep_cli.errors import DesignError
+
+    try:
+        return _build(spec)
+    except DesignError as err:
+        raise err.tied_to({**footprint(spec), "z": spec.z}) from None
+
+
+def _build(spec: GearPairSpec) -> GearPair:
     if spec.teeth == "generated":
         return _build_generated(spec)
     law = spec.law()
