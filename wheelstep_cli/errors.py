@@ -35,22 +35,26 @@ class DesignError(ValueError):
             return self
         for name, (value, limit) in self.alternatives.items():
             if name.replace("-", "_") in given:
-                return DesignError(name, value, limit)
+                return self._with_extras(DesignError(name, value, limit))
         return self
 
     def tied_to(self, inputs: dict[str, object]) -> "DesignError":
         """This error, also stated for each of ``inputs`` (name -> value, None: not set) that
         shares the blame, so :meth:`for_given` can name the one the user gave."""
-        context = f"with {self.param} = {self.shown_value}, {self.limit}"
+        # the rule is the other parameter's: said as what this input leads to, not as its limit
+        context = f"with it, {self.param} = {self.shown_value} fails: {self.limit}"
         alternatives = dict(self.alternatives)
         for name, value in inputs.items():
             if value is not None and name.replace("-", "_") != self.param.replace("-", "_"):
                 alternatives.setdefault(name, (value, context))
-        tied = DesignError(self.param, self.value, self.limit, alternatives)
-        for key, value in vars(self).items():       # e.g. a refusal's remedy
-            if key not in vars(tied):
-                setattr(tied, key, value)
-        return tied
+        return self._with_extras(DesignError(self.param, self.value, self.limit, alternatives))
+
+    def _with_extras(self, other: "DesignError") -> "DesignError":
+        """``other`` carrying what this error carries besides its line (e.g. a remedy)."""
+        for key, value in vars(self).items():
+            if key not in vars(other):
+                setattr(other, key, value)
+        return other
 
 
 def format_value(value: object) -> str:

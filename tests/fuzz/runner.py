@@ -107,33 +107,79 @@ _FLAG = re.compile(r"(?<![\w-])(--?[A-Za-z][\w-]*)")
 _FILE_PLACE = re.compile(r"^([^\s:=]+)(?::\d+)?:")
 #: Click's own words for a parameter that is missing (naming it is right: the user did not give it)
 _MISSING = ("Missing argument", "Missing option", "Got unexpected extra argument")
+#: The commands' arguments by name, in order (the words after the command, before any flag)
+ARGUMENTS = {"mesh-check": ["pinion", "wheel"], "batch": ["file"]}
+#: Options whose value is a file read (its errors may name it with ``file:line``)
+FILE_OPTIONS = ("--profile", "--law-csv")
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _typed(args: list[str]) -> dict[str, list[str]]:
+    """flag -> the values typed after it (``--x v`` or ``--x=v``; a flag alone: no value);
+    a negative number is a value, not a flag."""
+    flags: dict[str, list[str]] = {}
+    for i, arg in enumerate(args):
+        if not arg.startswith("-") or _is_number(arg):
+            continue
+        flag, eq, value = arg.partition("=")
+        follows = args[i + 1] if i + 1 < len(args) else None
+        given = value if eq else follows if follows is not None and (
+            not follows.startswith("-") or _is_number(follows)) else None
+        flags.setdefault(flag, []).extend([] if given is None else [given])
+    return flags
+
+
+def _same_value(shown: str, typed: list[str]) -> bool:
+    """Whether the value a refusal shows is one the user typed (numbers compared as numbers,
+    as %g prints them; a printer-compensated value shows the typed one first)."""
+    shown = shown.split(" (", 1)[0].strip("'\"")
+    if not typed or shown in typed:
+        return True
+    try:
+        number = float(shown)
+    except ValueError:
+        return False
+    for value in typed:
+        try:
+            other = float(value)
+        except ValueError:
+            continue
+        if number == other or (number != number and other != other) or (
+                abs(number - other) <= 1e-5 * max(abs(number), abs(other))):
+            return True
+    return False
 
 
 def names_a_given_parameter(line: str, args: list[str]) -> bool:
-    """Whether the refusal ``line`` names what the user gave: a flag they typed (``--x =``,
-    Click's ``'--x'``), a file they gave with its place (``p.yaml:3: key = ...``), or an
-    argument by its name with the value they typed (``pinion = x.stl``)."""
+    """Whether the refusal ``line`` names what the user gave: a flag they typed with the
+    value they typed (``--x = v``, Click's ``'--x'``), a file they gave with its place
+    (``p.yaml:3: key = ...``), or an argument by its name with the value typed in its place
+    (``pinion = x.stl``)."""
     text = _PREFIX.sub("", line, count=1)
-    typed = {arg.split("=", 1)[0] for arg in args if arg.startswith("-")}
-    values = set(args) | {arg.split("=", 1)[1] for arg in args if arg.startswith("-") and "=" in arg}
-    # arguments: the words after the command before its first flag (how the fuzz writes them)
-    arguments = set()
-    for arg in args[1:]:
-        if arg.startswith("-"):
-            break
-        arguments.add(arg)
+    typed = _typed(args)
     if text.startswith(_MISSING):
         return True
+    arguments = dict(zip(ARGUMENTS.get(args[0], []) if args else [],
+                         [a for a in args[1:3] if not a.startswith("-")]))
     name, eq, rest = text.partition(" = ")
     if eq and " " not in name:
+        shown = rest.partition(": ")[0]
         if name in typed:
-            return True
-        if not name.startswith("-") and rest.partition(": ")[0] in arguments:
-            return True                                   # an argument: pinion = x.stl
+            return _same_value(shown, typed[name])
+        if name in arguments:
+            return shown == arguments[name]                # an argument: pinion = x.stl
+    files = set(arguments.values()) | {v for flag in FILE_OPTIONS for v in typed.get(flag, [])}
     place = _FILE_PLACE.match(text)
-    if place and place.group(1) in values:
+    if place and place.group(1) in files:
         return True                                       # p.yaml:1: gears.z = '48': ...
-    head = text.partition(" = ")[0] if eq and " " not in name else text
+    head = name if eq and " " not in name else text
     return any(flag in typed for flag in _FLAG.findall(head))
 
 

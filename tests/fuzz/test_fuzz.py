@@ -58,6 +58,14 @@ def test_the_checker_catches_tracebacks_noise_bad_json_and_touched_files(tmp_pat
     ("wheelstep: error: install_distance = -1: must be >= 0", ["mesh-check", "a", "b", "--distance", "-1"], False),
     ("wheelstep: error: --r3 = 1: too short for --y0", ["trajectory", "--y0", "nan"], False),
     ("wheelstep: error: addendum = 5: too big", ["gears", "--backlash", "5"], False),
+    # the flag typed but another value (a printer's compensation shown as the user's), the
+    # other argument's name, a command name taken for a file, a negative number for a flag
+    ("wheelstep: error: --backlash = 1.65: too big", ["gears", "--backlash", "1.5"], False),
+    ("wheelstep: error: --backlash = 1.5 (1.65 as printed): too big", ["gears", "--backlash", "1.5"], True),
+    ("wheelstep: error: wheel = x.stl: no such file", ["mesh-check", "x.stl", "y.stl"], False),
+    ("wheelstep: error: gears: cannot run", ["gears", "--z", "48"], False),
+    ("wheelstep: error: cannot run with -inf", ["stairs", "--run", "-inf"], False),
+    ("wheelstep: error: --run = -inf: must be finite", ["stairs", "--run", "-inf"], True),
 ])
 def test_the_checker_knows_a_refusal_that_names_what_the_user_gave(tmp_path, line, args, named):
     assert names_a_given_parameter(line, args) is named

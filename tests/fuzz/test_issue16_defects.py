@@ -46,11 +46,11 @@ CASES = [  # (args, files, text the line must hold)
     (["mesh-check", "h.stl", "p.stl", "--distance", "-1"], {"h.stl": HUGE, "p.stl": PNG}, "--distance = -1"),
     # found by the runner's check that a refusal names a parameter the user gave
     (["linkage", "--l3", "5e-324"], {}, "--l3 = 4.94066e-324"),
-    (["stairs", "--run", "0.5"], {}, "--run = 0.5"),
+    (["stairs", "--run", "0.5"], {}, "--run = 0.5: with it, landing-angle = -90 fails: gives crank b"),
     (["trajectory", "--r2", "1e-300"], {}, "--r2 = 1e-300"),
     (["kinematics", "--b", "5e-324"], {}, "--b = 4.94066e-324"),
     (["teeth", "--b", "0.5", "--c", "3", "--z", "144"], {}, "--z = 144"),
-    (["teeth", "--backlash", "144"], {}, "--backlash = 144"),
+    (["teeth", "--backlash", "144"], {}, "--backlash = 144: with it, module = 2 fails: too large"),
     (["gears", "--tilt", "-0.0"], {}, "--tilt = -0"),   # its remedy: tests/cli/test_design_bounds.py
     # found by a scan of every numeric option with every fuzz value, one at a time
     (["pitch", "--center-distance", "5e-324"], {}, "--center-distance = 4.94066e-324"),
@@ -60,10 +60,15 @@ CASES = [  # (args, files, text the line must hold)
     (["shoe", "--rmin", "144"], {}, "--rmin = 144"),
     (["gears", "--module", "1e-300"], {}, "--module = 1e-300"),
     (["gears", "--module", "144"], {}, "--module = 144: must be <= 14.64 mm"),     # 9.8 m apart: 9 GB
+    (["gears", "--module", "0.1", "--z", "6"], {}, "--module = 0.1: must be >= 0.12 mm"),  # 0.85 mm apart
+    # reviewer's findings: the file option given that path whatever the order, the value as typed
+    (["gears", "--out", ".", "--profile", "p.yaml"], {"p.yaml": b"\xff\xfe not utf-8"}, "--profile = p.yaml"),
+    (["gears", "--teeth", "paper", "--backlash", "3", "--printer", "fdm-0.4-pla"], {},
+     "--backlash = 3 (3.15 as printed): "),
     (["gears", "--install-distance", "10000"], {}, "--install-distance = 10000"),
     (["gears", "--thickness", "1e-300"], {}, "--thickness = 1e-300: must be >= 0.5 mm"),
-    (["gears", "--install-distance", "3"], {}, "--install-distance = 3: "),
-    (["gears", "--install-distance", "20"], {}, "--install-distance = 20: "),
+    (["gears", "--install-distance", "3"], {}, "--install-distance = 3: with it, addendum = 1 fails: "),
+    (["gears", "--install-distance", "20"], {}, "--install-distance = 20: with it, bore = 8 fails: must be <"),
     (["mesh-check", "h.stl", "p.stl", "--samples", "2147483648"], {"h.stl": HUGE, "p.stl": PNG},
      "--samples"),
     (["mesh-check", "h.stl", "h2.stl"], {"h.stl": HUGE, "h2.stl": HUGE.replace(b"1e30", b"2e30")},

@@ -101,13 +101,19 @@ def _path_option(filename: str, options: dict[str, list[str]], argv: list[str]) 
     from pathlib import Path
 
     flags = {o for opts in options.values() for o in opts}
+    pairs = []
     for i, arg in enumerate(argv):
         flag, eq, value = arg.partition("=")
-        if flag not in flags or not (eq or i + 1 < len(argv)):
-            continue
-        value = value if eq else argv[i + 1]
-        file, given = Path(filename), Path(value)
-        if value and (file == given or given in file.parents or file in given.parents):
+        if flag in flags and (eq or i + 1 < len(argv)):
+            pairs.append((flag, value if eq else argv[i + 1]))
+    file = Path(filename)
+    # the option given that very path first, whatever the order (--out . --profile p.yaml)
+    for flag, value in pairs:
+        if value and file == Path(value):
+            return flag, value
+    for flag, value in pairs:
+        given = Path(value)
+        if value and (given in file.parents or file in given.parents):
             return flag, value
     return None
 

@@ -63,7 +63,7 @@ def rolling_distance(spec: GearPairSpec, law) -> float:
     """The distance (mm) generated teeth roll at (their pitch curves' centre distance): the
     one a given module fits (SPEC §9: the pitch curves' perimeter is proportional to it),
     else --center-distance, else the installed distance (144 when neither is given)."""
-    from wheelstep_cli.config.specs import DEFAULT_INSTALL, MAX_DISTANCE
+    from wheelstep_cli.config.specs import DEFAULT_INSTALL, MAX_DISTANCE, MAX_TEETH, MIN_DISTANCE, MIN_TEETH
     from wheelstep_cli.errors import DesignError, require
     from wheelstep_cli.gears.pitch_curves import center_distance_for_module
 
@@ -73,12 +73,21 @@ def rolling_distance(spec: GearPairSpec, law) -> float:
     require(spec.module > 0, "module", spec.module, "must be > 0 mm")
     per_period = max(1, spec.z // law.pinion_periods)
     distance = float(center_distance_for_module(law, per_period, spec.module))
-    if distance > MAX_DISTANCE:
-        why = f"(module and teeth set the centre distance, {distance:.0f} mm > {MAX_DISTANCE:g} mm)"
-        most = np.floor(100.0 * spec.module * MAX_DISTANCE / distance) / 100.0   # a value that passes
-        raise DesignError("module", spec.module, f"must be <= {most:g} mm for {spec.z} teeth {why}",
-                          {"z": (spec.z, f"must be <= {int(spec.z * MAX_DISTANCE / distance)} at "
-                                         f"module {spec.module:g} mm {why}")})
+    if not MIN_DISTANCE <= distance <= MAX_DISTANCE:
+        # the distance is proportional to the module and to the teeth per period: the bound
+        # solved for each, rounded to a value that passes
+        bound, word = (MAX_DISTANCE, "<=") if distance > MAX_DISTANCE else (MIN_DISTANCE, ">=")
+        ratio = bound / distance
+        why = (f"(module and teeth set the centre distance, {distance:.4g} mm, outside "
+               f"{MIN_DISTANCE:g}..{MAX_DISTANCE:g} mm)")
+        rounding = np.floor if word == "<=" else np.ceil
+        module = rounding(100.0 * spec.module * ratio) / 100.0
+        periods = law.pinion_periods
+        z = int(rounding(per_period * ratio)) * periods
+        alternatives = ({"z": (spec.z, f"must be {word} {z} at module {spec.module:g} mm {why}")}
+                        if MIN_TEETH <= z <= MAX_TEETH else {})
+        raise DesignError("module", spec.module, f"must be {word} {module:g} mm for {spec.z} teeth "
+                          f"{why}", alternatives)
     return distance
 
 

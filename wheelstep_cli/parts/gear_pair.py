@@ -79,7 +79,7 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
     try:
         return _build(spec)
     except DesignError as err:
-        raise err.tied_to({**footprint(spec), "z": spec.z}) from None
+        raise err.tied_to(footprint(spec)) from None
 
 
 def _build(spec: GearPairSpec) -> GearPair:
@@ -98,9 +98,10 @@ def _build(spec: GearPairSpec) -> GearPair:
 
 
 def footprint(spec: GearPairSpec) -> dict[str, object]:
-    """The inputs that set the gears' size on the bed (name -> value, None: not set)."""
+    """The inputs that set the gears' size and height on the bed (name -> value, None: not set)."""
     return {"a": spec.a, "b": spec.b, "c": spec.c, "center_distance": spec.center_distance,
-            "install_distance": spec.install_distance, "module": spec.module, "turns": spec.turns}
+            "install_distance": spec.install_distance, "module": spec.module, "turns": spec.turns,
+            "z": spec.z, "hub_length": spec.hub_length}
 
 
 def check_paper_teeth(partition: SectorPartition, form, spec: GearPairSpec) -> None:

@@ -17,7 +17,7 @@ from typing import Any, Callable
 
 from wheelstep_cli.config.batch_file import KindName
 from wheelstep_cli.config.resolve import updated
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import DesignError, format_value
 
 
 @dataclass(frozen=True)
@@ -153,9 +153,29 @@ def build_for_printer(kind_name: str, spec, printer=None):
     if printer is None:
         return kind.build_part(spec)
     printed = printed_spec(kind, spec, printer)
-    for problem in kind.problems(printed):
-        raise problem
-    return for_printer(kind, kind.build_part(printed), printer, spec)
+    try:
+        for problem in kind.problems(printed):
+            raise problem
+        return for_printer(kind, kind.build_part(printed), printer, spec)
+    except DesignError as err:
+        raise as_designed(err, spec, printed) from None
+
+
+def as_designed(err: DesignError, spec, printed) -> DesignError:
+    """``err`` (raised on the printer-compensated ``printed`` spec) showing each value the
+    printer changed as the user gave it in ``spec``, the printed one beside it."""
+    def shown(name: str, value):
+        field = name.replace("-", "_")
+        if field not in type(spec).model_fields:
+            return value
+        given, drawn = getattr(spec, field), getattr(printed, field)
+        if given is None or given == drawn:
+            return value
+        return f"{format_value(given)} ({format_value(drawn)} as printed)"
+
+    return err._with_extras(DesignError(
+        err.param, shown(err.param, err.value), err.limit,
+        {name: (shown(name, value), limit) for name, (value, limit) in err.alternatives.items()}))
 
 
 def printing_record(printing: Printing | None, printed) -> dict:

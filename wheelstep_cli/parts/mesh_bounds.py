@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from wheelstep_cli.config.specs import MAX_TEETH
+
 
 @dataclass(frozen=True)
 class MeshBounds:
@@ -118,12 +120,15 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
         if any("ripple" in text for text in broken):
             remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
         remedy = _within_the_tooth_limit(design, remedy)
-    param = next(iter(remedy))
+    param = next(iter(remedy), "z")
     options = " ".join(f"--{name.replace('_', '-')} {_shown(value)}" for name, value in remedy.items())
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
+    advice = (f"use {options}" if remedy else
+              f"no tooth count up to {MAX_TEETH} brings it within them: change the mechanism "
+              "(--a, --b, --c) or the centre distance")
     error = DesignError(param, value,
                         f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
-                        f"written; use {options}")
+                        f"written; {advice}")
     # every input that shapes the teeth or the law shares the blame: the line names the one
     # the user gave (the remedy stays the remedy)
     shaping = ("tilt", "pressure_angle", "blend", "corner", "addendum", "dedendum", "fillet",
@@ -143,15 +148,17 @@ GENERATOR_SETTINGS = ("tilt", "pressure_angle", "addendum", "dedendum", "fillet"
 
 def _within_the_tooth_limit(design, remedy: dict) -> dict:
     """``remedy``, or, when its tooth count is more than a design may have, the generator
-    settings the design changed set back to their defaults (those teeth are the cause)."""
-    from wheelstep_cli.config.specs import MAX_TEETH, GearPairSpec
+    settings the design changed set back to their defaults (those teeth are the cause);
+    empty when it changed none (no remedy of teeth or settings)."""
+    from wheelstep_cli.config.specs import GearPairSpec
 
     if remedy.get("z", 0) <= MAX_TEETH:
         return remedy
     fields = GearPairSpec.model_fields
-    changed = {name: fields[name].default for name in GENERATOR_SETTINGS
-               if getattr(design, name) != fields[name].default}
-    return changed or {"z": MAX_TEETH}
+    # the defaults' teeth with the design's own backlash: the backlash part of the remedy was
+    # sized for the other tooth count
+    return {name: fields[name].default for name in GENERATOR_SETTINGS
+            if getattr(design, name) != fields[name].default}
 
 
 #: Largest difference (mm) of the installed and rolling distances taken as none (a float's

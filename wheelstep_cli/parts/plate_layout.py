@@ -37,13 +37,15 @@ def size_problem(name: str, bounds: np.ndarray, printer: Printer) -> str | None:
 def require_on_bed(parts, printer: Printer, height_param: str, height: float,
                    footprint: dict[str, object] | None = None) -> None:
     """Refuse (DesignError) a part taller than the printer prints (named by ``height_param``,
-    the option that sets it) or larger than its bed (named ``printer``, or the one of the
-    ``footprint`` inputs, name -> value, that set the part's size and the user gave)."""
+    the option that sets it) or larger than its bed (named ``printer``); either also stated
+    for the ``footprint`` inputs (name -> value) that set the part's size, so the line names
+    the one the user gave."""
     for part in parts:
         size = part.bounds[1] - part.bounds[0]
         if size[2] > printer.max_height:
-            raise DesignError(height_param, height, f"must be <= {printer.max_height:g} mm, the "
-                              f"greatest height printer '{printer.name}' prints")
+            raise DesignError(height_param, height, f"makes part '{part.name}' {size[2]:.1f} mm "
+                              f"tall, more than the {printer.max_height:g} mm printer "
+                              f"'{printer.name}' prints").tied_to(footprint or {})
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
             raise DesignError("printer", printer.name, problem).tied_to(footprint or {})
