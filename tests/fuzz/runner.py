@@ -151,8 +151,10 @@ def _same_value(shown: str, typed: list[str]) -> bool:
             other = float(value)
         except ValueError:
             continue
+        # %g's rounding; and a value that is zero to a billionth (5e-324 deg, as radians and
+        # back) shown as 0
         if number == other or (number != number and other != other) or (
-                abs(number - other) <= 1e-5 * max(abs(number), abs(other))):
+                abs(number - other) <= max(1e-5 * max(abs(number), abs(other)), 1e-9)):
             return True
     return False
 

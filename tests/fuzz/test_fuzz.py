@@ -66,6 +66,8 @@ def test_the_checker_catches_tracebacks_noise_bad_json_and_touched_files(tmp_pat
     ("wheelstep: error: gears: cannot run", ["gears", "--z", "48"], False),
     ("wheelstep: error: cannot run with -inf", ["stairs", "--run", "-inf"], False),
     ("wheelstep: error: --run = -inf: must be finite", ["stairs", "--run", "-inf"], True),
+    ("wheelstep: error: --landing-angle = 0: gives strut Y1 < 0", ["stairs", "--landing-angle", "5e-324"], True),
+    ("wheelstep: error: --landing-angle = 0.001: gives", ["stairs", "--landing-angle", "5e-324"], False),
 ])
 def test_the_checker_knows_a_refusal_that_names_what_the_user_gave(tmp_path, line, args, named):
     assert names_a_given_parameter(line, args) is named
