@@ -42,7 +42,7 @@ class DesignError(ValueError):
         """This error, also stated for each of ``inputs`` (name -> value, None: not set) that
         shares the blame, so :meth:`for_given` can name the one the user gave."""
         # the rule is the other parameter's: said as what this input leads to, not as its limit
-        context = f"with it, {self.param} = {self.shown_value} fails: {self.limit}"
+        context = f"with it, {self.param.replace('_', '-')} = {self.shown_value} fails: {self.limit}"
         alternatives = dict(self.alternatives)
         for name, value in inputs.items():
             if value is not None and name.replace("-", "_") != self.param.replace("-", "_"):

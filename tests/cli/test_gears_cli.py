@@ -133,7 +133,9 @@ def test_generated_teeth_roll_at_the_center_distance_and_mount_at_the_install_di
     with the remedy, which applied is written, stored and re-checked on the plate there."""
     farther = cli("gears", "--profile", "desk-demo", "--center-distance", "72.1", "--out", tmp_path / "a")
     line = error_line(farther)
-    assert line.startswith("wheelstep: error: --install-distance = 72.125: the pair would mesh outside")
+    # named for the option given, the installed distance it leads to stated
+    assert line.startswith("wheelstep: error: --center-distance = 72.1: with it, install-distance = "
+                           "72.125 fails: the pair would mesh outside")
     assert "0.025 mm farther than the pitch curves roll (72.1 mm)" in line
     assert line.endswith("use --install-distance 72.1")
     closer = cli("gears", "--profile", "desk-demo", "--center-distance", "72.15", "--out", tmp_path / "b")
