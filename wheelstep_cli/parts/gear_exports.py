@@ -30,8 +30,6 @@ def checked_extras(plot: Path | None = None, gif: Path | None = None, dxf: bool 
                    svg: bool = False, step: bool = False) -> GearExtras:
     """The extras asked for; refuses (DesignError, before anything is built) a picture path
     of another format, or ``step`` without the optional CAD extra."""
-    from wheelstep_cli.formats.step import EXTRA, step_available
-
     extras = GearExtras(plot, gif, dxf, svg, step)
     if extras.plot is not None:
         require(extras.plot.suffix.lower() in (".png", ".svg"), "plot", str(extras.plot),
@@ -39,6 +37,9 @@ def checked_extras(plot: Path | None = None, gif: Path | None = None, dxf: bool 
     if extras.gif is not None:
         require(extras.gif.suffix.lower() == ".gif", "gif", str(extras.gif), "must end in .gif")
     if extras.step:
+        # only when asked for: the STEP writer loads scipy's spline fitting (about 1 s)
+        from wheelstep_cli.formats.step import EXTRA, step_available
+
         require(step_available(), "step", "on", f"needs the optional CAD extra: {EXTRA}")
     return extras
 

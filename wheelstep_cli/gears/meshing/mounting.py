@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from wheelstep_cli.gears.threads import thread_map
 from wheelstep_cli.gears.transmission import TransmissionLaw
 from wheelstep_cli.geometry.planar import polylines_distance, simplify_ring
 
@@ -68,32 +69,53 @@ def least_separation(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw
     error (twice :data:`THIN`), so never more than the true gap."""
     # thinned by THIN mm the outlines have fewer vertices for the distance queries; each
     # moved by at most that, so the gap found less twice it is still a lower bound
-    gaps = _Gaps(simplify_ring(pinion, THIN), simplify_ring(wheel, THIN), law, distance, half_height)
+    pinion, wheel = simplify_ring(pinion, THIN), simplify_ring(wheel, THIN)
     step = law.theta_period / samples
     theta = step * np.arange(samples)
-    coarse = np.array([gaps(t) for t in theta])
+    coarse = _gaps_over(pinion, wheel, law, distance, half_height, theta, np.inf)
     fine = (theta[np.argsort(coarse)[:refine]][:, None]
             + step * np.linspace(-1.0, 1.0, 17)[None, :]).ravel()
-    fine_gaps = np.array([gaps(t) for t in fine])
+    fine_gaps = _gaps_over(pinion, wheel, law, distance, half_height, fine, float(coarse.min()))
     every, at = np.concatenate([coarse, fine_gaps]), np.concatenate([theta, fine])
     k = int(np.argmin(every))
     return max(0.0, float(every[k]) - 2.0 * THIN), float(np.mod(at[k], law.theta_period))
 
 
-class _Gaps:
-    """The least distance (mm) between the two posed outlines at a pinion angle (rad)."""
+#: Blocks of poses measured apart (each on its own thread, from its own least gap): a fixed
+#: count, so every pose's figure is the same whatever the machine's cores.
+BLOCKS = 8
 
-    def __init__(self, pinion, wheel, law, distance, half_height):
-        self.pinion, self.wheel, self.law, self.distance = _Polar(pinion), _Polar(wheel), law, float(distance)
+
+def _gaps_over(pinion, wheel, law, distance, half_height, theta: np.ndarray, best: float) -> np.ndarray:
+    """The least distance (mm) of the posed outlines at each pinion angle ``theta`` (rad),
+    exact wherever it is at most ``best`` mm or the least within its block (others may
+    come out larger); the blocks shared by threads."""
+    phi = np.asarray(law.carrier_angle(theta), dtype=float)
+    pinion, wheel = _Polar(pinion), _Polar(wheel)
+    blocks = np.array_split(np.arange(len(theta)), BLOCKS)
+
+    def block(index: np.ndarray) -> np.ndarray:
+        gaps = _Gaps(pinion, wheel, distance, half_height, best)
+        return np.array([gaps(theta[i], phi[i]) for i in index], dtype=float)
+
+    return np.concatenate(list(thread_map(block, blocks)))
+
+
+class _Gaps:
+    """The least distance (mm) between the two posed outlines at a pose, or more than the
+    least gap found so far (``best`` mm at the start) where it cannot be less."""
+
+    def __init__(self, pinion: _Polar, wheel: _Polar, distance, half_height, best: float = np.inf):
+        self.pinion, self.wheel, self.distance = pinion, wheel, float(distance)
         rp, rw = float(self.pinion.radius.max()), float(self.wheel.radius.max())
         self.h = 0.25 * min(rp, rw) if half_height is None else float(half_height)
         # a vertex within h of the line of centres lies within this polar angle of it
         self.half_p = float(np.arcsin(min(1.0, self.h / max(1e-9, distance - rw))))
         self.half_w = float(np.arcsin(min(1.0, self.h / max(1e-9, distance - rp))))
-        self.best = np.inf    # the least gap found so far: farther parts need not take part
+        self.best = best    # the least gap found so far: farther parts need not take part
 
-    def __call__(self, th: float) -> float:
-        ph = float(np.asarray(self.law.carrier_angle(np.array([th])), dtype=float)[0])
+    def __call__(self, th: float, ph: float) -> float:
+        """The gap at pinion angle ``th`` and wheel angle ``ph`` (rad)."""
         distance, p, w = self.distance, self.pinion, self.wheel
         # pinion rotated by -theta: its body angle theta faces the wheel; wheel by pi + phi
         # about (distance, 0): its body angle -phi faces the pinion
