@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from enum import Enum
 from typing import Iterable
 
 
@@ -58,9 +59,12 @@ class DesignError(ValueError):
 
 
 def format_value(value: object) -> str:
-    """A value as an error shows it (floats in the shortest form)."""
+    """A value as an error shows it and an option takes it: floats in the shortest form,
+    a named choice (an Enum) as its word."""
     if isinstance(value, float):
         return f"{value:g}"
+    if isinstance(value, Enum):
+        return str(value.value)
     return str(value)
 
 

@@ -172,6 +172,13 @@ class GearPairSpec(BaseModel):
             require(self.flat_depth < self.bore / 2.0, "flat_depth", self.flat_depth,
                     f"must be < half the bore {self.bore / 2.0:g} mm")
 
+    def sizing(self) -> dict[str, object]:
+        """The inputs that set the pitch curves and the size of the teeth (name -> value as
+        given, None: not set): a rule the pair breaks may be any of theirs to mend."""
+        return {"a": self.a, "b": self.b, "c": self.c, "center_distance": self.center_distance,
+                "install_distance": self.install_distance, "module": self.module,
+                "turns": self.turns, "z": self.z}
+
     @property
     def hub_mm(self) -> tuple[float, float]:
         """Hub diameter and length above the top face (mm); (0, 0) without a hub."""

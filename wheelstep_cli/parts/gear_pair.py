@@ -99,22 +99,20 @@ def _build(spec: GearPairSpec) -> GearPair:
 
 def footprint(spec: GearPairSpec) -> dict[str, object]:
     """The inputs that set the gears' size and height on the bed (name -> value, None: not set)."""
-    return {"a": spec.a, "b": spec.b, "c": spec.c, "center_distance": spec.center_distance,
-            "install_distance": spec.install_distance, "module": spec.module, "turns": spec.turns,
-            "z": spec.z, "hub_length": spec.hub_length}
+    return {**spec.sizing(), "hub_length": spec.hub_length}
 
 
 def check_paper_teeth(partition: SectorPartition, form, spec: GearPairSpec) -> None:
     """The sector-involute teeth's form check (module against tooth pitch), its refusal also
-    stated for the inputs that set the pitch and the tooth thickness (more teeth, less
-    backlash, another mechanism), so it names the one the user gave."""
+    stated for the backlash and the inputs that size the pair (the tooth thickness and
+    pitch), so it names the one the user gave (``teeth`` checks it outside a build)."""
     from wheelstep_cli.errors import DesignError
 
     try:
         check_tooth_form(partition, form)
     except DesignError as err:
-        raise err.tied_to({"z": spec.z, "backlash": form.backlash, "turns": spec.turns, "a": spec.a,
-                           "b": spec.b, "c": spec.c}) from None
+        # the tooth count and backlash first: the remedy's own levers, named before the mechanism
+        raise err.tied_to({"z": spec.z, "backlash": form.backlash, **spec.sizing()}) from None
 
 
 def _plates(spec: GearPairSpec, law, p_outline: np.ndarray, w_outline: np.ndarray,

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from wheelstep_cli.config.specs import MAX_TEETH
+from wheelstep_cli.errors import DesignError, format_value
 
 
 @dataclass(frozen=True)
@@ -102,7 +103,6 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
     breaks a figure bound, with the options that should bring it within: more teeth (--z)
     for F'i and f'i, less backlash (--backlash) for the ripple a flank's play costs.
     Interference is refused elsewhere."""
-    from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.gear_laws import design_backlash
 
     broken = [text for text in bound_violations(record, bounds) if "interfere" not in text]
@@ -121,7 +121,7 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
             remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
         remedy = _within_the_tooth_limit(design, remedy)
     param = next(iter(remedy), "z")
-    options = " ".join(f"--{name.replace('_', '-')} {_shown(value)}" for name, value in remedy.items())
+    options = " ".join(f"--{name.replace('_', '-')} {format_value(value)}" for name, value in remedy.items())
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
     advice = (f"use {options}" if remedy else
               f"no tooth count up to {MAX_TEETH} brings it within them: change the mechanism "
@@ -131,11 +131,9 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
                         f"written; {advice}")
     # every input that shapes the teeth or the law shares the blame: the line names the one
     # the user gave (the remedy stays the remedy)
-    shaping = ("tilt", "pressure_angle", "blend", "corner", "addendum", "dedendum", "fillet",
-               "clearance", "module", "a", "b", "c", "turns", "center_distance", "install_distance",
-               "law_csv")
-    error = error.tied_to({"backlash": design_backlash(design),
-                           **{name: getattr(design, name) for name in shaping}})
+    shaping = {**{name: getattr(design, name) for name in GENERATOR_SETTINGS}, **design.sizing(),
+               "law_csv": design.law_csv}
+    error = error.tied_to({"backlash": design_backlash(design), **shaping})
     error.remedy = remedy   # name -> value, for a batch file to state as its keys
     raise error
 
@@ -182,11 +180,6 @@ def opening_remedy(pair) -> str:
             f"{pair.design_distance:g} (more play by --backlash)")
 
 
-def _shown(value) -> str:
-    """A remedy's value as an option takes it (numbers in the shortest form, names as words)."""
-    return f"{value:g}" if isinstance(value, (int, float)) else str(getattr(value, "value", value))
-
-
 def remedy_in_yaml(err) -> str:
     """A bounds refusal (:func:`require_within_bounds`) as a batch file states it: the
     remedy as the entry's override keys (``z: 90, backlash: 0.239``), not as flags."""
@@ -196,8 +189,8 @@ def remedy_in_yaml(err) -> str:
     remedy = getattr(err, "remedy", None)
     if not remedy:
         return message
-    flags = " ".join(f"--{name.replace('_', '-')} {_shown(value)}" for name, value in remedy.items())
-    keys = ", ".join(f"{name}: {_shown(value)}" for name, value in remedy.items())
+    flags = " ".join(f"--{name.replace('_', '-')} {format_value(value)}" for name, value in remedy.items())
+    keys = ", ".join(f"{name}: {format_value(value)}" for name, value in remedy.items())
     return message.replace(f"use {flags}", f"use overrides {{{keys}}}")
 
 
