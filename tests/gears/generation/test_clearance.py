@@ -7,7 +7,7 @@ import pytest
 
 from tests.helpers.clicheck import error_line
 from wheelstep_cli.gears.generation.envelope import PolarGrid
-from wheelstep_cli.gears.generation.wheel import head_on_relief, notch_weight
+from wheelstep_cli.gears.generation.wheel import head_on_relief, level_space_ridges, notch_weight
 
 
 def test_relief_lowers_head_on_tips_and_roots_where_asked_and_keeps_the_flanks():
@@ -30,6 +30,30 @@ def test_relief_lowers_head_on_tips_and_roots_where_asked_and_keeps_the_flanks()
     far = np.abs(np.mod(grid.angles - notch + np.pi, 2 * np.pi) - np.pi) > 2 * np.pi / teeth
     assert np.array_equal(out[far], radii[far])                         # away from the notch: as is
     assert np.all(out <= radii)
+
+
+def test_ridges_in_the_spaces_are_cut_down_and_nothing_else_moves():
+    rays, teeth = 6000, 6
+    grid = PolarGrid(0.0, 2 * np.pi, rays)
+    phase = np.mod(np.arange(rays), rays // teeth) / (rays // teeth)
+    # spaces from 88 mm to the tips at 95 mm, pitch curve at 92 mm; V-shaped flanks
+    radii = 88.0 + 7.0 * np.clip(np.abs(phase - 0.5) * 4.0 - 0.5, 0.0, 1.0)
+    pitch = np.full(rays, 92.0)
+    flat = radii.copy()
+    # a ridge 1.5 mm high and a ragged step in the bottom of two spaces, one across the
+    # period's end (the walk must start outside a space)
+    ridge = np.abs(phase - 0.5) < 0.04
+    radii[ridge & (np.arange(rays) < rays // teeth)] += 1.5
+    step = (np.abs(phase - 0.5) < 0.1) & (phase > 0.5) & (np.arange(rays) >= rays - rays // teeth)
+    radii[step] += 0.3
+    rolled = np.roll(radii, rays // (2 * teeth))
+    for given, expected in ((radii, flat), (rolled, np.roll(flat, rays // (2 * teeth)))):
+        out = level_space_ridges(given, pitch)
+        assert np.allclose(out, expected)          # bumps gone, the flanks and tips as they were
+        assert np.all(out <= given)
+    # a ray map without spaces (all above or all below) is left as it is
+    assert np.array_equal(level_space_ridges(flat, np.full(rays, 80.0)), flat)
+    assert np.array_equal(level_space_ridges(flat, np.full(rays, 99.0)), flat)
 
 
 def test_clearance_option_deepens_the_written_wheel_and_is_reported(cli, tmp_path):

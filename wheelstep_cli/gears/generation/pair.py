@@ -20,7 +20,7 @@ from wheelstep_cli.gears.generation.pinion import pinion_by_rack, round_tips, to
 from wheelstep_cli.gears.generation.rack import RackCutter, RackRolling
 from wheelstep_cli.gears.generation.settings import CORNER_MODES, GenerationSettings
 from wheelstep_cli.gears.generation.wheel import (Carving, backlash_split, carve_by_pinion,
-                                                  head_on_relief, notch_weight)
+                                                  head_on_relief, level_space_ridges, notch_weight)
 from wheelstep_cli.gears.pitch_curves import PitchCurves, pitch_curves
 from wheelstep_cli.gears.transmission import TransmissionLaw
 
@@ -264,6 +264,7 @@ def _cut_wheel(job: _Job, pinion_outline: np.ndarray, distance: float) -> _GearC
     _require_no_gaps(radii, job.pinion_teeth)
     radii = head_on_relief(radii, grid, _relief_region(job, grid, radii),
                            job.cutter.clearance * job.module, relief_angle(job.cutter.pressure_angle))
+    radii = level_space_ridges(radii, blank_radii(curves.wheel, grid, 1e-6))
     radii, topping, land = top_or_refuse(GearBody("wheel", grid, curves.wheel, blank), radii,
                                          job.cutter, job.limits)
     return _GearCut(outline_from_radii(grid, radii, law.wheel_periods), radii, grid, topping, land, play)

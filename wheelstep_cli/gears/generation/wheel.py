@@ -188,3 +188,28 @@ def head_on_relief(radii: np.ndarray, grid: PolarGrid, region: np.ndarray, depth
     cos_psi = radii / np.hypot(radii, slope)
     floor = np.cos(max_angle)
     return radii - depth * region * np.clip((cos_psi - floor) / (1.0 - floor), 0.0, 1.0)
+
+
+def level_space_ridges(radii: np.ndarray, pitch: np.ndarray) -> np.ndarray:
+    """The ray map (mm per ray, periodic) with every ridge inside a tooth space cut down:
+    within each run of rays below ``pitch`` (mm per ray, the wheel's pitch curve) the
+    surface falls to its lowest point and rises again, no bump between.
+
+    A bump in a space bottom faces the pinion's tip head-on and is never driven on (its
+    normal runs through the axes); left where the relief lowered its sides only partly, it
+    is what a pair mounted closer meets first. Flanks falling into and rising out of the
+    space stay as carved; only material is removed.
+    """
+    below = radii < pitch
+    if below.all() or not below.any():
+        return radii
+    shift = int(np.flatnonzero(~below)[0])   # start the walk outside a space
+    r, b = np.roll(radii, -shift), np.roll(below, -shift)
+    starts = np.flatnonzero(b & ~np.roll(b, 1))
+    ends = np.flatnonzero(b & ~np.roll(b, -1)) + 1
+    out = r.copy()
+    for lo, hi in zip(starts, ends):
+        space = r[lo:hi]
+        # from each side the lowest point met so far: the higher of the two bounds the bottom
+        out[lo:hi] = np.maximum(np.minimum.accumulate(space), np.minimum.accumulate(space[::-1])[::-1])
+    return np.roll(out, shift)
