@@ -1,5 +1,6 @@
-"""`wheelstep batch --tolerance`: every gear pair checked over its printer's band, per case in
-its report and the manifest; a printer without a band is told to add one (SPEC §11)."""
+"""`wheelstep batch`: every gear pair checked over its printer's band (by default; `--no-tolerance`
+skips it), per case in its report and the manifest; a printer without a band is told to add
+one (SPEC §11)."""
 
 from __future__ import annotations
 
@@ -8,13 +9,13 @@ import json
 from tests.helpers.files import printer_profile_without_band, write
 
 
-def test_batch_tolerance_records_the_band_per_case_and_names_a_printer_without_one(cli, tmp_path):
+def test_batch_records_the_band_per_case_and_names_a_printer_without_one(cli, tmp_path):
     bare = printer_profile_without_band(tmp_path)
     batch = write(tmp_path / "band.yaml", "parts:\n"
                   "  - name: banded\n    kind: gear-pair\n    design: desk-demo\n    printer: fdm-0.4-pla\n"
                   f"  - name: bare\n    kind: gear-pair\n    design: desk-demo\n    printer: {bare}\n")
     out = tmp_path / "out"
-    result = cli("batch", batch, "--out", out, "--jobs", "1", "--tolerance")
+    result = cli("batch", batch, "--out", out, "--jobs", "1")    # the band check is the default
     assert result.exit_code == 0, result.stderr
     report = json.loads((out / "reports" / "banded.json").read_text())
     band = report["tolerance"]
@@ -38,13 +39,17 @@ def test_batch_tolerance_records_the_band_per_case_and_names_a_printer_without_o
     # a jammed band's least "backlash" is an overlap estimate, not shown as a backlash
     warning = next(l for l in result.stderr.splitlines() if "banded jams" in l)
     assert "least backlash -" not in warning and "searches a tooth clearance" in warning
+    # the advice does not promise what --fit auto may refuse
+    assert "says so when none within its limits does" in warning
     assert "has no dimensional band: add a `band:` section" in result.stderr
 
 
-def test_without_tolerance_batch_runs_no_band_check(cli, tmp_path):
+def test_no_tolerance_runs_no_band_check(cli, tmp_path):
     batch = write(tmp_path / "plain.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"
                                            "    design: desk-demo\n    printer: fdm-0.4-pla\n")
     out = tmp_path / "out"
-    assert cli("batch", batch, "--out", out, "--jobs", "1").exit_code == 0
+    result = cli("batch", batch, "--out", out, "--jobs", "1", "--no-tolerance")
+    assert result.exit_code == 0, result.stderr
+    assert "jams over the band" not in result.stderr
     assert "tolerance" not in json.loads((out / "reports" / "pair.json").read_text())
     assert "gear_pairs_mesh_over_printer_bands" not in json.loads((out / "manifest.json").read_text())["checks"]

@@ -10,9 +10,11 @@ import typer
 from wheelstep_cli.cli.options import DryRun, Force, Json, Out, Quiet, Verbose, opt
 
 BatchTolerance = Annotated[bool, opt(
-    "--tolerance", help="Also check every gear pair over its printer's dimensional band (SPEC "
-                        "§11), as drawn with the printer's tooth clearance: per case in its report "
-                        "and the manifest. A printer profile without a band is told to add one.")]
+    "--tolerance/--no-tolerance",
+    help="Check every gear pair over its printer's dimensional band (SPEC §11), as drawn with "
+         "the printer's tooth clearance: per case in its report and the manifest, a warning "
+         "for a pair that jams. On by default; a printer profile without a band is told to add "
+         "one. --no-tolerance skips the check (about four meshing checks per pair).")]
 from wheelstep_cli.cli.output import Output
 
 
@@ -23,7 +25,7 @@ def batch(
     scheduler: Annotated[Optional[str], opt(
         "--scheduler", help="Build on the Dask cluster of this scheduler (tcp://HOST:8786) "
                             "instead of --jobs local processes.")] = None,
-    force: Force = False, tolerance: BatchTolerance = False,
+    force: Force = False, tolerance: BatchTolerance = True,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Build every part of a batch file into packed 3MF plates with PNG previews,
@@ -119,8 +121,9 @@ def _band_warnings(show: Output, outcome) -> None:
             # a jammed case's backlash is an estimate where rigid teeth cannot go
             shown = "" if least is None or least <= 0.0 else f" (least backlash {least:.3f} mm)"
             show.warning(f"WARNING: {band['entry']} jams over the band of {band['printer']}{shown}: "
-                         "its report's tolerance section says where; `gears --fit auto` searches "
-                         "a tooth clearance that clears the band")
+                         "its report's tolerance section says in which case and how deep; "
+                         "`gears --fit auto` searches a tooth clearance that clears the band "
+                         "and says so when none within its limits does")
 
 
 def _lines(out: Path, plan, outcome) -> list[str]:
