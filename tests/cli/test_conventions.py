@@ -125,3 +125,15 @@ def test_verbose_adds_detail_on_stderr_only(cli):
 ])
 def test_errors_name_the_parameter_as_written(cli, tmp_path, args, shown):
     assert error_line(cli(*args)).startswith(f"wheelstep: error: {shown}")
+
+
+def test_a_mesh_that_fails_its_own_check_is_called_wheelsteps_defect_not_tied_to_an_input():
+    from wheelstep_cli.cli import error_text
+    from wheelstep_cli.errors import MeshDefect
+
+    err = MeshDefect("pinion", "failed the print check (watertight=False)")
+    # a build refusal is stated for the inputs that size the pair; a defect is nobody's input
+    tied = err.tied_to({"z": 48, "module": 2.0})
+    assert tied is err and tied.for_given(["z"]) is err
+    line = error_text(tied, {}, ["gears", "--z", "48"])
+    assert "--z" not in line and "a defect of wheelstep" in line and "nothing written" in line

@@ -24,6 +24,11 @@ from tests.helpers.meshcheck import assert_printable_stl
     (["--set-screw", "M3"], "--set-screw = M3: needs --hub-d"),
     (["--hub-d", "14", "--set-screw", "M3"], "--set-screw = M3: does not fit the hub"),
     (["--chamfer", "5"], "--chamfer = 5: must be < half the thickness"),
+    # no key depth helps a bore that is itself too large: the bore is named, with its limit
+    (["--bore-shape", "keyway", "--bore", "76"], "--bore = 76: must be < 61.71 mm with the keyway's"),
+    (["--bore-shape", "hex", "--bore", "0"], "--bore = 0: must be > 0 mm for a hex"),
+    (["--bore", "0", "--hub-d", "20", "--set-screw", "M3"], "--set-screw = M3: needs a bore"),
+    (["--key-angle", "30"], "--key-angle = 30: orients a keyed bore or a set screw"),
 ])
 def test_shaft_misfits_are_refused_in_one_line_nothing_written(cli, tmp_path, args, text):
     out = tmp_path / "out"

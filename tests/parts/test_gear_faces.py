@@ -52,11 +52,12 @@ def overlap(plate, ring: np.ndarray) -> float:
 def test_nominal_shaft_fits_the_compensated_hole_with_clearance_and_not_turned(shape):
     printer = load_printer_profile("fdm-0.4-pla")
     assert printer.hole_compensation > 0
-    design = GearPairSpec(bore_shape=shape, bore=8, key_angle=30)
+    angle = 0.0 if shape == "round" else 30.0     # a round bore has nothing to orient
+    design = GearPairSpec(bore_shape=shape, bore=8, key_angle=angle)
     printed = printed_spec(KINDS["gear-pair"], design, printer)
     mark = 0.7                                   # the mark's direction in the gear frame, rad
     plate = extrude_gear("pinion", circle(30.0, 256), 10.0, shaft_hole(printed, mark), [], 0.0)
-    key = mark + np.radians(30.0)
+    key = mark + np.radians(angle)
     shaft = nominal_shaft(design, key)
     assert overlap(plate, shaft) == pytest.approx(0.0, abs=1e-9)
     # positive clearance: a shaft 0.04 mm fatter all round still fits (compensation 0.2 mm
@@ -68,6 +69,21 @@ def test_nominal_shaft_fits_the_compensated_hole_with_clearance_and_not_turned(s
         assert overlap(plate, turned) == pytest.approx(0.0, abs=1e-9)  # carries no phase
     else:
         assert overlap(plate, turned) > 0.05
+
+
+@pytest.mark.parametrize("shape, bore", [("keyway", 12.0), ("d-flat", 8.0), ("hex", 8.0)])
+def test_a_set_screw_through_a_keyed_hub_leaves_a_printable_part_at_every_key_angle(shape, bore):
+    # the screw runs along the key: at some angles its walls graze the key's, which left
+    # edges shorter than float32 resolves (30 and 60 deg with a keyway failed the check)
+    from wheelstep_cli.geometry.mesh_checks import require_printable
+    from wheelstep_cli.parts.gear_faces import _set_screw
+
+    mark = 0.0
+    for angle in range(0, 360, 15):
+        design = GearPairSpec(bore_shape=shape, bore=bore, key_angle=angle, hub_d=28, set_screw="M3")
+        plate = extrude_gear("pinion", circle(38.0, 512), 10.0, shaft_hole(design, mark), [], 0.0,
+                             hub=design.hub_mm, set_screw=_set_screw(design, mark))
+        require_printable(plate)
 
 
 @pytest.fixture(scope="module")
@@ -143,3 +159,17 @@ def test_lighten_keeps_the_meshing_outlines_and_reports_what_it_saves(keyed_pair
     for pocket in faces["wheel"].holes[1:]:
         assert np.max(np.hypot(*pocket.T)) <= root - 2.5 * module + 1e-6
     assert record["wheel"]["volume_saved_cm3"] > 100.0       # the 285 cm3 disc loses over a third
+
+
+def test_a_hex_shaft_puts_the_gear_in_phase_in_as_many_of_its_six_ways_as_gears_json_says(keyed_pair):
+    from wheelstep_cli.parts.gear_pair import in_phase_positions
+
+    law = pair_law(keyed_pair)
+    for outline, periods in ((keyed_pair.pinion_outline, law.pinion_periods),
+                             (keyed_pair.wheel_outline, law.wheel_periods)):
+        ring = shapely.Polygon(outline)
+        # a gear turned by a sixth of a turn k times is in phase when its teeth land on themselves
+        landed = sum(1 for k in range(6)
+                     if ring.hausdorff_distance(affinity.rotate(ring, 60.0 * k, origin=(0, 0))) < 1e-3)
+        assert landed == in_phase_positions(6, periods) < 6
+    assert in_phase_positions(1, law.pinion_periods) == 1          # a key fits one way: in phase

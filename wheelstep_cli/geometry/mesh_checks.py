@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import MeshDefect
 
 
 @dataclass(frozen=True)
@@ -115,8 +115,8 @@ def require_printable(part: Part) -> MeshReport:
     """Run :func:`check_part` and raise if the part must not be written."""
     report = check_part(part)
     if not report.ok:
-        raise DesignError(
-            part.name, "mesh",
+        raise MeshDefect(
+            part.name,
             f"failed the print check (watertight={report.watertight}, "
             f"winding={report.winding_consistent}, volume={report.volume:.1f} mm3, "
             f"expected {report.expected_volume:.1f} mm3)")

@@ -60,7 +60,7 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
                  marks: list[np.ndarray], mark_depth: float, hole_param: str = "bore",
                  hole_value: object = None, pockets: list[np.ndarray] = (),
                  chamfer: float = 0.0, hub: tuple[float, float] = (0.0, 0.0),
-                 set_screw: tuple | None = None) -> Part:
+                 set_screw: tuple | None = None, keyed_bore: tuple[float, float] | None = None) -> Part:
     """A gear plate (mm): ``outline`` extruded by ``thickness`` along +z with the shaft
     ``hole`` ring (CCW, None for none) cut through and the ``marks`` (CCW rings) engraved
     ``mark_depth`` mm into the top face (an open groove: prints without support) and the
@@ -73,7 +73,8 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
     radial screw hole through the hub along ``direction`` and a nut slot open to the hub's
     top (see :func:`_set_screw`).
 
-    The hole must leave MIN_HOLE_WALL mm to the root (DesignError naming ``hole_param``)."""
+    The hole must leave MIN_HOLE_WALL mm to the root (DesignError naming ``hole_param``, or for
+    a keyway the bore when ``keyed_bore`` = (bore, key width) mm says no key depth helps)."""
     import manifold3d as m3d
 
     if not thickness > 0:
@@ -83,7 +84,7 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         outline = outline[::-1]
     polygons, area = [outline], signed_area(outline)
     if hole is not None:
-        _require_wall(name, outline, hole, hole_param, hole_value)
+        _require_wall(name, outline, hole, hole_param, hole_value, keyed_bore)
         polygons.append(np.asarray(hole, dtype=float)[::-1])
         area -= signed_area(hole)
     for pocket in pockets:
@@ -99,7 +100,10 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         body, volume, layers = m3d.Manifold.extrude(section, thickness), area * thickness, \
             [(section, 0.0)]
     if hub[0] > 0:
-        body, volume = _with_hub(body, volume, layers, outline, hole, hub, thickness, chamfer)
+        # a set screw's hole runs along its direction: no corner of the hub's polygon on that
+        # line, where the hole's walls would cut it edge-on into slivers float32 cannot hold
+        phase = 0.0 if set_screw is None else set_screw[1] + np.pi / bore_segments(hub[0])
+        body, volume = _with_hub(body, volume, layers, outline, hole, hub, thickness, chamfer, phase)
     if set_screw is not None:
         body, volume = _set_screw(body, volume, hole, hub, thickness, set_screw)
     if marks and mark_depth > 0:
@@ -143,8 +147,10 @@ def _set_screw(body, volume: float, hole, hub: tuple[float, float], thickness: f
 
 
 def _require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: str,
-                  hole_value: object) -> None:
-    """DesignError naming ``hole_param`` when the hole leaves under MIN_HOLE_WALL mm to the root."""
+                  hole_value: object, bore: tuple[float, float] | None = None) -> None:
+    """DesignError naming ``hole_param`` when the hole leaves under MIN_HOLE_WALL mm to the
+    root; for a keyway (``hole_param`` key_depth, ``bore`` = (diameter, key width) mm) it
+    names the bore when no key depth would leave the wall."""
     root = min_radius(outline)
     reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
     if root - reach < MIN_HOLE_WALL:
@@ -153,15 +159,23 @@ def _require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: 
         value = float(hole_value or 0.0)
         limit = (value - (MIN_HOLE_WALL - (root - reach)) if hole_param == "key_depth"
                  else (root - MIN_HOLE_WALL) * value / reach)
+        if hole_param == "key_depth" and limit <= 0.0 and bore is not None:
+            # no key depth helps: the bore itself is too large for this gear
+            allowed = root - MIN_HOLE_WALL
+            largest = 2.0 * (np.sqrt(max(allowed ** 2 - (bore[1] / 2.0) ** 2, 0.0)) - value)
+            raise DesignError("bore", bore[0], f"must be < {max(largest, 0.0):.2f} mm with the "
+                              f"keyway's {value:g} mm depth (leave {MIN_HOLE_WALL:g} mm of wall "
+                              f"inside the {name}'s root)")
         raise DesignError(hole_param, hole_value, f"must be < {limit:.2f} mm (leave "
                           f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
 
 
 def _with_hub(body, volume: float, layers: list, outline: np.ndarray, hole: np.ndarray | None,
-              hub: tuple[float, float], thickness: float, chamfer: float):
+              hub: tuple[float, float], thickness: float, chamfer: float, phase: float = 0.0):
     """``body`` (the plate, of ``volume`` mm3, made of the nested ``layers`` = [(section, z)]:
     each section extruded from z to thickness - z) with the hub = (diameter, length) mm
-    standing on its top face round the hole, and the volume of the union (mm3).
+    standing on its top face round the hole, and the volume of the union (mm3). ``phase``
+    (rad): where the hub polygon's first corner lies.
 
     The boss reaches down into the plate, below the top chamfer: solids that only touch at
     a plane stay two shells, and it fills the chamfer round the hole's top edge, so the hole
@@ -170,7 +184,7 @@ def _with_hub(body, volume: float, layers: list, outline: np.ndarray, hole: np.n
     ring is summed layer by layer from the same nested sections."""
     import manifold3d as m3d
 
-    ring, hub_area = _hub_ring(outline, hole, hub[0])
+    ring, hub_area = _hub_ring(outline, hole, hub[0], phase)
     # without a chamfer 1 mm; with one, between the bottom chamfer and the top one
     base = thickness - chamfer - min(1.0, 0.5 * (thickness - 2.0 * chamfer)) if chamfer > 0 \
         else thickness - 1.0
@@ -183,8 +197,9 @@ def _with_hub(body, volume: float, layers: list, outline: np.ndarray, hole: np.n
     return body + boss, volume + hub_area * (thickness + hub[1] - base) - shared
 
 
-def _hub_ring(outline: np.ndarray, hole: np.ndarray | None, diameter: float):
-    """The hub's cross-section (manifold3d) and area (mm2), its diameter checked."""
+def _hub_ring(outline: np.ndarray, hole: np.ndarray | None, diameter: float, phase: float = 0.0):
+    """The hub's cross-section (manifold3d) and area (mm2), its diameter checked; its
+    polygon's first corner at polar angle ``phase`` (rad)."""
     import manifold3d as m3d
 
     root = min_radius(outline)
@@ -195,7 +210,8 @@ def _hub_ring(outline: np.ndarray, hole: np.ndarray | None, diameter: float):
     if diameter / 2.0 < reach + MIN_HOLE_WALL:
         raise DesignError("hub_d", diameter, f"must be >= {2 * (reach + MIN_HOLE_WALL):.2f} mm (leave "
                           f"{MIN_HOLE_WALL:g} mm of wall round the shaft hole)")
-    rings = [circle(diameter / 2.0, bore_segments(diameter))]
+    c, s = np.cos(phase), np.sin(phase)
+    rings = [circle(diameter / 2.0, bore_segments(diameter)) @ np.array([[c, s], [-s, c]])]
     if hole is not None:
         rings.append(np.asarray(hole, dtype=float)[::-1])
     area = sum(signed_area(r) for r in rings)

@@ -124,7 +124,8 @@ def gear_part(face: GearFace, spec):
     value = spec.key_depth if param == "key_depth" else spec.bore
     return extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
                         spec.mark_depth, param, value, cut, spec.chamfer_mm, spec.hub_mm,
-                        _set_screw(spec, face.direction))
+                        _set_screw(spec, face.direction),
+                        (float(spec.bore), float(spec.key_width)) if param == "key_depth" else None)
 
 
 def faces_for(spec, law, pinion_outline: np.ndarray, wheel_outline: np.ndarray,

@@ -64,8 +64,13 @@ def mounting_record(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw,
 
 def mounting_line(mounting: dict) -> str:
     """One line saying how much closer the pair may be mounted (mm)."""
-    line = (f"mounting: clear when mounted up to {mounting['closer_mm']:.3f} mm closer (least gap "
-            f"between the outlines, at pinion angle {mounting['at_pinion_deg']:.1f} deg)")
+    if mounting["closer_mm"] <= 0.0:
+        # at the pose the outlines touch or overlap: no closer mounting is known to be clear
+        line = (f"mounting: the outlines touch or overlap at pinion angle "
+                f"{mounting['at_pinion_deg']:.1f} deg: not clear mounted any closer")
+    else:
+        line = (f"mounting: clear when mounted up to {mounting['closer_mm']:.3f} mm closer (least gap "
+                f"between the outlines, at pinion angle {mounting['at_pinion_deg']:.1f} deg)")
     if "tip_clearance_mm" in mounting:
         line += f"; tip clearance {mounting['tip_clearance_mm']:.3f} mm"
     return line

@@ -78,3 +78,12 @@ def test_the_default_pair_mounted_a_tenth_closer_does_not_interfere(cli, default
     out, report = default_pair
     result, checked = _mesh_check(cli, out, report["meshing"]["distance_mm"] - 0.1)
     assert checked["interference"] is False
+
+
+def test_the_mounting_line_does_not_call_touching_outlines_clear():
+    from wheelstep_cli.parts.mesh_check import mounting_line
+
+    assert "clear when mounted up to 0.047 mm closer" in mounting_line(
+        {"closer_mm": 0.0467, "at_pinion_deg": 90.8})
+    line = mounting_line({"closer_mm": 0.0, "at_pinion_deg": 45.0})
+    assert "not clear mounted any closer" in line and "up to 0.000" not in line
