@@ -41,10 +41,7 @@ class DesignError(ValueError):
 
     def tied_to(self, inputs: dict[str, object]) -> "DesignError":
         """This error, also stated for each of ``inputs`` (name -> value, None: not set) that
-        shares the blame, so :meth:`for_given` can name the one the user gave (not for a
-        :class:`MeshDefect`, which no input of the user's is to blame for)."""
-        if isinstance(self, MeshDefect):
-            return self
+        shares the blame, so :meth:`for_given` can name the one the user gave."""
         # the rule is the other parameter's: said as what this input leads to, not as its limit
         context = f"with it, {self.param.replace('_', '-')} = {self.shown_value} fails: {self.limit}"
         alternatives = dict(self.alternatives)
@@ -61,13 +58,15 @@ class DesignError(ValueError):
         return other
 
 
-class MeshDefect(DesignError):
+class MeshDefect(Exception):
     """A solid wheelstep built that fails its own check before writing (manifold, watertight,
-    volume): nothing is written, and the line says it is wheelstep's defect, not the input's."""
+    volume): wheelstep's defect, not the input's. Not a :class:`DesignError`: no input is
+    named or blamed, the CLI exits 1 (a failed check), a sweep counts the point as failed."""
 
     def __init__(self, part: str, what: str):
-        super().__init__(part, "mesh", f"{what}; nothing written (a defect of wheelstep, not of the "
-                                       "input: please report the command line)")
+        self.part = part
+        super().__init__(f"the {part} mesh {what}; nothing written (a defect of wheelstep, not of "
+                         "the input: please report the command line)")
 
 
 def format_value(value: object) -> str:

@@ -127,13 +127,20 @@ def test_errors_name_the_parameter_as_written(cli, tmp_path, args, shown):
     assert error_line(cli(*args)).startswith(f"wheelstep: error: {shown}")
 
 
-def test_a_mesh_that_fails_its_own_check_is_called_wheelsteps_defect_not_tied_to_an_input():
-    from wheelstep_cli.cli import error_text
-    from wheelstep_cli.errors import MeshDefect
+def test_a_mesh_that_fails_its_own_check_is_wheelsteps_defect_exit_1_nothing_written(
+        tmp_path, monkeypatch, capsys):
+    from types import SimpleNamespace
 
-    err = MeshDefect("pinion", "failed the print check (watertight=False)")
-    # a build refusal is stated for the inputs that size the pair; a defect is nobody's input
-    tied = err.tied_to({"z": 48, "module": 2.0})
-    assert tied is err and tied.for_given(["z"]) is err
-    line = error_text(tied, {}, ["gears", "--z", "48"])
-    assert "--z" not in line and "a defect of wheelstep" in line and "nothing written" in line
+    from wheelstep_cli.cli import run
+    from wheelstep_cli.errors import DesignError, MeshDefect
+    from wheelstep_cli.geometry import mesh_checks
+
+    assert not issubclass(MeshDefect, DesignError)     # no input is named or blamed for it
+    broken = SimpleNamespace(ok=False, watertight=False, winding_consistent=True, volume=1.0,
+                             expected_volume=1.0)
+    monkeypatch.setattr(mesh_checks, "check_part", lambda part: broken)
+    assert run(["shoe", "--width", "40", "--out", str(tmp_path / "out")]) == 1
+    line = capsys.readouterr().err.strip()
+    assert line.startswith("wheelstep: error: the ") and "failed the print check" in line
+    assert "a defect of wheelstep" in line and "--width" not in line
+    assert not (tmp_path / "out").exists()

@@ -71,10 +71,11 @@ def test_nominal_shaft_fits_the_compensated_hole_with_clearance_and_not_turned(s
         assert overlap(plate, turned) > 0.05
 
 
-@pytest.mark.parametrize("shape, bore", [("keyway", 12.0), ("d-flat", 8.0), ("hex", 8.0)])
-def test_a_set_screw_through_a_keyed_hub_leaves_a_printable_part_at_every_key_angle(shape, bore):
-    # the screw runs along the key: at some angles its walls graze the key's, which left
-    # edges shorter than float32 resolves (30 and 60 deg with a keyway failed the check)
+@pytest.mark.parametrize("shape, bore", [("keyway", 12.0), ("d-flat", 8.0), ("hex", 8.0),
+                                         ("round", 5.0), ("round", 8.0)])
+def test_a_set_screw_through_a_hub_leaves_a_printable_part_at_every_key_angle(shape, bore):
+    # the screw hole runs along the key angle: where it met a corner of the hub's or the
+    # bore's polygon edge-on, the cut left edges shorter than float32 resolves
     from wheelstep_cli.geometry.mesh_checks import require_printable
     from wheelstep_cli.parts.gear_faces import _set_screw
 

@@ -45,10 +45,10 @@ class EntryResult:
     error: str | None = None
     param: str | None = None
     mating: dict | None = None   # a gear pair's meshing record (parts.mesh_check.meshing_record)
-    band: dict | None = None     # its band record with ``batch --tolerance`` (parts.tolerance_cli)
+    band: dict | None = None     # its band record when the band is checked (parts.tolerance_cli)
 
 
-def build_entry(entry: Entry, tolerance: bool = False) -> EntryResult:
+def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
     """Build one entry's parts for its printer and check them as written, alone and (a gear
     pair's meshing) together, with ``tolerance`` also over the printer's band (SPEC §11;
     worker-process entry point; never raises)."""

@@ -104,7 +104,7 @@ def _meshing(result: EntryResult) -> dict:
 
 
 def _band_checks(built, results) -> dict:
-    """With ``batch --tolerance``: whether every gear pair meshes over its printer's band,
+    """When the band is checked (``batch``'s default): whether every gear pair meshes over its printer's band,
     and the printers that state none (told to add one, not taken as perfect)."""
     bands = [results[e.index].band for e in built if results[e.index].band is not None]
     if not bands:

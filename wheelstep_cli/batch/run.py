@@ -24,14 +24,14 @@ class BatchOutcome:
 
 def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
               progress: Callable[[str, int], Any] | None = None, force: bool = False,
-              scheduler: str | None = None, tolerance: bool = False) -> BatchOutcome:
+              scheduler: str | None = None, tolerance: bool = True) -> BatchOutcome:
     """Build, pack, render and write a checked batch; ``progress(stage, total)`` -> advance().
 
     Files of an earlier batch in ``out`` (per its manifest, verified by SHA-256) that this one
     does not write are removed; any other file in the way is refused unless ``force``
     (DesignError, before anything is written). With ``scheduler`` the parts are built on
-    that Dask cluster instead of ``jobs`` local processes. With ``tolerance`` each gear pair
-    is also checked over its printer's band (SPEC §11)."""
+    that Dask cluster instead of ``jobs`` local processes. With ``tolerance`` (the default,
+    as ``batch`` runs) each gear pair is also checked over its printer's band (SPEC §11)."""
     from functools import partial
 
     from wheelstep_cli.formats.atomic import remove_files, write_files_atomic
@@ -44,7 +44,7 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
     with executor(jobs, scheduler) as pool:
         step = advance("building parts", len(plan.entries))
         results: dict[int, EntryResult] = {}
-        build = partial(build_entry, tolerance=True) if tolerance else build_entry
+        build = partial(build_entry, tolerance=tolerance)
         for result in map_items(pool, build, plan.entries, step):
             results[result.index] = result
         plates, dropped = plan_plates(plan.entries, results)

@@ -20,7 +20,7 @@ except ImportError:  # pragma: no cover - older typer uses click itself
 
 from wheelstep_cli.config.names import flag_name
 from wheelstep_cli.config.schema import InvalidInput
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import DesignError, MeshDefect
 
 app = typer.Typer(
     name="wheelstep",
@@ -150,6 +150,9 @@ def run(argv: list[str] | None = None) -> int:
         for line in err.lines():
             typer.echo(f"wheelstep: error: {line}", err=True)
         return 2
+    except MeshDefect as err:              # wheelstep's own check failed: no input to blame
+        typer.echo(f"wheelstep: error: {err}", err=True)
+        return 1
     except DesignError as err:
         options = _command_options(command, args)
         err = err.for_given(_given(options, args))

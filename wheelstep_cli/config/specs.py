@@ -171,15 +171,16 @@ class GearPairSpec(BaseModel):
             require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a hex (across flats)")
         require(self.set_screw is None or self.bore > 0, "set_screw", self.set_screw,
                 "needs a bore (--bore > 0 mm): the screw clamps the shaft")
-        # a round hole looks the same at every angle: the angle orients a key, flat, hex or screw
-        require(self.key_angle == 0 or self.set_screw is not None
-                or (self.bore > 0 and self.bore_shape != BoreShape.round), "key_angle", self.key_angle,
-                "orients a keyed bore or a set screw: needs --bore-shape d-flat, keyway or hex, "
-                "or --set-screw")
         if self.bore_shape == BoreShape.d_flat:
             require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a D-flat")
             require(self.flat_depth < self.bore / 2.0, "flat_depth", self.flat_depth,
                     f"must be < half the bore {self.bore / 2.0:g} mm")
+        # a round hole looks the same at every angle: the angle orients a key, flat, hex or
+        # screw (checked after the shapes' own rules, which name a missing bore first)
+        require(self.key_angle == 0 or self.set_screw is not None
+                or (self.bore > 0 and self.bore_shape != BoreShape.round), "key_angle", self.key_angle,
+                "orients a keyed bore or a set screw: needs --bore-shape d-flat, keyway or hex, "
+                "or --set-screw")
 
     def sizing(self) -> dict[str, object]:
         """The inputs that set the pitch curves and the size of the teeth (name -> value as

@@ -39,9 +39,11 @@ def _arc(radius: float, start: float, stop: float, segments: int) -> np.ndarray:
     return np.column_stack([r * np.cos(t), r * np.sin(t)])
 
 
-def round_hole(diameter: float, segments: int) -> np.ndarray:
+def round_hole(diameter: float, segments: int, phase: float = 0.0) -> np.ndarray:
+    """Polygon circumscribing a circle of ``diameter`` mm with ``segments`` sides, its first
+    corner at polar angle ``phase`` (rad)."""
     r = diameter / 2.0 / np.cos(np.pi / segments)
-    t = np.linspace(0.0, 2.0 * np.pi, segments, endpoint=False)
+    t = phase + np.linspace(0.0, 2.0 * np.pi, segments, endpoint=False)
     return r * np.column_stack([np.cos(t), np.sin(t)])
 
 

@@ -64,10 +64,12 @@ def mounting_record(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw,
 
 def mounting_line(mounting: dict) -> str:
     """One line saying how much closer the pair may be mounted (mm)."""
+    from wheelstep_cli.gears.meshing.mounting import THIN
+
     if mounting["closer_mm"] <= 0.0:
-        # at the pose the outlines touch or overlap: no closer mounting is known to be clear
-        line = (f"mounting: the outlines touch or overlap at pinion angle "
-                f"{mounting['at_pinion_deg']:.1f} deg: not clear mounted any closer")
+        # the figure is a lower bound less the thinning's error: 0 is a gap within that error
+        line = (f"mounting: the outlines come within {2 * THIN:.3f} mm or overlap at pinion angle "
+                f"{mounting['at_pinion_deg']:.1f} deg: not known to be clear mounted any closer")
     else:
         line = (f"mounting: clear when mounted up to {mounting['closer_mm']:.3f} mm closer (least gap "
                 f"between the outlines, at pinion angle {mounting['at_pinion_deg']:.1f} deg)")

@@ -220,7 +220,7 @@ def relief_angle(pressure_angle: float) -> float:
     return 0.5 * (0.5 * np.pi - pressure_angle)
 
 
-def _relief_region(job: _Job, grid: PolarGrid, radii: np.ndarray) -> np.ndarray:
+def _relief_region(job: _Job, grid: PolarGrid, radii: np.ndarray, pitch: np.ndarray) -> np.ndarray:
     """Per wheel ray (0..1): how much of the tip clearance relief applies.
 
     Carved by the pinion's tips, the wheel's space bottoms end microns below them, sloping
@@ -231,7 +231,7 @@ def _relief_region(job: _Job, grid: PolarGrid, radii: np.ndarray) -> np.ndarray:
     corner space, so tips met spaces there on the line of centres with no clearance.
     """
     law, curves = job.law, job.curves
-    below = (radii < blank_radii(curves.wheel, grid, 1e-6)).astype(float)
+    below = (radii < pitch).astype(float)
     if not law.corners:
         return below
     # the pitch point for carrier angle phi sits at the wheel's body angle -phi
@@ -262,9 +262,10 @@ def _cut_wheel(job: _Job, pinion_outline: np.ndarray, distance: float) -> _GearC
         closer = replace(carving, distance=distance - s.mount_tolerance)
         radii = np.minimum(radii, carve_by_pinion(law, pinion_outline, grid, closer))
     _require_no_gaps(radii, job.pinion_teeth)
-    radii = head_on_relief(radii, grid, _relief_region(job, grid, radii),
+    pitch = blank_radii(curves.wheel, grid, 1e-6)     # the wheel's pitch curve, mm per ray
+    radii = head_on_relief(radii, grid, _relief_region(job, grid, radii, pitch),
                            job.cutter.clearance * job.module, relief_angle(job.cutter.pressure_angle))
-    radii = level_space_ridges(radii, blank_radii(curves.wheel, grid, 1e-6))
+    radii = level_space_ridges(radii, pitch)
     radii, topping, land = top_or_refuse(GearBody("wheel", grid, curves.wheel, blank), radii,
                                          job.cutter, job.limits)
     return _GearCut(outline_from_radii(grid, radii, law.wheel_periods), radii, grid, topping, land, play)

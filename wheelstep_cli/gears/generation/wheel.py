@@ -197,8 +197,9 @@ def level_space_ridges(radii: np.ndarray, pitch: np.ndarray) -> np.ndarray:
 
     A bump in a space bottom faces the pinion's tip head-on and is never driven on (its
     normal runs through the axes); left where the relief lowered its sides only partly, it
-    is what a pair mounted closer meets first. Flanks falling into and rising out of the
-    space stay as carved; only material is removed.
+    is what a pair mounted closer meets first. What falls into and rises out of the space
+    without turning back stays as carved (a flank below the pitch curve that turns back by a
+    few microns is cut to its running minimum); only material is removed.
     """
     below = radii < pitch
     if below.all() or not below.any():
