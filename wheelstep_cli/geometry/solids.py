@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from wheelstep_cli.errors import DesignError
+from wheelstep_cli.geometry.hole_walls import MIN_HOLE_WALL, require_hub_fits, require_wall
 from wheelstep_cli.geometry.mesh_checks import Part, tooth_zone_middle
 from wheelstep_cli.geometry.staircase import staircase_mesh
 from wheelstep_cli.geometry.planar import (check_outline, drop_collinear, group_rings_by_shell,
@@ -52,8 +53,6 @@ def extrude_plate(name: str, outline: np.ndarray, thickness: float, bore: float 
     return solid_from_polygons(name, polygons, thickness, area * thickness)
 
 
-#: Least wall (mm) from a shaft hole (bore, key, flat corner, hex corner) to the root.
-MIN_HOLE_WALL = 1.5
 
 
 def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndarray | None,
@@ -84,7 +83,7 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         outline = outline[::-1]
     polygons, area = [outline], signed_area(outline)
     if hole is not None:
-        _require_wall(name, outline, hole, hole_param, hole_value, keyed_bore)
+        require_wall(name, outline, hole, hole_param, hole_value, keyed_bore)
         polygons.append(np.asarray(hole, dtype=float)[::-1])
         area -= signed_area(hole)
     for pocket in pockets:
@@ -146,30 +145,6 @@ def _set_screw(body, volume: float, hole, hub: tuple[float, float], thickness: f
     return result, float(result.volume())
 
 
-def _require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: str,
-                  hole_value: object, bore: tuple[float, float] | None = None) -> None:
-    """DesignError naming ``hole_param`` when the hole leaves under MIN_HOLE_WALL mm to the
-    root; for a keyway (``hole_param`` key_depth, ``bore`` = (diameter, key width) mm) it
-    names the bore when no key depth would leave the wall."""
-    root = min_radius(outline)
-    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
-    if root - reach < MIN_HOLE_WALL:
-        # the largest value that leaves the wall: the hole's reach grows in proportion to
-        # the bore (round, flat, hex), one for one with a key's depth
-        value = float(hole_value or 0.0)
-        limit = (value - (MIN_HOLE_WALL - (root - reach)) if hole_param == "key_depth"
-                 else (root - MIN_HOLE_WALL) * value / reach)
-        if hole_param == "key_depth" and limit <= 0.0 and bore is not None:
-            # no key depth helps: the bore itself is too large for this gear
-            allowed = root - MIN_HOLE_WALL
-            largest = 2.0 * (np.sqrt(max(allowed ** 2 - (bore[1] / 2.0) ** 2, 0.0)) - value)
-            raise DesignError("bore", bore[0], f"must be < {max(largest, 0.0):.2f} mm with the "
-                              f"keyway's {value:g} mm depth (leave {MIN_HOLE_WALL:g} mm of wall "
-                              f"inside the {name}'s root)")
-        raise DesignError(hole_param, hole_value, f"must be < {limit:.2f} mm (leave "
-                          f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
-
-
 def _with_hub(body, volume: float, layers: list, outline: np.ndarray, hole: np.ndarray | None,
               hub: tuple[float, float], thickness: float, chamfer: float, phase: float = 0.0):
     """``body`` (the plate, of ``volume`` mm3, made of the nested ``layers`` = [(section, z)]:
@@ -202,14 +177,7 @@ def _hub_ring(outline: np.ndarray, hole: np.ndarray | None, diameter: float, pha
     polygon's first corner at polar angle ``phase`` (rad)."""
     import manifold3d as m3d
 
-    root = min_radius(outline)
-    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1]))) if hole is not None else 0.0
-    if diameter / 2.0 > root - MIN_HOLE_WALL:
-        raise DesignError("hub_d", diameter, f"must be <= {2 * (root - MIN_HOLE_WALL):.2f} mm (leave "
-                          f"{MIN_HOLE_WALL:g} mm to the root)")
-    if diameter / 2.0 < reach + MIN_HOLE_WALL:
-        raise DesignError("hub_d", diameter, f"must be >= {2 * (reach + MIN_HOLE_WALL):.2f} mm (leave "
-                          f"{MIN_HOLE_WALL:g} mm of wall round the shaft hole)")
+    require_hub_fits(outline, hole, diameter)
     c, s = np.cos(phase), np.sin(phase)
     rings = [circle(diameter / 2.0, bore_segments(diameter)) @ np.array([[c, s], [-s, c]])]
     if hole is not None:

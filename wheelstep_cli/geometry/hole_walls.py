@@ -1,0 +1,49 @@
+"""Walls a shaft hole and a hub must leave in a gear plate (mm): the rules the plate's solid
+is built to, checked before manifold3d sees the shapes."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.geometry.planar import min_radius
+
+#: Least wall (mm) from a shaft hole (bore, key, flat corner, hex corner) to the root.
+MIN_HOLE_WALL = 1.5
+
+
+def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: str,
+                  hole_value: object, bore: tuple[float, float] | None = None) -> None:
+    """DesignError naming ``hole_param`` when the hole leaves under MIN_HOLE_WALL mm to the
+    root; for a keyway (``hole_param`` key_depth, ``bore`` = (diameter, key width) mm) it
+    names the bore when no key depth would leave the wall."""
+    root = min_radius(outline)
+    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
+    if root - reach < MIN_HOLE_WALL:
+        # the largest value that leaves the wall: the hole's reach grows in proportion to
+        # the bore (round, flat, hex), one for one with a key's depth
+        value = float(hole_value or 0.0)
+        limit = (value - (MIN_HOLE_WALL - (root - reach)) if hole_param == "key_depth"
+                 else (root - MIN_HOLE_WALL) * value / reach)
+        if hole_param == "key_depth" and limit <= 0.0 and bore is not None:
+            # no key depth helps: the bore itself is too large for this gear
+            allowed = root - MIN_HOLE_WALL
+            largest = 2.0 * (np.sqrt(max(allowed ** 2 - (bore[1] / 2.0) ** 2, 0.0)) - value)
+            raise DesignError("bore", bore[0], f"must be < {max(largest, 0.0):.2f} mm with the "
+                              f"keyway's {value:g} mm depth (leave {MIN_HOLE_WALL:g} mm of wall "
+                              f"inside the {name}'s root)")
+        raise DesignError(hole_param, hole_value, f"must be < {limit:.2f} mm (leave "
+                          f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
+
+
+def require_hub_fits(outline: np.ndarray, hole: np.ndarray | None, diameter: float) -> None:
+    """DesignError naming hub_d when a hub of ``diameter`` mm leaves under MIN_HOLE_WALL mm
+    to the root of ``outline`` or round the shaft ``hole`` (rings in mm)."""
+    root = min_radius(outline)
+    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1]))) if hole is not None else 0.0
+    if diameter / 2.0 > root - MIN_HOLE_WALL:
+        raise DesignError("hub_d", diameter, f"must be <= {2 * (root - MIN_HOLE_WALL):.2f} mm (leave "
+                          f"{MIN_HOLE_WALL:g} mm to the root)")
+    if diameter / 2.0 < reach + MIN_HOLE_WALL:
+        raise DesignError("hub_d", diameter, f"must be >= {2 * (reach + MIN_HOLE_WALL):.2f} mm (leave "
+                          f"{MIN_HOLE_WALL:g} mm of wall round the shaft hole)")
