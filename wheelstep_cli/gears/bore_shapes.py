@@ -39,13 +39,6 @@ def _arc(radius: float, start: float, stop: float, segments: int) -> np.ndarray:
     return np.column_stack([r * np.cos(t), r * np.sin(t)])
 
 
-def corner_clear_of(direction: float, segments: int) -> float:
-    """Where (polar angle, rad) a regular polygon of ``segments`` sides puts its first corner
-    so that none lies on the line at ``direction`` (rad): a set screw's hole cut along that
-    line would meet a corner edge-on and leave slivers float32 cannot hold."""
-    return direction + np.pi / segments
-
-
 def round_hole(diameter: float, segments: int, phase: float = 0.0) -> np.ndarray:
     """Polygon circumscribing a circle of ``diameter`` mm with ``segments`` sides, its first
     corner at polar angle ``phase`` (rad)."""

@@ -49,9 +49,10 @@ def shaft_hole(spec, direction: float) -> np.ndarray | None:
         return shapes.keyway_hole(spec.bore, spec.key_width, spec.key_depth, angle, segments)
     if spec.bore_shape == "hex":
         return shapes.hex_hole(spec.bore, angle)
-    # a set screw's hole runs along the angle
+    # a set screw's hole runs along the angle: no corner of the bore's polygon on that line,
+    # where the screw hole's walls would cut it edge-on into slivers float32 cannot hold
     return shapes.round_hole(spec.bore, segments,
-                             0.0 if spec.set_screw is None else shapes.corner_clear_of(angle, segments))
+                             0.0 if spec.set_screw is None else angle + np.pi / segments)
 
 
 def timing_marks(outline: np.ndarray, hole: np.ndarray | None, direction: float,
