@@ -47,3 +47,10 @@ def require_hub_fits(outline: np.ndarray, hole: np.ndarray | None, diameter: flo
     if diameter / 2.0 < reach + MIN_HOLE_WALL:
         raise DesignError("hub_d", diameter, f"must be >= {2 * (reach + MIN_HOLE_WALL):.2f} mm (leave "
                           f"{MIN_HOLE_WALL:g} mm of wall round the shaft hole)")
+
+
+def corner_clear_of(direction: float, segments: int) -> float:
+    """Where (polar angle, rad) a regular polygon of ``segments`` sides puts its first corner
+    so that none lies on the line at ``direction`` (rad): a set screw's hole cut along that
+    line would meet a corner edge-on and leave slivers float32 cannot hold."""
+    return direction + np.pi / segments

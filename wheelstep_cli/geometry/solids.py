@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.geometry.hole_walls import MIN_HOLE_WALL, require_hub_fits, require_wall
+from wheelstep_cli.geometry.hole_walls import MIN_HOLE_WALL, corner_clear_of, require_hub_fits, require_wall
 from wheelstep_cli.geometry.mesh_checks import Part, tooth_zone_middle
 from wheelstep_cli.geometry.staircase import staircase_mesh
 from wheelstep_cli.geometry.planar import (check_outline, drop_collinear, group_rings_by_shell,
@@ -99,9 +99,8 @@ def extrude_gear(name: str, outline: np.ndarray, thickness: float, hole: np.ndar
         body, volume, layers = m3d.Manifold.extrude(section, thickness), area * thickness, \
             [(section, 0.0)]
     if hub[0] > 0:
-        # a set screw's hole runs along its direction: no corner of the hub's polygon on that
-        # line, where the hole's walls would cut it edge-on into slivers float32 cannot hold
-        phase = 0.0 if set_screw is None else set_screw[1] + np.pi / bore_segments(hub[0])
+        # a set screw's hole runs along its direction
+        phase = 0.0 if set_screw is None else corner_clear_of(set_screw[1], bore_segments(hub[0]))
         body, volume = _with_hub(body, volume, layers, outline, hole, hub, thickness, chamfer, phase)
     if set_screw is not None:
         body, volume = _set_screw(body, volume, hole, hub, thickness, set_screw)

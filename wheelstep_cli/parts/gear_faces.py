@@ -15,6 +15,7 @@ import numpy as np
 
 from wheelstep_cli.gears import bore_shapes as shapes
 from wheelstep_cli.gears.phase import assembly_phase
+from wheelstep_cli.geometry.hole_walls import corner_clear_of
 from wheelstep_cli.geometry.planar import min_radius, signed_area, spoked_pockets
 from wheelstep_cli.geometry.solids import bore_segments, extrude_gear
 
@@ -49,10 +50,9 @@ def shaft_hole(spec, direction: float) -> np.ndarray | None:
         return shapes.keyway_hole(spec.bore, spec.key_width, spec.key_depth, angle, segments)
     if spec.bore_shape == "hex":
         return shapes.hex_hole(spec.bore, angle)
-    # a set screw's hole runs along the angle: no corner of the bore's polygon on that line,
-    # where the screw hole's walls would cut it edge-on into slivers float32 cannot hold
+    # a set screw's hole runs along the angle
     return shapes.round_hole(spec.bore, segments,
-                             0.0 if spec.set_screw is None else angle + np.pi / segments)
+                             0.0 if spec.set_screw is None else corner_clear_of(angle, segments))
 
 
 def timing_marks(outline: np.ndarray, hole: np.ndarray | None, direction: float,

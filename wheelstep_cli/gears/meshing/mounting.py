@@ -69,7 +69,7 @@ def least_separation(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw
     error (twice :data:`THIN`), so never more than the true gap."""
     # thinned by THIN mm the outlines have fewer vertices for the distance queries; each
     # moved by at most that, so the gap found less twice it is still a lower bound
-    pinion, wheel = simplify_ring(pinion, THIN), simplify_ring(wheel, THIN)
+    pinion, wheel = _Polar(simplify_ring(pinion, THIN)), _Polar(simplify_ring(wheel, THIN))
     step = law.theta_period / samples
     theta = step * np.arange(samples)
     coarse = _gaps_over(pinion, wheel, law, distance, half_height, theta, np.inf)
@@ -86,12 +86,12 @@ def least_separation(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw
 BLOCKS = 8
 
 
-def _gaps_over(pinion, wheel, law, distance, half_height, theta: np.ndarray, best: float) -> np.ndarray:
+def _gaps_over(pinion: _Polar, wheel: _Polar, law, distance, half_height, theta: np.ndarray,
+               best: float) -> np.ndarray:
     """The least distance (mm) of the posed outlines at each pinion angle ``theta`` (rad),
     exact wherever it is at most ``best`` mm or the least within its block (others may
     come out larger); the blocks shared by threads."""
     phi = np.asarray(law.carrier_angle(theta), dtype=float)
-    pinion, wheel = _Polar(pinion), _Polar(wheel)
     blocks = np.array_split(np.arange(len(theta)), BLOCKS)
 
     def block(index: np.ndarray) -> np.ndarray:
