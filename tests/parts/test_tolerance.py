@@ -78,12 +78,16 @@ def test_shifted_law_moves_the_wheel_angle_pose_by_pose():
 
 
 class _FakeReport:
-    """Stands for a meshing report whose least backlash is linear in the tooth clearance."""
+    """Stands for a meshing report whose least backlash is linear in the tooth clearance;
+    ``jammed``: the poses that jam (all four when the least backlash is not positive)."""
 
-    def __init__(self, least):
+    def __init__(self, least, jammed=None):
         self.least = least
         self.phi_drive = self.phi_coast = self.phi_law = np.zeros(4)
         self.theta = np.arange(4.0)
+        self.teeth = 4
+        self.interference = np.full(4, least <= 0) if jammed is None else np.asarray(jammed)
+        self.backlash = np.where(self.interference, -1.0, 1.0)
 
     def to_dict(self):
         flank = {"F_i_total_um": 1.0, "f_i_tooth_um": 1.0, "hub_speed_ripple_pct": 0.1}
@@ -92,18 +96,19 @@ class _FakeReport:
                 "backlash_max_mm": self.least + 0.1, "drive": flank, "coast": flank}
 
 
-def _fake_search(monkeypatch, least_of_clearance):
+def _fake_search(monkeypatch, least_of_clearance, law=None, jammed=None):
     import wheelstep_cli.parts.fit as fit
     import wheelstep_cli.parts.tolerance as tolerance
 
     def check(sections, case, settings=None):
-        return _FakeReport(least_of_clearance(sections.clearance)
-                           - 0.1 * (case.pinion_offset + case.wheel_offset))
+        least = least_of_clearance(sections.clearance) - 0.1 * (case.pinion_offset + case.wheel_offset)
+        return _FakeReport(least, None if least > 0 else jammed)
 
     from types import SimpleNamespace
 
+    law = SimpleNamespace(corners=()) if law is None else law
     monkeypatch.setattr(fit, "sectioned_pair", lambda pair: SimpleNamespace(
-        clearance=pair, shift=(np.zeros(1), np.zeros(1))))
+        clearance=pair, shift=(np.zeros(1), np.zeros(1)), law=law))
     monkeypatch.setattr(fit, "check_case", check)
     monkeypatch.setattr(tolerance, "check_case", check)
     monkeypatch.setattr(fit, "mid_play", lambda sections, nominal: sections)
@@ -135,6 +140,58 @@ def test_fit_search_stops_at_its_clearance_cap_when_nothing_helps(monkeypatch):
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
     result = fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance)
     assert result.clearance <= FIT_MAX_CLEARANCE and result.band["jams"]
+
+
+def _law_with_a_corner(at_theta: float):
+    """A law of period 4 rad (pinion) with one corner at pinion angle ``at_theta`` rad."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(corners=(at_theta / 2.0,), theta_period=4.0,
+                           pinion_angle=lambda phi: 2.0 * np.asarray(phi))
+
+
+def test_corner_poses_lie_within_their_zone_of_a_corner_on_both_sides_and_across_the_period():
+    from types import SimpleNamespace
+
+    from wheelstep_cli.parts.tolerance import CORNER_ZONE_PITCHES, corner_poses
+
+    theta = np.linspace(0.0, 4.0, 400, endpoint=False)
+    report = SimpleNamespace(theta=theta, teeth=24)
+    zone = CORNER_ZONE_PITCHES * 2.0 * np.pi / 24
+    for at in (1.0, 0.1):     # 0.1: the zone wraps round the period's start
+        off = np.abs(np.mod(theta - at + 2.0, 4.0) - 2.0)
+        assert np.array_equal(corner_poses(report, _law_with_a_corner(at)), off <= zone)
+        assert corner_poses(report, _law_with_a_corner(at)).sum() > 0
+    assert not corner_poses(report, SimpleNamespace(corners=())).any()
+
+
+def test_fit_search_stops_when_only_the_corners_jam_and_says_no_clearance_opens_them(monkeypatch):
+    from types import SimpleNamespace
+
+    from wheelstep_cli.parts.fit import fit_pair, fit_record, require_fit_met
+
+    # the fake's 4 poses sit at pinion angles 0..3 rad with 4 teeth; a zone of 0.1 pitch
+    # (0.16 rad) about the corner at 1 rad holds pose 1 only
+    law = _law_with_a_corner(1.0)
+    jammed = np.array([False, True, False, False])
+    _fake_search(monkeypatch, lambda clearance: -1.0, law=law, jammed=jammed)
+    import wheelstep_cli.parts.tolerance as tolerance
+
+    monkeypatch.setattr(tolerance, "CORNER_ZONE_PITCHES", 0.1)  # 0.16 rad at 4 teeth
+    spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
+    result = fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance)
+    assert len(result.rounds) == 1
+    assert result.rounds[0]["jammed_poses"] == result.rounds[0]["jammed_at_corners"] == 1
+    band = {**result.band, "fit": fit_record(result, "auto", 0.5)}
+    with pytest.raises(DesignError) as err:
+        require_fit_met(band)
+    assert "all at the pitch-curve corners" in err.value.limit
+    assert "no tooth clearance opens that" in err.value.limit
+
+    # jams elsewhere too: the search goes on raising the clearance
+    _fake_search(monkeypatch, lambda clearance: -1.0, law=law, jammed=np.array([True, True, False, False]))
+    result = fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance)
+    assert len(result.rounds) > 1
 
 
 def replace_printer():
@@ -195,3 +252,20 @@ def test_a_case_that_jams_gives_no_backlash_or_te_in_its_line():
     assert "JAMS" in head and "JAMS (1536 poses, 229 um deep; no backlash or TE" in tight
     assert "-4.248" not in tight and "3771" not in tight
     assert "ok, backlash 0.500..0.700 mm, drive F'i 20.0 um" in loose
+
+
+def test_a_jammed_case_line_says_how_much_of_its_jam_is_at_the_corners():
+    from wheelstep_cli.parts.tolerance import band_lines
+
+    flank = {"F_i_total_um": 1.0, "f_i_tooth_um": 1.0, "hub_speed_ripple_pct": 0.1}
+    case = {"case": "tight", "pinion_offset_mm": 0.1, "wheel_offset_mm": 0.1, "distance_mm": 143.95,
+            "jams": True, "interfering_poses": 68, "max_penetration_mm": 0.124,
+            "backlash_min_mm": -1.0, "backlash_max_mm": 0.4, "drive": flank, "coast": flank,
+            "jammed_poses": 68, "jammed_at_corners": 68}
+    record = {"printer": "p", "band": {"outline_mm": 0.1, "center_distance_mm": 0.05}, "jams": True,
+              "cases": [case]}
+    assert "JAMS (68 poses, 124 um deep, all at the pitch-curve corners;" in band_lines(record)[1]
+    case["jammed_at_corners"] = 20
+    assert "20 of its 68 jammed poses at the pitch-curve corners" in band_lines(record)[1]
+    case["jammed_at_corners"] = 0
+    assert "corner" not in band_lines(record)[1]

@@ -17,15 +17,16 @@ import numpy as np
 from wheelstep_cli.config.printers import FIT_MARGINS, Fit
 from wheelstep_cli.gears.meshing import MeshingSettings
 from wheelstep_cli.parts.tolerance import (NOMINAL, band_cases, band_record, case_record, check_case,
-                                           mid_play, printer_with_clearance, sectioned_pair)
+                                           jam_record, mid_play, printer_with_clearance, sectioned_pair)
 
 #: The search stops when the tight corner's least backlash is this close (mm) above the margin.
 FIT_TOLERANCE = 0.005
 FIT_ROUNDS = 4
-#: The most clearance (mm) the search tries: the profile's own limit is 1 mm; beyond about a
-#: quarter module the teeth thin out, and a band that still jams there jams radially (tips
-#: in roots), which no clearance cures.
-FIT_MAX_CLEARANCE = 0.5
+#: The most clearance (mm) the search tries: the printer profile's own limit.
+FIT_MAX_CLEARANCE = 1.0
+#: ... and at most this many modules: the backlash thins each tooth by half of it, and a
+#: band that still jams there jams radially, which no clearance cures.
+FIT_MAX_MODULES = 0.4
 
 
 @dataclass(frozen=True)
@@ -55,16 +56,28 @@ def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings
         pair = build(spec, printer_with_clearance(printer, clearance))
         sections = sectioned_pair(pair)
         nominal = check_case(sections, NOMINAL, settings)
-        least = case_record(tight, check_case(mid_play(sections, nominal), tight, settings))["backlash_min_mm"]
+        report = check_case(mid_play(sections, nominal), tight, settings)
+        least = case_record(tight, report)["backlash_min_mm"]
         least = -1.0 if least is None else float(least)
-        tried.append({"clearance_mm": clearance, "tight_least_backlash_mm": least})
+        jam = jam_record(report, sections.law)
+        tried.append({"clearance_mm": clearance, "tight_least_backlash_mm": least, **jam})
         if margin <= least <= margin + FIT_TOLERANCE:
             break
-        clearance = min(FIT_MAX_CLEARANCE, max(lowest, _next_clearance(tried, margin, cos_a)))
+        if jam["jammed_poses"] and jam["jammed_at_corners"] == jam["jammed_poses"]:
+            break   # only the corner journals jam: a radial fit no tooth clearance opens
+        clearance = min(fit_cap(pair), max(lowest, _next_clearance(tried, margin, cos_a)))
         if any(abs(t["clearance_mm"] - clearance) < 1e-6 for t in tried):
             break
     record = band_record(sections, printer.band, printer.name, nominal, settings)
     return FitResult(pair, nominal, tried[-1]["clearance_mm"], margin, record, tried)
+
+
+def fit_cap(pair) -> float:
+    """The most tooth clearance (mm) the search gives ``pair``'s design: FIT_MAX_CLEARANCE,
+    and at most FIT_MAX_MODULES of its module when it has generated teeth."""
+    generated = getattr(pair, "generated", None)
+    module = getattr(generated, "module", None)
+    return FIT_MAX_CLEARANCE if module is None else min(FIT_MAX_CLEARANCE, FIT_MAX_MODULES * float(module))
 
 
 def _next_clearance(tried: list, margin: float, cos_a: float) -> float:
@@ -111,14 +124,25 @@ def require_fit_met(record: dict) -> None:
         return
     if record["jams"]:
         case = next(c for c in record["cases"] if c["jams"])
-        found = (f"the {case['case']} case jams at {case['interfering_poses']} poses, "
-                 f"{1000.0 * case['max_penetration_mm']:.0f} um deep")
+        found = (f"the {case['case']} case jams at {case.get('jammed_poses', case['interfering_poses'])} "
+                 f"poses, {1000.0 * case['max_penetration_mm']:.0f} um deep{_corner_cause(case)}")
     else:
         found = f"the {tight['case']} case keeps {least:.3f} mm"
     raise DesignError("fit", fit["fit"],
-                      f"no tooth clearance up to {FIT_MAX_CLEARANCE:g} mm keeps the least backlash "
-                      f">= {fit['margin_mm']:g} mm over the band of {record['printer']} (at "
-                      f"{fit['tooth_clearance_mm']:.3f} mm {found}); nothing written; {FIT_REMEDY}")
+                      f"no tooth clearance up to {fit['tooth_clearance_mm']:.3f} mm keeps the least backlash "
+                      f">= {fit['margin_mm']:g} mm over the band of {record['printer']} ({found}); "
+                      f"nothing written; {FIT_REMEDY}")
+
+
+def _corner_cause(case: dict) -> str:
+    """Why a case that jams at the pitch-curve corners does so whatever the clearance."""
+    jammed, corner = case.get("jammed_poses", 0), case.get("jammed_at_corners", 0)
+    if not corner:
+        return ""
+    where = "all" if corner == jammed else f"{corner} of them"
+    return (f", {where} at the pitch-curve corners, where the wheel turns about the corner point on "
+            f"its notch tooth in the pinion's corner space with no radial clearance: no tooth "
+            f"clearance opens that")
 
 
 def require_fit_within_bounds(record: dict, band: dict) -> None:

@@ -116,6 +116,39 @@ def check_case(sections: SectionedPair, case: BandCase,
                          settings, teeth=sections.teeth)
 
 
+#: Pinion tooth pitches either side of a pitch-curve corner that are the corner's own poses.
+#: While the law passes a corner the wheel turns about the corner point, on its notch tooth
+#: in the pinion's corner space: arcs about that point with no radial clearance, which
+#: thinner teeth do not open (benchmarks/results.md, the corner journal).
+CORNER_ZONE_PITCHES = 1.5
+
+
+def jammed_poses(report: MeshingReport) -> np.ndarray:
+    """Per pose: True where the teeth overlap or leave no backlash (or none was found)."""
+    with np.errstate(invalid="ignore"):
+        return np.asarray(report.interference, bool) | ~(np.asarray(report.backlash) > 0.0)
+
+
+def corner_poses(report: MeshingReport, law) -> np.ndarray:
+    """Per pose of ``report``: True within :data:`CORNER_ZONE_PITCHES` pinion tooth pitches
+    of a pitch-curve corner of ``law`` (all False for a law without corners)."""
+    theta = np.asarray(report.theta, dtype=float)
+    corners = np.asarray(law.corners, dtype=float)
+    if corners.size == 0:
+        return np.zeros(theta.shape, dtype=bool)
+    period = float(law.theta_period)
+    at = np.asarray(law.pinion_angle(corners), dtype=float)
+    off = np.abs(np.mod(theta[:, None] - at[None, :] + 0.5 * period, period) - 0.5 * period)
+    return off.min(axis=1) <= CORNER_ZONE_PITCHES * 2.0 * np.pi / int(report.teeth)
+
+
+def jam_record(report: MeshingReport, law) -> dict:
+    """How many poses of ``report`` jam, and how many of them at the corners of ``law``."""
+    jammed = jammed_poses(report)
+    return {"jammed_poses": int(jammed.sum()),
+            "jammed_at_corners": int((jammed & corner_poses(report, law)).sum())}
+
+
 def jams(summary: dict) -> bool:
     """True when a case's teeth overlap or leave no backlash somewhere."""
     least = summary["backlash_min_mm"]
@@ -142,7 +175,10 @@ def band_record(sections: SectionedPair, band, printer_name: str, nominal: Meshi
     backlash (mm on the wheel pitch curve)."""
     cases = band_cases(band) if cases is None else cases
     sections = mid_play(sections, nominal)
-    records = [case_record(case, check_case(sections, case, settings)) for case in cases]
+    records = []
+    for case in cases:
+        report = check_case(sections, case, settings)
+        records.append({**case_record(case, report), **jam_record(report, sections.law)})
     least = [r["backlash_min_mm"] for r in records if r["backlash_min_mm"] is not None]
     largest = [r["backlash_max_mm"] for r in records if r["backlash_max_mm"] is not None]
     return {"printer": printer_name,
@@ -168,6 +204,7 @@ def band_lines(record: dict) -> list[str]:
             f"  {case['case']:<28} {case['pinion_offset_mm']:+.3f}/{case['wheel_offset_mm']:+.3f} mm "
             f"at {case['distance_mm']:g} mm: "
             + (f"JAMS ({case['interfering_poses']} poses, {1000 * case['max_penetration_mm']:.0f} um deep"
+               + _at_corners(case)
                # where the teeth overlap the contact angles are estimates, not a motion
                + ("; no backlash or TE where rigid teeth cannot go)" if case['interfering_poses'] else ")")
                if case['jams'] else "ok")
@@ -176,6 +213,15 @@ def band_lines(record: dict) -> list[str]:
                f"{num(case['drive']['F_i_total_um'], '.1f')} um f'i {num(case['drive']['f_i_tooth_um'], '.1f')}"
                f" um ripple {num(case['drive']['hub_speed_ripple_pct'], '.2f')} %"))
     return lines
+
+
+def _at_corners(case: dict) -> str:
+    """What a jammed case's line says of its jam at the pitch-curve corners."""
+    jammed, corner = case.get("jammed_poses", 0), case.get("jammed_at_corners", 0)
+    if not corner:
+        return ""
+    return (", all at the pitch-curve corners" if corner == jammed
+            else f", {corner} of its {jammed} jammed poses at the pitch-curve corners")
 
 
 def printer_with_clearance(printer, clearance: float):
