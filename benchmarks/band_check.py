@@ -46,6 +46,11 @@ def main() -> None:
     from wheelstep_cli.parts.kinds import build_for_printer
     from wheelstep_cli.parts.tolerance import (NOMINAL, band_cases, case_record, check_case,
                                                mid_play, sectioned_pair)
+    try:   # the band's cases as band_record checks them (without the overlap area, when it can)
+        from wheelstep_cli.parts.tolerance import case_settings
+    except ImportError:
+        case_settings = None
+    from wheelstep_cli.gears.meshing import MeshingSettings
 
     printer = load_printer_profile(args.printer)
     pair = build_for_printer("gear-pair", gear_pair_spec(None), None)
@@ -61,7 +66,8 @@ def main() -> None:
         total_cpu = total_wall = 0.0
         for case in cases:
             with _Clock() as clock:
-                record = case_record(case, check_case(started, case))
+                settings = MeshingSettings() if case_settings is None else case_settings(MeshingSettings())
+                record = case_record(case, check_case(started, case, settings))
             per_case[case.name].append((clock.cpu, record["jams"]))
             total_cpu, total_wall = total_cpu + clock.cpu, total_wall + clock.wall
         band_t.append((total_cpu, total_wall))

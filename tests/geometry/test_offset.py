@@ -13,10 +13,17 @@ def _circle(radius: float, n: int = 4000) -> np.ndarray:
 
 
 @pytest.mark.parametrize("distance", [0.1, -0.1, 0.05, -0.25])
-def test_offset_of_a_circle_has_the_offset_radius_to_1_um(distance):
-    grown = offset_outline(_circle(10.0), distance)
-    radius = np.hypot(grown[:, 0], grown[:, 1])
-    assert np.abs(radius - (10.0 + distance)).max() < 1e-3
+@pytest.mark.parametrize("thin", [None, "band"])
+def test_offset_of_a_circle_has_the_offset_radius_to_1_um(distance, thin):
+    """At its vertices and between them (the band's cases thin their offsets further)."""
+    from wheelstep_cli.parts.tolerance import OFFSET_THIN
+
+    grown = (offset_outline(_circle(10.0), distance) if thin is None
+             else offset_outline(_circle(10.0), distance, thin=OFFSET_THIN))
+    middles = 0.5 * (grown + np.roll(grown, -1, axis=0))
+    for points in (grown, middles):
+        radius = np.hypot(points[:, 0], points[:, 1])
+        assert np.abs(radius - (10.0 + distance)).max() < 1e-3
 
 
 def test_offset_of_a_square_keeps_its_edges_at_the_distance_and_rounds_its_corners():

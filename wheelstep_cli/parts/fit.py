@@ -16,8 +16,8 @@ import numpy as np
 
 from wheelstep_cli.config.printers import FIT_MARGINS, Fit
 from wheelstep_cli.gears.meshing import MeshingSettings
-from wheelstep_cli.parts.tolerance import (NOMINAL, band_cases, band_record, case_record, check_case,
-                                           jam_record, mid_play, printer_with_clearance, sectioned_pair)
+from wheelstep_cli.parts.tolerance import (NOMINAL, band_cases, band_record, case_record, case_settings,
+                                           check_case, jam_record, mid_play, printer_with_clearance, sectioned_pair)
 
 #: The search stops when the tight corner's least backlash is this close (mm) above the margin.
 FIT_TOLERANCE = 0.005
@@ -56,7 +56,7 @@ def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings
         pair = build(spec, printer_with_clearance(printer, clearance))
         sections = sectioned_pair(pair)
         nominal = check_case(sections, NOMINAL, settings)
-        report = check_case(mid_play(sections, nominal), tight, settings)
+        report = check_case(mid_play(sections, nominal), tight, case_settings(settings))
         least = case_record(tight, report)["backlash_min_mm"]
         least = -1.0 if least is None else float(least)
         jam = jam_record(report, sections.law)

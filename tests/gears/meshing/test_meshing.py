@@ -104,6 +104,23 @@ def test_pair_pushed_too_close_interferes(spur_pair):
     assert report.to_dict()["interference"] is True
 
 
+def test_without_the_overlap_area_the_rest_of_an_interfering_report_is_the_same(spur_pair):
+    """The band's cases skip the overlap area: interference, depth and contacts stay as
+    with it, and the report gives no area rather than a zero."""
+    from dataclasses import replace
+
+    pinion, wheel = spur_pair
+    a = M * (Z1 + Z2) / 2.0 - 0.6
+    law = spur_transmission(Z1, Z2)
+    full = check_meshing(pinion, wheel, law, a, MeshingSettings(samples=40))
+    bare = check_meshing(pinion, wheel, law, a, replace(MeshingSettings(samples=40), overlap_area=False))
+    assert full.interference.all() and full.overlap_area.max() > 0.01
+    assert np.array_equal(full.penetration, bare.penetration)
+    assert np.array_equal(full.interference, bare.interference)
+    np.testing.assert_array_equal(full.phi_drive, bare.phi_drive)
+    assert np.isnan(bare.overlap_area).all() and bare.to_dict()["max_overlap_area_mm2"] is None
+
+
 def _bar_and_plates():
     """Wheel: a bar 2 mm wide from its axis to 22 mm out; pinion: plates above and below it."""
     bar = np.array([[0.0, -1.0], [22.0, -1.0], [22.0, 1.0], [0.0, 1.0]])

@@ -144,7 +144,7 @@ class MeshingReport:
             "band_harmonics": self.track.harmonics,
             "interference": self.interferes,
             "interfering_poses": int(np.count_nonzero(self.interference)),
-            "max_overlap_area_mm2": float(self.overlap_area.max()),
+            "max_overlap_area_mm2": _nan_none(float(np.max(self.overlap_area))),
             "max_penetration_mm": float(self.penetration.max()),
             "contact_lost": self.contact_lost,
             "backlash_min_arcmin": _nan_none(np.nanmin(self.backlash) * arcmin),

@@ -173,13 +173,14 @@ def batch_contacts(pair: Pair, theta: np.ndarray, phi: np.ndarray,
     interference = np.zeros(poses, dtype=bool)
     for side in sides:
         interference[side.verts.v_pose[side.inside]] = True
-    area = np.zeros(poses)
+    area = np.zeros(poses) if settings.overlap_area else np.full(poses, np.nan)
     deepest = np.zeros(poses)
-    if interference.any():
+    if interference.any() and settings.overlap_area:
         area[interference] = posed_overlap_area((pair.pinion_body, pair.wheel_body),
                                                 (pair.pinion.points, pair.wheel.points),
                                                 theta[interference], phi[interference],
                                                 pair.centre, pair.box)
+    if interference.any():
         for side in sides:
             verts, inside = side.verts, side.inside
             np.maximum.at(deepest, verts.v_pose[inside],

@@ -55,6 +55,10 @@ class MeshingSettings:
     """Body-angle bins (count) of the radial bands that skip vertices and edges far from the
     other outline in the first pass. Search only: speed, not results."""
 
+    overlap_area: bool = True
+    """Measure each interfering pose's overlapping area (mm^2; False: not measured, the
+    report gives none). The band's cases report depth and poses, not the area."""
+
     threads: int = THREADS
     """Threads (count) sharing the batches; each fills its own slice of the result.
     Search only: speed, not results."""
