@@ -136,6 +136,37 @@ def os_error_text(err: OSError, options: dict[str, list[str]], argv: list[str]) 
     return f"cannot write{f' {filename}' if filename else ''}: {why}"
 
 
+#: What a number option's value must be, by the parser's complaint about it.
+_NUMBER_KINDS = (("valid integer", "must be a whole number"), ("valid number", "must be a number"))
+
+
+def bad_number_text(err: click_errors.UsageError, argv: list[str]) -> str | None:
+    """One line for a number option whose value is not a number of its kind: the flag as
+    typed, the value and what it must be, with the option's limit when the models state one
+    (``--z = 1e9: must be a whole number, 6..240 (pinion teeth)``); None for other errors."""
+    from wheelstep_cli.config.design import MechanismSection
+    from wheelstep_cli.config.schema import field_limit
+    from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
+
+    param = getattr(err, "param", None)
+    message = err.format_message()
+    kind = next((words for said, words in _NUMBER_KINDS if said in message), None)
+    if param is None or kind is None or not getattr(param, "opts", None):
+        return None
+    flags = set(param.opts) | set(getattr(param, "secondary_opts", []))
+    typed = None
+    for i, arg in enumerate(argv):
+        flag, eq, value = arg.partition("=")
+        if flag in flags and (eq or i + 1 < len(argv)):
+            typed = (flag, value if eq else argv[i + 1])
+    if typed is None:
+        return None
+    limit = field_limit((GearPairSpec, ShoeSpec, MechanismSection), param.name or "")
+    if limit is not None and limit.startswith("must be "):
+        kind += ", " + limit[len("must be "):]
+    return f"{typed[0]} = {typed[1]}: {kind}"
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run the CLI on ``argv`` and return the exit code (0 ok, 1 failed check, 2 bad input)."""
     args = sys.argv[1:] if argv is None else list(argv)
@@ -162,6 +193,10 @@ def run(argv: list[str] | None = None) -> int:
         typer.echo(err.format_message(), err=True)
         return 2
     except click_errors.UsageError as err:
+        number = bad_number_text(err, args)
+        if number is not None:
+            typer.echo(f"wheelstep: error: {number}", err=True)
+            return 2
         where = f" ({err.ctx.command_path})" if err.ctx is not None else ""
         typer.echo(f"wheelstep: error{where}: {err.format_message()}", err=True)
         return 2

@@ -161,6 +161,22 @@ def limit_text(model: type[BaseModel], error: dict) -> str:
     return error["msg"]
 
 
+def field_limit(models: Iterable[type[BaseModel]], name: str) -> str | None:
+    """The limit text ("must be ...") of the first of ``models`` with a field ``name``: its
+    own limit, else its bounds with the unit; None when no model has one."""
+    for model in models:
+        info = model.model_fields.get(name)
+        if info is None:
+            continue
+        extra = info.json_schema_extra if isinstance(info.json_schema_extra, dict) else {}
+        if "limit" in extra:
+            return str(extra["limit"])
+        bounds = _range(info, {})
+        if bounds:
+            return f"must be {bounds}" + (f" {extra['unit']}" if extra.get("unit") else "")
+    return None
+
+
 def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) -> Issue:
     kind = error["type"]
     if kind == "missing":
