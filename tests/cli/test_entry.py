@@ -1,0 +1,31 @@
+"""The console script's entry: Ctrl-C while the CLI's libraries load ends in one line."""
+
+import sys
+import types
+
+import pytest
+
+
+class _Loading(types.ModuleType):
+    """Stands for wheelstep_cli.cli while Ctrl-C arrives during its import."""
+
+    def __getattr__(self, name):
+        raise KeyboardInterrupt
+
+
+def test_ctrl_c_while_the_cli_loads_is_one_line_and_exit_130(monkeypatch, capsys):
+    from wheelstep_cli.__main__ import main
+
+    monkeypatch.setitem(sys.modules, "wheelstep_cli.cli", _Loading("wheelstep_cli.cli"))
+    with pytest.raises(SystemExit) as stop:
+        main()
+    assert stop.value.code == 130
+    assert capsys.readouterr().err == "wheelstep: aborted\n"
+
+
+def test_the_console_script_is_the_guarded_entry():
+    import tomllib
+    from pathlib import Path
+
+    project = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text())
+    assert project["project"]["scripts"]["wheelstep"] == "wheelstep_cli.__main__:main"
