@@ -89,6 +89,24 @@ def test_pointed_teeth_are_refused():
                                           dedendum=1.5, fillet=0.1), center_distance=L)
 
 
+def test_pointed_teeth_remedy_follows_the_cause():
+    """Teeth pointed beside the corners (a large module, a steep flank) are told to take more
+    teeth; teeth pointed everywhere because the module is a fraction of a millimetre are told
+    to take fewer, and fewer clear the floor where more do not."""
+    law = CrankLaw(CrankMechanism(60, 100, 360), 2)
+    with pytest.raises(DesignError) as err:
+        generate_pair(law, 48, RackCutter(pressure_angle=np.radians(30.0), addendum=1.25,
+                                          dedendum=1.5, fillet=0.1), center_distance=144)
+    assert "more teeth (--z)" in err.value.limit and "fewer" not in err.value.limit
+    small = RackCutter(backlash=0.02)
+    with pytest.raises(DesignError) as err:
+        generate_pair(law, 48, small, center_distance=10)
+    assert "use fewer teeth (--z) or a larger module" in err.value.limit
+    with pytest.raises(DesignError):
+        generate_pair(law, 96, small, center_distance=10)
+    generate_pair(law, 24, small, center_distance=10)      # past the tip-land floor
+
+
 def test_cli_reports_undercut_and_pointed_in_one_line(cli, tmp_path):
     for args, words in ((["--pressure-angle", "10"], "undercut"),
                         (["--pressure-angle", "30", "--addendum", "1.25", "--dedendum", "1.5",
