@@ -92,17 +92,19 @@ class _FakeReport:
     def to_dict(self):
         flank = {"F_i_total_um": 1.0, "f_i_tooth_um": 1.0, "hub_speed_ripple_pct": 0.1}
         return {"distance_mm": 144.0, "interference": self.least <= 0, "interfering_poses": 0,
-                "max_penetration_mm": 0.0, "backlash_min_mm": self.least,
+                "max_penetration_mm": getattr(self, "depth", 0.0), "backlash_min_mm": self.least,
                 "backlash_max_mm": self.least + 0.1, "drive": flank, "coast": flank}
 
 
-def _fake_search(monkeypatch, least_of_clearance, law=None, jammed=None):
+def _fake_search(monkeypatch, least_of_clearance, law=None, jammed=None, depth=None):
     import wheelstep_cli.parts.fit as fit
     import wheelstep_cli.parts.tolerance as tolerance
 
     def check(sections, case, settings=None):
         least = least_of_clearance(sections.clearance) - 0.1 * (case.pinion_offset + case.wheel_offset)
-        return _FakeReport(least, None if least > 0 else jammed)
+        report = _FakeReport(least, None if least > 0 else jammed)
+        report.depth = 0.05 if depth is None else depth(sections.clearance)
+        return report
 
     from types import SimpleNamespace
 
@@ -150,48 +152,62 @@ def _law_with_a_corner(at_theta: float):
                            pinion_angle=lambda phi: 2.0 * np.asarray(phi))
 
 
-def test_corner_poses_lie_within_their_zone_of_a_corner_on_both_sides_and_across_the_period():
+def test_corner_poses_are_those_within_the_zone_of_a_corner_across_the_period_start():
     from types import SimpleNamespace
 
-    from wheelstep_cli.parts.tolerance import CORNER_ZONE_PITCHES, corner_poses
+    from wheelstep_cli.parts.tolerance import corner_poses
 
-    theta = np.linspace(0.0, 4.0, 400, endpoint=False)
+    # 24 teeth: the zone is 1.5 pitches = 0.3927 rad either side of the corner
+    theta = np.array([0.0, 0.45, 0.61, 1.0, 1.39, 1.40, 3.80, 3.95])
     report = SimpleNamespace(theta=theta, teeth=24)
-    zone = CORNER_ZONE_PITCHES * 2.0 * np.pi / 24
-    for at in (1.0, 0.1):     # 0.1: the zone wraps round the period's start
-        off = np.abs(np.mod(theta - at + 2.0, 4.0) - 2.0)
-        assert np.array_equal(corner_poses(report, _law_with_a_corner(at)), off <= zone)
-        assert corner_poses(report, _law_with_a_corner(at)).sum() > 0
+    assert corner_poses(report, _law_with_a_corner(1.0)).tolist() == [
+        False, False, True, True, True, False, False, False]
+    # a corner at 0.1 rad: its zone wraps round the period's start (period 4 rad)
+    assert corner_poses(report, _law_with_a_corner(0.1)).tolist() == [
+        True, True, False, False, False, False, True, True]
     assert not corner_poses(report, SimpleNamespace(corners=())).any()
 
 
-def test_fit_search_stops_when_only_the_corners_jam_and_says_no_clearance_opens_them(monkeypatch):
+def test_fit_search_stops_when_more_clearance_leaves_the_corner_jam_as_deep(monkeypatch):
     from types import SimpleNamespace
 
+    import wheelstep_cli.parts.tolerance as tolerance
     from wheelstep_cli.parts.fit import fit_pair, fit_record, require_fit_met
 
     # the fake's 4 poses sit at pinion angles 0..3 rad with 4 teeth; a zone of 0.1 pitch
     # (0.16 rad) about the corner at 1 rad holds pose 1 only
+    monkeypatch.setattr(tolerance, "CORNER_ZONE_PITCHES", 0.1)
     law = _law_with_a_corner(1.0)
-    jammed = np.array([False, True, False, False])
-    _fake_search(monkeypatch, lambda clearance: -1.0, law=law, jammed=jammed)
-    import wheelstep_cli.parts.tolerance as tolerance
-
-    monkeypatch.setattr(tolerance, "CORNER_ZONE_PITCHES", 0.1)  # 0.16 rad at 4 teeth
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
+    _fake_search(monkeypatch, lambda clearance: -1.0, law=law, jammed=np.array([False, True, False, False]))
     result = fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance)
-    assert len(result.rounds) == 1
-    assert result.rounds[0]["jammed_poses"] == result.rounds[0]["jammed_at_corners"] == 1
-    band = {**result.band, "fit": fit_record(result, "auto", 0.5)}
+    assert result.stopped == "corners" and len(result.rounds) == 2
+    assert result.rounds[1]["clearance_mm"] > result.rounds[0]["clearance_mm"]
+    assert all(r["jammed_poses"] == r["jammed_at_corners"] == 1 for r in result.rounds)
     with pytest.raises(DesignError) as err:
-        require_fit_met(band)
-    assert "all at the pitch-curve corners" in err.value.limit
-    assert "no tooth clearance opens that" in err.value.limit
+        require_fit_met({**result.band, "fit": fit_record(result, "auto", 0.5)})
+    assert "all at the pitch-curve corners, and more tooth clearance did not make" in err.value.limit
+    assert f"no tooth clearance up to {result.rounds[1]['clearance_mm']:.3f} mm" in err.value.limit
 
+    # a corner jam that the clearance makes shallower: the search goes on
+    _fake_search(monkeypatch, lambda clearance: -1.0, law=law, jammed=np.array([False, True, False, False]),
+                 depth=lambda clearance: 0.3 - clearance)
+    assert fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance).stopped != "corners"
     # jams elsewhere too: the search goes on raising the clearance
     _fake_search(monkeypatch, lambda clearance: -1.0, law=law, jammed=np.array([True, True, False, False]))
     result = fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance)
-    assert len(result.rounds) > 1
+    assert result.stopped != "corners" and len(result.rounds) > 2
+
+
+def test_fit_cap_is_the_smaller_of_1_mm_and_0_4_module():
+    from types import SimpleNamespace
+
+    from wheelstep_cli.parts.fit import fit_cap
+
+    assert fit_cap(SimpleNamespace(generated=SimpleNamespace(module=2.0))) == pytest.approx(0.8)
+    assert fit_cap(SimpleNamespace(generated=SimpleNamespace(module=4.0))) == pytest.approx(1.0)
+    assert fit_cap(SimpleNamespace(generated=None, spec=SimpleNamespace(module=1.5))) == pytest.approx(0.6)
+    assert fit_cap(0.15) == pytest.approx(1.0)     # nothing known of its teeth
 
 
 def replace_printer():
@@ -261,11 +277,14 @@ def test_a_jammed_case_line_says_how_much_of_its_jam_is_at_the_corners():
     case = {"case": "tight", "pinion_offset_mm": 0.1, "wheel_offset_mm": 0.1, "distance_mm": 143.95,
             "jams": True, "interfering_poses": 68, "max_penetration_mm": 0.124,
             "backlash_min_mm": -1.0, "backlash_max_mm": 0.4, "drive": flank, "coast": flank,
-            "jammed_poses": 68, "jammed_at_corners": 68}
+            "poses": 1536, "jammed_poses": 68, "jammed_at_corners": 68}
     record = {"printer": "p", "band": {"outline_mm": 0.1, "center_distance_mm": 0.05}, "jams": True,
               "cases": [case]}
     assert "JAMS (68 poses, 124 um deep, all at the pitch-curve corners;" in band_lines(record)[1]
     case["jammed_at_corners"] = 20
-    assert "20 of its 68 jammed poses at the pitch-curve corners" in band_lines(record)[1]
+    assert "JAMS (68 poses, 124 um deep, 20 at the pitch-curve corners;" in band_lines(record)[1]
     case["jammed_at_corners"] = 0
     assert "corner" not in band_lines(record)[1]
+    # jammed at every pose: the corner share would only measure the corner zone
+    case.update(jammed_poses=1536, interfering_poses=1536, jammed_at_corners=219)
+    assert "JAMS (1536 poses" in band_lines(record)[1] and "corner" not in band_lines(record)[1]

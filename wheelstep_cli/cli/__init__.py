@@ -164,7 +164,7 @@ def bad_number_text(err: click_errors.UsageError, argv: list[str]) -> str | None
     limit = field_limit((GearPairSpec, ShoeSpec, MechanismSection), param.name or "")
     if limit is not None and limit.startswith("must be "):
         kind += ", " + limit[len("must be "):]
-    return f"{typed[0]} = {typed[1]}: {kind}"
+    return f"{typed[0]} = {typed[1] or repr('')}: {kind}"
 
 
 def run(argv: list[str] | None = None) -> int:

@@ -162,18 +162,14 @@ def limit_text(model: type[BaseModel], error: dict) -> str:
 
 
 def field_limit(models: Iterable[type[BaseModel]], name: str) -> str | None:
-    """The limit text ("must be ...") of the first of ``models`` with a field ``name``: its
-    own limit, else its bounds with the unit; None when no model has one."""
+    """The limit text ("must be ...") a field ``name`` of the first of ``models`` that has one
+    states for itself (its bounds alone may be only part of the rule, which other checks
+    complete); None when none does."""
     for model in models:
         info = model.model_fields.get(name)
-        if info is None:
-            continue
-        extra = info.json_schema_extra if isinstance(info.json_schema_extra, dict) else {}
+        extra = info.json_schema_extra if info is not None and isinstance(info.json_schema_extra, dict) else {}
         if "limit" in extra:
             return str(extra["limit"])
-        bounds = _range(info, {})
-        if bounds:
-            return f"must be {bounds}" + (f" {extra['unit']}" if extra.get("unit") else "")
     return None
 
 

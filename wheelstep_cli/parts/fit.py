@@ -39,6 +39,7 @@ class FitResult:
     margin: float
     band: dict
     rounds: list
+    stopped: str = "margin"   # why the search ended: margin, corners, cap, repeat or rounds
 
 
 def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings = MeshingSettings()
@@ -52,31 +53,51 @@ def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings
     lowest = -float(spec.backlash_mm)
     clearance, tried = float(printer.tooth_clearance), []
     pair = sections = nominal = None
+    stopped = "rounds"
     for _ in range(FIT_ROUNDS):
         pair = build(spec, printer_with_clearance(printer, clearance))
         sections = sectioned_pair(pair)
         nominal = check_case(sections, NOMINAL, settings)
         report = check_case(mid_play(sections, nominal), tight, case_settings(settings))
-        least = case_record(tight, report)["backlash_min_mm"]
-        least = -1.0 if least is None else float(least)
-        jam = jam_record(report, sections.law)
-        tried.append({"clearance_mm": clearance, "tight_least_backlash_mm": least, **jam})
+        case = case_record(tight, report)
+        least = -1.0 if case["backlash_min_mm"] is None else float(case["backlash_min_mm"])
+        tried.append({"clearance_mm": clearance, "tight_least_backlash_mm": least,
+                      "tight_depth_mm": case["max_penetration_mm"], **jam_record(report, sections.law)})
         if margin <= least <= margin + FIT_TOLERANCE:
+            stopped = "margin"
             break
-        if jam["jammed_poses"] and jam["jammed_at_corners"] == jam["jammed_poses"]:
-            break   # only the corner journals jam: a radial fit no tooth clearance opens
-        clearance = min(fit_cap(pair), max(lowest, _next_clearance(tried, margin, cos_a)))
+        if _corners_resist(tried):
+            stopped = "corners"
+            break
+        cap = fit_cap(pair)
+        clearance = min(cap, max(lowest, _next_clearance(tried, margin, cos_a)))
         if any(abs(t["clearance_mm"] - clearance) < 1e-6 for t in tried):
+            stopped = "cap" if clearance >= cap - 1e-9 else "repeat"
             break
     record = band_record(sections, printer.band, printer.name, nominal, settings)
-    return FitResult(pair, nominal, tried[-1]["clearance_mm"], margin, record, tried)
+    return FitResult(pair, nominal, tried[-1]["clearance_mm"], margin, record, tried, stopped)
+
+
+def _corners_resist(tried: list) -> bool:
+    """True when the last two tries jam only at the pitch-curve corners and the larger
+    clearance did not make that jam shallower (by a tenth): the corner jam is radial, more
+    tooth clearance will not clear it."""
+    if len(tried) < 2:
+        return False
+    prev, last = tried[-2], tried[-1]
+    only = all(t["jammed_poses"] and t["jammed_at_corners"] == t["jammed_poses"] for t in (prev, last))
+    return (only and last["clearance_mm"] > prev["clearance_mm"]
+            and last["tight_depth_mm"] >= 0.9 * prev["tight_depth_mm"])
 
 
 def fit_cap(pair) -> float:
     """The most tooth clearance (mm) the search gives ``pair``'s design: FIT_MAX_CLEARANCE,
-    and at most FIT_MAX_MODULES of its module when it has generated teeth."""
+    and at most FIT_MAX_MODULES of its module (generated teeth: the module they were cut
+    with; paper teeth: the spec's)."""
     generated = getattr(pair, "generated", None)
     module = getattr(generated, "module", None)
+    if module is None:
+        module = getattr(getattr(pair, "spec", None), "module", None)
     return FIT_MAX_CLEARANCE if module is None else min(FIT_MAX_CLEARANCE, FIT_MAX_MODULES * float(module))
 
 
@@ -98,7 +119,8 @@ def _next_clearance(tried: list, margin: float, cos_a: float) -> float:
 def fit_record(result: FitResult, fit: str, design_backlash: float) -> dict:
     """What the report says of the fit (mm)."""
     return {"fit": fit, "margin_mm": result.margin, "tooth_clearance_mm": result.clearance,
-            "backlash_mm": design_backlash + result.clearance, "search": result.rounds}
+            "backlash_mm": design_backlash + result.clearance, "search": result.rounds,
+            "stopped": result.stopped}
 
 
 def fit_line(record: dict) -> str:
@@ -125,24 +147,27 @@ def require_fit_met(record: dict) -> None:
     if record["jams"]:
         case = next(c for c in record["cases"] if c["jams"])
         found = (f"the {case['case']} case jams at {case.get('jammed_poses', case['interfering_poses'])} "
-                 f"poses, {1000.0 * case['max_penetration_mm']:.0f} um deep{_corner_cause(case)}")
+                 f"poses, {1000.0 * case['max_penetration_mm']:.0f} um deep{_corner_cause(case, fit)}")
     else:
         found = f"the {tight['case']} case keeps {least:.3f} mm"
+    largest = max([t["clearance_mm"] for t in fit.get("search", [])] + [fit["tooth_clearance_mm"]])
     raise DesignError("fit", fit["fit"],
-                      f"no tooth clearance up to {fit['tooth_clearance_mm']:.3f} mm keeps the least backlash "
-                      f">= {fit['margin_mm']:g} mm over the band of {record['printer']} ({found}); "
-                      f"nothing written; {FIT_REMEDY}")
+                      f"no tooth clearance up to {largest:.3f} mm keeps the least backlash >= "
+                      f"{fit['margin_mm']:g} mm over the band of {record['printer']} (at "
+                      f"{fit['tooth_clearance_mm']:.3f} mm {found}); nothing written; {FIT_REMEDY}")
 
 
-def _corner_cause(case: dict) -> str:
-    """Why a case that jams at the pitch-curve corners does so whatever the clearance."""
+def _corner_cause(case: dict, fit: dict) -> str:
+    """What the refusal says of a jam at the pitch-curve corners: where, and when the search
+    stopped on it, that more clearance did not shrink it."""
     jammed, corner = case.get("jammed_poses", 0), case.get("jammed_at_corners", 0)
     if not corner:
         return ""
-    where = "all" if corner == jammed else f"{corner} of them"
-    return (f", {where} at the pitch-curve corners, where the wheel turns about the corner point on "
-            f"its notch tooth in the pinion's corner space with no radial clearance: no tooth "
-            f"clearance opens that")
+    if fit.get("stopped") != "corners":
+        return ", all at the pitch-curve corners" if corner == jammed else f", {corner} of them at the pitch-curve corners"
+    return (", all at the pitch-curve corners, and more tooth clearance did not make that jam "
+            "shallower: there the pinion's corner space meets the wheel's notch tooth with no "
+            "radial clearance")
 
 
 def require_fit_within_bounds(record: dict, band: dict) -> None:

@@ -129,16 +129,17 @@ def check_case(sections: SectionedPair, case: BandCase,
 
 
 #: Pinion tooth pitches either side of a pitch-curve corner that are the corner's own poses.
-#: While the law passes a corner the wheel turns about the corner point, on its notch tooth
-#: in the pinion's corner space: arcs about that point with no radial clearance, which
-#: thinner teeth do not open (benchmarks/results.md, the corner journal).
+#: There the pinion's corner space, cut by the rack pivoting about the corner point (an arc
+#: about it), meets the wheel's notch tooth with no radial clearance, and more tooth
+#: clearance was not seen to clear a jam (benchmarks/results.md, the corner socket).
 CORNER_ZONE_PITCHES = 1.5
 
 
 def jammed_poses(report: MeshingReport) -> np.ndarray:
-    """Per pose: True where the teeth overlap or leave no backlash (or none was found)."""
+    """Per pose: True where the teeth overlap or leave no backlash (as :func:`jams` counts:
+    a pose whose contact was not found is not counted)."""
     with np.errstate(invalid="ignore"):
-        return np.asarray(report.interference, bool) | ~(np.asarray(report.backlash) > 0.0)
+        return np.asarray(report.interference, bool) | (np.asarray(report.backlash) <= 0.0)
 
 
 def corner_poses(report: MeshingReport, law) -> np.ndarray:
@@ -155,9 +156,10 @@ def corner_poses(report: MeshingReport, law) -> np.ndarray:
 
 
 def jam_record(report: MeshingReport, law) -> dict:
-    """How many poses of ``report`` jam, and how many of them at the corners of ``law``."""
+    """How many poses of ``report`` jam, and how many of them at the corners of ``law``, of its
+    ``poses``."""
     jammed = jammed_poses(report)
-    return {"jammed_poses": int(jammed.sum()),
+    return {"poses": int(jammed.size), "jammed_poses": int(jammed.sum()),
             "jammed_at_corners": int((jammed & corner_poses(report, law)).sum())}
 
 
@@ -215,8 +217,8 @@ def band_lines(record: dict) -> list[str]:
         lines.append(
             f"  {case['case']:<28} {case['pinion_offset_mm']:+.3f}/{case['wheel_offset_mm']:+.3f} mm "
             f"at {case['distance_mm']:g} mm: "
-            + (f"JAMS ({case['interfering_poses']} poses, {1000 * case['max_penetration_mm']:.0f} um deep"
-               + _at_corners(case)
+            + (f"JAMS ({case.get('jammed_poses', case['interfering_poses'])} poses, "
+               f"{1000 * case['max_penetration_mm']:.0f} um deep" + _at_corners(case)
                # where the teeth overlap the contact angles are estimates, not a motion
                + ("; no backlash or TE where rigid teeth cannot go)" if case['interfering_poses'] else ")")
                if case['jams'] else "ok")
@@ -228,12 +230,12 @@ def band_lines(record: dict) -> list[str]:
 
 
 def _at_corners(case: dict) -> str:
-    """What a jammed case's line says of its jam at the pitch-curve corners."""
+    """What a jammed case's line says of its jam at the pitch-curve corners (nothing when it
+    jams at every pose: the share would only measure the corner zone)."""
     jammed, corner = case.get("jammed_poses", 0), case.get("jammed_at_corners", 0)
-    if not corner:
+    if not corner or jammed == case.get("poses"):
         return ""
-    return (", all at the pitch-curve corners" if corner == jammed
-            else f", {corner} of its {jammed} jammed poses at the pitch-curve corners")
+    return ", all at the pitch-curve corners" if corner == jammed else f", {corner} at the pitch-curve corners"
 
 
 def printer_with_clearance(printer, clearance: float):

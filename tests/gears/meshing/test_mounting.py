@@ -69,11 +69,11 @@ def test_the_default_pair_mounted_half_a_tenth_closer_neither_interferes_nor_jam
     assert checked["backlash_min_mm"] > 0
 
 
-@pytest.mark.xfail(strict=True, reason="issue 13: at a pitch-curve corner the wheel turns about the "
-                   "corner point, on a journal (its notch tooth) in a socket (the pinion's corner "
-                   "space) with no radial clearance; mounted 0.1 mm closer they overlap. Clearance "
-                   "there costs the turn its drive (f'i > 10 um from 0.05 mm; benchmarks/results.md, "
-                   "the corner journal)")
+@pytest.mark.xfail(strict=True, reason="issue 13: at the pitch-curve corners the pinion's corner "
+                   "space, cut by the rack pivoting about the corner point, meets the wheel's notch "
+                   "tooth with no radial clearance; mounted 0.1 mm closer they overlap. Cutting that "
+                   "space shallower costs f'i (9.9 um at 0.05 mm, 15 um at 0.1) and still jams "
+                   "(benchmarks/results.md, the corner socket)")
 def test_the_default_pair_mounted_a_tenth_closer_does_not_interfere(cli, default_pair):
     out, report = default_pair
     result, checked = _mesh_check(cli, out, report["meshing"]["distance_mm"] - 0.1)

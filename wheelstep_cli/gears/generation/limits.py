@@ -157,7 +157,7 @@ def top_or_refuse(body: GearBody, radii: np.ndarray, cutter: RackCutter,
             remedy = "use a smaller addendum, a smaller pressure angle or more teeth (--z)"
         raise DesignError("addendum", cutter.addendum,
                           f"the {body.name} teeth come to a point (a {limits.min_tip_land} mm tip land "
-                          f"needs {drop:.2f} mm off the tip, more than {limits.max_topping} x the "
+                          f"needs {drop:.3f} mm off the tip, more than {limits.max_topping} x the "
                           f"module = {limits.max_topping * module:.3f} mm); {remedy}")
     return new, (count, drop), land
 

@@ -19,8 +19,9 @@ class MeshingReport:
 
     ``phi_law``, ``phi_drive``, ``phi_coast``: wheel angles (rad); NaN where no contact
     was found within the mesh window in that direction. ``interference``: per-pose
-    overlap at the law's angle. ``overlap_area``: mm^2 per pose. ``penetration``: depth
-    (mm) of the deepest vertex inside the other outline (0 when clear).
+    overlap at the law's angle. ``overlap_area``: mm^2 per pose (NaN when not measured:
+    MeshingSettings.overlap_area). ``penetration``: depth (mm) of the deepest vertex inside
+    the other outline (0 when clear).
     ``hub_speed``: f(phi_drive) dphi_drive/dtheta (relative units), pointwise (a
     diagnostic: it has no limit as the poses grow), ``pitch_radius``: the wheel's
     instantaneous pitch radius (mm) at the installed distance. ``teeth``: the pinion's

@@ -148,7 +148,8 @@ def _pose_minima(sides: tuple[Side, Side], poses: int, reach: float, active: np.
 @dataclass(frozen=True)
 class PoseContacts:
     """Per pose of a batch: wheel rotations (rad) backwards / forwards to contact (inf: none
-    found), interference at the law's angle, overlapping area (mm^2), penetration (mm)."""
+    found), interference at the law's angle, overlapping area (mm^2; NaN when not measured),
+    penetration (mm)."""
 
     back: np.ndarray
     fwd: np.ndarray
