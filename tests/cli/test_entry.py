@@ -29,3 +29,12 @@ def test_the_console_script_is_the_guarded_entry():
 
     project = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text())
     assert project["project"]["scripts"]["wheelstep"] == "wheelstep_cli.__main__:main"
+
+
+def test_a_refusal_after_the_work_started_is_the_only_line_on_stderr(cli, tmp_path):
+    """The progress bars are for a terminal: on a redirected stderr they leave nothing, not
+    even the blank line rich ends them with, so the refusal is stderr's one line."""
+    result = cli("gears", "--thickness", "1e5", "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    assert result.stderr.startswith("wheelstep: error: --thickness = ") and result.stderr.count("\n") == 1
+    assert not (tmp_path / "out").exists()

@@ -10,7 +10,8 @@ class Progress:
 
     ``bars.counter(description)`` gives a ``progress(done, total)`` callback (the meshing
     check's); ``bars(stage, total)`` adds a bar and gives its ``advance()`` (the batch's).
-    ``transient`` bars vanish when done; ``enabled=False`` shows nothing.
+    ``transient`` bars vanish when done; ``enabled=False``, or stderr not a terminal, shows
+    nothing.
     """
 
     def __init__(self, enabled: bool = True, transient: bool = True):
@@ -23,9 +24,12 @@ class Progress:
         from rich.progress import BarColumn, MofNCompleteColumn, TextColumn, TimeElapsedColumn
         from rich.progress import Progress as RichProgress
 
+        console = Console(stderr=True)
+        # bars are for a person at a terminal: redirected to a file or a pipe, rich would
+        # leave a blank line on stderr, and a refusal must be its only line
         self.bar = RichProgress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-                                TimeElapsedColumn(), console=Console(stderr=True),
-                                transient=self.transient, disable=not self.enabled)
+                                TimeElapsedColumn(), console=console, transient=self.transient,
+                                disable=not (self.enabled and console.is_terminal))
         self.bar.__enter__()
         return self
 
