@@ -38,3 +38,23 @@ def test_a_refusal_after_the_work_started_is_the_only_line_on_stderr(cli, tmp_pa
     assert result.exit_code == 2
     assert result.stderr.startswith("wheelstep: error: --thickness = ") and result.stderr.count("\n") == 1
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("where", ["command", "building the commands"])
+def test_ctrl_c_in_a_run_is_one_line_and_exit_130(cli, monkeypatch, where):
+    """Ctrl-C while a command works (typer turns it into a silent exit code) or while the
+    commands are being built: one line, exit 130, no traceback."""
+    import typer
+
+    import wheelstep_cli.parts.gear_tables as tables
+
+    def interrupt(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    if where == "command":
+        monkeypatch.setattr(tables, "pitch_report", interrupt)
+    else:
+        monkeypatch.setattr(typer.main, "get_command", interrupt)
+    result = cli("pitch")
+    assert result.exit_code == 130
+    assert result.stderr == "wheelstep: aborted\n" and result.stdout == ""

@@ -170,7 +170,10 @@ def bad_number_text(err: click_errors.UsageError, argv: list[str]) -> str | None
 def run(argv: list[str] | None = None) -> int:
     """Run the CLI on ``argv`` and return the exit code (0 ok, 1 failed check, 2 bad input)."""
     args = sys.argv[1:] if argv is None else list(argv)
-    command = typer.main.get_command(app)
+    try:
+        command = typer.main.get_command(app)
+    except KeyboardInterrupt:
+        return _aborted()
     try:
         with warnings.catch_warnings():
             # library warnings (numpy floating point, matplotlib layout) are not for the person
@@ -207,10 +210,23 @@ def run(argv: list[str] | None = None) -> int:
         typer.echo(f"wheelstep: error: {os_error_text(err, _command_options(command, args), args)}",
                    err=True)
         return 2
-    except typer.Abort:
-        typer.echo("wheelstep: aborted", err=True)
-        return 130
+    except (typer.Abort, KeyboardInterrupt):
+        return _aborted()
+    if result == INTERRUPTED:
+        # typer turns Ctrl-C in a command into this exit code, silently
+        return _aborted()
     return result if isinstance(result, int) else 0
+
+
+#: The exit code of a run stopped by Ctrl-C (128 + SIGINT), as shells report it.
+INTERRUPTED = 130
+
+
+def _aborted() -> int:
+    """Say that the run was stopped (Ctrl-C): files are written atomically, so none is half
+    written."""
+    typer.echo("wheelstep: aborted", err=True)
+    return INTERRUPTED
 
 
 def main() -> None:
