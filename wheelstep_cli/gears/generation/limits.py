@@ -58,7 +58,10 @@ def undercut_remedy(cutter: RackCutter, module: float, rho: float, teeth_per_per
                     pinion_periods: int) -> str:
     """Remedy text: the tooth count and pressure angle at which the rack stops undercutting.
 
-    ``rho``: the pitch curve's smallest convex radius of curvature (mm).
+    ``rho``: the pitch curve's smallest convex radius of curvature (mm). The count holds
+    whether the pitch curves stay (the module shrinks as z grows) or the module stays (the
+    curves grow with z): either way z x module / rho is what counts. A module is not offered:
+    with a given module the curves scale with it and the undercut stays.
     """
     a = cutter.pressure_angle
     per_m = (cutter.dedendum - cutter.fillet * (1.0 - np.sin(a))) / np.sin(a) ** 2
@@ -73,7 +76,7 @@ def undercut_remedy(cutter: RackCutter, module: float, rho: float, teeth_per_per
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if f(mid) > 0 else (lo, mid)
         angle_text = f"pressure angle >= {np.degrees(hi):.1f} deg"
-    return (f"use module <= {module_max:.3f} mm (pinion z >= {z_min}) or {angle_text}")
+    return f"use pinion z >= {z_min} or {angle_text}"
 
 
 def top_pointed_teeth(grid: PolarGrid, radii: np.ndarray, pitch_radii: np.ndarray,
