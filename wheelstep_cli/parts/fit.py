@@ -130,8 +130,10 @@ def fit_line(record: dict) -> str:
 
 
 #: What a refused fit suggests instead: the pair drawn with the printer's own clearance is
-#: within the design bounds, and --tolerance shows how it fares over the band.
-FIT_REMEDY = "print without --fit (the printer's own tooth clearance) and see its band with --tolerance"
+#: within the design bounds; the band is the printer's worst case, and --slice checks the
+#: pair as the slicer will really lay it down.
+FIT_REMEDY = ("print without --fit (the printer's own tooth clearance): --slice checks the pair as "
+              "PrusaSlicer will print it, --tolerance shows which cases of the band jam")
 
 
 def require_fit_met(record: dict) -> None:

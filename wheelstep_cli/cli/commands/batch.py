@@ -122,8 +122,9 @@ def _band_warnings(show: Output, outcome) -> None:
             shown = "" if least is None or least <= 0.0 else f" (least backlash {least:.3f} mm)"
             show.warning(f"WARNING: {band['entry']} jams over the band of {band['printer']}{shown}: "
                          "its report's tolerance section says in which case and how deep; "
+                         "`gears --slice` checks the pair as PrusaSlicer prints it, and "
                          "`gears --fit auto` searches a tooth clearance that clears the band "
-                         "and says so when none within its limits does")
+                         "(it says so when none within its limits does)")
 
 
 def _lines(out: Path, plan, outcome) -> list[str]:
