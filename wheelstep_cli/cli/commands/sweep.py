@@ -32,9 +32,9 @@ def sweep(
     verbose: Verbose = False,
 ) -> None:
     """Compute every design of a sweep file (gears or shoe, meshing check included; the
-    printer's tolerance band with ``tolerance: true``) into OUT/results.parquet, results.csv
+    printer's tolerance band with `tolerance: true`) into OUT/results.parquet, results.csv
     (rows in point order) and pareto.png. A rerun computes only the missing designs. Exit 1
-    if some designs were refused (outside the bounds, like ``gears`` refuses them) or failed
+    if some designs were refused (outside the bounds, like `gears` refuses them) or failed
     (their rows say why), 2 if the input is invalid."""
     from wheelstep_cli.batch.sweep_run import dask_client, run_sweep
     from wheelstep_cli.batch.sweep_store import owned_results
