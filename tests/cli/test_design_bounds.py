@@ -80,7 +80,7 @@ def test_written_implies_within_bounds_refused_implies_one_line(cli, tmp_path_fa
     else:
         line = error_line(result, result.exit_code)
         assert result.exit_code in (1, 2) and line.startswith("wheelstep: ")
-        assert "; use --" in line or "--allow-interference" in line
+        assert "; use --" in line or "--allow-interference" in line or "change the mechanism" in line
 
 
 def test_a_remedy_beyond_the_tooth_limit_sets_the_changed_generator_setting_back(cli, tmp_path):
@@ -96,3 +96,15 @@ def test_a_remedy_beyond_the_tooth_limit_sets_the_changed_generator_setting_back
     result = cli("gears", "--tilt", "0", *remedy, "--format", "stl", "--out", out)
     assert result.exit_code == 0, result.stderr
     assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
+
+
+def test_a_remedy_that_does_not_pass_when_built_is_not_offered(cli, tmp_path):
+    """A small pair (centre distance 20 mm) whose tooth form alone ripples: more teeth, the
+    model's remedy, ripple more when built, so the refusal offers no --z but says what was
+    tried, and nothing is written."""
+    out = tmp_path / "out"
+    line = error_line(cli("gears", "--center-distance", "20", "--bore", "6", "--format", "stl",
+                          "--out", out))
+    assert "nothing written; no remedy found (--z 52 " in line and "; use --" not in line
+    assert "change the mechanism (--a, --b, --c) or the centre distance" in line
+    assert not out.exists()

@@ -58,3 +58,59 @@ def test_default_backlash_of_generated_teeth_keeps_half_the_ripple_bound_for_the
     assert 0.2 < design_backlash(GearPairSpec()) < 0.3
     assert design_backlash(GearPairSpec(backlash=0.4)) == 0.4
     assert design_backlash(GearPairSpec(teeth="paper")) == 0.5
+
+
+def _refusal(verify):
+    """The bounds refusal of a pair whose F'i is over its bound (the remedy: more teeth),
+    with ``verify`` standing for the build and check of a remedy."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+
+    spec = GearPairSpec(z=32)
+    pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(spec)[1]), printing=None,
+                           spec=spec, opening=0.0)
+    with pytest.raises(DesignError) as err:
+        require_within_bounds(pair, record(drive=flank(total=18.0, tooth=6.0)), verify=verify)
+    return err.value, pair
+
+
+def test_a_remedy_is_offered_once_its_build_is_within_the_bounds():
+    builds = []
+
+    def verify(design):
+        builds.append(design.z)
+        return None, record()
+
+    error, _ = _refusal(verify)
+    assert builds == [40] and error.remedy == {"z": 40} and error.limit.endswith("; use --z 40")
+
+
+def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what_was_tried():
+    from types import SimpleNamespace
+
+    builds = []
+
+    def verify(design):
+        builds.append(design.z)
+        pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
+                               spec=design, opening=0.0)
+        return pair, record(drive=flank(total=18.0, tooth=6.0))
+
+    error, _ = _refusal(verify)
+    assert builds == [40, 48]            # the second try from the first one's figures
+    assert error.remedy == {} and "; use --" not in error.limit
+    assert ("no remedy found (--z 40 still gives drive flank F'i 18.00 um > 15 um; --z 48 still "
+            "gives drive flank F'i 18.00 um > 15 um): change the mechanism") in error.limit
+
+
+def test_a_remedy_the_pipeline_refuses_is_not_offered():
+    from wheelstep_cli.errors import DesignError
+
+    def verify(design):
+        raise DesignError("thickness", 5, "makes it too tall; nothing written; use --thickness 4")
+
+    error, _ = _refusal(verify)
+    assert error.remedy == {}
+    assert "no remedy found (--z 40 is refused: thickness makes it too tall)" in error.limit

@@ -114,8 +114,10 @@ def _out_of_bounds(entry: Entry, built, result: EntryResult) -> EntryResult | No
     from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml, require_within_bounds
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
+    from wheelstep_cli.parts.kinds import remedy_check
+
     try:
-        require_within_bounds(built, result.mating)
+        require_within_bounds(built, result.mating, verify=remedy_check(entry.printer))
         require_printable_teeth(built, entry.printer)
     except DesignError as err:
         return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),

@@ -198,6 +198,19 @@ def _gear_pair_meshing(pair) -> dict:
     return meshing_record(check_gear_pair(pair))
 
 
+def remedy_check(printer, wrap: Callable | None = None) -> Callable:
+    """``verify(design)`` -> (pair, meshing record) for a bounds refusal's remedy
+    (parts.mesh_bounds.require_within_bounds): the gear pair of ``design`` built for
+    ``printer`` as batch and ``gears`` build it, checked as written; ``wrap(check, pair)``
+    runs the check (a progress bar) when given."""
+    from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+
+    def verify(design):
+        trial = build_for_printer("gear-pair", design, printer)
+        return trial, meshing_record(check_gear_pair(trial) if wrap is None else wrap(check_gear_pair, trial))
+    return verify
+
+
 def _gear_pair_clearance(spec, extra: float) -> dict:
     from wheelstep_cli.parts.gear_laws import design_backlash
 

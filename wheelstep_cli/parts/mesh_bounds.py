@@ -9,6 +9,7 @@ the bounds. Lengths in mm, figures in um and %.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -98,34 +99,44 @@ def teeth_remedy(record: dict, z: int, periods: int, bounds: MeshBounds = MeshBo
     return int(periods * np.ceil(z * worst / periods))
 
 
-def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds()) -> None:
+#: Remedies tried (each a build and a meshing check) before a refusal offers one.
+REMEDY_TRIES = 2
+
+
+def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
+                          verify: Callable | None = None) -> None:
     """Refuse (DesignError naming the option to change) a generated pair whose meshing record
     breaks a figure bound, with the options that should bring it within: more teeth (--z)
     for F'i and f'i, less backlash (--backlash) for the ripple a flank's play costs.
-    Interference is refused elsewhere."""
+    ``verify(design)`` (pair, meshing record) builds and checks a design as the caller
+    writes it: when given, a remedy is offered only once a build with it is within the
+    bounds (up to REMEDY_TRIES remedies, each from the last try's figures); otherwise the
+    line says what was tried. Interference is refused elsewhere."""
     from wheelstep_cli.parts.gear_laws import design_backlash
 
-    broken = [text for text in bound_violations(record, bounds) if "interfere" not in text]
+    broken = _broken(record, bounds)
     if not broken or pair.generated is None:
         return
     design = pair.printing.design if pair.printing is not None else pair.spec
-    law, remedy = pair.generated.law, {}
+    remedy, tried = {}, []
     if abs(pair.opening) > OPENING_TOLERANCE:
         # off the distance they roll at the pitch curves do not roll: mount them there
         broken.append(opening_phrase(pair))
         remedy["install_distance"] = pair.design_distance
     else:
-        if any("F'i" in text or "f'i" in text for text in broken):
-            remedy["z"] = teeth_remedy(record, design.z, law.pinion_periods, bounds)
-        if any("ripple" in text for text in broken):
-            remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
-        remedy = _within_the_tooth_limit(design, remedy)
+        remedy = _remedy_of(pair, design, record, bounds)
+        if verify is not None and remedy:
+            remedy, tried = _verified(design, remedy, verify, bounds)
     param = next(iter(remedy), "z")
-    options = " ".join(f"--{name.replace('_', '-')} {format_value(value)}" for name, value in remedy.items())
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
-    advice = (f"use {options}" if remedy else
-              f"no tooth count up to {MAX_TEETH} brings it within them: change the mechanism "
-              "(--a, --b, --c) or the centre distance")
+    if remedy:
+        advice = f"use {_as_options(remedy)}"
+    elif tried:
+        advice = (f"no remedy found ({'; '.join(tried)}): change the mechanism (--a, --b, --c) or the "
+                  "centre distance")
+    else:
+        advice = (f"no tooth count up to {MAX_TEETH} brings it within them: change the mechanism "
+                  "(--a, --b, --c) or the centre distance")
     error = DesignError(param, value,
                         f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
                         f"written; {advice}")
@@ -136,6 +147,48 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds())
     error = error.tied_to({"backlash": design_backlash(design), **shaping})
     error.remedy = remedy   # name -> value, for a batch file to state as its keys
     raise error
+
+
+def _broken(record: dict, bounds: MeshBounds) -> list[str]:
+    """The bounds ``record`` breaks, interference left out (refused elsewhere)."""
+    return [text for text in bound_violations(record, bounds) if "interfere" not in text]
+
+
+def _as_options(remedy: dict) -> str:
+    return " ".join(f"--{name.replace('_', '-')} {format_value(value)}" for name, value in remedy.items())
+
+
+def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
+    """The options (name -> value) the figures of ``record`` point to for ``design``."""
+    broken, remedy = _broken(record, bounds), {}
+    if any("F'i" in text or "f'i" in text for text in broken):
+        remedy["z"] = teeth_remedy(record, design.z, pair.generated.law.pinion_periods, bounds)
+    if any("ripple" in text for text in broken):
+        remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
+    return _within_the_tooth_limit(design, remedy)
+
+
+def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds) -> tuple[dict, list[str]]:
+    """(the first remedy whose build is within the bounds, or {}; what each failed try gave)."""
+    tried, candidate = [], dict(remedy)
+    for _ in range(REMEDY_TRIES):
+        trial = design.model_copy(update=candidate)
+        try:
+            pair, record = verify(trial)
+        except DesignError as err:
+            why = err.limit.split("; nothing written")[0]
+            tried.append(f"{_as_options(candidate)} is refused: {err.param.replace('_', '-')} {why}")
+            break
+        broken = bound_violations(record, bounds)
+        if not broken:
+            return candidate, tried
+        tried.append(f"{_as_options(candidate)} still gives {broken[0]}"
+                     + (f" and {len(broken) - 1} more" if len(broken) > 1 else ""))
+        following = _remedy_of(pair, trial, record, bounds) if pair.generated is not None else {}
+        if not following or {**candidate, **following} == candidate:
+            break
+        candidate = {**candidate, **following}
+    return {}, tried
 
 
 #: Generator settings a remedy may return to their defaults (the defaults give pairs within

@@ -226,6 +226,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.fit import require_fit_met, require_fit_within_bounds
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
+    from wheelstep_cli.parts.kinds import remedy_check
     from wheelstep_cli.parts.mesh_bounds import opening_remedy, require_within_bounds
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
@@ -245,7 +246,8 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
         # a fit's play is set by the band: refused as the fit, not as the backlash it drew
         require_fit_met(tolerance)
         require_fit_within_bounds(record, tolerance)
-    require_within_bounds(pair, record)
+    require_within_bounds(pair, record, verify=remedy_check(
+        printer, lambda check, trial: with_progress(not show.quiet, "checking the remedy", check, trial)))
     require_printable_teeth(pair)
     if tolerance is not None:
         record["tolerance"] = tolerance
