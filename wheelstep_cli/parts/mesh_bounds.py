@@ -242,9 +242,8 @@ def remedy_in_yaml(err) -> str:
     remedy = getattr(err, "remedy", None)
     if not remedy:
         return message
-    flags = " ".join(f"--{name.replace('_', '-')} {format_value(value)}" for name, value in remedy.items())
     keys = ", ".join(f"{name}: {format_value(value)}" for name, value in remedy.items())
-    return message.replace(f"use {flags}", f"use overrides {{{keys}}}")
+    return message.replace(f"use {_as_options(remedy)}", f"use overrides {{{keys}}}")
 
 
 def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds) -> dict:
