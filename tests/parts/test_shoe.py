@@ -305,7 +305,7 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_sh
     (["--socket-depth", "80"], "--socket-depth ="),         # deeper than the body
     (["--width", "0"], "--width ="),
     (["--rim", "-1"], "--rim ="),
-    (["--width", "abc"], "'--width'"),
+    (["--width", "abc"], "--width = abc: must be a number"),
     (["--profile", "no-such-design"], "--profile ="),
 ])
 def test_bad_input_one_line_exit_2_nothing_written(cli, tmp_path, args, param):
