@@ -58,3 +58,13 @@ def test_ctrl_c_in_a_run_is_one_line_and_exit_130(cli, monkeypatch, where):
     result = cli("pitch")
     assert result.exit_code == 130
     assert result.stderr == "wheelstep: aborted\n" and result.stdout == ""
+
+
+@pytest.mark.parametrize("args, shown", [
+    (["--module", "1e9"], "--module = 1e9: "),          # not 1e+09
+    (["--thickness=1e5"], "--thickness = 1e5: "),       # not 100000
+    (["--z", "47"], "--z = 47: "),
+])
+def test_a_refused_number_is_shown_as_typed(cli, tmp_path, args, shown):
+    result = cli("gears", *args, "--out", tmp_path / "out")
+    assert result.exit_code == 2 and result.stderr.startswith(f"wheelstep: error: {shown}")

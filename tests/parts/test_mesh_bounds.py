@@ -103,6 +103,11 @@ def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what
     assert error.remedy == {} and "; use --" not in error.limit
     assert ("no remedy found (--z 40 still gives drive flank F'i 18.00 um > 15 um; --z 48 still "
             "gives drive flank F'i 18.00 um > 15 um): change the mechanism") in error.limit
+    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml
+
+    # a batch file states the tries as its override keys
+    assert "no remedy found (overrides {z: 40} still gives" in remedy_in_yaml(error)
+    assert "; overrides {z: 48} still gives" in remedy_in_yaml(error)
 
 
 def test_a_remedy_the_pipeline_refuses_is_not_offered():

@@ -92,7 +92,25 @@ def error_text(err: DesignError, options: dict[str, list[str]], argv: list[str])
         found = _path_option(err.value, options, argv)
         if found is not None and found[1] == err.value:
             name = found[0]
-    return f"{name} = {err.shown_value}: {err.limit}"
+    return f"{name} = {_typed_value(name, err, argv)}: {err.limit}"
+
+
+def _typed_value(flag: str, err: DesignError, argv: list[str]) -> str:
+    """The value as the user typed it after ``flag`` (``1e9``, not ``1e+09``) when it is the
+    number the error is about; else as the messages print it."""
+    number = err.value if isinstance(err.value, (int, float)) and not isinstance(err.value, bool) else None
+    for i, arg in enumerate(argv):
+        given, eq, value = arg.partition("=")
+        if given != flag or not (eq or i + 1 < len(argv)):
+            continue
+        text = value if eq else argv[i + 1]
+        try:
+            same = number is not None and float(text) == float(number)
+        except ValueError:
+            same = False
+        if same:
+            return text
+    return err.shown_value
 
 
 def _path_option(filename: str, options: dict[str, list[str]], argv: list[str]) -> tuple[str, str] | None:

@@ -118,7 +118,7 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     if not broken or pair.generated is None:
         return
     design = pair.printing.design if pair.printing is not None else pair.spec
-    remedy, tried = {}, []
+    remedy, tried, candidates = {}, [], []
     if abs(pair.opening) > OPENING_TOLERANCE:
         # off the distance they roll at the pitch curves do not roll: mount them there
         broken.append(opening_phrase(pair))
@@ -126,7 +126,7 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     else:
         remedy = _remedy_of(pair, design, record, bounds)
         if verify is not None and remedy:
-            remedy, tried = _verified(design, remedy, verify, bounds)
+            remedy, tried, candidates = _verified(design, remedy, verify, bounds)
     param = next(iter(remedy), "z")
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
     if remedy:
@@ -146,6 +146,7 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
                "law_csv": design.law_csv}
     error = error.tied_to({"backlash": design_backlash(design), **shaping})
     error.remedy = remedy   # name -> value, for a batch file to state as its keys
+    error.tried = candidates  # the remedies built and found wanting, likewise
     raise error
 
 
@@ -168,9 +169,11 @@ def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
     return _within_the_tooth_limit(design, remedy)
 
 
-def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds) -> tuple[dict, list[str]]:
-    """(the first remedy whose build is within the bounds, or {}; what each failed try gave)."""
-    tried, candidate = [], dict(remedy)
+def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
+              ) -> tuple[dict, list[str], list[dict]]:
+    """(the first remedy whose build is within the bounds, or {}; what each failed try gave;
+    the failed remedies)."""
+    tried, candidate, failed = [], dict(remedy), []
     for _ in range(REMEDY_TRIES):
         trial = design.model_copy(update=candidate)
         try:
@@ -178,17 +181,19 @@ def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds) -> tup
         except DesignError as err:
             why = err.limit.split("; nothing written")[0]
             tried.append(f"{_as_options(candidate)} is refused: {err.param.replace('_', '-')} {why}")
+            failed.append(candidate)
             break
         broken = bound_violations(record, bounds)
         if not broken:
-            return candidate, tried
+            return candidate, tried, failed
+        failed.append(candidate)
         tried.append(f"{_as_options(candidate)} still gives {broken[0]}"
                      + (f" and {len(broken) - 1} more" if len(broken) > 1 else ""))
         following = _remedy_of(pair, trial, record, bounds) if pair.generated is not None else {}
         if not following or {**candidate, **following} == candidate:
             break
         candidate = {**candidate, **following}
-    return {}, tried
+    return {}, tried, failed
 
 
 #: Generator settings a remedy may return to their defaults (the defaults give pairs within
@@ -239,11 +244,16 @@ def remedy_in_yaml(err) -> str:
     from wheelstep_cli.config.names import yaml_message
 
     message = yaml_message(err)
+    for tried in getattr(err, "tried", None) or []:
+        message = message.replace(_as_options(tried), f"overrides {{{_as_keys(tried)}}}")
     remedy = getattr(err, "remedy", None)
     if not remedy:
         return message
-    keys = ", ".join(f"{name}: {format_value(value)}" for name, value in remedy.items())
-    return message.replace(f"use {_as_options(remedy)}", f"use overrides {{{keys}}}")
+    return message.replace(f"use {_as_options(remedy)}", f"use overrides {{{_as_keys(remedy)}}}")
+
+
+def _as_keys(remedy: dict) -> str:
+    return ", ".join(f"{name}: {format_value(value)}" for name, value in remedy.items())
 
 
 def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds) -> dict:
