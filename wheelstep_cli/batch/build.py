@@ -111,10 +111,9 @@ def _out_of_bounds(entry: Entry, built, result: EntryResult) -> EntryResult | No
     it (the reason names the option and its remedy)."""
     if result.mating is None or result.mating["interference"]:
         return None
+    from wheelstep_cli.parts.kinds import remedy_check
     from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml, require_within_bounds
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
-
-    from wheelstep_cli.parts.kinds import remedy_check
 
     try:
         require_within_bounds(built, result.mating, verify=remedy_check(entry.printer))

@@ -99,11 +99,7 @@ def _typed_value(flag: str, err: DesignError, argv: list[str]) -> str:
     """The value as the user typed it after ``flag`` (``1e9``, not ``1e+09``) when it is the
     number the error is about; else as the messages print it."""
     number = err.value if isinstance(err.value, (int, float)) and not isinstance(err.value, bool) else None
-    for i, arg in enumerate(argv):
-        given, eq, value = arg.partition("=")
-        if given != flag or not (eq or i + 1 < len(argv)):
-            continue
-        text = value if eq else argv[i + 1]
+    for _, text in _flag_values({flag}, argv):
         try:
             same = number is not None and float(text) == float(number)
         except ValueError:
@@ -113,17 +109,23 @@ def _typed_value(flag: str, err: DesignError, argv: list[str]) -> str:
     return err.shown_value
 
 
-def _path_option(filename: str, options: dict[str, list[str]], argv: list[str]) -> tuple[str, str] | None:
-    """(flag as typed, its value) of the option in ``argv`` whose path is ``filename``, a
-    folder holding it or inside it, else None."""
-    from pathlib import Path
-
-    flags = {o for opts in options.values() for o in opts}
+def _flag_values(flags: set[str], argv: list[str]) -> list[tuple[str, str]]:
+    """(flag as typed, its value) of every one of ``flags`` given in ``argv``, as
+    ``--flag value`` or ``--flag=value``, in order."""
     pairs = []
     for i, arg in enumerate(argv):
         flag, eq, value = arg.partition("=")
         if flag in flags and (eq or i + 1 < len(argv)):
             pairs.append((flag, value if eq else argv[i + 1]))
+    return pairs
+
+
+def _path_option(filename: str, options: dict[str, list[str]], argv: list[str]) -> tuple[str, str] | None:
+    """(flag as typed, its value) of the option in ``argv`` whose path is ``filename``, a
+    folder holding it or inside it, else None."""
+    from pathlib import Path
+
+    pairs = _flag_values({o for opts in options.values() for o in opts}, argv)
     file = Path(filename)
     # the option given that very path first, whatever the order (--out . --profile p.yaml)
     for flag, value in pairs:
@@ -171,14 +173,10 @@ def bad_number_text(err: click_errors.UsageError, argv: list[str]) -> str | None
     kind = next((words for said, words in _NUMBER_KINDS if said in message), None)
     if param is None or kind is None or not getattr(param, "opts", None):
         return None
-    flags = set(param.opts) | set(getattr(param, "secondary_opts", []))
-    typed = None
-    for i, arg in enumerate(argv):
-        flag, eq, value = arg.partition("=")
-        if flag in flags and (eq or i + 1 < len(argv)):
-            typed = (flag, value if eq else argv[i + 1])
-    if typed is None:
+    given = _flag_values(set(param.opts) | set(getattr(param, "secondary_opts", [])), argv)
+    if not given:
         return None
+    typed = given[-1]
     limit = field_limit((GearPairSpec, ShoeSpec, MechanismSection), param.name or "")
     if limit is not None and limit.startswith("must be "):
         kind += ", " + limit[len("must be "):]
