@@ -50,21 +50,37 @@ def test_gears_tolerance_reports_every_case_and_the_loose_corner_has_more_play(c
 
 
 
-def test_a_fit_the_band_cannot_meet_is_refused_as_the_fit_and_its_remedy_prints(cli, tmp_path):
-    """The default pair on the FDM PLA band: once the clearance frees the flanks, the band's
-    tight case still jams at the pitch-curve corners (the pinion's corner space meets the
-    wheel's notch tooth radially), so `--fit auto` is refused naming --fit (not a --backlash
-    the user did not give) and where it jams, nothing is written, and the remedy it names,
-    the printer's own clearance, is written."""
+def test_fit_auto_insets_the_default_pair_until_the_fdm_band_no_longer_jams(cli, tmp_path):
+    """The default pair on the FDM PLA band: drawn as designed (no clearance) its tight case
+    jams, much of it at the pitch-curve corners; `--fit auto` draws both outlines smaller
+    along their normals until no case of the band jams and the least backlash keeps the
+    auto margin, and the design before the inset is the one the design bounds judged."""
+    import json
+
+    from wheelstep_cli.config.printers import FIT_MARGINS, Fit
+    from wheelstep_cli.parts.mesh_bounds import MeshBounds
+
     out = tmp_path / "out"
-    line = error_line(cli("gears", "--printer", "fdm-0.4-pla", "--fit", "auto", "--out", out))
-    assert line.startswith("wheelstep: error: --fit = auto: no tooth clearance up to ")
-    assert "keeps the least backlash >= 0.01 mm over the band of fdm-0.4-pla" in line
-    assert "all at the pitch-curve corners" in line
-    assert "print without --fit" in line and not out.exists()
-    result = cli("gears", "--printer", "fdm-0.4-pla", "--out", out, "-q")
+    result = cli("gears", "--printer", "fdm-0.4-pla", "--fit", "auto", "--json", "-q", "--out", out)
     assert result.exit_code == 0, result.stderr
-    assert (out / "gears.json").is_file()
+    band = json.loads((out / "gears.json").read_text())["meshing"]["tolerance"]
+    fit = band["fit"]
+    zero = fit["search"][0]
+    assert zero["inset_mm"] == 0.0 and zero["jams"] and zero["jammed_at_corners"] > 0
+    assert not band["jams"] and all(not case["jams"] for case in band["cases"])
+    assert band["least_backlash_mm"] >= FIT_MARGINS[Fit.auto]
+    assert 0.0 < fit["inset_mm"] <= 0.5 and fit["normal_backlash_added_mm"] == pytest.approx(2 * fit["inset_mm"])
+    # the written pair's own check closes the search: clear at the inset written, and no
+    # smaller inset was found clear
+    written = [t for t in fit["search"] if t.get("written")]
+    assert written[-1]["inset_mm"] == fit["inset_mm"] and not written[-1]["jams"]
+    clear = [t["inset_mm"] for t in fit["search"]
+             if not t["jams"] and t["tight_least_backlash_mm"] >= FIT_MARGINS[Fit.auto]]
+    assert fit["inset_mm"] <= min(clear) + 0.5 * max(t["tight_depth_mm"] for t in written) + 0.002 + 1e-9
+    bounds = MeshBounds()
+    for side in ("drive", "coast"):
+        assert fit["design"][side]["F_i_total_um"] <= bounds.total_um
+        assert fit["design"][side]["hub_speed_ripple_pct"] <= bounds.ripple_pct
 
 
 @pytest.mark.parametrize("option", [["--fit", "auto"], ["--tolerance"]])

@@ -6,7 +6,7 @@ import pytest
 from wheelstep_cli.config.printers import FIT_MARGINS, Band, Fit
 from wheelstep_cli.config.profiles import load_printer_profile
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.parts.fit import _next_clearance
+from wheelstep_cli.parts.fit import _next_inset
 from wheelstep_cli.parts.tolerance import ShiftedLaw, band_cases, jams, require_band
 
 PRESETS = ["fdm-0.4-pla", "fdm-0.4-petg", "resin-0.05-standard"]
@@ -52,14 +52,24 @@ def test_fit_margins_grow_from_auto_to_loose():
     assert margins == sorted(margins) and margins[0] > 0
 
 
-def test_fit_step_first_by_the_normal_share_then_by_the_secant():
+def _try(inset, least, jams=False, depth=0.0):
+    return {"inset_mm": inset, "tight_least_backlash_mm": least, "jams": jams, "tight_depth_mm": depth}
+
+
+def test_fit_step_by_the_normal_share_the_jam_depth_the_secant_or_the_bracket():
     cos_a = np.cos(np.radians(20))
-    first = _next_clearance([{"clearance_mm": 0.15, "tight_least_backlash_mm": -0.05}], 0.01, cos_a)
-    assert first == pytest.approx(0.15 + (0.01 + 0.0025 + 0.05) * cos_a)
-    # a linear response of slope 1.2: the secant lands on the margin (+ half the tolerance)
-    tried = [{"clearance_mm": 0.1, "tight_least_backlash_mm": -0.1},
-             {"clearance_mm": 0.2, "tight_least_backlash_mm": 0.02}]
-    assert _next_clearance(tried, 0.05, cos_a) == pytest.approx(0.2 + (0.0525 - 0.02) / 1.2)
+    # an inset e on both gears opens the normal backlash by 2e: half the missing play x cos
+    first = _next_inset([_try(0.05, -0.05)], 0.01, cos_a)
+    assert first == pytest.approx(0.05 + 0.5 * (0.01 + 0.0025 + 0.05) * cos_a)
+    # after a jam: half its depth (both gears) and the margin's share
+    assert _next_inset([_try(0.0, -4.0, True, 0.2)], 0.01, cos_a) == pytest.approx(
+        0.1 + 0.5 * 0.0125 * cos_a)
+    # a linear response of slope 2.4: the secant lands on the margin (+ half the tolerance)
+    tried = [_try(0.05, -0.1), _try(0.1, 0.02)]
+    assert _next_inset(tried, 0.05, cos_a) == pytest.approx(0.1 + (0.0525 - 0.02) / 2.4)
+    # a step out of the bracket (0.08 jams, 0.1 keeps far more than the margin) bisects it
+    tried = [_try(0.08, -1.0, True, 0.001), _try(0.1, 0.5), _try(0.2, 0.6)]
+    assert _next_inset(tried, 0.01, cos_a) == pytest.approx(0.09)
 
 
 def test_shifted_law_moves_the_wheel_angle_pose_by_pose():
@@ -78,7 +88,7 @@ def test_shifted_law_moves_the_wheel_angle_pose_by_pose():
 
 
 class _FakeReport:
-    """Stands for a meshing report whose least backlash is linear in the tooth clearance;
+    """Stands for a meshing report whose least backlash is linear in the outline inset;
     ``jammed``: the poses that jam (all four when the least backlash is not positive)."""
 
     def __init__(self, least, jammed=None):
@@ -96,52 +106,84 @@ class _FakeReport:
                 "backlash_max_mm": self.least + 0.1, "drive": flank, "coast": flank}
 
 
-def _fake_search(monkeypatch, least_of_clearance, law=None, jammed=None, depth=None):
+def _fake_search(monkeypatch, least_of_inset, law=None, jammed=None, depth=None):
+    """fit_pair on fakes: a "pair" is the inset (mm) it was drawn with, its sections carry it
+    and the tight corner's least backlash is ``least_of_inset`` less the band's growth."""
     import wheelstep_cli.parts.fit as fit
     import wheelstep_cli.parts.tolerance as tolerance
 
     def check(sections, case, settings=None):
-        least = least_of_clearance(sections.clearance) - 0.1 * (case.pinion_offset + case.wheel_offset)
+        least = least_of_inset(sections.inset) - 0.1 * (case.pinion_offset + case.wheel_offset)
         report = _FakeReport(least, None if least > 0 else jammed)
-        report.depth = 0.05 if depth is None else depth(sections.clearance)
+        report.depth = 0.05 if depth is None else depth(sections.inset)
         return report
 
     from types import SimpleNamespace
 
     law = SimpleNamespace(corners=()) if law is None else law
-    monkeypatch.setattr(fit, "sectioned_pair", lambda pair: SimpleNamespace(
-        clearance=pair, shift=(np.zeros(1), np.zeros(1)), law=law))
+
+    def sections_of(inset):
+        return SimpleNamespace(inset=inset, shift=(np.zeros(1), np.zeros(1)), law=law)
+
+    monkeypatch.setattr(fit, "sectioned_pair", sections_of)
+    monkeypatch.setattr(fit, "inset_sections", lambda sections, mm: sections_of(sections.inset + mm))
     monkeypatch.setattr(fit, "check_case", check)
     monkeypatch.setattr(tolerance, "check_case", check)
     monkeypatch.setattr(fit, "mid_play", lambda sections, nominal: sections)
     monkeypatch.setattr(tolerance, "mid_play", lambda sections, nominal: sections)
 
 
+def _fit(spec, fit="auto", printer=None):
+    """fit_pair on the fakes: the design is drawn with no inset and the printer's tooth
+    clearance set to 0 (the inset replaces it)."""
+    from wheelstep_cli.parts.fit import fit_pair
+
+    def build(s, p):
+        assert p.tooth_clearance == 0.0
+        return 0.0
+    return fit_pair(spec, replace_printer() if printer is None else printer, fit, build,
+                    inset=lambda pair, mm: pair + mm)
+
+
 def test_fit_search_lands_on_the_margin_for_a_linear_response(monkeypatch):
     from types import SimpleNamespace
 
-    from wheelstep_cli.parts.fit import FIT_TOLERANCE, fit_pair
+    from wheelstep_cli.parts.fit import FIT_TOLERANCE
 
-    # least backlash = 1.1 x clearance - 0.10, and 0.02 less at the tight corner (+0.1 mm each)
-    _fake_search(monkeypatch, lambda clearance: 1.1 * clearance - 0.10)
-    printer = replace_printer()
+    # least backlash = 2.2 x inset - 0.10, and 0.02 less at the tight corner (+0.1 mm each)
+    _fake_search(monkeypatch, lambda inset: 2.2 * inset - 0.10)
+    printer = load_printer_profile("fdm-0.4-pla")
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
-    result = fit_pair(spec, printer, "normal", lambda s, p: p.tooth_clearance)
-    tight = 1.1 * result.clearance - 0.10 - 0.1 * 2 * printer.band.outline
-    assert 0.1 <= tight <= 0.1 + FIT_TOLERANCE
-    assert len(result.rounds) <= 3
+    result = _fit(spec, "normal", printer)
+    tight = 2.2 * result.inset - 0.10 - 0.1 * 2 * printer.band.outline
+    assert 0.1 - FIT_TOLERANCE <= tight <= 0.1 + FIT_TOLERANCE
+    searched = [r for r in result.rounds if not r.get("written")]
+    assert len(searched) <= 3 and [r["inset_mm"] for r in result.rounds if r.get("written")] == [result.inset]
+    assert result.pair == result.inset and result.design_pair == 0.0
     assert result.band["least_backlash_mm"] == pytest.approx(tight)
 
 
-def test_fit_search_stops_at_its_clearance_cap_when_nothing_helps(monkeypatch):
+def test_fit_search_may_grow_the_teeth_but_not_past_the_design_play(monkeypatch):
     from types import SimpleNamespace
 
-    from wheelstep_cli.parts.fit import FIT_MAX_CLEARANCE, fit_pair
+    # a band with room to spare: the teeth are drawn larger, never past zero normal backlash
+    _fake_search(monkeypatch, lambda inset: 2.0 * inset + 0.5)
+    spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.2)
+    result = _fit(spec, "auto")
+    assert result.inset < 0.0
+    assert result.inset >= -0.5 * 0.2 * np.cos(np.radians(20.0)) - 1e-12
 
-    _fake_search(monkeypatch, lambda clearance: -1.0)
+
+def test_fit_search_stops_at_its_inset_cap_when_nothing_helps(monkeypatch):
+    from types import SimpleNamespace
+
+    from wheelstep_cli.parts.fit import FIT_MAX_INSET
+
+    _fake_search(monkeypatch, lambda inset: -1.0)
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
-    result = fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance)
-    assert result.clearance <= FIT_MAX_CLEARANCE and result.band["jams"]
+    result = _fit(spec, "auto")
+    assert result.inset <= FIT_MAX_INSET and result.band["jams"]
+    assert result.stopped in ("cap", "repeat", "rounds")
 
 
 def _law_with_a_corner(at_theta: float):
@@ -168,46 +210,47 @@ def test_corner_poses_are_those_within_the_zone_of_a_corner_across_the_period_st
     assert not corner_poses(report, SimpleNamespace(corners=())).any()
 
 
-def test_fit_search_stops_when_more_clearance_leaves_the_corner_jam_as_deep(monkeypatch):
+def test_fit_search_stops_when_more_inset_leaves_the_corner_jam_as_deep(monkeypatch):
     from types import SimpleNamespace
 
     import wheelstep_cli.parts.tolerance as tolerance
-    from wheelstep_cli.parts.fit import fit_pair, fit_record, require_fit_met
+    from wheelstep_cli.parts.fit import fit_record, require_fit_met
 
     # the fake's 4 poses sit at pinion angles 0..3 rad with 4 teeth; a zone of 0.1 pitch
     # (0.16 rad) about the corner at 1 rad holds pose 1 only
     monkeypatch.setattr(tolerance, "CORNER_ZONE_PITCHES", 0.1)
     law = _law_with_a_corner(1.0)
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
-    _fake_search(monkeypatch, lambda clearance: -1.0, law=law, jammed=np.array([False, True, False, False]))
-    result = fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance)
-    assert result.stopped == "corners" and len(result.rounds) == 2
-    assert result.rounds[1]["clearance_mm"] > result.rounds[0]["clearance_mm"]
+    _fake_search(monkeypatch, lambda inset: -1.0, law=law, jammed=np.array([False, True, False, False]))
+    result = _fit(spec)
+    searched = [r for r in result.rounds if not r.get("written")]
+    assert result.stopped == "corners" and len(searched) == 2
+    assert searched[1]["inset_mm"] > searched[0]["inset_mm"]
     assert all(r["jammed_poses"] == r["jammed_at_corners"] == 1 for r in result.rounds)
     with pytest.raises(DesignError) as err:
-        require_fit_met({**result.band, "fit": fit_record(result, "auto", 0.5)})
-    assert "all at the pitch-curve corners, and more tooth clearance did not make" in err.value.limit
-    assert f"no tooth clearance up to {result.rounds[1]['clearance_mm']:.3f} mm" in err.value.limit
+        require_fit_met({**result.band, "fit": fit_record(result, "auto")})
+    assert "all at the pitch-curve corners, and a larger inset did not make" in err.value.limit
+    assert f"no outline inset up to {result.rounds[1]['inset_mm']:.3f} mm" in err.value.limit
 
-    # a corner jam that the clearance makes shallower: the search goes on
-    _fake_search(monkeypatch, lambda clearance: -1.0, law=law, jammed=np.array([False, True, False, False]),
-                 depth=lambda clearance: 0.3 - clearance)
-    assert fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance).stopped != "corners"
-    # jams elsewhere too: the search goes on raising the clearance
-    _fake_search(monkeypatch, lambda clearance: -1.0, law=law, jammed=np.array([True, True, False, False]))
-    result = fit_pair(spec, replace_printer(), "auto", lambda s, p: p.tooth_clearance)
+    # a corner jam that the inset makes shallower: the search goes on
+    _fake_search(monkeypatch, lambda inset: -1.0, law=law, jammed=np.array([False, True, False, False]),
+                 depth=lambda inset: 0.3 - inset)
+    assert _fit(spec).stopped != "corners"
+    # jams elsewhere too: the search goes on growing the inset
+    _fake_search(monkeypatch, lambda inset: -1.0, law=law, jammed=np.array([True, True, False, False]))
+    result = _fit(spec)
     assert result.stopped != "corners" and len(result.rounds) > 2
 
 
-def test_fit_cap_is_the_smaller_of_1_mm_and_0_4_module():
+def test_fit_cap_is_the_smaller_of_half_a_mm_and_0_15_module():
     from types import SimpleNamespace
 
     from wheelstep_cli.parts.fit import fit_cap
 
-    assert fit_cap(SimpleNamespace(generated=SimpleNamespace(module=2.0))) == pytest.approx(0.8)
-    assert fit_cap(SimpleNamespace(generated=SimpleNamespace(module=4.0))) == pytest.approx(1.0)
-    assert fit_cap(SimpleNamespace(generated=None, spec=SimpleNamespace(module=1.5))) == pytest.approx(0.6)
-    assert fit_cap(0.15) == pytest.approx(1.0)     # nothing known of its teeth
+    assert fit_cap(SimpleNamespace(generated=SimpleNamespace(module=2.0))) == pytest.approx(0.3)
+    assert fit_cap(SimpleNamespace(generated=SimpleNamespace(module=4.0))) == pytest.approx(0.5)
+    assert fit_cap(SimpleNamespace(generated=None, spec=SimpleNamespace(module=1.5))) == pytest.approx(0.225)
+    assert fit_cap(0.15) == pytest.approx(0.5)     # nothing known of its teeth
 
 
 def replace_printer():
@@ -220,7 +263,7 @@ def _fitted_band(least: float, jams: bool) -> dict:
     case = {"case": "tight", "jams": jams, "interfering_poses": 7 if jams else 0,
             "max_penetration_mm": 0.02 if jams else 0.0, "backlash_min_mm": least}
     return {"printer": "p", "jams": jams, "least_backlash_mm": least, "cases": [case],
-            "fit": {"fit": "normal", "margin_mm": 0.1, "tooth_clearance_mm": 0.3, "backlash_mm": 0.5}}
+            "fit": {"fit": "normal", "margin_mm": 0.1, "inset_mm": 0.12}}
 
 
 def test_a_fit_short_of_its_margin_or_jamming_is_refused_naming_the_fit():
@@ -233,22 +276,6 @@ def test_a_fit_short_of_its_margin_or_jamming_is_refused_naming_the_fit():
             require_fit_met(_fitted_band(least, jams))
         assert err.value.param == "fit" and err.value.value == "normal"
         assert found in err.value.limit and "print without --fit" in err.value.limit
-
-
-def test_a_fitted_pair_outside_the_bounds_is_refused_naming_the_fit():
-    from wheelstep_cli.errors import DesignError
-    from wheelstep_cli.parts.fit import require_fit_within_bounds
-
-    flank = {"F_i_total_um": 6.0, "f_i_tooth_um": 5.0, "hub_speed_ripple_pct": 0.7}
-    record = {"interference": False, "contact_lost": False, "law_hub_speed_ripple_pct": 0.0,
-              "drive": dict(flank), "coast": dict(flank)}
-    require_fit_within_bounds(record, _fitted_band(0.1, False))
-    record["coast"]["hub_speed_ripple_pct"] = 1.2
-    with pytest.raises(DesignError) as err:
-        require_fit_within_bounds(record, _fitted_band(0.1, False))
-    assert err.value.param == "fit"
-    assert "needs (0.300 mm, backlash j_n 0.500 mm)" in err.value.limit
-    assert "coast flank" in err.value.limit and "1.20 %" in err.value.limit
 
 
 def test_a_case_that_jams_gives_no_backlash_or_te_in_its_line():

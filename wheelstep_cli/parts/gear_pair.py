@@ -41,6 +41,7 @@ class GearPair:
     generated: object = None   # gears.generated.GeneratedPair for generated teeth
     printing: object = None    # parts.kinds.Printing when drawn for a printer (spec: the printed one)
     installed: float | None = None  # mm, generated teeth: parts.gear_laws.installed_distance
+    inset: float = 0.0         # mm both tooth outlines are drawn smaller along their normals (a fit)
 
     @property
     def mounted_distance(self) -> float:
@@ -157,6 +158,28 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
                     installed=installed_distance(spec, law))
 
 
+def inset_gear_pair(pair: GearPair, inset: float) -> GearPair:
+    """``pair`` with both tooth outlines drawn ``inset`` mm smaller along their normals (an
+    exact polygon offset; larger when < 0): a fit's print compensation (SPEC §11: a printer
+    lays outlines down offset along their normals, so the fit takes its clearance there too).
+    The plates are rebuilt round the new outlines and checked; a printer's bed-side
+    compensation is not applied here (parts.fit does, as for any part drawn for a printer)."""
+    from wheelstep_cli.gears.generation import GenerationSettings
+    from wheelstep_cli.geometry.planar import offset_outline
+
+    # thinned as the written outlines are (their Douglas-Peucker tolerance)
+    thin = GenerationSettings().wheel_tolerance
+    p_outline = offset_outline(pair.pinion_outline, -inset, "pinion", thin=thin)
+    w_outline = offset_outline(pair.wheel_outline, -inset, "wheel", thin=thin)
+    gen = pair.generated
+    law = gen.law if gen is not None else pair.law
+    module = gen.module if gen is not None else pair.spec.paper_module
+    pinion, wheel = _plates(pair.spec, law, p_outline, w_outline, module)
+    checks = {part.name: require_printable(part) for part in (pinion, wheel)}
+    return replace(pair, pinion_outline=p_outline, wheel_outline=w_outline, pinion=pinion,
+                   wheel=wheel, checks=checks, printing=None, inset=pair.inset + float(inset))
+
+
 def partition_rows(partition: SectorPartition) -> list[dict]:
     """The sector table in degrees and mm, one dict per sector."""
     deg = np.degrees
@@ -187,6 +210,10 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
         report["sectors"] = partition_rows(pair.partition)
     if pair.generated is not None:
         report["generated"] = generated_report(pair)
+    if pair.inset:
+        report["outline_inset_mm"] = {
+            "inset_mm": pair.inset, "how": "both tooth outlines drawn this much smaller along their "
+            "normals after generation (a fit's print compensation, meshing.tolerance.fit)"}
     report["phase"] = _phase(pair)
     if pair.spec.lighten:
         from wheelstep_cli.parts.gear_faces import gear_faces, lighten_record

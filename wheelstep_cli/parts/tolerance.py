@@ -183,15 +183,16 @@ def case_record(case: BandCase, report: MeshingReport) -> dict:
 
 
 def band_record(sections: SectionedPair, band, printer_name: str, nominal: MeshingReport,
-                settings: MeshingSettings = MeshingSettings(), cases=None) -> dict:
+                settings: MeshingSettings = MeshingSettings(), cases=None, known: dict | None = None) -> dict:
     """The meshing check on every case of ``band`` (or the ``cases`` given), started in the
     middle of the ``nominal`` check's play: per case and the band's least and largest
-    backlash (mm on the wheel pitch curve)."""
+    backlash (mm on the wheel pitch curve). ``known``: reports of cases already checked so,
+    by case name."""
     cases = band_cases(band) if cases is None else cases
     sections = mid_play(sections, nominal)
     records = []
     for case in cases:
-        report = check_case(sections, case, case_settings(settings))
+        report = (known or {}).get(case.name) or check_case(sections, case, case_settings(settings))
         records.append({**case_record(case, report), **jam_record(report, sections.law)})
     least = [r["backlash_min_mm"] for r in records if r["backlash_min_mm"] is not None]
     largest = [r["backlash_max_mm"] for r in records if r["backlash_max_mm"] is not None]

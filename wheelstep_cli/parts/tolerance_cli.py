@@ -49,19 +49,23 @@ def bore_line(record: dict) -> str:
 
 
 def band_pair(spec, printer, check: bool, fit: str | None):
-    """(pair, band record, nominal report): the pair of ``spec`` built for ``printer`` (None:
-    as designed) and, when ``check`` (or a ``fit``), its band record and meshing report as
-    written (reused: the band costs its 4 cases). With a fit the pair is built with the
-    fitted tooth clearance on the printer (the default printer when none is given)."""
+    """(pair, band record, nominal report, design): the pair of ``spec`` built for ``printer``
+    (None: as designed) and, when ``check`` (or a ``fit``), its band record and meshing
+    report as written (reused: the band costs its 4 cases). With a fit the pair is the
+    design drawn on the printer (the default printer when none is given) without its tooth
+    clearance, inset by the fit (parts.fit), and ``design`` is (the design pair, its
+    meshing report): what the design bounds judge. Otherwise ``design`` is None."""
     from wheelstep_cli.parts.kinds import build_for_printer
 
     if not check and fit is None:
-        return build_for_printer("gear-pair", spec, printer), None, None
+        return build_for_printer("gear-pair", spec, printer), None, None, None
     chosen = band_printer(printer)
     if fit is not None:
         result = fit_pair(spec, chosen, fit, lambda s, p: _on_bed(build_for_printer("gear-pair", s, p), p))
-        return (result.pair, {**result.band, "fit": fit_record(result, fit, spec.backlash_mm),
-                              "bore": bore_fit(result.pair, chosen.band)}, result.nominal)
+        _on_bed(result.pair, chosen)
+        return (result.pair, {**result.band, "fit": fit_record(result, fit),
+                              "bore": bore_fit(result.pair, chosen.band)}, result.nominal,
+                (result.design_pair, result.design))
     pair = build_for_printer("gear-pair", spec, printer)
     if printer is not None:
         _on_bed(pair, printer)
@@ -71,7 +75,7 @@ def band_pair(spec, printer, check: bool, fit: str | None):
     record["bore"] = bore_fit(pair, chosen.band)
     if printer is None:
         record["note"] = "the default printer's band on the pair as designed (no --printer)"
-    return pair, record, nominal
+    return pair, record, nominal, None
 
 
 def _on_bed(pair, printer):

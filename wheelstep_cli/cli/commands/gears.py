@@ -224,7 +224,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
 
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
-    from wheelstep_cli.parts.fit import require_fit_met, require_fit_within_bounds
+    from wheelstep_cli.parts.fit import require_fit_met
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.kinds import remedy_check
     from wheelstep_cli.parts.mesh_bounds import opening_remedy, require_within_bounds
@@ -232,7 +232,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
     from wheelstep_cli.parts.tolerance_cli import band_pair
 
-    pair, tolerance, check = band_pair(spec, printer, *band)
+    pair, tolerance, check, design = band_pair(spec, printer, *band)
     if check is None:
         check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
     record = meshing_record(check)
@@ -245,9 +245,12 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     if band[1] is not None:
         # a fit's play is set by the band: refused as the fit, not as the backlash it drew
         require_fit_met(tolerance)
-        require_fit_within_bounds(record, tolerance)
-    require_within_bounds(pair, record, verify=remedy_check(
-        printer, lambda check, trial: with_progress(not show.quiet, "checking the remedy", check, trial)))
+    # the design bounds judge the design; a fit's inset is print compensation, judged on the band
+    judged, judged_record = (pair, record) if design is None else (design[0], meshing_record(design[1]))
+    built_for = judged.printing.printer if judged.printing is not None else None
+    require_within_bounds(judged, judged_record, verify=remedy_check(
+        built_for if design is not None else printer,
+        lambda check, trial: with_progress(not show.quiet, "checking the remedy", check, trial)))
     require_printable_teeth(pair)
     if tolerance is not None:
         record["tolerance"] = tolerance
@@ -294,9 +297,14 @@ def _slice_lines(sliced: dict | None) -> list[str]:
 
 
 def _clearance_text(pair) -> str:
-    """How a printer's tooth clearance makes up the backlash the teeth were cut with (mm)."""
+    """How a printer's tooth clearance makes up the backlash the teeth were cut with, or a
+    fit's inset adds to it (mm)."""
     printing = getattr(pair, "printing", None)
     clearance = float(printing.printer.tooth_clearance) if printing is not None else 0.0
+    inset = float(getattr(pair, "inset", 0.0))
+    if inset != 0.0:
+        # a fit: the printer's clearance is replaced by the outlines' inset
+        return f", then both outlines drawn {inset:.3f} mm smaller along their normals (the fit)"
     if clearance <= 0.0:
         return ""
     designed = pair.generated.cutter.backlash - clearance
