@@ -38,7 +38,7 @@ def test_batch_records_the_band_per_case_and_names_a_printer_without_one(cli, tm
     assert "banded jams over the band of fdm-0.4-pla" in result.stderr
     # a jammed band's least "backlash" is an overlap estimate, not shown as a backlash
     warning = next(l for l in result.stderr.splitlines() if "banded jams" in l)
-    assert "least backlash -" not in warning and "searches a tooth clearance" in warning
+    assert "least backlash -" not in warning and "insets the tooth outlines until the band clears" in warning
     # the advice does not promise what --fit auto may refuse
     assert "says so when none within its limits does" in warning
     assert "has no dimensional band: add a `band:` section" in result.stderr
@@ -53,3 +53,41 @@ def test_no_tolerance_runs_no_band_check(cli, tmp_path):
     assert "jams over the band" not in result.stderr
     assert "tolerance" not in json.loads((out / "reports" / "pair.json").read_text())
     assert "gear_pairs_mesh_over_printer_bands" not in json.loads((out / "manifest.json").read_text())["checks"]
+
+
+def _resin_with_fit(folder, fit: str):
+    """The resin preset with ``fit`` in its band, written into ``folder``."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "profiles" / "resin-0.05-standard.yaml").read_text()
+    path = folder / "resin-fit.yaml"
+    path.write_text(text.replace("  center_distance: 0.03\n", f"  center_distance: 0.03\n  fit: {fit}\n"))
+    return path
+
+
+def test_a_printer_band_with_a_fit_has_batch_inset_its_gear_pairs_to_the_band(cli, tmp_path):
+    """A band's `fit:` is what batch fits gear pairs to, as `gears --fit` does: the design
+    drawn without the printer's tooth clearance, both outlines inset until no case of the
+    band jams and the least backlash keeps the margin; the parts written are the fitted ones
+    (`gears` with that printer and no --fit fits the same pair)."""
+    from wheelstep_cli.config.printers import FIT_MARGINS, Fit
+
+    printer = _resin_with_fit(tmp_path, "normal")
+    batch = write(tmp_path / "fit.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"
+                                         f"    design: desk-demo\n    printer: {printer}\n")
+    out = tmp_path / "out"
+    result = cli("batch", batch, "--out", out, "--jobs", "1")
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((out / "reports" / "pair.json").read_text())
+    band = report["tolerance"]
+    assert band["fit"]["fit"] == "normal" and band["fit"]["inset_mm"] > 0.0
+    assert not band["jams"] and band["least_backlash_mm"] >= FIT_MARGINS[Fit.normal] - 0.005
+    assert report["design_report"]["outline_inset_mm"]["inset_mm"] == band["fit"]["inset_mm"]
+    assert report["printer_geometry"]["tooth_clearance"] == 0.0
+    assert report["printer_geometry"]["outline_inset"] == band["fit"]["inset_mm"]
+    assert "inset along their normals for the band's fit 'normal'" in (out / "print-sheet.md").read_text()
+    assert "jams over the band" not in result.stderr
+
+    gears = cli("gears", "--profile", "desk-demo", "--printer", printer, "--json", "-q", "--out", tmp_path / "g")
+    assert gears.exit_code == 0, gears.stderr
+    assert json.loads(gears.stdout)["meshing"]["tolerance"]["fit"]["inset_mm"] == band["fit"]["inset_mm"]

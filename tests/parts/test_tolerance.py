@@ -166,12 +166,12 @@ def test_fit_search_lands_on_the_margin_for_a_linear_response(monkeypatch):
 def test_fit_search_may_grow_the_teeth_but_not_past_the_design_play(monkeypatch):
     from types import SimpleNamespace
 
-    # a band with room to spare: the teeth are drawn larger, never past zero normal backlash
+    # a band with room to spare: the teeth are drawn larger, but an inset e takes 2e off the
+    # design's normal backlash (0.2 mm), so never past -0.1 mm
     _fake_search(monkeypatch, lambda inset: 2.0 * inset + 0.5)
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.2)
     result = _fit(spec, "auto")
-    assert result.inset < 0.0
-    assert result.inset >= -0.5 * 0.2 * np.cos(np.radians(20.0)) - 1e-12
+    assert result.inset == pytest.approx(-0.1)
 
 
 def test_fit_search_stops_at_its_inset_cap_when_nothing_helps(monkeypatch):
@@ -179,11 +179,45 @@ def test_fit_search_stops_at_its_inset_cap_when_nothing_helps(monkeypatch):
 
     from wheelstep_cli.parts.fit import FIT_MAX_INSET
 
-    _fake_search(monkeypatch, lambda inset: -1.0)
+    # every try jams 0.3 mm deep: the steps reach the cap and stop there
+    _fake_search(monkeypatch, lambda inset: -1.0, depth=lambda inset: 0.3)
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
     result = _fit(spec, "auto")
-    assert result.inset <= FIT_MAX_INSET and result.band["jams"]
-    assert result.stopped in ("cap", "repeat", "rounds")
+    assert result.stopped == "cap" and result.inset == pytest.approx(FIT_MAX_INSET)
+    assert result.band["jams"]
+
+
+def _fit_written_off_by(monkeypatch, off: float):
+    """fit_pair on the fakes where the pair as written comes out ``off`` mm less inset than
+    the search's offsets of the design's sections."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.parts.fit import fit_pair
+
+    _fake_search(monkeypatch, lambda inset: 2.2 * inset - 0.10)
+    spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
+    return fit_pair(spec, replace_printer(), "auto", lambda s, p: 0.0, inset=lambda pair, mm: pair + mm - off)
+
+
+def test_the_written_pair_is_checked_again_and_the_inset_grown_while_it_jams(monkeypatch):
+    from wheelstep_cli.parts.fit import INSET_TOLERANCE
+
+    result = _fit_written_off_by(monkeypatch, 0.01)
+    written = [r for r in result.rounds if r.get("written")]
+    assert len(written) == 2 and written[0]["jams"] and not written[1]["jams"]
+    assert written[1]["inset_mm"] == pytest.approx(written[0]["inset_mm"] + 0.5 * written[0]["tight_depth_mm"]
+                                                   + INSET_TOLERANCE)
+    assert result.inset == written[1]["inset_mm"] and not result.band["jams"]
+
+
+def test_a_written_pair_that_keeps_jamming_reports_the_inset_it_was_built_with(monkeypatch):
+    from wheelstep_cli.parts.fit import FIT_CONFIRM_ROUNDS
+
+    result = _fit_written_off_by(monkeypatch, 1.0)
+    written = [r for r in result.rounds if r.get("written")]
+    assert len(written) == FIT_CONFIRM_ROUNDS and all(r["jams"] for r in written)
+    assert result.inset == written[-1]["inset_mm"] and result.pair == pytest.approx(result.inset - 1.0)
+    assert result.band["jams"]
 
 
 def _law_with_a_corner(at_theta: float):

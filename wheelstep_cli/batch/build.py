@@ -10,7 +10,8 @@ import numpy as np
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.names import yaml_message
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.parts.kinds import KINDS, for_printer
+from wheelstep_cli.parts.kinds import KINDS, for_printer, printed_spec
+from wheelstep_cli.parts.tolerance import printer_with_clearance
 
 
 @dataclass
@@ -52,30 +53,74 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
     """Build one entry's parts for its printer and check them as written, alone and (a gear
     pair's meshing) together, with ``tolerance`` also over the printer's band (SPEC §11;
     worker-process entry point; never raises)."""
-    from wheelstep_cli.geometry.solids import footprint
-
     try:
         kind = KINDS[entry.kind]
-        built = for_printer(kind, kind.build_part(entry.printed), entry.printer, entry.spec)
+        fit = _printer_fit(entry) if tolerance and kind.mating_check is not None else None
+        printer = entry.printer if fit is None else printer_with_clearance(entry.printer, 0.0)
+        printed = entry.printed if fit is None else printed_spec(kind, entry.spec, printer)
+        built = for_printer(kind, kind.build_part(printed), printer, entry.spec)
         mating = kind.mating_check(built) if kind.mating_check is not None else None
-        parts = [BuiltPart(part.name, part.vertices, part.faces, check.volume, check.expected_volume,
-                           check.triangles, footprint(part), _checks(check))
-                 for part, check in ((p, built.checks[p.name]) for p in kind.parts(built))]
-        report = kind.report_of(built)
-        if mating is not None:
-            report["meshing"] = mating
-        result = EntryResult(entry.index, parts, report, mating=mating)
-        refused = _refused(entry, result) or _out_of_bounds(entry, built, result)
+        result = EntryResult(entry.index, _parts(kind, built), _report(kind, built, mating), mating=mating)
+        refused = _refused(entry, result) or _out_of_bounds(entry, built, result, printer)
         if refused is not None:
             return refused
+        if fit is not None:
+            return _fitted(entry, kind, built, fit)
         band = _band(built, entry) if tolerance and mating is not None else None
         if band is not None:
-            report["tolerance"] = band
-        return EntryResult(entry.index, parts, report, mating=mating, band=band)
+            result.report["tolerance"] = band
+        return EntryResult(entry.index, result.parts, result.report, mating=mating, band=band)
     except DesignError as err:
         return EntryResult(entry.index, error=yaml_message(err), param=err.param)
     except Exception as err:  # an unexpected failure must not stop the other entries
         return EntryResult(entry.index, error=f"internal error: {type(err).__name__}: {err}")
+
+
+def _parts(kind, built) -> list[BuiltPart]:
+    from wheelstep_cli.geometry.solids import footprint
+
+    return [BuiltPart(part.name, part.vertices, part.faces, check.volume, check.expected_volume,
+                      check.triangles, footprint(part), _checks(check))
+            for part, check in ((p, built.checks[p.name]) for p in kind.parts(built))]
+
+
+def _report(kind, built, mating: dict | None) -> dict:
+    report = kind.report_of(built)
+    if mating is not None:
+        report["meshing"] = mating
+    return report
+
+
+#: What a batch fit that cannot be met suggests: the fit is the printer profile's.
+BATCH_FIT_REMEDY = ("remove `fit:` from the printer profile's band to print with its tooth_clearance; "
+                    "`wheelstep gears --tolerance --slice` shows which cases jam and how PrusaSlicer prints it")
+
+
+def _printer_fit(entry: Entry) -> str | None:
+    """The fit (auto, tight, normal, loose) the entry's printer band names, else None."""
+    return getattr(getattr(entry.printer, "band", None), "fit", None)
+
+
+def _fitted(entry: Entry, kind, design, fit: str) -> EntryResult:
+    """A gear pair entry drawn for its printer band's ``fit`` (parts.fit): ``design`` (drawn
+    without the printer's tooth clearance, checked and within the bounds) inset until the
+    band keeps the fit's margin; refused (naming ``fit``) when no inset does."""
+    from wheelstep_cli.parts.fit import fit_pair, fit_record, require_fit_met
+    from wheelstep_cli.parts.mesh_check import meshing_record
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
+    from wheelstep_cli.parts.tolerance_cli import bore_fit
+
+    found = fit_pair(entry.spec, entry.printer, fit, lambda spec, printer: design)
+    built, mating = found.pair, meshing_record(found.nominal)
+    band = {"checked": True, "tooth_clearance_mm": 0.0, **found.band, "fit": fit_record(found, fit),
+            "bore": bore_fit(built, entry.printer.band)}
+    report = {**_report(kind, built, mating), "tolerance": band}
+    try:
+        require_fit_met(band, remedy=BATCH_FIT_REMEDY)
+        require_printable_teeth(built, entry.printer)
+    except DesignError as err:
+        return EntryResult(entry.index, report=report, error=yaml_message(err), param=err.param, mating=mating)
+    return EntryResult(entry.index, _parts(kind, built), report, mating=mating, band=band)
 
 
 def _band(built, entry: Entry) -> dict:
@@ -105,10 +150,11 @@ def _refused(entry: Entry, result: EntryResult) -> EntryResult | None:
     return EntryResult(entry.index, report=result.report, error=reason, param="teeth", mating=mating)
 
 
-def _out_of_bounds(entry: Entry, built, result: EntryResult) -> EntryResult | None:
+def _out_of_bounds(entry: Entry, built, result: EntryResult, printer) -> EntryResult | None:
     """The entry refused (no parts) when its generated gear pair meshes outside the SPEC §10
     bounds or its teeth are too thin for the entry's printer, as ``wheelstep gears`` refuses
-    it (the reason names the option and its remedy)."""
+    it (the reason names the option and its remedy); ``printer``: as the pair was drawn for
+    it (with a fit, without its tooth clearance), for the remedies' builds."""
     if result.mating is None or result.mating["interference"]:
         return None
     from wheelstep_cli.parts.kinds import remedy_check
@@ -116,7 +162,7 @@ def _out_of_bounds(entry: Entry, built, result: EntryResult) -> EntryResult | No
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     try:
-        require_within_bounds(built, result.mating, verify=remedy_check(entry.printer))
+        require_within_bounds(built, result.mating, verify=remedy_check(printer))
         require_printable_teeth(built, entry.printer)
     except DesignError as err:
         return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),

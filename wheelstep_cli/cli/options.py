@@ -100,9 +100,10 @@ Tolerance = Annotated[bool, opt(
     "--tolerance", help="Also run the meshing check over the printer's dimensional band (SPEC "
                         "§11): grown and shrunk outlines at the band's centre distances.")]
 FitChoice = Annotated[Optional[Fit], opt(
-    "--fit", help="Search the printer's tooth clearance so the least backlash over its band "
-                  "stays at the fit's margin (auto 0.01, tight 0.05, normal 0.1, loose 0.2 mm) "
-                  "with no more play; implies --tolerance.", shown="the printer's clearance")]
+    "--fit", help="Draw both tooth outlines smaller along their normals (instead of the "
+                  "printer's tooth clearance), just enough that the least backlash over its band "
+                  "keeps the fit's margin (auto 0.01, tight 0.05, normal 0.1, loose 0.2 mm); "
+                  "implies --tolerance.", shown="the printer band's fit, else its clearance")]
 Format = Annotated[MeshFormat, opt("--format", help="Mesh files to write.")]
 # --- conventions of every command
 Json = Annotated[bool, opt("--json", help="Print the report as one JSON document on stdout "

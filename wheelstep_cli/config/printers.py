@@ -84,6 +84,15 @@ def chamfer_limit(least: float, printer: str = "") -> str:
             "chamfer replaces the inset, so a smaller one would leave the first layers bulging)")
 
 
+class Fit(str, Enum):
+    """How much play a printed pair is given over its band (see :data:`FIT_MARGINS`)."""
+
+    auto = "auto"
+    tight = "tight"
+    normal = "normal"
+    loose = "loose"
+
+
 class BandSection(BaseModel):
     """The printer's dimensional band (SPEC §11), mm: outlines come out offset along their
     normals by -outline..+outline, holes come out up to ``hole_shrink`` smaller in diameter,
@@ -94,15 +103,8 @@ class BandSection(BaseModel):
     outline: Real = length(..., gt=0, le=1)
     hole_shrink: Real = length(0.0, ge=0, le=1)
     center_distance: Real = length(0.0, ge=0, le=1)
-
-
-class Fit(str, Enum):
-    """How much play a printed pair is given over its band (see :data:`FIT_MARGINS`)."""
-
-    auto = "auto"
-    tight = "tight"
-    normal = "normal"
-    loose = "loose"
+    # the fit batch draws gear pairs with (parts.fit); none: the printer's tooth_clearance
+    fit: Optional[Fit] = None
 
 
 #: Least backlash (mm, on the wheel pitch curve) each fit keeps at the band's tight corner:
@@ -139,6 +141,7 @@ class Band:
     outline: float
     hole_shrink: float
     center_distance: float
+    fit: Optional[str] = None     # auto, tight, normal, loose: what batch fits gear pairs to
 
 
 @dataclass(frozen=True)
@@ -206,6 +209,12 @@ class Printer:
         return config
 
 
+def _band(section: BandSection) -> Band:
+    values = section.model_dump()
+    fit = values.pop("fit")
+    return Band(**values, fit=None if fit is None else Fit(fit).value)
+
+
 def is_printer_profile(data: Any) -> bool:
     return isinstance(data, dict) and "printer" in data
 
@@ -232,7 +241,7 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
                    elephant_foot_inset=section.elephant_foot_inset, material=material.name,
                    density=material.density, slicer=dict(profile.slicer), chamfer=section.chamfer,
                    file_name=Path(path).name, sha256=hashlib.sha256(raw).hexdigest(),
-                   band=None if profile.band is None else Band(**profile.band.model_dump()))
+                   band=None if profile.band is None else _band(profile.band))
 
 
 #: The printer a command uses when none is named.

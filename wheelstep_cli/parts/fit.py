@@ -83,26 +83,42 @@ def inset_for_printer(pair, inset: float):
     return for_printer(KINDS["gear-pair"], built, pair.printing.printer, pair.printing.design)
 
 
+#: Meshing checks a fit runs at most: the search, the written pair's (nominal and tight
+#: case) and the band's other three cases.
+FIT_CHECKS = FIT_ROUNDS + 2 * FIT_CONFIRM_ROUNDS + 3
+
+
 def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings = MeshingSettings(),
-             inset: Callable = inset_for_printer) -> FitResult:
+             inset: Callable = inset_for_printer, design_report=None,
+             progress: Callable[[int, int], None] | None = None) -> FitResult:
     """Search the outline inset (mm, each gear, along the normals) for ``fit`` (auto, tight,
     normal, loose: :data:`FIT_MARGINS`) on ``printer``'s band. ``build(spec, printer)``
     builds the design as written for the printer (drawn without the printer's tooth
-    clearance: the inset replaces it); ``inset(pair, mm)`` draws it smaller. The inset never
-    takes the design's normal backlash below zero (a negative inset grows the teeth)."""
+    clearance: the inset replaces it); ``inset(pair, mm)`` draws it smaller;
+    ``design_report``: the design's nominal meshing report when already checked;
+    ``progress(done, FIT_CHECKS)`` after each meshing check. The inset never takes the
+    design's normal backlash below zero (a negative inset grows the teeth)."""
     margin = FIT_MARGINS[Fit(fit)]
     tight = band_cases(printer.band)[0]
     cos_a = float(np.cos(np.radians(spec.pressure_angle)))
-    lowest = -0.5 * float(spec.backlash_mm) * cos_a
     design_pair = build(spec, printer_with_clearance(printer, 0.0))
+    # an inset e on both gears takes 2e off the normal backlash the design was cut with
+    lowest = -0.5 * _normal_backlash(spec, design_pair)
     sections = sectioned_pair(design_pair)
-    design = check_case(sections, NOMINAL, settings)
+    design = check_case(sections, NOMINAL, settings) if design_report is None else design_report
+    done = [0]
+
+    def checked(report):
+        done[0] += 1
+        if progress is not None:
+            progress(min(done[0], FIT_CHECKS), FIT_CHECKS)
+        return report
     # every try starts in the middle of the design's play: an inset only widens it
     start = mid_play(sections, design)
     cap = fit_cap(design_pair)
     tried, value, stopped = [], 0.0, "rounds"
     for _ in range(FIT_ROUNDS):
-        report = check_case(inset_sections(start, value), tight, case_settings(settings))
+        report = checked(check_case(inset_sections(start, value), tight, case_settings(settings)))
         tried.append(_try_record(value, tight, report, sections.law))
         least = tried[-1]["tight_least_backlash_mm"]
         if (margin <= least <= margin + FIT_TOLERANCE and not tried[-1]["jams"]) or _bracketed(tried, margin):
@@ -117,18 +133,26 @@ def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings
             break
     chosen = _least_play(tried, margin)
     found = any(_good(t, margin) for t in tried)
-    for _ in range(FIT_CONFIRM_ROUNDS):
+    for round_ in range(FIT_CONFIRM_ROUNDS):
         # the pair as written, its play centred on its own nominal check as the band's is
         pair = inset(design_pair, chosen) if chosen != 0.0 else design_pair
         fitted = sectioned_pair(pair)
-        nominal = check_case(fitted, NOMINAL, settings)
-        report = check_case(mid_play(fitted, nominal), tight, case_settings(settings))
+        nominal = checked(check_case(fitted, NOMINAL, settings))
+        report = checked(check_case(mid_play(fitted, nominal), tight, case_settings(settings)))
         tried.append({**_try_record(chosen, tight, report, fitted.law), "written": True})
-        if not found or not tried[-1]["jams"] or chosen >= cap - 1e-9:
+        if (not found or not tried[-1]["jams"] or chosen >= cap - 1e-9
+                or round_ == FIT_CONFIRM_ROUNDS - 1):
             break
         chosen = min(cap, chosen + 0.5 * tried[-1]["tight_depth_mm"] + INSET_TOLERANCE)
     record = band_record(fitted, printer.band, printer.name, nominal, settings, known={tight.name: report})
     return FitResult(pair, nominal, design, chosen, margin, record, tried, stopped, design_pair)
+
+
+def _normal_backlash(spec, design_pair) -> float:
+    """The normal backlash j_n (mm) the design's teeth were cut with: generated teeth's
+    cutter's, else the spec's."""
+    cutter = getattr(getattr(design_pair, "generated", None), "cutter", None)
+    return float(cutter.backlash) if cutter is not None else float(spec.backlash_mm)
 
 
 def _try_record(inset: float, tight, report, law) -> dict:
@@ -241,10 +265,17 @@ def fit_line(record: dict) -> str:
     flanks = ", ".join(f"{side} F'i {num(design[side]['F_i_total_um'], '.1f')} um f'i "
                        f"{num(design[side]['f_i_tooth_um'], '.1f')} um ripple "
                        f"{num(design[side]['hub_speed_ripple_pct'], '.2f')} %" for side in ("drive", "coast"))
-    return (f"fit {record['fit']}: both tooth outlines drawn {record['inset_mm']:.3f} mm smaller along "
-            f"their normals (print compensation, normal backlash +{record['normal_backlash_added_mm']:.3f} mm) "
-            f"keep the band's least backlash >= {record['margin_mm']:g} mm ({len(record['search'])} "
-            f"checks); the design before it: {flanks}")
+    inset = record["inset_mm"]
+    drawn = f"{inset:.3f} mm smaller" if inset >= 0 else f"{-inset:.3f} mm larger"
+    return (f"fit {record['fit']}: both tooth outlines drawn {drawn} along their normals (print "
+            f"compensation, normal backlash {record['normal_backlash_added_mm']:+.3f} mm) "
+            f"keep the band's least backlash >= {record['margin_mm']:g} mm ({_tries(record['search'])}); "
+            f"the design before it: {flanks}")
+
+
+def _tries(search: list) -> str:
+    written = sum(1 for t in search if t.get("written"))
+    return f"{len(search) - written} tries on the design's sections, {written} on the pair as written"
 
 
 #: What a refused fit suggests instead: the pair drawn with the printer's own clearance; the
@@ -254,7 +285,7 @@ FIT_REMEDY = ("print without --fit (the printer's own tooth clearance): --slice 
               "PrusaSlicer will print it, --tolerance shows which cases of the band jam")
 
 
-def require_fit_met(record: dict) -> None:
+def require_fit_met(record: dict, remedy: str = FIT_REMEDY) -> None:
     """Refuse (DesignError on ``fit``) a fit whose search ended short of its margin: at the
     last inset tried (mm) the band still jams, or keeps less least backlash than the margin
     (``record``: a band record with its ``fit``, see :func:`fit_record`)."""
@@ -274,7 +305,7 @@ def require_fit_met(record: dict) -> None:
     raise DesignError("fit", fit["fit"],
                       f"no outline inset up to {largest:.3f} mm per gear keeps the least backlash >= "
                       f"{fit['margin_mm']:g} mm over the band of {record['printer']} (at "
-                      f"{fit['inset_mm']:.3f} mm {found}); nothing written; {FIT_REMEDY}")
+                      f"{fit['inset_mm']:.3f} mm {found}); nothing written; {remedy}")
 
 
 def _corner_cause(case: dict, fit: dict) -> str:

@@ -19,7 +19,8 @@ from wheelstep_cli.errors import DesignError, format_value
 
 @dataclass(frozen=True)
 class MeshBounds:
-    """Largest figures (um, um, %) a written pair may show on either flank."""
+    """Largest figures (um, um, %) a written pair may show on either flank; with a fit, its
+    design before the inset (the inset is print compensation, judged over the band)."""
 
     total_um: float = 15.0
     """F'i, total tangential composite deviation, um."""

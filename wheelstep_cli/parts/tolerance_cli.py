@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from wheelstep_cli.parts.fit import fit_line, fit_pair, fit_record
 from wheelstep_cli.parts.tolerance import (NOMINAL, SectionedPair, band_lines, band_record, check_case,
-                                           require_band, sectioned_pair)
+                                           printer_with_clearance, require_band, sectioned_pair)
 
 
 def band_printer(printer):
@@ -48,24 +48,15 @@ def bore_line(record: dict) -> str:
                                           "(TIGHT at the band's extreme: ream or press)"))
 
 
-def band_pair(spec, printer, check: bool, fit: str | None):
-    """(pair, band record, nominal report, design): the pair of ``spec`` built for ``printer``
-    (None: as designed) and, when ``check`` (or a ``fit``), its band record and meshing
-    report as written (reused: the band costs its 4 cases). With a fit the pair is the
-    design drawn on the printer (the default printer when none is given) without its tooth
-    clearance, inset by the fit (parts.fit), and ``design`` is (the design pair, its
-    meshing report): what the design bounds judge. Otherwise ``design`` is None."""
+def band_pair(spec, printer, check: bool):
+    """(pair, band record, nominal report): the pair of ``spec`` built for ``printer`` (None:
+    as designed) and, when ``check``, its band record and meshing report as written (reused:
+    the band costs its 4 cases)."""
     from wheelstep_cli.parts.kinds import build_for_printer
 
-    if not check and fit is None:
-        return build_for_printer("gear-pair", spec, printer), None, None, None
+    if not check:
+        return build_for_printer("gear-pair", spec, printer), None, None
     chosen = band_printer(printer)
-    if fit is not None:
-        result = fit_pair(spec, chosen, fit, lambda s, p: _on_bed(build_for_printer("gear-pair", s, p), p))
-        _on_bed(result.pair, chosen)
-        return (result.pair, {**result.band, "fit": fit_record(result, fit),
-                              "bore": bore_fit(result.pair, chosen.band)}, result.nominal,
-                (result.design_pair, result.design))
     pair = build_for_printer("gear-pair", spec, printer)
     if printer is not None:
         _on_bed(pair, printer)
@@ -75,7 +66,27 @@ def band_pair(spec, printer, check: bool, fit: str | None):
     record["bore"] = bore_fit(pair, chosen.band)
     if printer is None:
         record["note"] = "the default printer's band on the pair as designed (no --printer)"
-    return pair, record, nominal, None
+    return pair, record, nominal
+
+
+def fit_design(spec, printer):
+    """(the printer whose band a fit is for: ``printer``, else the default printer; the
+    design drawn on it without its tooth clearance, which the fit's inset replaces),
+    refused (DesignError) at once when a gear cannot go on its bed."""
+    from wheelstep_cli.parts.kinds import build_for_printer
+
+    chosen = band_printer(printer)
+    return chosen, _on_bed(build_for_printer("gear-pair", spec, printer_with_clearance(chosen, 0.0)), chosen)
+
+
+def fitted_pair(spec, chosen, fit: str, design_pair, design_report, progress=None):
+    """(pair, band record with its fit, nominal report): ``design_pair`` (of
+    :func:`fit_design`, with its meshing report) inset for ``fit`` on ``chosen``'s band."""
+    result = fit_pair(spec, chosen, fit, lambda s, p: design_pair, design_report=design_report,
+                      progress=progress)
+    _on_bed(result.pair, chosen)
+    return (result.pair, {**result.band, "fit": fit_record(result, fit),
+                          "bore": bore_fit(result.pair, chosen.band)}, result.nominal)
 
 
 def _on_bed(pair, printer):

@@ -100,6 +100,15 @@ def _plates(plates) -> list[str]:
     return lines
 
 
+def _teeth_compensation(printer) -> str:
+    """How the printer's gear teeth are compensated: its tooth clearance, or its band's fit."""
+    fit = getattr(printer.band, "fit", None) if printer.band is not None else None
+    if fit is None:
+        return f"tooth clearance +{printer.tooth_clearance:g} mm"
+    return (f"gear tooth outlines inset along their normals for the band's fit '{fit}' "
+            "(each pair's report gives the inset; no tooth clearance)")
+
+
 def _printers(plan) -> list[str]:
     lines = ["## Printer profiles and recommended slicer settings", ""]
     seen = []
@@ -110,7 +119,7 @@ def _printers(plan) -> list[str]:
         printer = entry.printer
         lines += [f"### {printer.name}", "", printer.description, "",
                   f"Geometry already compensated in the meshes: bores +{printer.hole_compensation:g} mm, "
-                  f"tooth clearance +{printer.tooth_clearance:g} mm, bed-side edges inset "
+                  f"{_teeth_compensation(printer)}, bed-side edges inset "
                   f"{printer.elephant_foot_inset:g} mm over the lowest {printer.elephant_foot_height:g} mm "
                   "(elephant foot). Do not compensate again in the slicer.", "",
                   "| setting | value |", "| --- | --- |"]

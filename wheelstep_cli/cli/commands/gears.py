@@ -183,9 +183,11 @@ def gears(
     show.parameters(vars(spec))
     chosen = _printer(printer)
     _require_slicer(slice_, fmt.value, chosen)
+    # --fit, else the fit the printer's band names (batch fits to it too)
+    fit_name = fit.value if fit else getattr(getattr(chosen, "band", None), "fit", None)
     _make_gears(spec, chosen, show, out, fmt.value, allow_interference, dry_run, force,
                 checked_extras(plot, gif, dxf, svg, step),
-                (tolerance or fit is not None, fit.value if fit else None), slice_)
+                (tolerance or fit_name is not None, fit_name), slice_)
 
 
 def _value(choice):
@@ -227,30 +229,34 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.parts.fit import require_fit_met
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.kinds import remedy_check
-    from wheelstep_cli.parts.mesh_bounds import opening_remedy, require_within_bounds
-    from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+    from wheelstep_cli.parts.mesh_check import check_gear_pair
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
-    from wheelstep_cli.parts.tolerance_cli import band_pair
+    from wheelstep_cli.parts.tolerance_cli import band_pair, fit_design, fitted_pair
 
-    pair, tolerance, check, design = band_pair(spec, printer, *band)
-    if check is None:
-        check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
-    record = meshing_record(check)
-    if record["interference"] and not allow_interference:
-        show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
-                   f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
-                   f"{record['max_overlap_area_mm2']:.3f} mm2){opening_remedy(pair)}; nothing "
-                   "written (--allow-interference writes them anyway)")
-        raise typer.Exit(1)
+    def checked_remedy(check, trial):
+        return with_progress(not show.quiet, "checking the remedy", check, trial)
+
     if band[1] is not None:
-        # a fit's play is set by the band: refused as the fit, not as the backlash it drew
+        # the design is checked, bounded and refused as without a fit before the search
+        # spends a dozen meshing checks on it; the fit's inset is print compensation, judged
+        # on the band (the written pair's own figures are the inset outlines')
+        chosen, design = fit_design(spec, printer)
+        design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
+        design_record = _meshing_or_refused(show, design, design_check, allow_interference)
+        require_within_bounds(design, design_record,
+                              verify=remedy_check(design.printing.printer, checked_remedy))
+        require_printable_teeth(design)
+        pair, tolerance, check = with_progress(not show.quiet, f"fitting to the band of {chosen.name}",
+                                               fitted_pair, spec, chosen, band[1], design, design_check)
+        record = _meshing_or_refused(show, pair, check, allow_interference)
         require_fit_met(tolerance)
-    # the design bounds judge the design; a fit's inset is print compensation, judged on the band
-    judged, judged_record = (pair, record) if design is None else (design[0], meshing_record(design[1]))
-    built_for = judged.printing.printer if judged.printing is not None else None
-    require_within_bounds(judged, judged_record, verify=remedy_check(
-        built_for if design is not None else printer,
-        lambda check, trial: with_progress(not show.quiet, "checking the remedy", check, trial)))
+    else:
+        pair, tolerance, check = band_pair(spec, printer, band[0])
+        if check is None:
+            check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
+        record = _meshing_or_refused(show, pair, check, allow_interference)
+        require_within_bounds(pair, record, verify=remedy_check(printer, checked_remedy))
     require_printable_teeth(pair)
     if tolerance is not None:
         record["tolerance"] = tolerance
@@ -269,6 +275,24 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     show.files(written, dry_run, joined=True)
     if sliced is not None and not sliced["meshes"]:
         raise typer.Exit(1)
+
+
+def _meshing_or_refused(show: Output, pair, check, allow_interference: bool) -> dict:
+    """The meshing record of ``check`` (of ``pair``), refused (exit 1, nothing written) when
+    the teeth interfere and that is not allowed."""
+    import typer
+
+    from wheelstep_cli.parts.mesh_bounds import opening_remedy
+    from wheelstep_cli.parts.mesh_check import meshing_record
+
+    record = meshing_record(check)
+    if record["interference"] and not allow_interference:
+        show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
+                   f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
+                   f"{record['max_overlap_area_mm2']:.3f} mm2){opening_remedy(pair)}; nothing "
+                   "written (--allow-interference writes them anyway)")
+        raise typer.Exit(1)
+    return record
 
 
 def _slice(show: Output, pair, record: dict, files: dict, out: Path) -> dict:
@@ -304,7 +328,8 @@ def _clearance_text(pair) -> str:
     inset = float(getattr(pair, "inset", 0.0))
     if inset != 0.0:
         # a fit: the printer's clearance is replaced by the outlines' inset
-        return f", then both outlines drawn {inset:.3f} mm smaller along their normals (the fit)"
+        drawn = f"{inset:.3f} mm smaller" if inset > 0 else f"{-inset:.3f} mm larger"
+        return f", then both outlines drawn {drawn} along their normals (the fit)"
     if clearance <= 0.0:
         return ""
     designed = pair.generated.cutter.backlash - clearance
