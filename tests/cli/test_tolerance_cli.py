@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from tests.helpers.clicheck import error_line
@@ -20,6 +21,8 @@ def test_a_printer_without_a_band_is_refused_by_tolerance_and_fit(cli, tmp_path)
 def test_an_unknown_fit_is_refused(cli, tmp_path):
     result = cli("gears", "--fit", "snug", "--out", tmp_path / "out")
     assert result.exit_code == 2 and "--fit" in result.stderr
+    assert "'snug' is not one of 'auto', 'tight', 'normal', 'loose'" in result.stderr
+    assert "Value error" not in result.stderr
 
 
 def test_mesh_check_printer_without_tolerance_is_refused(cli, tmp_path):
@@ -63,13 +66,20 @@ def test_fit_auto_insets_the_default_pair_until_the_fdm_band_no_longer_jams(cli,
     out = tmp_path / "out"
     result = cli("gears", "--printer", "fdm-0.4-pla", "--fit", "auto", "--json", "-q", "--out", out)
     assert result.exit_code == 0, result.stderr
-    band = json.loads((out / "gears.json").read_text())["meshing"]["tolerance"]
+    meshing = json.loads((out / "gears.json").read_text())["meshing"]
+    band = meshing["tolerance"]
     fit = band["fit"]
+    assert fit["from"] == "--fit" and fit["replaces_tooth_clearance_mm"] == 0.15
+    # the play the inset adds, as the meshing check measures it on the wheel pitch curve: 4e
+    # of normal backlash (both flanks of the pinion's tooth and of the wheel's space move e)
+    added = meshing["backlash_min_mm"] - fit["design"]["backlash_mm"][0]
+    expected = fit["normal_backlash_added_mm"] / np.cos(np.radians(20.0))
+    assert 0.8 * expected <= added <= 1.3 * expected
     zero = fit["search"][0]
     assert zero["inset_mm"] == 0.0 and zero["jams"] and zero["jammed_at_corners"] > 0
     assert not band["jams"] and all(not case["jams"] for case in band["cases"])
     assert band["least_backlash_mm"] >= FIT_MARGINS[Fit.auto]
-    assert 0.0 < fit["inset_mm"] <= 0.5 and fit["normal_backlash_added_mm"] == pytest.approx(2 * fit["inset_mm"])
+    assert 0.0 < fit["inset_mm"] <= 0.5 and fit["normal_backlash_added_mm"] == pytest.approx(4 * fit["inset_mm"])
     # the written pair's own check closes the search: clear at the inset written, and no
     # smaller inset was found clear
     written = [t for t in fit["search"] if t.get("written")]

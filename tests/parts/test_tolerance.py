@@ -58,17 +58,17 @@ def _try(inset, least, jams=False, depth=0.0):
 
 def test_fit_step_by_the_normal_share_the_jam_depth_the_secant_or_the_bracket():
     cos_a = np.cos(np.radians(20))
-    # an inset e on both gears opens the normal backlash by 2e: half the missing play x cos
+    # an inset e on both gears opens the normal backlash by 4e: a quarter of the missing play x cos
     first = _next_inset([_try(0.05, -0.05)], 0.01, cos_a)
-    assert first == pytest.approx(0.05 + 0.5 * (0.01 + 0.0025 + 0.05) * cos_a)
+    assert first == pytest.approx(0.05 + 0.25 * (0.01 + 0.0025 + 0.05) * cos_a)
     # after a jam: half its depth (both gears) and the margin's share
-    assert _next_inset([_try(0.0, -4.0, True, 0.2)], 0.01, cos_a) == pytest.approx(
-        0.1 + 0.5 * 0.0125 * cos_a)
+    assert _next_inset([_try(0.0, None, True, 0.2)], 0.01, cos_a) == pytest.approx(
+        0.1 + 0.25 * 0.0125 * cos_a)
     # a linear response of slope 2.4: the secant lands on the margin (+ half the tolerance)
     tried = [_try(0.05, -0.1), _try(0.1, 0.02)]
     assert _next_inset(tried, 0.05, cos_a) == pytest.approx(0.1 + (0.0525 - 0.02) / 2.4)
     # a step out of the bracket (0.08 jams, 0.1 keeps far more than the margin) bisects it
-    tried = [_try(0.08, -1.0, True, 0.001), _try(0.1, 0.5), _try(0.2, 0.6)]
+    tried = [_try(0.08, None, True, 0.001), _try(0.1, 0.5), _try(0.2, 0.6)]
     assert _next_inset(tried, 0.01, cos_a) == pytest.approx(0.09)
 
 
@@ -150,12 +150,12 @@ def test_fit_search_lands_on_the_margin_for_a_linear_response(monkeypatch):
 
     from wheelstep_cli.parts.fit import FIT_TOLERANCE
 
-    # least backlash = 2.2 x inset - 0.10, and 0.02 less at the tight corner (+0.1 mm each)
-    _fake_search(monkeypatch, lambda inset: 2.2 * inset - 0.10)
+    # least backlash = 4.3 x inset - 0.10 (4e / cos alpha), and 0.02 less at the tight corner
+    _fake_search(monkeypatch, lambda inset: 4.3 * inset - 0.10)
     printer = load_printer_profile("fdm-0.4-pla")
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
     result = _fit(spec, "normal", printer)
-    tight = 2.2 * result.inset - 0.10 - 0.1 * 2 * printer.band.outline
+    tight = 4.3 * result.inset - 0.10 - 0.1 * 2 * printer.band.outline
     assert 0.1 - FIT_TOLERANCE <= tight <= 0.1 + FIT_TOLERANCE
     searched = [r for r in result.rounds if not r.get("written")]
     assert len(searched) <= 3 and [r["inset_mm"] for r in result.rounds if r.get("written")] == [result.inset]
@@ -166,12 +166,12 @@ def test_fit_search_lands_on_the_margin_for_a_linear_response(monkeypatch):
 def test_fit_search_may_grow_the_teeth_but_not_past_the_design_play(monkeypatch):
     from types import SimpleNamespace
 
-    # a band with room to spare: the teeth are drawn larger, but an inset e takes 2e off the
-    # design's normal backlash (0.2 mm), so never past -0.1 mm
-    _fake_search(monkeypatch, lambda inset: 2.0 * inset + 0.5)
+    # a band with room to spare: the teeth are drawn larger, but an inset e changes the
+    # design's normal backlash (0.2 mm) by 4e, so never past -0.05 mm
+    _fake_search(monkeypatch, lambda inset: 4.0 * inset + 0.5)
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.2)
     result = _fit(spec, "auto")
-    assert result.inset == pytest.approx(-0.1)
+    assert result.inset == pytest.approx(-0.05)
 
 
 def test_fit_search_stops_at_its_inset_cap_when_nothing_helps(monkeypatch):
@@ -194,7 +194,7 @@ def _fit_written_off_by(monkeypatch, off: float):
 
     from wheelstep_cli.parts.fit import fit_pair
 
-    _fake_search(monkeypatch, lambda inset: 2.2 * inset - 0.10)
+    _fake_search(monkeypatch, lambda inset: 4.3 * inset - 0.10)
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
     return fit_pair(spec, replace_printer(), "auto", lambda s, p: 0.0, inset=lambda pair, mm: pair + mm - off)
 

@@ -217,7 +217,9 @@ def run(argv: list[str] | None = None) -> int:
             typer.echo(f"wheelstep: error: {number}", err=True)
             return 2
         where = f" ({err.ctx.command_path})" if err.ctx is not None else ""
-        typer.echo(f"wheelstep: error{where}: {err.format_message()}", err=True)
+        # a choice option's check is pydantic's: its "Value error, " tag is no news to a user
+        message = err.format_message().replace("Value error, ", "")
+        typer.echo(f"wheelstep: error{where}: {message}", err=True)
         return 2
     except click_errors.ClickException as err:
         typer.echo(f"wheelstep: error: {err.format_message()}", err=True)

@@ -102,8 +102,9 @@ def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings
     tight = band_cases(printer.band)[0]
     cos_a = float(np.cos(np.radians(spec.pressure_angle)))
     design_pair = build(spec, printer_with_clearance(printer, 0.0))
-    # an inset e on both gears takes 2e off the normal backlash the design was cut with
-    lowest = -0.5 * _normal_backlash(spec, design_pair)
+    # an inset e on both gears adds 4e to the normal backlash (each flank of the pinion's
+    # tooth and of the wheel's space moves e): a negative one takes it off
+    lowest = -0.25 * _normal_backlash(spec, design_pair)
     sections = sectioned_pair(design_pair)
     design = check_case(sections, NOMINAL, settings) if design_report is None else design_report
     done = [0]
@@ -121,7 +122,7 @@ def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings
         report = checked(check_case(inset_sections(start, value), tight, case_settings(settings)))
         tried.append(_try_record(value, tight, report, sections.law))
         least = tried[-1]["tight_least_backlash_mm"]
-        if (margin <= least <= margin + FIT_TOLERANCE and not tried[-1]["jams"]) or _bracketed(tried, margin):
+        if (least is not None and margin <= least <= margin + FIT_TOLERANCE) or _bracketed(tried, margin):
             stopped = "margin"
             break
         if _corners_resist(tried):
@@ -159,14 +160,16 @@ def _try_record(inset: float, tight, report, law) -> dict:
     """One try of the search: the inset (mm) and its tight corner's least backlash, jam depth
     (mm) and jammed poses."""
     case = case_record(tight, report)
-    least = -1.0 if case["backlash_min_mm"] is None else float(case["backlash_min_mm"])
+    # where the teeth jam the least backlash is an overlap estimate, not a play
+    least = None if case["jams"] or case["backlash_min_mm"] is None else float(case["backlash_min_mm"])
     return {"inset_mm": inset, "tight_least_backlash_mm": least, "tight_depth_mm": case["max_penetration_mm"],
             "jams": case["jams"], **jam_record(report, law)}
 
 
 def _good(tried: dict, margin: float) -> bool:
     """Whether a try's tight corner keeps the margin (mm) without a jam."""
-    return not tried["jams"] and tried["tight_least_backlash_mm"] >= margin
+    least = tried["tight_least_backlash_mm"]
+    return not tried["jams"] and least is not None and least >= margin
 
 
 def _bracket(tried: list, margin: float) -> tuple[float, float]:
@@ -214,21 +217,22 @@ def _next_inset(tried: list, margin: float, cos_a: float) -> float:
     """The next inset (mm). After a jam: the last plus half the jam's depth (an inset e on
     both gears takes 2e off a penetration along the normals) and the margin's share. Else a
     secant through the last two tries that did not jam, or (one such try, or a flat secant)
-    the missing play's share: 2e of normal backlash is about 2e / cos(alpha) along the pitch
-    curve. A step that leaves the bracket of short and good tries bisects it instead."""
+    the missing play's share: an inset e adds 4e of normal backlash, about 4e / cos(alpha)
+    along the pitch curve. A step that leaves the bracket of short and good tries bisects it
+    instead."""
     last = tried[-1]
     aim_margin = margin + FIT_TOLERANCE / 2
-    if last["jams"]:
-        aim = last["inset_mm"] + 0.5 * last["tight_depth_mm"] + 0.5 * aim_margin * cos_a
+    if last["jams"] or last["tight_least_backlash_mm"] is None:
+        aim = last["inset_mm"] + 0.5 * last["tight_depth_mm"] + 0.25 * aim_margin * cos_a
     else:
         missing = aim_margin - last["tight_least_backlash_mm"]
-        aim = last["inset_mm"] + 0.5 * missing * cos_a
-        free = [t for t in tried if not t["jams"]]
+        aim = last["inset_mm"] + 0.25 * missing * cos_a
+        free = [t for t in tried if not t["jams"] and t["tight_least_backlash_mm"] is not None]
         if len(free) >= 2:
             prev, last = free[-2], free[-1]
             slope = ((last["tight_least_backlash_mm"] - prev["tight_least_backlash_mm"])
                      / (last["inset_mm"] - prev["inset_mm"]))
-            if np.isfinite(slope) and slope > 0.2:
+            if np.isfinite(slope) and slope > 0.4:
                 aim = last["inset_mm"] + (aim_margin - last["tight_least_backlash_mm"]) / slope
     low, high = _bracket(tried, margin)
     if low < aim < high:
@@ -242,7 +246,7 @@ def fit_record(result: FitResult, fit: str) -> dict:
     """What the report says of the fit (mm, um): the inset, what it adds to the normal
     backlash, the design's own figures before it and the search's tries."""
     return {"fit": fit, "margin_mm": result.margin, "inset_mm": result.inset,
-            "normal_backlash_added_mm": 2.0 * result.inset,
+            "normal_backlash_added_mm": 4.0 * result.inset,
             "how": "print compensation: both tooth outlines drawn this much smaller along their "
                    "normals (an exact polygon offset), as the printer's band moves them (SPEC §11)",
             "design": _figures(result.design), "search": result.rounds, "stopped": result.stopped}
@@ -267,8 +271,11 @@ def fit_line(record: dict) -> str:
                        f"{num(design[side]['hub_speed_ripple_pct'], '.2f')} %" for side in ("drive", "coast"))
     inset = record["inset_mm"]
     drawn = f"{inset:.3f} mm smaller" if inset >= 0 else f"{-inset:.3f} mm larger"
-    return (f"fit {record['fit']}: both tooth outlines drawn {drawn} along their normals (print "
-            f"compensation, normal backlash {record['normal_backlash_added_mm']:+.3f} mm) "
+    source = f" ({record['from']})" if record.get("from") else ""
+    replaced = record.get("replaces_tooth_clearance_mm")
+    instead = f", instead of the printer's tooth clearance {replaced:g} mm" if replaced else ""
+    return (f"fit {record['fit']}{source}: both tooth outlines drawn {drawn} along their normals "
+            f"(print compensation{instead}; normal backlash {record['normal_backlash_added_mm']:+.3f} mm) "
             f"keep the band's least backlash >= {record['margin_mm']:g} mm ({_tries(record['search'])}); "
             f"the design before it: {flanks}")
 

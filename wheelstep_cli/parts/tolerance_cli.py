@@ -41,10 +41,12 @@ def bore_fit(pair, band) -> dict | None:
 
 
 def bore_line(record: dict) -> str:
-    lo, hi = record["clearance_mm"]
+    lo, hi = (value + 0.0 for value in record["clearance_mm"])   # + 0.0: no "-0.000"
     return (f"  bore: shaft {record['shaft_mm']:g} mm in a bore drawn {record['drawn_mm']:g} mm, "
             f"printed {record['printed_mm'][0]:g}..{record['printed_mm'][1]:g} mm: clearance "
-            f"{lo:+.3f}..{hi:+.3f} mm " + ("(slides on)" if record["shaft_fits"] else
+            f"{lo:+.3f}..{hi:+.3f} mm " + ("(slides on)" if lo > 0.0 else
+                                          "(line to line at the band's extreme: may need reaming)"
+                                          if record["shaft_fits"] else
                                           "(TIGHT at the band's extreme: ream or press)"))
 
 
@@ -85,8 +87,9 @@ def fitted_pair(spec, chosen, fit: str, design_pair, design_report, progress=Non
     result = fit_pair(spec, chosen, fit, lambda s, p: design_pair, design_report=design_report,
                       progress=progress)
     _on_bed(result.pair, chosen)
-    return (result.pair, {**result.band, "fit": fit_record(result, fit),
-                          "bore": bore_fit(result.pair, chosen.band)}, result.nominal)
+    record = {**fit_record(result, fit), "replaces_tooth_clearance_mm": float(chosen.tooth_clearance)}
+    return (result.pair, {**result.band, "fit": record, "bore": bore_fit(result.pair, chosen.band)},
+            result.nominal)
 
 
 def _on_bed(pair, printer):

@@ -185,9 +185,10 @@ def gears(
     _require_slicer(slice_, fmt.value, chosen)
     # --fit, else the fit the printer's band names (batch fits to it too)
     fit_name = fit.value if fit else getattr(getattr(chosen, "band", None), "fit", None)
+    source = "--fit" if fit else f"the band of printer {chosen.name}" if fit_name else None
     _make_gears(spec, chosen, show, out, fmt.value, allow_interference, dry_run, force,
                 checked_extras(plot, gif, dxf, svg, step),
-                (tolerance or fit_name is not None, fit_name), slice_)
+                (tolerance or fit_name is not None, fit_name, source), slice_)
 
 
 def _value(choice):
@@ -220,7 +221,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                 dry_run: bool, force: bool, extras: GearExtras = GearExtras(),
                 band: tuple = (False, None), slice_: bool = False) -> None:
     """Build, check, write (unless refused or a dry run) and report the pair of ``spec``;
-    ``band`` = (check over the printer's band, the --fit or None); ``slice_``: slice the
+    ``band`` = (check over the printer's band, the fit or None[, where the fit comes from]); ``slice_``: slice the
     plates and check the G-code."""
     import typer
 
@@ -250,9 +251,11 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
         pair, tolerance, check = with_progress(not show.quiet, f"fitting to the band of {chosen.name}",
                                                fitted_pair, spec, chosen, band[1], design, design_check)
         record = _meshing_or_refused(show, pair, check, allow_interference)
+        if len(band) > 2 and band[2]:
+            tolerance["fit"]["from"] = band[2]
         require_fit_met(tolerance)
     else:
-        pair, tolerance, check = band_pair(spec, printer, band[0])
+        pair, tolerance, check = band_pair(spec, printer, bool(band[0]))
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
         record = _meshing_or_refused(show, pair, check, allow_interference)
@@ -329,7 +332,7 @@ def _clearance_text(pair) -> str:
     if inset != 0.0:
         # a fit: the printer's clearance is replaced by the outlines' inset
         drawn = f"{inset:.3f} mm smaller" if inset > 0 else f"{-inset:.3f} mm larger"
-        return f", then both outlines drawn {drawn} along their normals (the fit)"
+        return f", then both outlines drawn {drawn} along their normals (the fit: j_n {4.0 * inset:+.3f} mm)"
     if clearance <= 0.0:
         return ""
     designed = pair.generated.cutter.backlash - clearance
