@@ -221,45 +221,17 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                 dry_run: bool, force: bool, extras: GearExtras = GearExtras(),
                 band: tuple = (False, None), slice_: bool = False) -> None:
     """Build, check, write (unless refused or a dry run) and report the pair of ``spec``;
-    ``band`` = (check over the printer's band, the fit or None[, where the fit comes from]); ``slice_``: slice the
-    plates and check the G-code."""
+    ``band`` = (check over the printer's band, the fit or None[, where the fit comes from]);
+    ``slice_``: slice the plates and check the G-code."""
     import typer
 
+    from wheelstep_cli.cli.commands.gears_checks import checked_pair
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
-    from wheelstep_cli.parts.fit import require_fit_met
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
-    from wheelstep_cli.parts.kinds import remedy_check
-    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
-    from wheelstep_cli.parts.mesh_check import check_gear_pair
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
-    from wheelstep_cli.parts.tolerance_cli import band_pair, fit_design, fitted_pair
 
-    def checked_remedy(check, trial):
-        return with_progress(not show.quiet, "checking the remedy", check, trial)
-
-    if band[1] is not None:
-        # the design is checked, bounded and refused as without a fit before the search
-        # spends a dozen meshing checks on it; the fit's inset is print compensation, judged
-        # on the band (the written pair's own figures are the inset outlines')
-        chosen, design = fit_design(spec, printer)
-        design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
-        design_record = _meshing_or_refused(show, design, design_check, allow_interference)
-        require_within_bounds(design, design_record,
-                              verify=remedy_check(design.printing.printer, checked_remedy))
-        require_printable_teeth(design)
-        pair, tolerance, check = with_progress(not show.quiet, f"fitting to the band of {chosen.name}",
-                                               fitted_pair, spec, chosen, band[1], design, design_check)
-        record = _meshing_or_refused(show, pair, check, allow_interference)
-        if len(band) > 2 and band[2]:
-            tolerance["fit"]["from"] = band[2]
-        require_fit_met(tolerance)
-    else:
-        pair, tolerance, check = band_pair(spec, printer, bool(band[0]))
-        if check is None:
-            check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
-        record = _meshing_or_refused(show, pair, check, allow_interference)
-        require_within_bounds(pair, record, verify=remedy_check(printer, checked_remedy))
+    pair, record, tolerance, check = checked_pair(spec, printer, show, allow_interference, band)
     require_printable_teeth(pair)
     if tolerance is not None:
         record["tolerance"] = tolerance
@@ -278,24 +250,6 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     show.files(written, dry_run, joined=True)
     if sliced is not None and not sliced["meshes"]:
         raise typer.Exit(1)
-
-
-def _meshing_or_refused(show: Output, pair, check, allow_interference: bool) -> dict:
-    """The meshing record of ``check`` (of ``pair``), refused (exit 1, nothing written) when
-    the teeth interfere and that is not allowed."""
-    import typer
-
-    from wheelstep_cli.parts.mesh_bounds import opening_remedy
-    from wheelstep_cli.parts.mesh_check import meshing_record
-
-    record = meshing_record(check)
-    if record["interference"] and not allow_interference:
-        show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
-                   f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
-                   f"{record['max_overlap_area_mm2']:.3f} mm2){opening_remedy(pair)}; nothing "
-                   "written (--allow-interference writes them anyway)")
-        raise typer.Exit(1)
-    return record
 
 
 def _slice(show: Output, pair, record: dict, files: dict, out: Path) -> dict:

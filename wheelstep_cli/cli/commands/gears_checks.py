@@ -1,0 +1,64 @@
+"""What ``wheelstep gears`` checks before it writes a pair: the meshing check, the design
+bounds and, with a fit, the design before the search and the fit itself (SPEC §10, §11)."""
+
+from __future__ import annotations
+
+from wheelstep_cli.cli.output import Output
+
+
+def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tuple):
+    """(pair, meshing record, band record or None, meshing report) of ``spec`` built for
+    ``printer``, refused (DesignError, or exit 1 for interference) as ``gears`` refuses it;
+    ``band`` = (check over the printer's band, the fit or None[, where the fit comes from])."""
+    from wheelstep_cli.cli.progress import with_progress
+    from wheelstep_cli.parts.fit import require_fit_met
+    from wheelstep_cli.parts.kinds import remedy_check
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+    from wheelstep_cli.parts.mesh_check import check_gear_pair
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
+    from wheelstep_cli.parts.tolerance_cli import band_pair, fit_design, fitted_pair
+
+    def checked_remedy(check, trial):
+        return with_progress(not show.quiet, "checking the remedy", check, trial)
+
+    if band[1] is not None:
+        # the design is checked, bounded and refused as without a fit before the search
+        # spends a dozen meshing checks on it; the fit's inset is print compensation, judged
+        # on the band (the written pair's own figures are the inset outlines')
+        chosen, design = fit_design(spec, printer)
+        design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
+        design_record = _meshing_or_refused(show, design, design_check, allow_interference)
+        require_within_bounds(design, design_record,
+                              verify=remedy_check(design.printing.printer, checked_remedy))
+        require_printable_teeth(design)
+        pair, tolerance, check = with_progress(not show.quiet, f"fitting to the band of {chosen.name}",
+                                               fitted_pair, spec, chosen, band[1], design, design_check)
+        record = _meshing_or_refused(show, pair, check, allow_interference)
+        if len(band) > 2 and band[2]:
+            tolerance["fit"]["from"] = band[2]
+        require_fit_met(tolerance)
+    else:
+        pair, tolerance, check = band_pair(spec, printer, bool(band[0]))
+        if check is None:
+            check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
+        record = _meshing_or_refused(show, pair, check, allow_interference)
+        require_within_bounds(pair, record, verify=remedy_check(printer, checked_remedy))
+    return pair, record, tolerance, check
+
+
+def _meshing_or_refused(show: Output, pair, check, allow_interference: bool) -> dict:
+    """The meshing record of ``check`` (of ``pair``), refused (exit 1, nothing written) when
+    the teeth interfere and that is not allowed."""
+    import typer
+
+    from wheelstep_cli.parts.mesh_bounds import opening_remedy
+    from wheelstep_cli.parts.mesh_check import meshing_record
+
+    record = meshing_record(check)
+    if record["interference"] and not allow_interference:
+        show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
+                   f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
+                   f"{record['max_overlap_area_mm2']:.3f} mm2){opening_remedy(pair)}; nothing "
+                   "written (--allow-interference writes them anyway)")
+        raise typer.Exit(1)
+    return record
