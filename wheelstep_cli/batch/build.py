@@ -10,8 +10,9 @@ import numpy as np
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.names import yaml_message
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.parts.kinds import KINDS, for_printer, printed_spec
-from wheelstep_cli.parts.tolerance import printer_with_clearance
+from wheelstep_cli.parts.kinds import KINDS, for_printer
+from wheelstep_cli.parts.tolerance import design_printer
+from wheelstep_cli.parts.tolerance_cli import design_pair
 
 
 @dataclass
@@ -56,9 +57,9 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
     try:
         kind = KINDS[entry.kind]
         fit = _printer_fit(entry) if tolerance and kind.mating_check is not None else None
-        printer = entry.printer if fit is None else printer_with_clearance(entry.printer, 0.0)
-        printed = entry.printed if fit is None else printed_spec(kind, entry.spec, printer)
-        built = for_printer(kind, kind.build_part(printed), printer, entry.spec)
+        printer = entry.printer if fit is None else design_printer(entry.printer)
+        built = (for_printer(kind, kind.build_part(entry.printed), printer, entry.spec) if fit is None
+                 else design_pair(entry.spec, entry.printer))
         mating = kind.mating_check(built) if kind.mating_check is not None else None
         result = EntryResult(entry.index, _parts(kind, built), _report(kind, built, mating), mating=mating)
         refused = _refused(entry, result) or _out_of_bounds(entry, built, result, printer)
@@ -105,15 +106,14 @@ def _fitted(entry: Entry, kind, design, fit: str) -> EntryResult:
     """A gear pair entry drawn for its printer band's ``fit`` (parts.fit): ``design`` (drawn
     without the printer's tooth clearance, checked and within the bounds) inset until the
     band keeps the fit's margin; refused (naming ``fit``) when no inset does."""
-    from wheelstep_cli.parts.fit import fit_pair, fit_record, require_fit_met
+    from wheelstep_cli.parts.fit import require_fit_met
     from wheelstep_cli.parts.mesh_check import meshing_record
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
-    from wheelstep_cli.parts.tolerance_cli import bore_fit
+    from wheelstep_cli.parts.tolerance_cli import fitted_pair
 
-    found = fit_pair(entry.spec, entry.printer, fit, lambda spec, printer: design)
-    built, mating = found.pair, meshing_record(found.nominal)
-    band = {"checked": True, "tooth_clearance_mm": 0.0, **found.band, "fit": fit_record(found, fit),
-            "bore": bore_fit(built, entry.printer.band)}
+    built, band, nominal = fitted_pair(entry.spec, entry.printer, fit, design, None)
+    mating = meshing_record(nominal)
+    band = {"checked": True, "tooth_clearance_mm": 0.0, **band}
     report = {**_report(kind, built, mating), "tolerance": band}
     try:
         require_fit_met(band, remedy=BATCH_FIT_REMEDY)

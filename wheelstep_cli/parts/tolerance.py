@@ -219,7 +219,7 @@ def band_lines(record: dict) -> list[str]:
             f"  {case['case']:<28} {case['pinion_offset_mm']:+.3f}/{case['wheel_offset_mm']:+.3f} mm "
             f"at {case['distance_mm']:g} mm: "
             + (f"JAMS ({case.get('jammed_poses', case['interfering_poses'])} poses, "
-               f"{1000 * case['max_penetration_mm']:.0f} um deep" + _at_corners(case)
+               f"{1000 * case['max_penetration_mm']:.0f} um deep" + at_corners(case)
                # where the teeth overlap the contact angles are estimates, not a motion
                + ("; no backlash or TE where rigid teeth cannot go)" if case['interfering_poses'] else ")")
                if case['jams'] else "ok")
@@ -230,7 +230,7 @@ def band_lines(record: dict) -> list[str]:
     return lines
 
 
-def _at_corners(case: dict) -> str:
+def at_corners(case: dict) -> str:
     """What a jammed case's line says of its jam at the pitch-curve corners (nothing when it
     jams at every pose: the share would only measure the corner zone)."""
     jammed, corner = case.get("jammed_poses", 0), case.get("jammed_at_corners", 0)
@@ -239,6 +239,7 @@ def _at_corners(case: dict) -> str:
     return ", all at the pitch-curve corners" if corner == jammed else f", {corner} at the pitch-curve corners"
 
 
-def printer_with_clearance(printer, clearance: float):
-    """``printer`` drawing its teeth with ``clearance`` mm of extra backlash instead."""
-    return replace(printer, tooth_clearance=float(clearance))
+def design_printer(printer):
+    """``printer`` as a fit's design is drawn for it: without its tooth clearance (the
+    fit's outline inset replaces it); every other compensation kept."""
+    return replace(printer, tooth_clearance=0.0)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from wheelstep_cli.parts.fit import fit_line, fit_pair, fit_record
 from wheelstep_cli.parts.tolerance import (NOMINAL, SectionedPair, band_lines, band_record, check_case,
-                                           printer_with_clearance, require_band, sectioned_pair)
+                                           design_printer, require_band, sectioned_pair)
 
 
 def band_printer(printer):
@@ -75,10 +75,16 @@ def fit_design(spec, printer):
     """(the printer whose band a fit is for: ``printer``, else the default printer; the
     design drawn on it without its tooth clearance, which the fit's inset replaces),
     refused (DesignError) at once when a gear cannot go on its bed."""
+    chosen = band_printer(printer)
+    return chosen, _on_bed(design_pair(spec, chosen), chosen)
+
+
+def design_pair(spec, printer):
+    """The gear pair of ``spec`` drawn for ``printer`` as a fit's design: without the
+    printer's tooth clearance (:func:`~wheelstep_cli.parts.tolerance.design_printer`)."""
     from wheelstep_cli.parts.kinds import build_for_printer
 
-    chosen = band_printer(printer)
-    return chosen, _on_bed(build_for_printer("gear-pair", spec, printer_with_clearance(chosen, 0.0)), chosen)
+    return build_for_printer("gear-pair", spec, design_printer(printer))
 
 
 def fitted_pair(spec, chosen, fit: str, design_pair, design_report, progress=None):
