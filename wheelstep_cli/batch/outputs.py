@@ -47,21 +47,21 @@ def _distances_resolved(values: dict, report: dict | None, key: str) -> dict:
                          if name in resolved and name in values}}
 
 
-def _fitted(result: EntryResult) -> bool:
+def _is_fitted(result: EntryResult) -> bool:
     """Whether the entry's gear pair was drawn for its printer band's fit (batch.build)."""
     return bool(result.band and "fit" in result.band)
 
 
 def _printed_values(entry: Entry, result: EntryResult) -> dict:
     """The printed parameters: a fitted pair's as drawn (without the printer's tooth clearance)."""
-    return result.report["printed_parameters"] if _fitted(result) else entry.printed.model_dump()
+    return result.report["printed_parameters"] if _is_fitted(result) else entry.printed.model_dump()
 
 
 def _printer_geometry(entry: Entry, result: EntryResult) -> dict:
     """The printer settings that changed the entry's geometry; a fitted pair's teeth get the
     fit's inset instead of the tooth clearance."""
     geometry = entry.printer.geometry()
-    if _fitted(result):
+    if _is_fitted(result):
         geometry.update(tooth_clearance=0.0, outline_inset=result.band["fit"]["inset_mm"])
     return geometry
 

@@ -25,9 +25,9 @@ import numpy as np
 from wheelstep_cli.config.printers import FIT_MARGINS, Fit
 from wheelstep_cli.gears.meshing import MeshingSettings
 from wheelstep_cli.geometry.planar import offset_outline
-from wheelstep_cli.parts.tolerance import (NOMINAL, OFFSET_THIN, band_cases, band_record, case_record,
-                                           case_settings, check_case, jam_record, mid_play,
-                                           printer_with_clearance, sectioned_pair)
+from wheelstep_cli.parts.tolerance import (NOMINAL, OFFSET_THIN, at_corners, band_cases, band_record,
+                                           case_record, case_settings, check_case, design_printer,
+                                           jam_record, mid_play, sectioned_pair)
 
 #: The search stops when the tight corner's least backlash is this close (mm) above the margin.
 FIT_TOLERANCE = 0.005
@@ -59,8 +59,8 @@ class FitResult:
     margin: float
     band: dict
     rounds: list
-    stopped: str = "margin"   # why the search ended: margin, corners, cap, repeat or rounds
-    design_pair: object = None
+    stopped: str              # why the search ended: margin, corners, cap, repeat or rounds
+    design_pair: object       # the design as drawn for the printer, before the inset
 
 
 def inset_sections(sections, inset: float):
@@ -101,7 +101,7 @@ def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings
     margin = FIT_MARGINS[Fit(fit)]
     tight = band_cases(printer.band)[0]
     cos_a = float(np.cos(np.radians(spec.pressure_angle)))
-    design_pair = build(spec, printer_with_clearance(printer, 0.0))
+    design_pair = build(spec, design_printer(printer))
     # an inset e on both gears adds 4e to the normal backlash (each flank of the pinion's
     # tooth and of the wheel's space moves e): a negative one takes it off
     lowest = -0.25 * _normal_backlash(spec, design_pair)
@@ -187,8 +187,8 @@ def _bracketed(tried: list, margin: float) -> bool:
 def _least_play(tried: list, margin: float) -> float:
     """The inset (mm) to write: the smallest tried whose tight corner keeps the margin without
     a jam, else the last tried (the fit is then refused on the band it gives)."""
-    low, high = _bracket(tried, margin)
-    return float(high) if np.isfinite(high) else tried[-1]["inset_mm"]
+    good = [t["inset_mm"] for t in tried if _good(t, margin)]
+    return float(min(good)) if good else tried[-1]["inset_mm"]
 
 
 def _corners_resist(tried: list) -> bool:
@@ -316,11 +316,9 @@ def require_fit_met(record: dict, remedy: str = FIT_REMEDY) -> None:
 
 
 def _corner_cause(case: dict, fit: dict) -> str:
-    """What the refusal says of a jam at the pitch-curve corners: where, and when the search
-    stopped on it, that a larger inset did not shrink it."""
-    jammed, corner = case.get("jammed_poses", 0), case.get("jammed_at_corners", 0)
-    if not corner:
-        return ""
-    if fit.get("stopped") != "corners":
-        return ", all at the pitch-curve corners" if corner == jammed else f", {corner} of them at the pitch-curve corners"
-    return (", all at the pitch-curve corners, and a larger inset did not make that jam shallower")
+    """What the refusal says of a jam at the pitch-curve corners: where (as the band's line
+    says it), and when the search stopped on it, that a larger inset did not shrink it."""
+    where = at_corners(case)
+    if where and fit.get("stopped") == "corners":
+        return where + ", and a larger inset did not make that jam shallower"
+    return where

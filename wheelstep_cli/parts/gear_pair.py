@@ -135,12 +135,19 @@ def law_record(spec: GearPairSpec, law) -> dict:
     return {"a": m.a, "b": m.b, "c": m.c, "turns": law.turns, "u": law.u}
 
 
+def generation_settings(spec: GearPairSpec):
+    """The generator's settings (gears.generation.GenerationSettings) for ``spec``."""
+    from wheelstep_cli.gears.generation import GenerationSettings
+
+    return replace(GenerationSettings(), tilt=spec.tilt)
+
+
 def _build_generated(spec: GearPairSpec) -> GearPair:
     """Generated teeth (SPEC §9): pitch curves rolling at the installed distance."""
-    from wheelstep_cli.gears.generation import GenerationSettings, generate_pair, simplify_outline
+    from wheelstep_cli.gears.generation import generate_pair, simplify_outline
 
     _, law = generation_law(spec)
-    settings = replace(GenerationSettings(), tilt=spec.tilt)
+    settings = generation_settings(spec)
     distance = rolling_distance(spec, law)
     if spec.backlash is None:
         spec = spec.model_copy(update={"backlash": generated_backlash(spec, law, distance, settings)})
@@ -164,11 +171,10 @@ def inset_gear_pair(pair: GearPair, inset: float) -> GearPair:
     lays outlines down offset along their normals, so the fit takes its clearance there too).
     The plates are rebuilt round the new outlines and checked; a printer's bed-side
     compensation is not applied here (parts.fit does, as for any part drawn for a printer)."""
-    from wheelstep_cli.gears.generation import GenerationSettings
     from wheelstep_cli.geometry.planar import offset_outline
 
     # thinned as the written outlines are (their Douglas-Peucker tolerance)
-    thin = GenerationSettings().wheel_tolerance
+    thin = generation_settings(pair.spec).wheel_tolerance
     p_outline = offset_outline(pair.pinion_outline, -inset, "pinion", thin=thin)
     w_outline = offset_outline(pair.wheel_outline, -inset, "wheel", thin=thin)
     gen = pair.generated
