@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 
+from tests.batch.test_batch import object_metadata
 from tests.helpers.files import printer_profile_without_band, write
 
 
@@ -85,9 +86,24 @@ def test_a_printer_band_with_a_fit_has_batch_inset_its_gear_pairs_to_the_band(cl
     assert report["design_report"]["outline_inset_mm"]["inset_mm"] == band["fit"]["inset_mm"]
     assert report["printer_geometry"]["tooth_clearance"] == 0.0
     assert report["printer_geometry"]["outline_inset"] == band["fit"]["inset_mm"]
+    assert report["meshing"]["mounting"]["closer_mm"] > 0.0   # the inset outlines' own mounting gap
     assert "inset along their normals for the band's fit 'normal'" in (out / "print-sheet.md").read_text()
     assert "jams over the band" not in result.stderr
+    assert (f"pair: fit normal to the band of {band['printer']}: both tooth outlines drawn "
+            f"{band['fit']['inset_mm']:.3f} mm smaller") in result.stdout
+    assert (f"pair: fit normal to the band of {band['printer']}: both tooth outlines drawn "
+            f"{band['fit']['inset_mm']:.3f} mm smaller") in result.stdout
+    # the plate's 3MF metadata says the parts as printed: no tooth clearance, the inset, and
+    # the design's backlash (not the printer's clearance added to it)
+    placed = [meta for plate in sorted(out.glob("*.3mf")) for meta in object_metadata(plate).values()]
+    assert placed and all(meta["wheelstep:printer.tooth_clearance"] == "0"
+                          and abs(float(meta["wheelstep:printer.outline_inset"]) - band["fit"]["inset_mm"]) < 1e-6
+                          and abs(float(meta["wheelstep:backlash"]) - report["printed_parameters"]["backlash"]) < 1e-9
+                          for meta in placed)
 
     gears = cli("gears", "--profile", "desk-demo", "--printer", printer, "--json", "-q", "--out", tmp_path / "g")
     assert gears.exit_code == 0, gears.stderr
     assert json.loads(gears.stdout)["meshing"]["tolerance"]["fit"]["inset_mm"] == band["fit"]["inset_mm"]
+    written = [meta for plate in sorted((tmp_path / "g").glob("*.3mf")) for meta in object_metadata(plate).values()]
+    assert written and all(abs(float(meta["wheelstep:outline_inset"]) - band["fit"]["inset_mm"]) < 1e-9
+                           for meta in written)

@@ -183,3 +183,22 @@ def test_a_module_sets_where_the_presets_pair_rolls_and_the_plate_is_checked_the
     (measured,) = json.loads(checked.stdout)["pairs"]
     assert measured["distance_mm"] == pytest.approx(rolling, abs=1e-6)
     assert measured["interference"] is False
+
+
+def test_a_pair_taller_than_the_printer_is_refused_before_any_tooth_is_cut(cli, tmp_path, monkeypatch):
+    """The printer's height is checked before the teeth are generated (the pair would be
+    refused by its plate anyway, after seconds of work), naming --thickness and the limit."""
+    import wheelstep_cli.parts.gear_pair as gear_pair
+
+    def no_build(spec):
+        raise AssertionError("the teeth were cut before the height was checked")
+
+    monkeypatch.setattr(gear_pair, "_build", no_build)
+    for args, printer in ((["--thickness", "300", "--printer", "fdm-0.4-pla", "--format", "stl"], "fdm-0.4-pla"),
+                          (["--thickness", "1e5"], None)):
+        result = cli("gears", *args, "--out", tmp_path / "tall")
+        assert result.exit_code == 2, result.stderr
+        line = error_line(result)
+        assert line.startswith(f"wheelstep: error: --thickness = {args[1]}: makes part 'pinion'")
+        assert "mm tall, more than the" in line and (printer is None or f"printer '{printer}'" in line)
+        assert not (tmp_path / "tall").exists()

@@ -91,6 +91,12 @@ def test_fit_auto_insets_the_default_pair_until_the_fdm_band_no_longer_jams(cli,
     for side in ("drive", "coast"):
         assert fit["design"][side]["F_i_total_um"] <= bounds.total_um
         assert fit["design"][side]["hub_speed_ripple_pct"] <= bounds.ripple_pct
+    # the mounting tolerance is the written (inset) outlines': their least gap, and the tip
+    # clearance the inset deepened by 2e (each tip e in, each space e deeper)
+    generated = json.loads((out / "gears.json").read_text())["generated"]
+    mounting = meshing["mounting"]
+    assert mounting["closer_mm"] > 0.0
+    assert mounting["tip_clearance_mm"] == pytest.approx(0.25 * generated["module_mm"] + 2.0 * fit["inset_mm"])
 
 
 @pytest.mark.parametrize("option", [["--fit", "auto"], ["--tolerance"]])

@@ -52,12 +52,12 @@ def _is_fitted(result: EntryResult) -> bool:
     return bool(result.band and "fit" in result.band)
 
 
-def _printed_values(entry: Entry, result: EntryResult) -> dict:
+def printed_values(entry: Entry, result: EntryResult) -> dict:
     """The printed parameters: a fitted pair's as drawn (without the printer's tooth clearance)."""
     return result.report["printed_parameters"] if _is_fitted(result) else entry.printed.model_dump()
 
 
-def _printer_geometry(entry: Entry, result: EntryResult) -> dict:
+def printer_geometry(entry: Entry, result: EntryResult) -> dict:
     """The printer settings that changed the entry's geometry; a fitted pair's teeth get the
     fit's inset instead of the tooth clearance."""
     geometry = entry.printer.geometry()
@@ -73,9 +73,9 @@ def entry_report_bytes(entry: Entry, result: EntryResult) -> bytes:
         "entry": entry.name, "kind": entry.kind, "design_profile": entry.design_label,
         "printer_profile": entry.printer.name, "quantity": entry.quantity,
         "parameters": _distances_resolved(entry.spec.model_dump(), result.report, "parameters"),
-        "printed_parameters": _distances_resolved(_printed_values(entry, result), result.report,
+        "printed_parameters": _distances_resolved(printed_values(entry, result), result.report,
                                                   "printed_parameters"),
-        "printer_geometry": _printer_geometry(entry, result),
+        "printer_geometry": printer_geometry(entry, result),
         "printed_parts": {p.name: part_summary(p, entry.printer) for p in result.parts},
         **({"meshing": result.mating} if result.mating is not None else {}),
         **({"tolerance": result.band} if result.band is not None else {}),

@@ -75,8 +75,11 @@ def plate_picture(plate: Plate) -> bytes:
                      f"{len(plate.items)} parts")
 
 
-def _metadata(entry: Entry, part: str, copy: int) -> dict[str, str]:
-    """3MF metadata of one placed part: where it comes from and its design parameters."""
+def _metadata(entry: Entry, result: EntryResult, part: str, copy: int) -> dict[str, str]:
+    """3MF metadata of one placed part: where it comes from, its parameters as printed and
+    the printer geometry that changed it (a fitted pair's: no tooth clearance, its inset)."""
+    from wheelstep_cli.batch.outputs import printed_values, printer_geometry
+
     meta = {"entry": entry.name, "kind": entry.kind, "part": part, "copy": f"{copy} of {entry.quantity}",
             "design_profile": entry.design_label, "printer_profile": entry.printer.name}
     if entry.kind == "gear-pair":
@@ -84,10 +87,10 @@ def _metadata(entry: Entry, part: str, copy: int) -> dict[str, str]:
     if entry.kind == "gear-pair":   # where it is mounted, for mesh-check of the plate
         from wheelstep_cli.parts.gear_laws import distance_record
 
-        meta.update(design_metadata({**entry.printed.model_dump(), **distance_record(entry.printed)}))
+        meta.update(design_metadata({**printed_values(entry, result), **distance_record(entry.printed)}))
     else:
-        meta.update(design_metadata(entry.printed.model_dump()))
-    for name, value in entry.printer.geometry().items():
+        meta.update(design_metadata(printed_values(entry, result)))
+    for name, value in printer_geometry(entry, result).items():
         meta[f"printer.{name}"] = f"{value:g}"
     return meta
 
@@ -118,7 +121,7 @@ def plan_plates(entries: list[Entry], results: dict[int, EntryResult]) -> tuple[
             for part, (bed, x, y, turned) in zip(results[entry.index].parts, spots):
                 label = f"{entry.name} {part.name}" + (f" #{copy}" if entry.quantity > 1 else "")
                 beds.setdefault(bed, []).append(PlacedPart(
-                    label, entry.name, part, x, y, turned, _metadata(entry, part.name, copy)))
+                    label, entry.name, part, x, y, turned, _metadata(entry, results[entry.index], part.name, copy)))
         for bed in sorted(beds):
             plates.append(Plate(len(plates) + 1, printer, beds[bed]))
     return plates, dropped

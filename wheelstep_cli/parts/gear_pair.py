@@ -389,7 +389,8 @@ def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both", meshing: dict 
         for part in parts:
             files[out / f"{part.name}.stl"] = stl_bytes(part.vertices, part.faces, f"wheelstep {part.name}")
     if fmt in ("3mf", "both"):
-        meta = design_metadata({**pair.spec.model_dump(), **_metadata_distances(pair)})
+        inset = {"outline_inset": float(pair.inset)} if pair.inset else {}
+        meta = design_metadata({**pair.spec.model_dump(), **_metadata_distances(pair), **inset})
         plates = bed_plates(parts, printer, [{"part": p.name, "pair": "gears", **meta} for p in parts])
         for name, data in plate_files("gears", plates, printer, "wheelstep gear pair",
                                           pair.printing is not None).items():

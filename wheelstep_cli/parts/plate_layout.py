@@ -42,13 +42,20 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float,
     the one the user gave."""
     for part in parts:
         size = part.bounds[1] - part.bounds[0]
-        if size[2] > printer.max_height:
-            raise DesignError(height_param, height, f"makes part '{part.name}' {size[2]:.1f} mm "
-                              f"tall, more than the {printer.max_height:g} mm printer "
-                              f"'{printer.name}' prints").tied_to(footprint or {})
+        require_height(part.name, size[2], printer, height_param, height, footprint)
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
             raise DesignError("printer", printer.name, problem).tied_to(footprint or {})
+
+
+def require_height(name: str, tall: float, printer: Printer, height_param: str, height: float,
+                   footprint: dict[str, object] | None = None) -> None:
+    """Refuse (DesignError on ``height_param`` = ``height``) a part ``name`` ``tall`` mm tall
+    when ``printer`` prints less; a build can check this before it spends time on the part."""
+    if tall > printer.max_height:
+        raise DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall, more than "
+                          f"the {printer.max_height:g} mm printer '{printer.name}' prints"
+                          ).tied_to(footprint or {})
 
 
 def pack_units(units: list[list[tuple[float, float]]], printer: Printer

@@ -3,6 +3,8 @@ pair built (fitted or as asked) and the record and text lines of the report. Len
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from wheelstep_cli.parts.fit import fit_line, fit_pair, fit_record
 from wheelstep_cli.parts.tolerance import (NOMINAL, SectionedPair, band_lines, band_record, check_case,
                                            design_printer, require_band, sectioned_pair)
@@ -95,7 +97,20 @@ def fitted_pair(spec, chosen, fit: str, design_pair, design_report, progress=Non
     _on_bed(result.pair, chosen)
     record = {**fit_record(result, fit), "replaces_tooth_clearance_mm": float(chosen.tooth_clearance)}
     return (result.pair, {**result.band, "fit": record, "bore": bore_fit(result.pair, chosen.band)},
-            result.nominal)
+            replace(result.nominal, mounting=_fitted_mounting(result.pair, result.inset)))
+
+
+def _fitted_mounting(pair, inset: float) -> dict:
+    """The mounting record (parts.mesh_check) of a fitted pair's outlines as written: the
+    inset e moves each tip e in and deepens each space e, so the tip clearance grows by 2e."""
+    from wheelstep_cli.parts.mesh_check import mounting_record
+
+    sections = sectioned_pair(pair)
+    generated = getattr(pair, "generated", None)
+    record = mounting_record(sections.pinion, sections.wheel, sections.law, sections.distance, generated)
+    if "tip_clearance_mm" in record:
+        record["tip_clearance_mm"] += 2.0 * float(inset)
+    return record
 
 
 def _on_bed(pair, printer):

@@ -107,7 +107,8 @@ def _summary(file: Path, out: Path, plan, outcome, written: list[Path]) -> dict:
 def _bands(outcome) -> list[dict]:
     """Per built gear pair checked over its printer's band: jams or not, least backlash."""
     return [{"entry": e.name, "printer": b["printer"], "checked": b["checked"], "jams": b["jams"],
-             "least_backlash_mm": b.get("least_backlash_mm"), **({"note": b["note"]} if "note" in b else {})}
+             "least_backlash_mm": b.get("least_backlash_mm"), **({"note": b["note"]} if "note" in b else {}),
+             **({"fit": b["fit"]["fit"], "inset_mm": b["fit"]["inset_mm"]} if "fit" in b else {})}
             for e in outcome.built if (b := outcome.results[e.index].band) is not None]
 
 
@@ -133,7 +134,10 @@ def _lines(out: Path, plan, outcome) -> list[str]:
     return [f"built {len(outcome.built)} of {_count(len(plan.entries), 'entry', 'entries')}: "
             f"{_count(parts, 'part', 'parts')} on {_count(plates, 'plate', 'plates')} in {out}",
             *(f"  {p.stem}.3mf ({p.printer.name}): {_count(len(p.items), 'part', 'parts')}"
-              for p in outcome.plates)]
+              for p in outcome.plates),
+            *(f"  {b['entry']}: fit {b['fit']} to the band of {b['printer']}: both tooth outlines drawn "
+              f"{b['inset_mm']:.3f} mm smaller along their normals, least backlash over the band "
+              f"{b['least_backlash_mm']:.3f} mm" for b in _bands(outcome) if "fit" in b and not b["jams"])]
 
 
 def _count(number: int, one: str, many: str) -> str:

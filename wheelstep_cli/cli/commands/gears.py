@@ -231,6 +231,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
+    _require_height(spec, printer, fmt)
     pair, record, tolerance, check = checked_pair(spec, printer, show, allow_interference, band)
     require_printable_teeth(pair)
     if tolerance is not None:
@@ -250,6 +251,18 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     show.files(written, dry_run, joined=True)
     if sliced is not None and not sliced["meshes"]:
         raise typer.Exit(1)
+
+
+def _require_height(spec, printer, fmt: str) -> None:
+    """Refuse a pair taller than the printer its plates are laid out for prints (the one
+    given, else the default printer when a 3MF is written) before any tooth is cut."""
+    from wheelstep_cli.config.profiles import load_printer
+    from wheelstep_cli.parts.gear_pair import footprint
+    from wheelstep_cli.parts.plate_layout import require_height
+
+    target = printer or (load_printer() if fmt in ("3mf", "both") else None)
+    if target is not None:
+        require_height("pinion", float(spec.thickness), target, "thickness", spec.thickness, footprint(spec))
 
 
 def _slice(show: Output, pair, record: dict, files: dict, out: Path) -> dict:
