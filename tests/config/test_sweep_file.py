@@ -76,3 +76,23 @@ def test_tolerance_needs_printers_with_a_band(tmp_path):
     assert line.startswith(f"{sweep}:5: printers[1] = ") and "has no dimensional band" in line
     ok = write(tmp_path / "ok.yaml", "command: gears\ntolerance: true\nprinters: [fdm-0.4-pla]\n")
     assert load_sweep(ok).tolerance is True
+
+
+def test_a_gear_sweep_refuses_a_printer_whose_band_names_a_fit(tmp_path):
+    """A sweep does not search each design's fit, so a printer whose band names one (and
+    whose pairs `gears` would fit) is refused at its line with what to do instead."""
+    from pathlib import Path
+
+    preset = (Path(__file__).resolve().parents[2] / "profiles" / "fdm-0.4-pla.yaml").read_text()
+    fitted = preset.replace("  center_distance: 0.05\n", "  center_distance: 0.05\n  fit: normal\n")
+    assert fitted != preset
+    write(tmp_path / "fitted.yaml", fitted)
+    for tolerance in ("", "tolerance: true\n"):
+        sweep = write(tmp_path / "s.yaml", f"command: gears\n{tolerance}printers:\n  - fdm-0.4-pla\n"
+                                           f"  - {tmp_path / 'fitted.yaml'}\n")
+        with pytest.raises(InvalidInput) as err:
+            load_sweep(sweep)
+        (line,) = err.value.lines()
+        row = 4 + bool(tolerance)
+        assert line.startswith(f"{sweep}:{row}: printers[1] = ") and "its band names fit: normal" in line
+        assert f"wheelstep gears --printer {tmp_path / 'fitted.yaml'}" in line

@@ -114,6 +114,8 @@ def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
     _check_printers(doc, data.get("printers"), issues)
     if data.get("tolerance") is True:
         _check_band(doc, command, data.get("printers"), issues)
+    if command == "gears":
+        _check_no_fit(doc, data.get("printers"), issues)
     if issues:
         raise InvalidInput(issues)
     points = _points(sweep, grid, random)
@@ -227,6 +229,25 @@ def _check_band(doc: LocatedYaml, command, names, issues: list[Issue]) -> None:
             at = ("printers", i) if names else ("tolerance",)
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: has no dimensional "
                                 "band for tolerance: true; add a `band:` section to its profile"))
+
+
+def _check_no_fit(doc: LocatedYaml, names, issues: list[Issue]) -> None:
+    """A gear sweep's printers name no fit: a sweep does not search each point's fit (a
+    fit costs dozens of meshing checks), and its rows would not be the pairs `gears`
+    writes for that printer (it fits them)."""
+    from wheelstep_cli.config.profiles import load_printer_profile
+
+    for i, name in enumerate(names if isinstance(names, list) else []):
+        try:
+            band = load_printer_profile(name).band if isinstance(name, str) else None
+        except (DesignError, InvalidInput):   # an unknown or bad printer: _check_printers says it
+            continue
+        if band is not None and band.fit is not None:
+            at = ("printers", i)
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: its band names fit: "
+                                f"{band.fit}, which a sweep does not search for each design; "
+                                "sweep on a copy of the profile without `fit:`, then fit the designs "
+                                f"you keep with `wheelstep gears --printer {name}`"))
 
 
 def _axis_values(axis: list | Range) -> list:
