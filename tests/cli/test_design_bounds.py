@@ -68,6 +68,22 @@ def test_teeth_too_thin_for_the_printer_are_refused_with_a_remedy_that_prints(cl
     assert resin.exit_code == 0, resin.stderr
 
 
+def test_thin_teeth_under_a_fit_are_refused_with_a_tooth_count_that_keeps_its_tips_after_the_inset(cli, tmp_path):
+    """A fit's inset thins every tooth: the desk demo fitted to the FDM PLA band loses its tips,
+    and the tooth count the refusal offers is one whose pinion keeps them after that inset,
+    so that, applied, the pair is fitted and written."""
+    out = tmp_path / "out"
+    design = ["--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--fit", "auto", "--format", "stl"]
+    line = error_line(cli("gears", *design, "--out", out))
+    assert line.startswith("wheelstep: error: --z = 42: the teeth are too thin for printer 'fdm-0.4-pla'")
+    assert "nothing written" in line and not out.exists()
+    remedy = line.rsplit("; use ", 1)[1].split()[:2]
+    assert remedy[0] == "--z" and int(remedy[1]) < 42
+    result = cli("gears", *design, *remedy, "--json", "-q", "--out", out)
+    assert result.exit_code == 0, result.stderr
+    assert json.loads((out / "gears.json").read_text())["meshing"]["tolerance"]["fit"]["inset_mm"] > 0.0
+
+
 @seed(13)
 @settings(max_examples=3, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])

@@ -81,17 +81,24 @@ def require_printable_teeth(pair, printer=None) -> None:
 
 def fewer_teeth(pair, design, printer, width: float) -> int | None:
     """The largest tooth count below the design's (in whole law periods) whose pinion, drawn
-    for ``printer``, keeps its tips under two lines ``width`` mm wide; None if none of
-    :data:`TRIES` does. (The wheel, carved by that pinion, gets the larger module too.)"""
+    for ``printer`` (and inset as ``pair`` was for a fit), keeps its tips under two lines
+    ``width`` mm wide; None if none of :data:`TRIES` does. (The wheel, carved by that
+    pinion, gets the larger module too.)"""
+    from wheelstep_cli.geometry.planar import offset_outline
+    from wheelstep_cli.parts.gear_pair import generation_settings
     from wheelstep_cli.parts.kinds import KINDS, printed_spec
 
     law = pair.generated.law
+    inset = float(getattr(pair, "inset", 0.0))
     for step in range(1, TRIES + 1):
         z = design.z - step * law.pinion_periods
         if z < 6:
             return None
         printed = printed_spec(KINDS["gear-pair"], design.model_copy(update={"z": z}), printer)
         outline, module = _pinion(printed)
+        if inset:
+            # a fit thins every tooth by its inset: the remedy must keep the tips after it
+            outline = offset_outline(outline, -inset, "pinion", thin=generation_settings(printed).wheel_tolerance)
         if thin_teeth(outline, module, width, law.pinion_periods) is None:
             return z
     return None
