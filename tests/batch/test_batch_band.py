@@ -70,18 +70,24 @@ def test_a_printer_band_with_a_fit_has_batch_inset_its_gear_pairs_to_the_band(cl
     """A band's `fit:` is what batch fits gear pairs to, as `gears --fit` does: the design
     drawn without the printer's tooth clearance, both outlines inset until no case of the
     band jams and the least backlash keeps the margin; the parts written are the fitted ones
-    (`gears` with that printer and no --fit fits the same pair)."""
+    (`gears` with that printer and no --fit fits the same pair), the plate's metadata says
+    them as printed and `mesh-check` reads the plate back (a module in the design: its
+    distances are stored as the design gives them)."""
     from wheelstep_cli.config.printers import FIT_MARGINS, Fit
 
     printer = _resin_with_fit(tmp_path, "normal")
     batch = write(tmp_path / "fit.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"
-                                         f"    design: desk-demo\n    printer: {printer}\n")
+                                         f"    design: desk-demo\n    printer: {printer}\n"
+                                         "    overrides: {module: 1.2}\n")
     out = tmp_path / "out"
-    result = cli("batch", batch, "--out", out, "--jobs", "1")
+    # --no-tolerance skips the band check, not the fit: the fit is how the printer draws pairs
+    result = cli("batch", batch, "--out", out, "--jobs", "1", "--no-tolerance")
     assert result.exit_code == 0, result.stderr
     report = json.loads((out / "reports" / "pair.json").read_text())
     band = report["tolerance"]
     assert band["fit"]["fit"] == "normal" and band["fit"]["inset_mm"] > 0.0
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert [e["tolerance"]["inset_mm"] for e in manifest["entries"]] == [band["fit"]["inset_mm"]]
     assert not band["jams"] and band["least_backlash_mm"] >= FIT_MARGINS[Fit.normal] - 0.005
     assert report["design_report"]["outline_inset_mm"]["inset_mm"] == band["fit"]["inset_mm"]
     assert report["printer_geometry"]["tooth_clearance"] == 0.0
@@ -91,17 +97,22 @@ def test_a_printer_band_with_a_fit_has_batch_inset_its_gear_pairs_to_the_band(cl
     assert "jams over the band" not in result.stderr
     assert (f"pair: fit normal to the band of {band['printer']}: both tooth outlines drawn "
             f"{band['fit']['inset_mm']:.3f} mm smaller") in result.stdout
-    assert (f"pair: fit normal to the band of {band['printer']}: both tooth outlines drawn "
-            f"{band['fit']['inset_mm']:.3f} mm smaller") in result.stdout
     # the plate's 3MF metadata says the parts as printed: no tooth clearance, the inset, and
     # the design's backlash (not the printer's clearance added to it)
-    placed = [meta for plate in sorted(out.glob("*.3mf")) for meta in object_metadata(plate).values()]
+    plates = sorted(out.glob("*.3mf"))
+    placed = [meta for plate in plates for meta in object_metadata(plate).values()]
     assert placed and all(meta["wheelstep:printer.tooth_clearance"] == "0"
-                          and abs(float(meta["wheelstep:printer.outline_inset"]) - band["fit"]["inset_mm"]) < 1e-6
+                          and abs(float(meta["wheelstep:outline_inset"]) - band["fit"]["inset_mm"]) < 1e-9
                           and abs(float(meta["wheelstep:backlash"]) - report["printed_parameters"]["backlash"]) < 1e-9
+                          and meta["wheelstep:module"] == "1.2" and "wheelstep:center_distance" not in meta
                           for meta in placed)
+    read = cli("mesh-check", plates[0], "--samples", "96", "--json")
+    assert read.exit_code == 0, read.stderr
+    (measured,) = json.loads(read.stdout)["pairs"]
+    assert measured["interference"] is False and measured["backlash_min_mm"] > 0.0
 
-    gears = cli("gears", "--profile", "desk-demo", "--printer", printer, "--json", "-q", "--out", tmp_path / "g")
+    gears = cli("gears", "--profile", "desk-demo", "--module", "1.2", "--printer", printer, "--json", "-q",
+                "--out", tmp_path / "g")
     assert gears.exit_code == 0, gears.stderr
     assert json.loads(gears.stdout)["meshing"]["tolerance"]["fit"]["inset_mm"] == band["fit"]["inset_mm"]
     written = [meta for plate in sorted((tmp_path / "g").glob("*.3mf")) for meta in object_metadata(plate).values()]

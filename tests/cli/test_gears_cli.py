@@ -195,10 +195,23 @@ def test_a_pair_taller_than_the_printer_is_refused_before_any_tooth_is_cut(cli, 
 
     monkeypatch.setattr(gear_pair, "_build", no_build)
     for args, printer in ((["--thickness", "300", "--printer", "fdm-0.4-pla", "--format", "stl"], "fdm-0.4-pla"),
-                          (["--thickness", "1e5"], None)):
+                          (["--thickness", "1e5"], None),
+                          # a fit is for the default printer's band: drawn for that printer
+                          (["--thickness", "300", "--fit", "auto", "--format", "stl"], None)):
         result = cli("gears", *args, "--out", tmp_path / "tall")
         assert result.exit_code == 2, result.stderr
         line = error_line(result)
         assert line.startswith(f"wheelstep: error: --thickness = {args[1]}: makes part 'pinion'")
         assert "mm tall, more than the" in line and (printer is None or f"printer '{printer}'" in line)
         assert not (tmp_path / "tall").exists()
+
+
+def test_a_pair_exactly_as_tall_as_the_printer_prints_is_not_refused_early(cli, tmp_path):
+    """The early height check sees the thickness as the meshes hold it (float32), as the
+    plate's check does: a millionth of a millimetre over the printer's height rounds to it."""
+    from wheelstep_cli.config.profiles import load_printer_profile
+
+    tallest = load_printer_profile("resin-0.05-standard").max_height
+    result = cli("gears", "--profile", "desk-demo", "--thickness", f"{tallest + 1e-6:.6f}", "--printer",
+                 "resin-0.05-standard", "--format", "stl", "--dry-run", "-q", "--out", tmp_path / "o")
+    assert result.exit_code == 0, result.stderr

@@ -56,7 +56,9 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
     worker-process entry point; never raises)."""
     try:
         kind = KINDS[entry.kind]
-        fit = _printer_fit(entry) if tolerance and kind.mating_check is not None else None
+        # a band's fit is how the printer's pairs are drawn, not a check: it holds without
+        # ``tolerance`` too (the print sheet and the plates say the parts are fitted)
+        fit = _printer_fit(entry) if kind.mating_check is not None else None
         printer = entry.printer if fit is None else design_printer(entry.printer)
         built = (for_printer(kind, kind.build_part(entry.printed), printer, entry.spec) if fit is None
                  else design_pair(entry.spec, entry.printer))
@@ -92,11 +94,6 @@ def _report(kind, built, mating: dict | None) -> dict:
     return report
 
 
-#: What a batch fit that cannot be met suggests: the fit is the printer profile's.
-BATCH_FIT_REMEDY = ("remove `fit:` from the printer profile's band to print with its tooth_clearance; "
-                    "`wheelstep gears --tolerance --slice` shows which cases jam and how PrusaSlicer prints it")
-
-
 def _printer_fit(entry: Entry) -> str | None:
     """The fit (auto, tight, normal, loose) the entry's printer band names, else None."""
     return getattr(getattr(entry.printer, "band", None), "fit", None)
@@ -106,7 +103,8 @@ def _fitted(entry: Entry, kind, design, fit: str) -> EntryResult:
     """A gear pair entry drawn for its printer band's ``fit`` (parts.fit): ``design`` (drawn
     without the printer's tooth clearance, checked and within the bounds) inset until the
     band keeps the fit's margin; refused (naming ``fit``) when no inset does."""
-    from wheelstep_cli.parts.fit import require_fit_met
+    from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
+    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml
     from wheelstep_cli.parts.mesh_check import meshing_record
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
     from wheelstep_cli.parts.tolerance_cli import fitted_pair
@@ -116,10 +114,10 @@ def _fitted(entry: Entry, kind, design, fit: str) -> EntryResult:
     band = {"checked": True, "tooth_clearance_mm": 0.0, **band}
     report = {**_report(kind, built, mating), "tolerance": band}
     try:
-        require_fit_met(band, remedy=BATCH_FIT_REMEDY)
-        require_printable_teeth(built, entry.printer)
-    except DesignError as err:
-        return EntryResult(entry.index, report=report, error=yaml_message(err), param=err.param, mating=mating)
+        require_fit_met(band, remedy=PROFILE_FIT_REMEDY)
+        require_printable_teeth(built)    # on the printer it was drawn for: no tooth clearance
+    except DesignError as err:   # its remedy as the entry's override keys, as without a fit
+        return EntryResult(entry.index, report=report, error=remedy_in_yaml(err), param=err.param, mating=mating)
     return EntryResult(entry.index, _parts(kind, built), report, mating=mating, band=band)
 
 
@@ -163,7 +161,7 @@ def _out_of_bounds(entry: Entry, built, result: EntryResult, printer) -> EntryRe
 
     try:
         require_within_bounds(built, result.mating, verify=remedy_check(printer))
-        require_printable_teeth(built, entry.printer)
+        require_printable_teeth(built, printer)
     except DesignError as err:
         return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
                            param=err.param, mating=result.mating)

@@ -113,6 +113,8 @@ def _meshing(result: EntryResult) -> dict:
     if result.band is not None:
         band = result.band
         brief["tolerance"] = {"printer": band["printer"], "checked": band["checked"], "jams": band["jams"],
+                              **({"fit": band["fit"]["fit"], "inset_mm": band["fit"]["inset_mm"]}
+                                 if "fit" in band else {}),
                               **({"note": band["note"]} if "note" in band else {
                                   "least_backlash_mm": band["least_backlash_mm"],
                                   "largest_backlash_mm": band["largest_backlash_mm"],

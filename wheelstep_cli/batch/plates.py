@@ -87,10 +87,17 @@ def _metadata(entry: Entry, result: EntryResult, part: str, copy: int) -> dict[s
     if entry.kind == "gear-pair":   # where it is mounted, for mesh-check of the plate
         from wheelstep_cli.parts.gear_laws import distance_record
 
-        meta.update(design_metadata({**printed_values(entry, result), **distance_record(entry.printed)}))
+        # the distances as the design gives them (a module resolves the rolling distance:
+        # it is not stored beside it), whatever the report resolved
+        values = {k: v for k, v in printed_values(entry, result).items()
+                  if k not in ("center_distance", "install_distance")}
+        meta.update(design_metadata({**values, **distance_record(entry.printed)}))
     else:
         meta.update(design_metadata(printed_values(entry, result)))
-    for name, value in printer_geometry(entry, result).items():
+    geometry = printer_geometry(entry, result)
+    if "outline_inset" in geometry:   # a fit's, not the printer's: named as `gears --fit` names it
+        meta["outline_inset"] = f"{geometry.pop('outline_inset'):.12g}"
+    for name, value in geometry.items():
         meta[f"printer.{name}"] = f"{value:g}"
     return meta
 

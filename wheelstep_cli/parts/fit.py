@@ -270,7 +270,7 @@ def fit_line(record: dict) -> str:
                        f"{num(design[side]['f_i_tooth_um'], '.1f')} um ripple "
                        f"{num(design[side]['hub_speed_ripple_pct'], '.2f')} %" for side in ("drive", "coast"))
     inset = record["inset_mm"]
-    drawn = f"{inset:.3f} mm smaller" if inset >= 0 else f"{-inset:.3f} mm larger"
+    drawn = inset_words(inset)
     source = f" ({record['from']})" if record.get("from") else ""
     replaced = record.get("replaces_tooth_clearance_mm")
     instead = f", instead of the printer's tooth clearance {replaced:g} mm" if replaced else ""
@@ -278,6 +278,11 @@ def fit_line(record: dict) -> str:
             f"(print compensation{instead}; normal backlash {record['normal_backlash_added_mm']:+.3f} mm) "
             f"keep the band's least backlash >= {record['margin_mm']:g} mm ({_tries(record['search'])}); "
             f"the design before it: {flanks}")
+
+
+def inset_words(inset: float) -> str:
+    """How much smaller (or, < 0, larger) an inset of ``inset`` mm draws the outlines."""
+    return f"{inset:.3f} mm smaller" if inset >= 0 else f"{-inset:.3f} mm larger"
 
 
 def _tries(search: list) -> str:
@@ -290,6 +295,13 @@ def _tries(search: list) -> str:
 #: lay it down.
 FIT_REMEDY = ("print without --fit (the printer's own tooth clearance): --slice checks the pair as "
               "PrusaSlicer will print it, --tolerance shows which cases of the band jam")
+
+
+#: ... and what a fit a printer profile's band names suggests (``batch``, or ``gears`` given
+#: no --fit): the fit is the profile's, so it is taken out there.
+PROFILE_FIT_REMEDY = ("remove `fit:` from the printer profile's band to print with its tooth_clearance "
+                      "(with it removed, `wheelstep gears --tolerance --slice` with that --printer shows "
+                      "which cases of the band jam and how PrusaSlicer prints the pair)")
 
 
 def require_fit_met(record: dict, remedy: str = FIT_REMEDY) -> None:
@@ -319,6 +331,6 @@ def _corner_cause(case: dict, fit: dict) -> str:
     """What the refusal says of a jam at the pitch-curve corners: where (as the band's line
     says it), and when the search stopped on it, that a larger inset did not shrink it."""
     where = at_corners(case)
-    if where and fit.get("stopped") == "corners":
+    if case.get("jammed_at_corners") and fit.get("stopped") == "corners":
         return where + ", and a larger inset did not make that jam shallower"
     return where

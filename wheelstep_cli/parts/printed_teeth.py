@@ -81,9 +81,10 @@ def require_printable_teeth(pair, printer=None) -> None:
 
 def fewer_teeth(pair, design, printer, width: float) -> int | None:
     """The largest tooth count below the design's (in whole law periods) whose pinion, drawn
-    for ``printer`` (and inset as ``pair`` was for a fit), keeps its tips under two lines
+    for ``printer`` and inset by ``pair``'s fit inset, keeps its tips under two lines
     ``width`` mm wide; None if none of :data:`TRIES` does. (The wheel, carved by that
-    pinion, gets the larger module too.)"""
+    pinion, gets the larger module too.) A candidate's own fit may need a few um more or
+    less inset than ``pair``'s: the count is the one that inset leaves printable."""
     from wheelstep_cli.geometry.planar import offset_outline
     from wheelstep_cli.parts.gear_pair import generation_settings
     from wheelstep_cli.parts.kinds import KINDS, printed_spec

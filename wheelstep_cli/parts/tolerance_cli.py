@@ -54,8 +54,8 @@ def bore_line(record: dict) -> str:
 
 def band_pair(spec, printer, check: bool):
     """(pair, band record, nominal report): the pair of ``spec`` built for ``printer`` (None:
-    as designed) and, when ``check``, its band record and meshing report as written (reused:
-    the band costs its 4 cases)."""
+    as designed) and, when ``check``, its band record and meshing report as written, with its
+    mounting record (reused: the band costs its 4 cases)."""
     from wheelstep_cli.parts.kinds import build_for_printer
 
     if not check:
@@ -70,7 +70,7 @@ def band_pair(spec, printer, check: bool):
     record["bore"] = bore_fit(pair, chosen.band)
     if printer is None:
         record["note"] = "the default printer's band on the pair as designed (no --printer)"
-    return pair, record, nominal
+    return pair, record, replace(nominal, mounting=pair_mounting(pair, sections))
 
 
 def fit_design(spec, printer):
@@ -89,27 +89,29 @@ def design_pair(spec, printer):
     return build_for_printer("gear-pair", spec, design_printer(printer))
 
 
-def fitted_pair(spec, chosen, fit: str, design_pair, design_report, progress=None):
-    """(pair, band record with its fit, nominal report): ``design_pair`` (of
-    :func:`fit_design`, with its meshing report) inset for ``fit`` on ``chosen``'s band."""
-    result = fit_pair(spec, chosen, fit, lambda s, p: design_pair, design_report=design_report,
+def fitted_pair(spec, chosen, fit: str, design, design_report=None, progress=None):
+    """(pair, band record with its fit, nominal report with its mounting record): ``design``
+    (of :func:`design_pair`; ``design_report`` its meshing report, None: checked here)
+    inset for ``fit`` on ``chosen``'s band. The inset pair is no larger than the design, so
+    a design on the bed stays on it."""
+    result = fit_pair(spec, chosen, fit, lambda s, p: design, design_report=design_report,
                       progress=progress)
-    _on_bed(result.pair, chosen)
     record = {**fit_record(result, fit), "replaces_tooth_clearance_mm": float(chosen.tooth_clearance)}
     return (result.pair, {**result.band, "fit": record, "bore": bore_fit(result.pair, chosen.band)},
-            replace(result.nominal, mounting=_fitted_mounting(result.pair, result.inset)))
+            replace(result.nominal, mounting=pair_mounting(result.pair)))
 
 
-def _fitted_mounting(pair, inset: float) -> dict:
-    """The mounting record (parts.mesh_check) of a fitted pair's outlines as written: the
-    inset e moves each tip e in and deepens each space e, so the tip clearance grows by 2e."""
+def pair_mounting(pair, sections: SectionedPair | None = None) -> dict:
+    """The mounting record (parts.mesh_check) of ``pair``'s outlines as written (its
+    ``sections`` when already cut). A fit's inset e moves each tip e in and deepens each
+    space e, so the tip clearance cut for the design grows by 2e."""
     from wheelstep_cli.parts.mesh_check import mounting_record
 
-    sections = sectioned_pair(pair)
+    sections = sectioned_pair(pair) if sections is None else sections
     generated = getattr(pair, "generated", None)
     record = mounting_record(sections.pinion, sections.wheel, sections.law, sections.distance, generated)
     if "tip_clearance_mm" in record:
-        record["tip_clearance_mm"] += 2.0 * float(inset)
+        record["tip_clearance_mm"] += 2.0 * float(getattr(pair, "inset", 0.0))
     return record
 
 

@@ -14,7 +14,8 @@ BatchTolerance = Annotated[bool, opt(
     help="Check every gear pair over its printer's dimensional band (SPEC §11), as drawn with "
          "the printer's tooth clearance: per case in its report and the manifest, a warning "
          "for a pair that jams. On by default; a printer profile without a band is told to add "
-         "one. --no-tolerance skips the check (about four meshing checks per pair).")]
+         "one. --no-tolerance skips the check (about four meshing checks per pair); a band "
+         "that names a fit still has its pairs fitted to it.")]
 from wheelstep_cli.cli.output import Output
 
 
@@ -129,6 +130,8 @@ def _band_warnings(show: Output, outcome) -> None:
 
 
 def _lines(out: Path, plan, outcome) -> list[str]:
+    from wheelstep_cli.parts.fit import inset_words
+
     parts = sum(len(p.items) for p in outcome.plates)
     plates = len(outcome.plates)
     return [f"built {len(outcome.built)} of {_count(len(plan.entries), 'entry', 'entries')}: "
@@ -136,7 +139,7 @@ def _lines(out: Path, plan, outcome) -> list[str]:
             *(f"  {p.stem}.3mf ({p.printer.name}): {_count(len(p.items), 'part', 'parts')}"
               for p in outcome.plates),
             *(f"  {b['entry']}: fit {b['fit']} to the band of {b['printer']}: both tooth outlines drawn "
-              f"{b['inset_mm']:.3f} mm smaller along their normals, least backlash over the band "
+              f"{inset_words(b['inset_mm'])} along their normals, least backlash over the band "
               f"{b['least_backlash_mm']:.3f} mm" for b in _bands(outcome) if "fit" in b and not b["jams"])]
 
 

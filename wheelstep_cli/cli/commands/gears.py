@@ -225,13 +225,13 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     ``slice_``: slice the plates and check the G-code."""
     import typer
 
-    from wheelstep_cli.cli.commands.gears_checks import checked_pair
+    from wheelstep_cli.cli.commands.gears_checks import checked_pair, require_height_first
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
-    _require_height(spec, printer, fmt)
+    require_height_first(spec, printer, fmt, band[1] is not None)
     pair, record, tolerance, check = checked_pair(spec, printer, show, allow_interference, band)
     require_printable_teeth(pair)
     if tolerance is not None:
@@ -251,18 +251,6 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     show.files(written, dry_run, joined=True)
     if sliced is not None and not sliced["meshes"]:
         raise typer.Exit(1)
-
-
-def _require_height(spec, printer, fmt: str) -> None:
-    """Refuse a pair taller than the printer its plates are laid out for prints (the one
-    given, else the default printer when a 3MF is written) before any tooth is cut."""
-    from wheelstep_cli.config.profiles import load_printer
-    from wheelstep_cli.parts.gear_pair import footprint
-    from wheelstep_cli.parts.plate_layout import require_height
-
-    target = printer or (load_printer() if fmt in ("3mf", "both") else None)
-    if target is not None:
-        require_height("pinion", float(spec.thickness), target, "thickness", spec.thickness, footprint(spec))
 
 
 def _slice(show: Output, pair, record: dict, files: dict, out: Path) -> dict:
@@ -298,7 +286,9 @@ def _clearance_text(pair) -> str:
     inset = float(getattr(pair, "inset", 0.0))
     if inset != 0.0:
         # a fit: the printer's clearance is replaced by the outlines' inset
-        drawn = f"{inset:.3f} mm smaller" if inset > 0 else f"{-inset:.3f} mm larger"
+        from wheelstep_cli.parts.fit import inset_words
+
+        drawn = inset_words(inset)
         return f", then both outlines drawn {drawn} along their normals (the fit: j_n {4.0 * inset:+.3f} mm)"
     if clearance <= 0.0:
         return ""

@@ -11,7 +11,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
     ``printer``, refused (DesignError, or exit 1 for interference) as ``gears`` refuses it;
     ``band`` = (check over the printer's band, the fit or None[, where the fit comes from])."""
     from wheelstep_cli.cli.progress import with_progress
-    from wheelstep_cli.parts.fit import require_fit_met
+    from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
     from wheelstep_cli.parts.kinds import remedy_check
     from wheelstep_cli.parts.mesh_bounds import require_within_bounds
     from wheelstep_cli.parts.mesh_check import check_gear_pair
@@ -36,7 +36,8 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         record = _meshing_or_refused(show, pair, check, allow_interference)
         if len(band) > 2 and band[2]:
             tolerance["fit"]["from"] = band[2]
-        require_fit_met(tolerance)
+        require_fit_met(tolerance, **({} if tolerance["fit"].get("from", "--fit") == "--fit" else
+                                      {"remedy": PROFILE_FIT_REMEDY}))
     else:
         pair, tolerance, check = band_pair(spec, printer, bool(band[0]))
         if check is None:
@@ -62,3 +63,20 @@ def _meshing_or_refused(show: Output, pair, check, allow_interference: bool) -> 
                    "written (--allow-interference writes them anyway)")
         raise typer.Exit(1)
     return record
+
+
+def require_height_first(spec, printer, fmt: str, fit: bool) -> None:
+    """Refuse a pair taller than the printer it is drawn or laid out for prints (the one
+    given, else the default printer when a 3MF is written or a fit is asked for) before
+    any tooth is cut, as writing it would refuse it."""
+    import numpy as np
+
+    from wheelstep_cli.config.profiles import load_printer
+    from wheelstep_cli.parts.gear_pair import footprint
+    from wheelstep_cli.parts.plate_layout import require_height
+
+    target = printer or (load_printer() if fmt in ("3mf", "both") or fit else None)
+    if target is not None:
+        # the meshes' vertices are float32: the plate's check sees the thickness so rounded
+        tall = float(np.float32(spec.thickness))
+        require_height("pinion", tall, target, "thickness", spec.thickness, footprint(spec))

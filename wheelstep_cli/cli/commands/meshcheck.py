@@ -89,7 +89,8 @@ def _no_band_on_plates(tolerance: bool, printer) -> None:
     from wheelstep_cli.errors import DesignError
 
     if tolerance or printer is not None:
-        raise DesignError("tolerance" if tolerance else "printer", printer or "on",
+        # named as given: --tolerance (a switch) is "on", --printer its profile
+        raise DesignError("tolerance" if tolerance else "printer", "on" if tolerance else printer,
                           "checks two named meshes (PINION WHEEL), not plates")
 
 
