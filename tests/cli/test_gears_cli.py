@@ -203,6 +203,7 @@ def test_a_pair_taller_than_the_printer_is_refused_before_any_tooth_is_cut(cli, 
         line = error_line(result)
         assert line.startswith(f"wheelstep: error: --thickness = {args[1]}: makes part 'pinion'")
         assert "mm tall, more than the" in line and (printer is None or f"printer '{printer}'" in line)
+        assert ("(the default printer; --printer chooses another" in line) == (printer is None)
         assert not (tmp_path / "tall").exists()
 
 

@@ -75,8 +75,19 @@ def require_height_first(spec, printer, fmt: str, fit: bool) -> None:
     from wheelstep_cli.parts.gear_pair import footprint
     from wheelstep_cli.parts.plate_layout import require_height
 
+    from wheelstep_cli.errors import DesignError
+
     target = printer or (load_printer() if fmt in ("3mf", "both") or fit else None)
-    if target is not None:
-        # the meshes' vertices are float32: the plate's check sees the thickness so rounded
-        tall = float(np.float32(spec.thickness))
+    if target is None:
+        return
+    # the meshes' vertices are float32: the plate's check sees the thickness so rounded
+    tall = float(np.float32(spec.thickness))
+    try:
         require_height("pinion", tall, target, "thickness", spec.thickness, footprint(spec))
+    except DesignError as err:
+        if printer is not None:
+            raise
+        # the user named no printer: say which one this is and how to choose another
+        limit = (f"{err.limit} (the default printer; --printer chooses another"
+                 + ("" if fit else ", --format stl writes no plate") + ")")
+        raise err._with_extras(DesignError(err.param, err.value, limit, err.alternatives)) from None
