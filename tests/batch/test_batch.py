@@ -249,6 +249,9 @@ parts:
     (VALID_ENTRY + "    overrides:\n      module: fine\n", "module", "must be a number"),
     (VALID_ENTRY + "    overrides:\n      b: 110\n", "b: 110", "b = 110: must be <"),
     (VALID_ENTRY + "    overrides:\n      z: 23\n", "z: 23", "z = 23: must make z*n/4 whole sectors"),
+    # taller than the printer prints: refused before anything is built, at its line
+    (VALID_ENTRY + "    overrides:\n      thickness: 300\n", "thickness: 300",
+     "overrides.thickness = 300: makes part 'pinion' 300.0 mm tall, more than the 250 mm printer"),
     (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      width: -3\n", "width",
      "parts[0].overrides.width = -3: must be > 0 mm"),
     # the R_min rule names the parameter the entry gave (b), not the design's strut c

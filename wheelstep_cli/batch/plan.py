@@ -221,9 +221,21 @@ def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
             return None, None, problems
         printed = printed_spec(kind, spec, printer)
         problems = kind.problems(printed)
+        if not problems and kind.name == "gear-pair":
+            _require_height(printed, printer)
     except DesignError as err:
         return None, None, [err]
     return (None, None, problems) if problems else (spec, printed, [])
+
+
+def _require_height(printed, printer: Printer) -> None:
+    """A gear pair taller than its printer prints, refused before it is built (as the plate
+    would refuse it after; float32, as the meshes hold the thickness)."""
+    import numpy as np
+
+    from wheelstep_cli.parts.plate_layout import require_height
+
+    require_height("pinion", float(np.float32(printed.thickness)), printer, "thickness", printed.thickness)
 
 
 def _problem(doc, path, err: DesignError, override_where, design_name, overrides) -> Issue:
