@@ -42,14 +42,17 @@ def check_gear_pair(pair, settings: MeshingSettings = MeshingSettings(),
     law = generated.law if generated is not None else pair.law
     report = check_meshing(pinion, wheel, law, pair.mounted_distance, settings, progress=progress,
                            teeth=pair.spec.z)
-    return replace(report, mounting=mounting_record(pinion, wheel, law, pair.mounted_distance, generated))
+    return replace(report, mounting=mounting_record(pinion, wheel, law, pair.mounted_distance, generated,
+                                                    float(getattr(pair, "inset", 0.0))))
 
 
 def mounting_record(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, distance: float,
-                    generated=None) -> dict:
+                    generated=None, inset: float = 0.0) -> dict:
     """How much closer than ``distance`` (mm) the outlines (mm, own frames) may be mounted:
     their least separation over the law's poses (a wheel moved that little toward the
-    pinion cannot reach it), and for generated teeth the tip clearance cut for it (mm)."""
+    pinion cannot reach it), and for generated teeth the tip clearance cut for it (mm),
+    grown by 2 ``inset`` for outlines a fit drew ``inset`` mm smaller (each tip moves in by
+    it, each space deepens by it)."""
     from wheelstep_cli.gears.meshing.mounting import least_separation
 
     samples = 192
@@ -58,7 +61,7 @@ def mounting_record(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw,
               "how": "least separation of the two outlines over the law's poses: mounted up to "
                      "that much closer, no point of one can reach the other"}
     if generated is not None:
-        record["tip_clearance_mm"] = float(generated.cutter.clearance * generated.module)
+        record["tip_clearance_mm"] = float(generated.cutter.clearance * generated.module) + 2.0 * inset
     return record
 
 

@@ -103,16 +103,12 @@ def fitted_pair(spec, chosen, fit: str, design, design_report=None, progress=Non
 
 def pair_mounting(pair, sections: SectionedPair | None = None) -> dict:
     """The mounting record (parts.mesh_check) of ``pair``'s outlines as written (its
-    ``sections`` when already cut). A fit's inset e moves each tip e in and deepens each
-    space e, so the tip clearance cut for the design grows by 2e."""
+    ``sections`` when already cut), a fit's inset included."""
     from wheelstep_cli.parts.mesh_check import mounting_record
 
     sections = sectioned_pair(pair) if sections is None else sections
-    generated = getattr(pair, "generated", None)
-    record = mounting_record(sections.pinion, sections.wheel, sections.law, sections.distance, generated)
-    if "tip_clearance_mm" in record:
-        record["tip_clearance_mm"] += 2.0 * float(getattr(pair, "inset", 0.0))
-    return record
+    return mounting_record(sections.pinion, sections.wheel, sections.law, sections.distance,
+                           getattr(pair, "generated", None), float(getattr(pair, "inset", 0.0)))
 
 
 def _on_bed(pair, printer):
