@@ -52,6 +52,11 @@ def _is_fitted(result: EntryResult) -> bool:
     return bool(result.band and "fit" in result.band)
 
 
+def fit_brief(band: dict) -> dict:
+    """The fit a band record names and its inset (mm), or nothing when it names none."""
+    return {"fit": band["fit"]["fit"], "inset_mm": band["fit"]["inset_mm"]} if "fit" in band else {}
+
+
 def printed_values(entry: Entry, result: EntryResult) -> dict:
     """The printed parameters: a fitted pair's as drawn (without the printer's tooth clearance)."""
     return result.report["printed_parameters"] if _is_fitted(result) else entry.printed.model_dump()
@@ -113,8 +118,7 @@ def _meshing(result: EntryResult) -> dict:
     if result.band is not None:
         band = result.band
         brief["tolerance"] = {"printer": band["printer"], "checked": band["checked"], "jams": band["jams"],
-                              **({"fit": band["fit"]["fit"], "inset_mm": band["fit"]["inset_mm"]}
-                                 if "fit" in band else {}),
+                              **fit_brief(band),
                               **({"note": band["note"]} if "note" in band else {
                                   "least_backlash_mm": band["least_backlash_mm"],
                                   "largest_backlash_mm": band["largest_backlash_mm"],

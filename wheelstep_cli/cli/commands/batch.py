@@ -107,9 +107,11 @@ def _summary(file: Path, out: Path, plan, outcome, written: list[Path]) -> dict:
 
 def _bands(outcome) -> list[dict]:
     """Per built gear pair checked over its printer's band: jams or not, least backlash."""
+    from wheelstep_cli.batch.outputs import fit_brief
+
     return [{"entry": e.name, "printer": b["printer"], "checked": b["checked"], "jams": b["jams"],
              "least_backlash_mm": b.get("least_backlash_mm"), **({"note": b["note"]} if "note" in b else {}),
-             **({"fit": b["fit"]["fit"], "inset_mm": b["fit"]["inset_mm"]} if "fit" in b else {})}
+             **fit_brief(b)}
             for e in outcome.built if (b := outcome.results[e.index].band) is not None]
 
 
