@@ -112,10 +112,7 @@ def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
         _check_values(doc, COMMANDS[command][0], command, data, grid, random, issues)
     _check_objectives(doc, data.get("objectives"), issues)
     _check_printers(doc, data.get("printers"), issues)
-    if data.get("tolerance") is True:
-        _check_band(doc, command, data.get("printers"), issues)
-    if command == "gears":
-        _check_no_fit(doc, data.get("printers"), issues)
+    _check_bands(doc, command, data.get("printers"), data.get("tolerance") is True, issues)
     if issues:
         raise InvalidInput(issues)
     points = _points(sweep, grid, random)
@@ -209,41 +206,30 @@ def _check_printers(doc: LocatedYaml, names, issues: list[Issue]) -> None:
                                 "known: " + ", ".join(known)))
 
 
-def _check_band(doc: LocatedYaml, command, names, issues: list[Issue]) -> None:
-    """``tolerance: true`` is for gear pairs, on printers that have a band (none given: the
-    default printer's)."""
+def _check_bands(doc: LocatedYaml, command, names, tolerance: bool, issues: list[Issue]) -> None:
+    """The printers' bands, each profile read once: ``tolerance: true`` is for gear pairs, on
+    printers that have a band (none given: the default printer's); and a gear sweep's
+    printers name no fit (a sweep does not search each point's fit, a fit costs dozens of
+    meshing checks, so its rows would not be the pairs `gears` writes for that printer)."""
     from wheelstep_cli.config.printers import DEFAULT_PRINTER
     from wheelstep_cli.config.profiles import load_printer_profile
 
     if command != "gears":
-        issues.append(Issue(doc.where(("tolerance",)), "tolerance", "= true: the band check is "
-                                                                    "of gear pairs (command: gears)"))
+        if tolerance:
+            issues.append(Issue(doc.where(("tolerance",)), "tolerance", "= true: the band check "
+                                                                        "is of gear pairs (command: gears)"))
         return
-    given = names if isinstance(names, list) and names else [DEFAULT_PRINTER]
-    for i, name in enumerate(given):
+    given = names if isinstance(names, list) and names else []
+    for i, name in enumerate(given or ([DEFAULT_PRINTER] if tolerance else [])):
         try:
             band = load_printer_profile(name).band if isinstance(name, str) else True
         except (DesignError, InvalidInput):   # an unknown or bad printer: _check_printers says it
             continue
-        if band is None:
-            at = ("printers", i) if names else ("tolerance",)
+        at = ("printers", i) if given else ("tolerance",)
+        if tolerance and band is None:
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: has no dimensional "
                                 "band for tolerance: true; add a `band:` section to its profile"))
-
-
-def _check_no_fit(doc: LocatedYaml, names, issues: list[Issue]) -> None:
-    """A gear sweep's printers name no fit: a sweep does not search each point's fit (a
-    fit costs dozens of meshing checks), and its rows would not be the pairs `gears`
-    writes for that printer (it fits them)."""
-    from wheelstep_cli.config.profiles import load_printer_profile
-
-    for i, name in enumerate(names if isinstance(names, list) else []):
-        try:
-            band = load_printer_profile(name).band if isinstance(name, str) else None
-        except (DesignError, InvalidInput):   # an unknown or bad printer: _check_printers says it
-            continue
-        if band is not None and band.fit is not None:
-            at = ("printers", i)
+        if given and getattr(band, "fit", None) is not None:
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: its band names fit: "
                                 f"{band.fit}, which a sweep does not search for each design; "
                                 "sweep on a copy of the profile without `fit:`, then fit the designs "
