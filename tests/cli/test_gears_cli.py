@@ -197,7 +197,9 @@ def test_a_pair_taller_than_the_printer_is_refused_before_any_tooth_is_cut(cli, 
     for args, printer in ((["--thickness", "300", "--printer", "fdm-0.4-pla", "--format", "stl"], "fdm-0.4-pla"),
                           (["--thickness", "1e5"], None),
                           # a fit is for the default printer's band: drawn for that printer
-                          (["--thickness", "300", "--fit", "auto", "--format", "stl"], None)):
+                          (["--thickness", "300", "--fit", "auto", "--format", "stl"], None),
+                          # both gears carry the hub above their top face
+                          (["--thickness", "200", "--hub-d", "40", "--hub-length", "60"], None)):
         result = cli("gears", *args, "--out", tmp_path / "tall")
         assert result.exit_code == 2, result.stderr
         line = error_line(result)

@@ -102,19 +102,21 @@ def test_fit_auto_insets_the_default_pair_until_the_fdm_band_no_longer_jams(cli,
     assert mounting["tip_clearance_mm"] == pytest.approx(0.25 * generated["module_mm"] + 2.0 * fit["inset_mm"])
 
 
-@pytest.mark.parametrize("option", [["--fit", "auto"], ["--tolerance"]])
+@pytest.mark.parametrize("option", [["--fit", "auto"], ["--tolerance"], []])
 def test_a_pair_too_big_for_the_printer_is_refused_before_the_band(cli, tmp_path, monkeypatch, option):
     """The default wheel (208 mm) on the resin printer's 218 x 123 mm bed: the bed refuses it
-    at once, before any meshing check of a fit search or band that the written files could
-    never use."""
+    as soon as the gears are built, before the meshing check, a fit search or a band that the
+    written files could never use."""
     import wheelstep_cli.parts.fit as fit
+    import wheelstep_cli.parts.mesh_check as mesh_check
     import wheelstep_cli.parts.tolerance_cli as tolerance_cli
 
     def no_check(*args, **kwargs):
-        raise AssertionError("a band case was checked before the bed refused the part")
+        raise AssertionError("the pair was checked before the bed refused the part")
 
     monkeypatch.setattr(fit, "check_case", no_check)
     monkeypatch.setattr(tolerance_cli, "check_case", no_check)
+    monkeypatch.setattr(mesh_check, "check_gear_pair", no_check)
     line = error_line(cli("gears", "--printer", "resin-0.05-standard", *option, "--out", tmp_path / "o"))
     assert line.startswith("wheelstep: error: --printer = resin-0.05-standard: part 'wheel'")
     assert "does not fit the bed" in line and not (tmp_path / "o").exists()

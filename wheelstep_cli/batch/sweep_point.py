@@ -114,7 +114,7 @@ def build_point(point: Point):
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
     from wheelstep_cli.parts.tolerance_cli import band_pair
 
-    built, band, nominal = band_pair(point.spec, point.printer, point.tolerance)
+    built, band, nominal = band_pair(point.spec, point.printer, point.tolerance, point.printer)
     record = meshing_record(nominal if nominal is not None else check_gear_pair(built))
     if band is not None:
         record["tolerance"] = band

@@ -52,18 +52,19 @@ def bore_line(record: dict) -> str:
                                           "(TIGHT at the band's extreme: ream or press)"))
 
 
-def band_pair(spec, printer, check: bool):
+def band_pair(spec, printer, check: bool, bed=None):
     """(pair, band record, nominal report): the pair of ``spec`` built for ``printer`` (None:
-    as designed) and, when ``check``, its band record and meshing report as written, with its
-    mounting record (reused: the band costs its 4 cases)."""
+    as designed), refused (DesignError) at once when a gear cannot go on ``bed``'s bed (a
+    printer; None: not checked), and, when ``check``, its band record and meshing report as
+    written, with its mounting record (reused: the band costs its 4 cases)."""
     from wheelstep_cli.parts.kinds import build_for_printer
 
-    if not check:
-        return build_for_printer("gear-pair", spec, printer), None, None
-    chosen = band_printer(printer)
     pair = build_for_printer("gear-pair", spec, printer)
-    if printer is not None:
-        _on_bed(pair, printer)
+    if bed is not None:
+        _on_bed(pair, bed)
+    if not check:
+        return pair, None, None
+    chosen = band_printer(printer)
     sections = sectioned_pair(pair)
     nominal = check_case(sections, NOMINAL)
     record = band_record(sections, chosen.band, chosen.name, nominal)

@@ -231,8 +231,8 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
-    require_height_first(spec, printer, fmt, band[1] is not None)
-    pair, record, tolerance, check = checked_pair(spec, printer, show, allow_interference, band)
+    bed = require_height_first(spec, printer, fmt, band[1] is not None)
+    pair, record, tolerance, check = checked_pair(spec, printer, show, allow_interference, band, bed)
     require_printable_teeth(pair)
     if tolerance is not None:
         record["tolerance"] = tolerance

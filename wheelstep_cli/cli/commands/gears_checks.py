@@ -6,10 +6,12 @@ from __future__ import annotations
 from wheelstep_cli.cli.output import Output
 
 
-def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tuple):
+def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tuple, bed=None):
     """(pair, meshing record, band record or None, meshing report) of ``spec`` built for
     ``printer``, refused (DesignError, or exit 1 for interference) as ``gears`` refuses it;
-    ``band`` = (check over the printer's band, the fit or None[, where the fit comes from])."""
+    ``band`` = (check over the printer's band, the fit or None[, where the fit comes from]);
+    ``bed``: the printer whose bed the written plate needs (None: none), checked as soon as
+    the gears are built, before any meshing check."""
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
     from wheelstep_cli.parts.kinds import remedy_check
@@ -39,7 +41,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         require_fit_met(tolerance, **({} if tolerance["fit"].get("from", "--fit") == "--fit" else
                                       {"remedy": PROFILE_FIT_REMEDY}))
     else:
-        pair, tolerance, check = band_pair(spec, printer, bool(band[0]))
+        pair, tolerance, check = band_pair(spec, printer, bool(band[0]), bed)
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
         record = _meshing_or_refused(show, pair, check, allow_interference)
@@ -65,10 +67,10 @@ def _meshing_or_refused(show: Output, pair, check, allow_interference: bool) -> 
     return record
 
 
-def require_height_first(spec, printer, fmt: str, fit: bool) -> None:
-    """Refuse a pair taller than the printer it is drawn or laid out for prints (the one
-    given, else the default printer when a 3MF is written or a fit is asked for) before
-    any tooth is cut, as writing it would refuse it."""
+def require_height_first(spec, printer, fmt: str, fit: bool):
+    """The printer the pair is drawn or laid out for (the one given, else the default printer
+    when a 3MF is written or a fit is asked for; None: plain STL for no printer), the pair
+    refused when taller than it prints before any tooth is cut, as writing it would refuse it."""
     import numpy as np
 
     from wheelstep_cli.config.profiles import load_printer
@@ -79,9 +81,10 @@ def require_height_first(spec, printer, fmt: str, fit: bool) -> None:
 
     target = printer or (load_printer() if fmt in ("3mf", "both") or fit else None)
     if target is None:
-        return
-    # the meshes' vertices are float32: the plate's check sees the thickness so rounded
-    tall = float(np.float32(spec.thickness))
+        return None
+    # both gears carry the hub on their top face; the meshes' vertices are float32, so the
+    # plate's check sees the height so rounded
+    tall = float(np.float32(spec.thickness + spec.hub_mm[1]))
     try:
         require_height("pinion", tall, target, "thickness", spec.thickness, footprint(spec))
     except DesignError as err:
@@ -90,4 +93,6 @@ def require_height_first(spec, printer, fmt: str, fit: bool) -> None:
         # the user named no printer: say which one this is and how to choose another
         limit = (f"{err.limit} (the default printer; --printer chooses another"
                  + ("" if fit else ", --format stl writes no plate") + ")")
-        raise err._with_extras(DesignError(err.param, err.value, limit, err.alternatives)) from None
+        # stated again for the footprint, so a hub length the user gave carries the note too
+        raise err._with_extras(DesignError(err.param, err.value, limit).tied_to(footprint(spec))) from None
+    return target
