@@ -120,3 +120,39 @@ def test_a_pair_too_big_for_the_printer_is_refused_before_the_band(cli, tmp_path
     line = error_line(cli("gears", "--printer", "resin-0.05-standard", *option, "--out", tmp_path / "o"))
     assert line.startswith("wheelstep: error: --printer = resin-0.05-standard: part 'wheel'")
     assert "does not fit the bed" in line and not (tmp_path / "o").exists()
+
+
+def test_fit_auto_meets_the_petg_band_with_the_default_pair(cli, tmp_path):
+    """The other FDM preset: its wider band (+-0.12 mm) is met by the default pair under
+    `--fit auto` too, every case clear with the auto margin of least backlash."""
+    import json
+
+    from wheelstep_cli.config.printers import FIT_MARGINS, Fit
+
+    out = tmp_path / "out"
+    result = cli("gears", "--printer", "fdm-0.4-petg", "--fit", "auto", "--json", "-q", "--out", out)
+    assert result.exit_code == 0, result.stderr
+    meshing = json.loads((out / "gears.json").read_text())["meshing"]
+    band = meshing["tolerance"]
+    assert band["printer"] == "fdm-0.4-petg" and band["band"]["outline_mm"] == 0.12
+    assert not meshing["interference"] and band["fit"]["inset_mm"] > 0.0
+    assert not band["jams"] and all(not case["jams"] for case in band["cases"])
+    assert band["least_backlash_mm"] >= FIT_MARGINS[Fit.auto]
+
+
+def test_the_default_pair_fitted_to_the_resin_band_does_not_jam():
+    """The resin preset's bed (218 x 123 mm) cannot hold the default 208 mm wheel, so `gears`
+    refuses it there; its band is still met by the default pair's fit (the fit as `gears`
+    runs it, without the bed)."""
+    from wheelstep_cli.config.printers import FIT_MARGINS, Fit
+    from wheelstep_cli.config.profiles import load_printer_profile
+    from wheelstep_cli.config.specs import GearPairSpec
+    from wheelstep_cli.parts.tolerance_cli import design_pair, fitted_pair
+
+    resin = load_printer_profile("resin-0.05-standard")
+    spec = GearPairSpec()
+    pair, band, nominal = fitted_pair(spec, resin, "auto", design_pair(spec, resin))
+    assert band["printer"] == "resin-0.05-standard" and not nominal.interference.any()
+    assert not band["jams"] and all(not case["jams"] for case in band["cases"])
+    assert band["least_backlash_mm"] >= FIT_MARGINS[Fit.auto]
+    assert 0.0 < band["fit"]["inset_mm"] == pair.inset
