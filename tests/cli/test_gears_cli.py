@@ -110,6 +110,11 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_pa
     (["--turns", "3"], "turns ="),
     (["--backlash", "5"], "--backlash = 5:"),      # pointed teeth: the rule named for the backlash
     (["--profile", "no-such-design"], "profile ="),
+    # the generator's settings do not shape paper teeth: refused, not ignored
+    (["--teeth", "paper", "--tilt", "0.5"], "--tilt = 0.5: shapes generated teeth only"),
+    (["--teeth", "paper", "--corner", "tooth"], "--corner = tooth: shapes generated teeth only"),
+    (["--teeth", "paper", "--pressure-angle", "25"], "--pressure-angle = 25: shapes generated"),
+    (["--teeth", "paper", "--clearance", "0.3"], "--clearance = 0.3: shapes generated"),
 ])
 def test_bad_input_one_line_exit_2_nothing_written(cli, tmp_path, args, param):
     out = tmp_path / "out"

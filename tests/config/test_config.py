@@ -52,6 +52,19 @@ def test_batch_reports_every_bad_value_of_an_entry_with_its_line(cli, tmp_path):
     assert not (tmp_path / "out").exists()
 
 
+def test_a_generator_setting_on_paper_teeth_is_refused_at_its_line(cli, tmp_path):
+    """The rack cutter's settings do not shape the paper teeth: a batch entry that gives one
+    with them is refused where it is written, not built with it ignored."""
+    batch = write(tmp_path / "paper.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"
+                  "    design: desk-demo\n    printer: fdm-0.4-pla\n    overrides:\n      teeth: paper\n"
+                  "      tilt: 0.3\n")
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    line = error_line(result)
+    assert line.startswith(f"wheelstep: error: {batch}:{line_of(batch, 'tilt: 0.3')}: "
+                           "parts[0].overrides.tilt = 0.3: shapes generated teeth only"), line
+    assert not (tmp_path / "out").exists()
+
+
 def test_design_profile_reports_every_bad_value_with_its_line(cli, tmp_path):
     design = write(tmp_path / "mine.yaml", "mechanism:\n  a: thirty\n  b: 50\ngears:\n  z: 24\n"
                    "  bore: -1\nshoe:\n  width: -4\n  colour: red\n")

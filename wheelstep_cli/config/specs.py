@@ -68,6 +68,13 @@ class BoreShape(str, Enum):
     hex = "hex"
 
 
+#: Settings of the rack cutter and the generator: they shape generated teeth only, and a
+#: remedy may return them to their defaults (which give pairs within the bounds across the
+#: design space: benchmarks/design_space.py).
+GENERATOR_SETTINGS = ("tilt", "pressure_angle", "addendum", "dedendum", "fillet", "clearance",
+                      "blend", "corner")
+
+
 class GearPairSpec(BaseModel):
     """Everything that defines a printed gear pair. Lengths in mm, angles in deg.
 
@@ -132,6 +139,7 @@ class GearPairSpec(BaseModel):
         require(self.law_csv is None or self.teeth == Teeth.generated, "law_csv", self.law_csv,
                 "needs generated teeth")
         if self.teeth == Teeth.paper:
+            self._generator_settings_unset()
             center, install = self.paper_distances
             if not install >= center:
                 raise DesignError("install_distance", install,
@@ -151,6 +159,16 @@ class GearPairSpec(BaseModel):
                                           "fits (SPEC §9)")})
         self._bore_fits()
         return self
+
+    def _generator_settings_unset(self) -> None:
+        """Paper teeth are the source's sector involutes: the rack cutter's and the
+        generator's settings do not shape them, so one changed from its default is refused
+        rather than ignored."""
+        for name in GENERATOR_SETTINGS:
+            value, default = getattr(self, name), type(self).model_fields[name].default
+            require(getattr(value, "value", value) == getattr(default, "value", default), name,
+                    getattr(value, "value", value),
+                    "shapes generated teeth only (the paper teeth are the source's sector involutes)")
 
     def _bore_fits(self) -> None:
         """Key narrower than the bore, flat shallower than its radius, a hub with its

@@ -13,7 +13,7 @@ from typing import Callable
 
 import numpy as np
 
-from wheelstep_cli.config.specs import MAX_TEETH
+from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH
 from wheelstep_cli.errors import DesignError, format_value
 
 
@@ -195,12 +195,6 @@ def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
             break
         candidate = {**candidate, **following}
     return {}, tried, failed
-
-
-#: Generator settings a remedy may return to their defaults (the defaults give pairs within
-#: the bounds across the design space: benchmarks/design_space.py).
-GENERATOR_SETTINGS = ("tilt", "pressure_angle", "addendum", "dedendum", "fillet", "clearance",
-                      "blend", "corner")
 
 
 def _within_the_tooth_limit(design, remedy: dict) -> dict:
