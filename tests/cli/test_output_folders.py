@@ -114,3 +114,16 @@ def test_mechanism_outputs_keep_a_users_file_of_the_same_name(cli, tmp_path, com
     again = listing(tmp_path)
     assert cli(command, option, mine, *extra, "-q").exit_code == 0   # its own file: replaced
     assert listing(tmp_path) == again                                  # byte-identical rerun
+
+
+def test_gears_plot_keeps_a_users_file_of_the_same_name(cli, tmp_path):
+    """`gears --plot` writes where the user names it: a file there that gears did not write
+    is refused before anything is written (the meshes neither), and replaced with --force."""
+    mine, out = tmp_path / "mine.png", tmp_path / "out"
+    mine.write_bytes(b"the user's file")
+    args = ("gears", "--profile", "desk-demo", "--format", "stl", "--plot", mine, "--out", out, "-q")
+    line = error_line(cli(*args))
+    assert line.startswith(f"wheelstep: error: --plot = {mine}: exists and was not written"), line
+    assert listing(tmp_path) == {"mine.png": b"the user's file"}      # all or nothing
+    assert cli(*args, "--force").exit_code == 0
+    assert mine.read_bytes().startswith(b"\x89PNG") and (out / "pinion.stl").exists()

@@ -242,8 +242,12 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     pictures = with_progress(bool(extras.gif) and not show.quiet, "GIF frames", picture_files, pair,
                              extras, check)
     sliced = _slice(show, pair, record, files, out) if slice_ else None
+    # the pictures go where the user named them: a file there this command did not write is
+    # refused (unless --force) before anything is written, as for the meshes
+    named = {"plot": extras.plot, "gif": extras.gif}
+    show.write_named("gears", pictures, True, force, **named)
     written = show.write_owned(out, "gears", files, dry_run, force)
-    written += list(pictures) if dry_run else show.write(pictures, dry_run)
+    written += [p for p in show.write_named("gears", pictures, dry_run, force, **named) if p in pictures]
     report = {**gear_pair_report(pair, record), **({"slice": sliced} if sliced else {}),
               "written": [] if dry_run else [str(p) for p in written]}
     show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
