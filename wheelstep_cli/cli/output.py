@@ -23,6 +23,13 @@ class Output:
     quiet: bool = False
     verbose: bool = False
 
+    def __post_init__(self) -> None:
+        if self.quiet and self.verbose:
+            from wheelstep_cli.errors import DesignError
+
+            # one asks for detail, the other for silence: neither may be dropped unsaid
+            raise DesignError("verbose", "on", "cannot be combined with -q/--quiet")
+
     def report(self, report: Mapping, table: Callable[[], Iterable[str]]) -> None:
         """Print ``report`` as JSON (``--json``) or the lines of ``table()`` (none with -q)."""
         if self.json:

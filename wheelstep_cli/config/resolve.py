@@ -15,6 +15,8 @@ from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
 from wheelstep_cli.errors import DesignError
 
 STRUT = ("c", "r_min")
+#: What sets the crank law of a gear pair, which a law CSV replaces.
+CRANK_LAW = ("a", "b", "c", "r_min", "turns")
 #: Where generated teeth roll and are mounted, which a --module sets instead (mm).
 DISTANCES = ("center_distance", "install_distance")
 
@@ -47,12 +49,24 @@ def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any
                 merged.pop(key, None)
         merged.update(given)
     fields = spec.model_fields
+    if "law_csv" in fields and merged.get("law_csv") is not None:
+        _no_crank_law(top)
     if "r_min" in merged and "r_min" not in fields:
         r_min = merged.pop("r_min")
         if "c" not in merged:
             merged["c"] = strut_length(merged.get("a", fields["a"].default),
                                        merged.get("b", fields["b"].default), r_min)
     return {k: v for k, v in merged.items() if k in fields}
+
+
+def _no_crank_law(top: dict[str, Any]) -> None:
+    """Refuse what sets the crank law given (on the command line, or as a batch entry's
+    overrides) with a law CSV, which replaces that law: it would do nothing. A profile's
+    mechanism stays (it is shared with the other parts)."""
+    for key in CRANK_LAW:
+        if top.get(key) is not None:
+            raise DesignError(key, top[key], "sets the crank law, which --law-csv replaces (the "
+                                             "pair follows the law read from the CSV)")
 
 
 def strut_length(a: float, b: float, r_min: float) -> float:

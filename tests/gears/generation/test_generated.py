@@ -150,7 +150,7 @@ def test_law_csv_generates_a_smooth_published_style_case(cli, tmp_path):
     assert report["generated"]["pinion_teeth"] == 28
     # mesh-check takes the same law from the CSV and reproduces what gears measured
     check = cli("mesh-check", out / "pinion.stl", out / "wheel.stl", "--law-csv", csv,
-                "--distance", f"{distance:.6f}", "--center-distance", f"{distance:.6f}", "--json")
+                "--distance", f"{distance:.6f}", "--json")
     assert check.exit_code == 0, check.stderr
     summary, written = json.loads(check.stdout), report["meshing"]
     assert summary["law"]["csv"] == str(csv) and summary["law"]["driving_period_deg"] == pytest.approx(360.0)

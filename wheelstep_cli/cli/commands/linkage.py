@@ -46,7 +46,8 @@ def linkage(
     csv: Csv = None, plot: Plot = None,
     gif: Annotated[Optional[Path], opt("--gif", help="Write an animation of one crank turn "
                                                      "(GIF).")] = None,
-    gif_frames: Annotated[int, opt("--gif-frames", help="Frames of the GIF animation.")] = 48,
+    gif_frames: Annotated[Optional[int], opt("--gif-frames", help="Frames of the GIF animation.",
+                                             shown="48")] = None,
     force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
@@ -55,6 +56,11 @@ def linkage(
     from wheelstep_cli.parts.mechanism_files import linkage_files
 
     show = Output(json, quiet, verbose)
+    if gif_frames is not None and gif is None:
+        from wheelstep_cli.errors import DesignError
+
+        raise DesignError("gif_frames", gif_frames, "shapes the --gif animation: give --gif too")
+    gif_frames = 48 if gif_frames is None else gif_frames
     ls.check_sampling(samples, scale, gif_frames, step)
     four_bar = {"l1": l1, "l2": l2, "l3": l3, "l4": l4, "beta_deg": beta,
                 "o1": None if o1 is None else point(o1, "o1")}

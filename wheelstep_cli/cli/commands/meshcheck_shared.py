@@ -11,6 +11,12 @@ def design_spec(design: dict):
     from wheelstep_cli.errors import DesignError
 
     law_csv = design["law_csv"]
+    if design["distance"] is not None and design["center_distance"] is not None:
+        # the law does not depend on it: it only says where to mount the pair when --distance
+        # does not
+        raise DesignError("center_distance", design["center_distance"],
+                          "gives the distance checked at when --distance does not; with "
+                          "--distance it would do nothing")
     try:
         return gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
                               turns=design["turns"], center_distance=design["center_distance"],

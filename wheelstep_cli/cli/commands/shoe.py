@@ -83,7 +83,7 @@ def kinematics(
     motor_rpm: Annotated[float, opt("--motor-rpm",
                                     help="Constant pinion (motor side) speed, rpm.")] = 60.0,
     points: Annotated[int, opt("--points", help="Samples over one shoe cycle.")] = 361,
-    rows: Annotated[int, opt("--rows", help="Table rows printed.")] = 9,
+    rows: Annotated[Optional[int], opt("--rows", help="Table rows printed.", shown="9")] = None,
     plot: Plot = None, profile: Profile = None, force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
@@ -93,6 +93,11 @@ def kinematics(
     from wheelstep_cli.parts.mechanism_files import kinematics_files
 
     show = Output(json, quiet, verbose)
+    if rows is not None and json:
+        from wheelstep_cli.errors import DesignError
+
+        raise DesignError("rows", rows, "shapes the printed table; --json gives every sample")
+    rows = 9 if rows is None else rows
     check_inputs(motor_rpm, points, rows)
     design = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min).design()
     if turns is None:

@@ -14,17 +14,22 @@ Plot = plot_option("the climb/descent kinematics plot")
 def stairs(
     run: Annotated[float, opt("--run", help="Stair run (tread going) l, mm.")] = 300.0,
     rise: Annotated[float, opt("--rise", help="Stair rise h, mm.")] = 150.0,
-    sole_radius: Annotated[float, opt("--sole-radius", help="Circular sole radius Y2, mm.")] = 70.0,
-    landing_angle: Annotated[float, opt("--landing-angle", help="Hub angle alpha at which a shoe "
-                                                                "lands on the next step, deg.")] = -90.0,
-    step: Annotated[float, opt("--step", help="Hub-angle step of the kinematics tables, deg.")] = 5.0,
+    sole_radius: Annotated[Optional[float], opt("--sole-radius", help="Circular sole radius Y2, mm.",
+                                                shown="70")] = None,
+    landing_angle: Annotated[Optional[float], opt("--landing-angle", help="Hub angle alpha at which "
+                                                                          "a shoe lands on the next "
+                                                                          "step, deg.",
+                                                  shown="-90")] = None,
+    step: Annotated[Optional[float], opt("--step", help="Hub-angle step of the kinematics tables, "
+                                                        "deg.", shown="5")] = None,
     a: Annotated[Optional[float], opt("--a", help="Check a given design: hub to crank axes "
                                                   "a, mm.")] = None,
     b: Annotated[Optional[float], opt("--b", help="Check a given design: crank b, mm.")] = None,
     y1: Annotated[Optional[float], opt("--y1", help="Check a given design: strut radius "
                                                     "vector Y1, mm.")] = None,
     y2: Annotated[Optional[float], opt("--y2", help="Check a given design: sole radius Y2, mm.")] = None,
-    tol: Annotated[float, opt("--tol", help="Check: allowed miss of run and rise per cycle, mm.")] = 1.0,
+    tol: Annotated[Optional[float], opt("--tol", help="Check: allowed miss of run and rise per "
+                                                      "cycle, mm.", shown="1")] = None,
     sweep: Annotated[bool, opt("--sweep", help="Print the sizing over landing angles and sole "
                                                "radii instead.")] = False,
     sweep_angles: Annotated[Optional[str], opt("--sweep-angles", help="Sweep landing angles, deg: "
@@ -46,15 +51,16 @@ def stairs(
     from wheelstep_cli.parts.mechanism_files import stairs_files
 
     show = Output(json, quiet, verbose)
-    sr.check_stair(run, rise, step)
     _only_with(sweep, sweep_angles=sweep_angles, sweep_radii=sweep_radii)
     if sweep:
-        _only_with(False, a=a, b=b, y1=y1, y2=y2, plot=plot)
+        _only_with(False, a=a, b=b, y1=y1, y2=y2, sole_radius=sole_radius,
+                   landing_angle=landing_angle, step=step, tol=tol, plot=plot)
+    sr.check_stair(run, rise, 5.0 if step is None else step)
+    if sweep:
         _sweep(show, run, rise, number_list(sweep_angles or "-180:0:15", "sweep_angles"),
                sweep_radii or "40,70,100,150,192")
         return 0
-    request = sr.StairRequest(run, rise, sole_radius, landing_angle, step,
-                              sr.given_design(a, b, y1, y2, tol), tol)
+    request = _request(run, rise, sole_radius, landing_angle, step, (a, b, y1, y2), tol)
     study = sr.stair_study(request)
     show.parameters(vars(study.design))
     files = stairs_files(study, plot)
@@ -63,6 +69,25 @@ def stairs(
     show.report(report, lambda: _study_lines(study, report))
     show.files(named, dry_run)
     return 1 if study.check is not None and not study.check.climbs else 0
+
+
+def _request(run: float, rise: float, sole_radius, landing_angle, step, design: tuple, tol):
+    """The stair study's request (mm, deg) from the options (None: not given), refusing
+    the one that would do nothing: ``tol`` without a ``design`` (a, b, y1, y2) to check,
+    ``sole_radius`` with one (it sizes a design instead)."""
+    from wheelstep_cli.mechanism import stairs_report as sr
+
+    given = any(v is not None for v in design)
+    if tol is not None and not given:
+        raise DesignError("tol", tol, "is the design check's allowed miss: give the design to "
+                                      "check (--a --b --y1 --y2)")
+    if sole_radius is not None and given:
+        raise DesignError("sole_radius", sole_radius, "sizes a design for the stair; the design "
+                                                      "checked has its own sole radius (--y2)")
+    tol = 1.0 if tol is None else tol
+    return sr.StairRequest(run, rise, 70.0 if sole_radius is None else sole_radius,
+                           -90.0 if landing_angle is None else landing_angle,
+                           5.0 if step is None else step, sr.given_design(*design, tol), tol)
 
 
 def _only_with(used: bool, **given) -> None:

@@ -29,8 +29,9 @@ def trajectory(
     h_max: Annotated[Optional[float], opt("--h-max", help="Required clearance: top of the path "
                                                           "above AD, mm.",
                                           shown="100 if no --r3")] = None,
-    o3_root: Annotated[Root, opt("--o3-root", help="With --r3: top-arc centre on the support side "
-                                                   "of O1O2 (SPEC) or the other.")] = Root.lower,
+    o3_root: Annotated[Optional[Root], opt("--o3-root", help="With --r3: top-arc centre on the "
+                                                             "support side of O1O2 (SPEC) or the "
+                                                             "other.", shown="lower")] = None,
     x0: Annotated[float, opt("--x0", help="x of A, mm.")] = 0.0,
     y0: Annotated[float, opt("--y0", help="Support line height y0, mm.")] = 0.0,
     spacing: Annotated[float, opt("--spacing", help="Sample spacing along the path, mm.")] = 1.0,
@@ -47,13 +48,26 @@ def trajectory(
     from wheelstep_cli.parts.mechanism_files import trajectory_files
 
     show = Output(json, quiet, verbose)
-    study = trajectory_study(support_length, r1, r2, r3, h_max, x0, y0, o3_root.value, spacing)
+    _used_with(o3_root=(o3_root.value if o3_root is not None else None, r3, "--r3"),
+               dxf_polyline=("on" if dxf_polyline else None, dxf, "--dxf"))
+    study = trajectory_study(support_length, r1, r2, r3, h_max, x0, y0,
+                             (o3_root or Root.lower).value, spacing)
     show.parameters({"r1": study.path.r1, "r2": study.path.r2, "r3": study.path.r3,
                      "h_max": study.path.h_max, "spacing": spacing})
     files = trajectory_files(study, csv, dxf, dxf_polyline, plot)
     named = show.write_named("trajectory", files, dry_run, force, csv=csv, dxf=dxf, plot=plot)
     show.report(trajectory_report(study), lambda: _lines(study))
     show.files(named, dry_run)
+
+
+def _used_with(**options) -> None:
+    """Refuse an option (name -> (value given or None, the option it shapes, its flag)) given
+    without the option it shapes: it would do nothing."""
+    from wheelstep_cli.errors import DesignError
+
+    for name, (value, needed, flag) in options.items():
+        if value is not None and needed is None:
+            raise DesignError(name, value, f"shapes {flag}: give {flag} too")
 
 
 def _lines(study) -> list[str]:

@@ -1,0 +1,69 @@
+"""Every option acts or is refused: an option given where it would change nothing is one
+line naming it (as the user wrote it), exit 2, nothing written."""
+
+from __future__ import annotations
+
+import pytest
+
+from tests.helpers.clicheck import error_line
+
+
+@pytest.mark.parametrize("args, line", [
+    # stairs: a sweep sizes over its own landing angles and sole radii, draws no tables
+    (["stairs", "--sweep", "--sole-radius", "50"], "--sole-radius = 50: is not used: such options do nothing with --sweep"),
+    (["stairs", "--sweep", "--landing-angle=-30"], "--landing-angle = -30: is not used"),
+    (["stairs", "--sweep", "--step", "2"], "--step = 2: is not used"),
+    (["stairs", "--sweep", "--tol", "3"], "--tol = 3: is not used"),
+    # the allowed miss is the design check's, the sole radius the sizing's
+    (["stairs", "--tol", "5"], "--tol = 5: is the design check's allowed miss: give the design"),
+    (["stairs", "--a", "100", "--b", "50", "--y1", "130", "--y2", "192", "--sole-radius", "60"],
+     "--sole-radius = 60: sizes a design for the stair; the design checked has its own"),
+    (["trajectory", "--o3-root", "upper"], "--o3-root = upper: shapes --r3: give --r3 too"),
+    (["trajectory", "--dxf-polyline"], "--dxf-polyline = on: shapes --dxf: give --dxf too"),
+    (["linkage", "--gif-frames", "10"], "--gif-frames = 10: shapes the --gif animation"),
+    (["kinematics", "--json", "--rows", "3"], "--rows = 3: shapes the printed table"),
+    (["stairs", "-q", "-v"], "-v = on: cannot be combined with -q/--quiet"),
+    (["stairs", "--quiet", "--verbose"], "--verbose = on: cannot be combined with -q/--quiet"),
+])
+def test_an_option_that_would_do_nothing_is_refused(cli, tmp_path, args, line):
+    out = tmp_path / "out.png"
+    # a picture asked for too: nothing of it is written when the run is refused
+    result = cli(*args, *([] if "--sweep" in args else ["--plot", out]))
+    assert error_line(result).startswith(f"wheelstep: error: {line}"), result.stderr
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("option", [["--a", "50"], ["--b", "90"], ["--c", "400"], ["--turns", "4"]])
+@pytest.mark.parametrize("command", ["gears", "mesh-check"])
+def test_the_crank_law_options_are_refused_with_a_law_csv(cli, tmp_path, command, option):
+    """A law CSV replaces the crank law: what sizes that law would do nothing."""
+    csv = tmp_path / "law.csv"
+    csv.write_text("driving_deg,driven_deg\n0,0\n180,90\n360,180\n")
+    meshes = [tmp_path / "p.stl", tmp_path / "w.stl"] if command == "mesh-check" else []
+    out = tmp_path / "out"
+    line = error_line(cli(command, *meshes, "--law-csv", csv, *option, "--out" if command == "gears"
+                          else "--plot", out if command == "gears" else out / "m.png"))
+    assert line.startswith(f"wheelstep: error: {option[0]} = {option[1]}: sets the crank law, "
+                           "which --law-csv replaces"), line
+    assert not out.exists()
+
+
+def test_mesh_check_refuses_a_center_distance_its_distance_overrides(cli, tmp_path):
+    line = error_line(cli("mesh-check", tmp_path / "p.stl", tmp_path / "w.stl", "--distance", "144",
+                          "--center-distance", "140"))
+    assert line.startswith("wheelstep: error: --center-distance = 140: gives the distance checked "
+                           "at when --distance does not"), line
+
+
+def test_a_batch_entry_with_a_law_csv_refuses_its_crank_override_at_its_line(cli, tmp_path):
+    from tests.helpers.files import line_of, write
+
+    csv = tmp_path / "law.csv"
+    csv.write_text("driving_deg,driven_deg\n0,0\n180,90\n360,180\n")
+    batch = write(tmp_path / "b.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"
+                  "    printer: fdm-0.4-pla\n    overrides:\n      law_csv: " + str(csv) + "\n"
+                  "      b: 90\n")
+    line = error_line(cli("batch", batch, "--out", tmp_path / "out"))
+    assert line.startswith(f"wheelstep: error: {batch}:{line_of(batch, 'b: 90')}: "
+                           "parts[0].overrides.b = 90: sets the crank law"), line
+    assert not (tmp_path / "out").exists()
