@@ -67,6 +67,22 @@ def timing_marks(outline: np.ndarray, hole: np.ndarray | None, direction: float,
     return [shapes.arrow_mark(inner, outer, direction, bar=carrier)]
 
 
+def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec) -> None:
+    """Refuse (DesignError) a gear whose web has no room for its timing mark: the pair is
+    set in phase by its marks, and a gear left without one could not be."""
+    from wheelstep_cli.errors import DesignError
+
+    inner = max(shapes.hole_reach(hole) if hole is not None else 0.0, spec.hub_mm[0] / 2.0)
+    room = min_radius(outline) - inner - 2.0 * MARK_GAP
+    need = shapes.HEAD_LENGTH + 2.0 * shapes.MARK_WIDTH
+    raise DesignError("mark_depth", spec.mark_depth,
+                      f"leaves the {name} no room for its timing mark ({max(room, 0.0):.1f} mm of "
+                      f"web between the {'hub' if spec.hub_d else 'bore'} and the tooth roots, the "
+                      f"mark needs {need:.1f} mm): a smaller --hub-d or --bore, or --mark-depth 0 "
+                      "for no marks"
+                      ).tied_to({"hub_d": spec.hub_d, "bore": spec.bore})
+
+
 def pockets(outline: np.ndarray, hole: np.ndarray | None, spec, direction: float,
             module: float) -> list[np.ndarray]:
     """--lighten pockets (CCW rings, mm) between spokes, the first spoke under the mark:
@@ -125,10 +141,14 @@ def gear_part(face: GearFace, spec):
     cut = face.holes[1 if spec.bore > 0 else 0:]
     param = {"keyway": "key_depth", "d-flat": "bore", "hex": "bore"}.get(spec.bore_shape, "bore")
     value = spec.key_depth if param == "key_depth" else spec.bore
-    return extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
+    part = extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
                         spec.mark_depth, param, value, cut, spec.chamfer_mm, spec.hub_mm,
                         _set_screw(spec, face.direction),
                         (float(spec.bore), float(spec.key_width)) if param == "key_depth" else None)
+    # after the solid's own checks: a bore or hub too large for the gear is named as such first
+    if not face.marks and spec.mark_depth > 0:
+        _no_room_for_mark(face.name, face.outline, hole, spec)
+    return part
 
 
 def faces_for(spec, law, pinion_outline: np.ndarray, wheel_outline: np.ndarray,
