@@ -460,3 +460,17 @@ def test_batch_refuses_teeth_too_thin_for_the_entrys_printer_with_a_remedy_that_
         in result.stderr
     assert "use overrides {z: 42}" in result.stderr
     assert sorted(p.name for p in (out / "reports").iterdir()) == ["remedy.json", "resin.json"]
+
+
+def test_a_batch_gear_pair_whose_hub_makes_it_too_tall_is_refused_before_it_is_built(cli, tmp_path):
+    """The batch's early height check is gears': the plate and the hub both gears carry."""
+    from tests.helpers.files import line_of, write
+
+    batch = write(tmp_path / "tall.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"
+                  "    design: desk-demo\n    printer: fdm-0.4-pla\n    overrides:\n"
+                  "      thickness: 200\n      hub_d: 20\n      hub_length: 60\n")
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2, result.stderr
+    assert (f"{batch}:{line_of(batch, 'thickness: 200')}: parts[0].overrides.thickness = 200: makes "
+            "part 'pinion' 260.0 mm tall, more than the 250 mm printer 'fdm-0.4-pla' prints") in result.stderr
+    assert not (tmp_path / "out").exists()

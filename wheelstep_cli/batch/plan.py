@@ -230,12 +230,12 @@ def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
 
 def _require_height(printed, printer: Printer) -> None:
     """A gear pair taller than its printer prints, refused before it is built (as the plate
-    would refuse it after; float32, as the meshes hold the thickness)."""
-    import numpy as np
+    would refuse it after)."""
+    from wheelstep_cli.parts.gear_pair import footprint
+    from wheelstep_cli.parts.plate_layout import gear_pair_height, require_height
 
-    from wheelstep_cli.parts.plate_layout import require_height
-
-    require_height("pinion", float(np.float32(printed.thickness)), printer, "thickness", printed.thickness)
+    require_height("pinion", gear_pair_height(printed), printer, "thickness", printed.thickness,
+                   footprint(printed))
 
 
 def _problem(doc, path, err: DesignError, override_where, design_name, overrides) -> Issue:

@@ -48,6 +48,12 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float,
             raise DesignError("printer", printer.name, problem).tied_to(footprint or {})
 
 
+def gear_pair_height(spec) -> float:
+    """How tall (mm) a gear pair's parts stand: the plate and the hub both gears carry on
+    their top face, as the meshes' float32 vertices hold it (the plate's check sees that)."""
+    return float(np.float32(spec.thickness + spec.hub_mm[1]))
+
+
 def require_height(name: str, tall: float, printer: Printer, height_param: str, height: float,
                    footprint: dict[str, object] | None = None) -> None:
     """Refuse (DesignError on ``height_param`` = ``height``) a part ``name`` ``tall`` mm tall

@@ -71,22 +71,19 @@ def require_height_first(spec, printer, fmt: str, fit: bool):
     """The printer the pair is drawn or laid out for (the one given, else the default printer
     when a 3MF is written or a fit is asked for; None: plain STL for no printer), the pair
     refused when taller than it prints before any tooth is cut, as writing it would refuse it."""
-    import numpy as np
 
     from wheelstep_cli.config.profiles import load_printer
     from wheelstep_cli.parts.gear_pair import footprint
-    from wheelstep_cli.parts.plate_layout import require_height
+    from wheelstep_cli.parts.plate_layout import gear_pair_height, require_height
 
     from wheelstep_cli.errors import DesignError
 
     target = printer or (load_printer() if fmt in ("3mf", "both") or fit else None)
     if target is None:
         return None
-    # both gears carry the hub on their top face; the meshes' vertices are float32, so the
-    # plate's check sees the height so rounded
-    tall = float(np.float32(spec.thickness + spec.hub_mm[1]))
     try:
-        require_height("pinion", tall, target, "thickness", spec.thickness, footprint(spec))
+        require_height("pinion", gear_pair_height(spec), target, "thickness", spec.thickness,
+                       footprint(spec))
     except DesignError as err:
         if printer is not None:
             raise
