@@ -127,3 +127,14 @@ def test_gears_plot_keeps_a_users_file_of_the_same_name(cli, tmp_path):
     assert listing(tmp_path) == {"mine.png": b"the user's file"}      # all or nothing
     assert cli(*args, "--force").exit_code == 0
     assert mine.read_bytes().startswith(b"\x89PNG") and (out / "pinion.stl").exists()
+
+
+def test_a_gears_picture_in_the_output_folder_survives_a_run_without_it(cli, tmp_path):
+    """The pictures keep their own record: a later run that draws none does not take them for
+    its own stale files."""
+    out = tmp_path / "out"
+    args = ("gears", "--profile", "desk-demo", "--format", "stl", "--out", out, "-q")
+    assert cli(*args, "--plot", out / "p.png").exit_code == 0
+    picture = (out / "p.png").read_bytes()
+    assert cli(*args).exit_code == 0
+    assert (out / "p.png").read_bytes() == picture

@@ -243,11 +243,12 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                              extras, check)
     sliced = _slice(show, pair, record, files, out) if slice_ else None
     # the pictures go where the user named them: a file there this command did not write is
-    # refused (unless --force) before anything is written, as for the meshes
+    # refused (unless --force) before anything is written, as for the meshes. Their own
+    # record: the output folder's would remove them as stale on a run that draws none
     named = {"plot": extras.plot, "gif": extras.gif}
-    show.write_named("gears", pictures, True, force, **named)
+    show.write_named("gears-pictures", pictures, True, force, **named)
     written = show.write_owned(out, "gears", files, dry_run, force)
-    written += [p for p in show.write_named("gears", pictures, dry_run, force, **named) if p in pictures]
+    written += show.write_named("gears-pictures", pictures, dry_run, force, **named)
     report = {**gear_pair_report(pair, record), **({"slice": sliced} if sliced else {}),
               "written": [] if dry_run else [str(p) for p in written]}
     show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
