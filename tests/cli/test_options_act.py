@@ -22,6 +22,7 @@ from tests.helpers.clicheck import error_line
     (["trajectory", "--dxf-polyline"], "--dxf-polyline = on: shapes --dxf: give --dxf too"),
     (["linkage", "--gif-frames", "10"], "--gif-frames = 10: shapes the --gif animation"),
     (["kinematics", "--json", "--rows", "3"], "--rows = 3: shapes the printed table"),
+    (["kinematics", "-q", "--rows", "3"], "--rows = 3: shapes the printed table"),
     (["stairs", "-q", "-v"], "-v = on: cannot be combined with -q/--quiet"),
     (["stairs", "--quiet", "--verbose"], "--verbose = on: cannot be combined with -q/--quiet"),
 ])
@@ -48,11 +49,13 @@ def test_the_crank_law_options_are_refused_with_a_law_csv(cli, tmp_path, command
     assert not out.exists()
 
 
-def test_mesh_check_refuses_a_center_distance_its_distance_overrides(cli, tmp_path):
-    line = error_line(cli("mesh-check", tmp_path / "p.stl", tmp_path / "w.stl", "--distance", "144",
+@pytest.mark.parametrize("installed, source", [(["--distance", "144"], "--distance"),
+                                               (["--profile", "desk-demo"], "the profile's install_distance")])
+def test_mesh_check_refuses_a_center_distance_an_installed_distance_overrides(cli, tmp_path, installed, source):
+    line = error_line(cli("mesh-check", tmp_path / "p.stl", tmp_path / "w.stl", *installed,
                           "--center-distance", "140"))
-    assert line.startswith("wheelstep: error: --center-distance = 140: gives the distance checked "
-                           "at when --distance does not"), line
+    assert line == ("wheelstep: error: --center-distance = 140: gives the distance checked at when "
+                    f"none is installed; {source} sets it here"), line
 
 
 def test_a_batch_entry_with_a_law_csv_refuses_its_crank_override_at_its_line(cli, tmp_path):

@@ -128,13 +128,15 @@ def test_fit_auto_meets_the_petg_band_with_the_default_pair(cli, tmp_path):
     import json
 
     from wheelstep_cli.config.printers import FIT_MARGINS, Fit
+    from wheelstep_cli.config.profiles import load_printer_profile
 
     out = tmp_path / "out"
     result = cli("gears", "--printer", "fdm-0.4-petg", "--fit", "auto", "--json", "-q", "--out", out)
     assert result.exit_code == 0, result.stderr
     meshing = json.loads((out / "gears.json").read_text())["meshing"]
     band = meshing["tolerance"]
-    assert band["printer"] == "fdm-0.4-petg" and band["band"]["outline_mm"] == 0.12
+    outline = load_printer_profile("fdm-0.4-petg").band.outline
+    assert band["printer"] == "fdm-0.4-petg" and band["band"]["outline_mm"] == outline
     assert not meshing["interference"] and band["fit"]["inset_mm"] > 0.0
     assert not band["jams"] and all(not case["jams"] for case in band["cases"])
     assert band["least_backlash_mm"] >= FIT_MARGINS[Fit.auto]

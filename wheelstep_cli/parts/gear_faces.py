@@ -60,11 +60,21 @@ def timing_marks(outline: np.ndarray, hole: np.ndarray | None, direction: float,
     """The arrow (with the carrier's crossbar on the wheel) between hole (or the ``hub``
     diameter, mm) and root, pointing
     along ``direction`` (rad); none when the web is too narrow for one."""
-    inner = max(shapes.hole_reach(hole) if hole is not None else 0.0, hub / 2.0) + MARK_GAP
-    outer = min_radius(outline) - MARK_GAP
-    if outer - inner < shapes.HEAD_LENGTH + 2.0 * shapes.MARK_WIDTH:
+    inner, outer = _mark_span(outline, hole, hub)
+    if outer - inner < MARK_LENGTH:
         return []
     return [shapes.arrow_mark(inner, outer, direction, bar=carrier)]
+
+
+#: Shortest arrow a timing mark is drawn as (mm): its head and a stem of two widths.
+MARK_LENGTH = shapes.HEAD_LENGTH + 2.0 * shapes.MARK_WIDTH
+
+
+def _mark_span(outline: np.ndarray, hole: np.ndarray | None, hub: float) -> tuple[float, float]:
+    """The radii (mm) a timing mark may run between: MARK_GAP clear of the hole or hub
+    (``hub`` its diameter, mm) and of the tooth roots."""
+    inner = max(shapes.hole_reach(hole) if hole is not None else 0.0, hub / 2.0) + MARK_GAP
+    return inner, min_radius(outline) - MARK_GAP
 
 
 def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec) -> None:
@@ -72,15 +82,15 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec) -> None:
     set in phase by its marks, and a gear left without one could not be."""
     from wheelstep_cli.errors import DesignError
 
-    inner = max(shapes.hole_reach(hole) if hole is not None else 0.0, spec.hub_mm[0] / 2.0)
-    room = min_radius(outline) - inner - 2.0 * MARK_GAP
-    need = shapes.HEAD_LENGTH + 2.0 * shapes.MARK_WIDTH
+    inner, outer = _mark_span(outline, hole, spec.hub_mm[0])
+    around = "hub" if spec.hub_d else "bore" if hole is not None else "axis"
     raise DesignError("mark_depth", spec.mark_depth,
-                      f"leaves the {name} no room for its timing mark ({max(room, 0.0):.1f} mm of "
-                      f"web between the {'hub' if spec.hub_d else 'bore'} and the tooth roots, the "
-                      f"mark needs {need:.1f} mm): a smaller --hub-d or --bore, or --mark-depth 0 "
-                      "for no marks"
-                      ).tied_to({"hub_d": spec.hub_d, "bore": spec.bore})
+                      f"leaves the {name} no room for its timing mark ({max(outer - inner, 0.0):.1f} "
+                      f"mm of web between the {around} and the tooth roots, the mark needs "
+                      f"{MARK_LENGTH:.1f} mm): a smaller --hub-d or --bore, or --mark-depth 0 for no "
+                      "marks"
+                      ).tied_to({"hub_d": spec.hub_d, "bore": spec.bore, "bore_shape": spec.bore_shape,
+                                 "key_depth": spec.key_depth, "key_width": spec.key_width})
 
 
 def pockets(outline: np.ndarray, hole: np.ndarray | None, spec, direction: float,

@@ -130,14 +130,15 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
             remedy, tried, candidates = _verified(design, remedy, verify, bounds)
     param = next(iter(remedy), "z")
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
+    # a CSV law replaces the crank mechanism (whose options are then refused)
+    law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
     if remedy:
         advice = f"use {_as_options(remedy)}"
     elif tried:
-        advice = (f"no remedy found ({'; '.join(tried)}): change the mechanism (--a, --b, --c) or the "
-                  "centre distance")
+        advice = f"no remedy found ({'; '.join(tried)}): change {law} or the centre distance"
     else:
-        advice = (f"no tooth count up to {MAX_TEETH} brings it within them: change the mechanism "
-                  "(--a, --b, --c) or the centre distance")
+        advice = (f"no tooth count up to {MAX_TEETH} brings it within them: change {law} or the "
+                  "centre distance")
     error = DesignError(param, value,
                         f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
                         f"written; {advice}")

@@ -102,5 +102,10 @@ def spec_from_metadata(values: dict[str, str], file: str) -> GearPairSpec:
         return GearPairSpec(**typed)
     except ValidationError as err:
         first = err.errors()[0]
+        cause = first.get("ctx", {}).get("error")
+        if not first["loc"] and isinstance(cause, DesignError):
+            # a rule between fields (the model's own check): the field it names, not the dict
+            raise DesignError("pinion", file, f"metadata {cause.param} = {cause.shown_value}: "
+                                              f"{cause.limit}") from None
         raise DesignError("pinion", file, f"metadata {'.'.join(map(str, first['loc']))} = "
                           f"{first.get('input')!r}: {first['msg']}") from None

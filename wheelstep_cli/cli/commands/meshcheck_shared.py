@@ -11,14 +11,8 @@ def design_spec(design: dict):
     from wheelstep_cli.errors import DesignError
 
     law_csv = design["law_csv"]
-    if design["distance"] is not None and design["center_distance"] is not None:
-        # the law does not depend on it: it only says where to mount the pair when --distance
-        # does not
-        raise DesignError("center_distance", design["center_distance"],
-                          "gives the distance checked at when --distance does not; with "
-                          "--distance it would do nothing")
     try:
-        return gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
+        spec = gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
                               turns=design["turns"], center_distance=design["center_distance"],
                               install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
                               blend=design["blend"])
@@ -27,6 +21,14 @@ def design_spec(design: dict):
         if err.param == "install_distance" and design["distance"] is not None:
             raise DesignError("distance", err.value, err.limit) from None
         raise
+    if design["center_distance"] is not None and spec.install_distance is not None:
+        # the law does not depend on it: it only says where to mount the pair when no
+        # installed distance is given
+        raise DesignError("center_distance", design["center_distance"],
+                          "gives the distance checked at when none is installed; "
+                          + ("--distance" if design["distance"] is not None else
+                             "the profile's install_distance") + " sets it here")
+    return spec
 
 
 def band_printer_of(tolerance: bool, printer):

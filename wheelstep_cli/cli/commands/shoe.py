@@ -93,10 +93,11 @@ def kinematics(
     from wheelstep_cli.parts.mechanism_files import kinematics_files
 
     show = Output(json, quiet, verbose)
-    if rows is not None and json:
+    if rows is not None and (json or quiet):
         from wheelstep_cli.errors import DesignError
 
-        raise DesignError("rows", rows, "shapes the printed table; --json gives every sample")
+        raise DesignError("rows", rows, "shapes the printed table, which --json and -q do not "
+                                        "print (--json gives every sample)")
     rows = 9 if rows is None else rows
     check_inputs(motor_rpm, points, rows)
     design = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min).design()

@@ -1,0 +1,24 @@
+"""A plate's stored design is checked by the spec's model: a rule between fields that the
+metadata breaks is named by its field, not by the whole metadata dict."""
+
+from __future__ import annotations
+
+import pytest
+
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.parts.plate_pairs import spec_from_metadata
+
+
+def test_a_rule_between_fields_names_the_field_the_metadata_breaks():
+    # paper teeth with a generator setting: what an older wheelstep wrote and this one refuses
+    with pytest.raises(DesignError) as err:
+        spec_from_metadata({"teeth": "paper", "pressure_angle": "25"}, "old.3mf")
+    assert err.value.param == "pinion" and err.value.value == "old.3mf"
+    assert err.value.limit == ("metadata pressure_angle = 25: shapes generated teeth only (the paper "
+                               "teeth are the source's sector involutes)")
+
+
+def test_a_bad_field_value_is_named_with_its_value():
+    with pytest.raises(DesignError) as err:
+        spec_from_metadata({"z": "many"}, "odd.3mf")
+    assert err.value.limit.startswith("metadata z = 'many': ")
