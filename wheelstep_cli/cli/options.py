@@ -126,6 +126,14 @@ def csv_option(what: str):
     return Annotated[Optional[Path], opt("--csv", help=f"Write {what} (CSV).")]
 
 
+def require_with(param: str, value, companion, what: str) -> None:
+    """Refuse option ``param`` given (``value`` not None) without the ``companion`` option's
+    value it shapes (None: not given): it would do nothing. ``what``: what it shapes, as
+    the message names it (e.g. "--dxf")."""
+    if value is not None and companion is None:
+        raise DesignError(param, value, f"shapes {what}: give {what.split()[-1]} too")
+
+
 def number_list(text: str, param: str) -> list[float]:
     """``"a,b,c"`` or ``"start:stop:step"`` (inclusive) to floats."""
     try:

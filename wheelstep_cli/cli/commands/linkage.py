@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Annotated, List, Optional
 
 from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, plot_option,
-                                       point, signs)
+                                       point, require_with, signs)
 from wheelstep_cli.cli.output import Output
 
 
@@ -56,10 +56,7 @@ def linkage(
     from wheelstep_cli.parts.mechanism_files import linkage_files
 
     show = Output(json, quiet, verbose)
-    if gif_frames is not None and gif is None:
-        from wheelstep_cli.errors import DesignError
-
-        raise DesignError("gif_frames", gif_frames, "shapes the --gif animation: give --gif too")
+    require_with("gif_frames", gif_frames, gif, "the --gif animation")
     gif_frames = 48 if gif_frames is None else gif_frames
     ls.check_sampling(samples, scale, gif_frames, step)
     four_bar = {"l1": l1, "l2": l2, "l3": l3, "l4": l4, "beta_deg": beta,

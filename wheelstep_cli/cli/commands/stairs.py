@@ -55,7 +55,8 @@ def stairs(
     if sweep:
         _only_with(False, a=a, b=b, y1=y1, y2=y2, sole_radius=sole_radius,
                    landing_angle=landing_angle, step=step, tol=tol, plot=plot)
-    sr.check_stair(run, rise, 5.0 if step is None else step)
+    step = 5.0 if step is None else step
+    sr.check_stair(run, rise, step)
     if sweep:
         _sweep(show, run, rise, number_list(sweep_angles or "-180:0:15", "sweep_angles"),
                sweep_radii or "40,70,100,150,192")
@@ -87,7 +88,7 @@ def _request(run: float, rise: float, sole_radius, landing_angle, step, design: 
     tol = 1.0 if tol is None else tol
     return sr.StairRequest(run, rise, 70.0 if sole_radius is None else sole_radius,
                            -90.0 if landing_angle is None else landing_angle,
-                           5.0 if step is None else step, sr.given_design(*design, tol), tol)
+                           step, sr.given_design(*design, tol), tol)
 
 
 def _only_with(used: bool, **given) -> None:

@@ -6,7 +6,8 @@ from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, plot_option)
+from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, plot_option,
+                                       require_with)
 from wheelstep_cli.cli.output import Output
 
 
@@ -48,8 +49,8 @@ def trajectory(
     from wheelstep_cli.parts.mechanism_files import trajectory_files
 
     show = Output(json, quiet, verbose)
-    _used_with(o3_root=(o3_root.value if o3_root is not None else None, r3, "--r3"),
-               dxf_polyline=("on" if dxf_polyline else None, dxf, "--dxf"))
+    require_with("o3_root", o3_root.value if o3_root is not None else None, r3, "--r3")
+    require_with("dxf_polyline", "on" if dxf_polyline else None, dxf, "--dxf")
     study = trajectory_study(support_length, r1, r2, r3, h_max, x0, y0,
                              (o3_root or Root.lower).value, spacing)
     show.parameters({"r1": study.path.r1, "r2": study.path.r2, "r3": study.path.r3,
@@ -58,16 +59,6 @@ def trajectory(
     named = show.write_named("trajectory", files, dry_run, force, csv=csv, dxf=dxf, plot=plot)
     show.report(trajectory_report(study), lambda: _lines(study))
     show.files(named, dry_run)
-
-
-def _used_with(**options) -> None:
-    """Refuse an option (name -> (value given or None, the option it shapes, its flag)) given
-    without the option it shapes: it would do nothing."""
-    from wheelstep_cli.errors import DesignError
-
-    for name, (value, needed, flag) in options.items():
-        if value is not None and needed is None:
-            raise DesignError(name, value, f"shapes {flag}: give {flag} too")
 
 
 def _lines(study) -> list[str]:
