@@ -163,7 +163,7 @@ def test_lighten_keeps_the_meshing_outlines_and_reports_what_it_saves(keyed_pair
 
 
 def test_a_hex_shaft_puts_the_gear_in_phase_in_as_many_of_its_six_ways_as_gears_json_says(keyed_pair):
-    from wheelstep_cli.parts.gear_pair import in_phase_positions
+    from wheelstep_cli.parts.gear_phase import in_phase_positions
 
     law = pair_law(keyed_pair)
     for outline, periods in ((keyed_pair.pinion_outline, law.pinion_periods),

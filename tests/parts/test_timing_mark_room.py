@@ -3,6 +3,8 @@ its marks), naming the option that took the room and the remedy; without marks i
 
 from __future__ import annotations
 
+import json
+
 from tests.helpers.clicheck import error_line
 
 
@@ -17,3 +19,21 @@ def test_a_hub_that_leaves_the_pinion_no_room_for_its_mark_is_refused(cli, tmp_p
     result = cli(*args, "--mark-depth", "0")
     assert result.exit_code == 0, result.stderr
     assert (out / "pinion.stl").exists()
+    # and the assembly note does not send the user to marks that are not there
+    note = json.loads((out / "gears.json").read_text())["phase"]["shaft"]["note"]
+    assert "carry no timing marks (mark depth 0)" in note and "marks face each other" not in note
+
+
+def test_the_assembly_note_of_marked_gears_on_a_round_bore_says_to_face_the_marks():
+    from types import SimpleNamespace
+
+    from wheelstep_cli.config.resolve import gear_pair_spec
+    from wheelstep_cli.parts.gear_phase import shaft_record
+
+    spec = gear_pair_spec(None)
+    assert spec.mark_depth > 0 and spec.bore_shape == "round"
+    law = SimpleNamespace(pinion_periods=2, wheel_periods=2)
+    assert "turn each gear until the marks face each other" in shaft_record(spec, law)["note"]
+    # a keyed bore sets the phase with or without marks
+    keyed = spec.model_copy(update={"bore_shape": "keyway", "mark_depth": 0.0})
+    assert "keyed shaft fits one way" in shaft_record(keyed, law)["note"]

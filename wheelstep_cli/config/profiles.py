@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
-from wheelstep_cli.config.printers import DEFAULT_PRINTER, Printer, printer_from_profile
+from wheelstep_cli.config.printers import DEFAULT_PRINTER, printer_from_profile
 from wheelstep_cli.config.schema import InvalidInput, Issue
 from wheelstep_cli.errors import DesignError
 

@@ -7,13 +7,14 @@ from pathlib import Path
 
 import numpy as np
 
-from wheelstep_cli.config.specs import BoreShape, GearPairSpec
+from wheelstep_cli.config.specs import GearPairSpec
 from wheelstep_cli.gears.paper_teeth import check_tooth_form, pinion_outline, wheel_outline
 from wheelstep_cli.gears.laws import CrankLaw
 from wheelstep_cli.gears.sectors import SectorPartition, sector_partition, sectors_per_quarter
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
 from wheelstep_cli.formats.jsonio import json_bytes
 from wheelstep_cli.formats.stl import stl_bytes
+from wheelstep_cli.parts.gear_phase import phase_report
 from wheelstep_cli.parts.gear_laws import (design_backlash, design_law, distance_record,  # noqa: F401
                                            generated_backlash, generation_law, installed_distance,
                                            rolling_distance)
@@ -220,7 +221,7 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
         report["outline_inset_mm"] = {
             "inset_mm": pair.inset, "how": "both tooth outlines drawn this much smaller along their "
             "normals after generation (a fit's print compensation, meshing.tolerance.fit)"}
-    report["phase"] = _phase(pair)
+    report["phase"] = phase_report(pair)
     if pair.spec.lighten:
         from wheelstep_cli.parts.gear_faces import gear_faces, lighten_record
 
@@ -234,47 +235,6 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
 def _distances(pair: GearPair) -> dict[str, float]:
     """The distances (mm) the pair rolls and is mounted at, as the parameters report them."""
     return {"center_distance": pair.design_distance, "install_distance": pair.mounted_distance}
-
-
-def _phase(pair: GearPair) -> dict:
-    """The assembly phase (deg) and how the shaft holes sit on it."""
-    from wheelstep_cli.gears.phase import assembly_phase, phase_record
-    from wheelstep_cli.parts.gear_faces import pair_law
-
-    law = pair_law(pair)
-    record = phase_record(assembly_phase(law))
-    spec = pair.spec
-    shape = BoreShape(spec.bore_shape) if spec.bore > 0 else None
-    fits = shaft_positions(shape)
-    in_phase = {"pinion": in_phase_positions(fits, law.pinion_periods),
-                "wheel": in_phase_positions(fits, law.wheel_periods)}
-    if fits is None:
-        how = "a round bore carries no phase: turn each gear until the marks face each other, then clamp"
-    elif fits == 1:
-        how = "a keyed shaft fits one way: shaft keys at the two mark angles plus key_angle put the pair in phase"
-    else:
-        how = (f"a hex shaft fits {fits} ways, of which {in_phase['pinion']} (pinion) and "
-               f"{in_phase['wheel']} (wheel) are in phase: slide each gear on with its mark where "
-               "the assembly phase says")
-    record["shaft"] = {"bore_shape": spec.bore_shape, "key_angle_deg": spec.key_angle,
-                       "shaft_fits_ways": fits, "in_phase_ways": in_phase if fits is not None else None,
-                       "note": "the key, flat or a hex flat faces key_angle from each gear's "
-                               f"mark (counter-clockwise seen from the top); {how}"}
-    return record
-
-
-def shaft_positions(shape: BoreShape | None) -> int | None:
-    """How many ways a shaft fits its hole (None: any way, a round bore or none)."""
-    return {BoreShape.d_flat: 1, BoreShape.keyway: 1, BoreShape.hex: 6}.get(shape)
-
-
-def in_phase_positions(fits: int | None, periods: int) -> int | None:
-    """Of the ``fits`` ways a shaft fits (equally spaced round the turn), how many put a gear
-    whose teeth repeat ``periods`` times a turn in phase: those turned by a whole number of
-    its periods (None for a round bore)."""
-    if fits is None:
-        return None
-    return sum(1 for k in range(fits) if (k * periods) % fits == 0)
 
 
 def chamfer_report(pair: GearPair) -> dict:
