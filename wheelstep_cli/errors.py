@@ -71,7 +71,9 @@ class MeshDefect(Exception):
 
 def format_value(value: object) -> str:
     """A value as an error shows it and an option takes it: floats in the shortest form,
-    a named choice (an Enum) as its word."""
+    a named choice (an Enum) as its word, a switch as on or off."""
+    if isinstance(value, bool):
+        return "on" if value else "off"
     if isinstance(value, float):
         return f"{value:g}"
     if isinstance(value, Enum):

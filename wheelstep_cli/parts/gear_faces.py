@@ -35,6 +35,7 @@ class GearFace:
     holes: list[np.ndarray]        # shaft hole ring(s), CCW
     marks: list[np.ndarray]        # timing marks, closed polylines (CCW rings)
     direction: float = 0.0         # rad, the mark's direction (the phase's body angle)
+    pocket_span: tuple[float, float] = (0.0, 0.0)   # mm, radii the --lighten pockets may span
 
 
 def shaft_hole(spec, direction: float) -> np.ndarray | None:
@@ -93,14 +94,24 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec) -> None:
                                  "key_depth": spec.key_depth, "key_width": spec.key_width})
 
 
+#: Least radial room (mm) for a pocket: its two corner fillets and 3 mm between them.
+POCKET_ROOM = 2.0 * POCKET_FILLET + 3.0
+
+
+def pocket_span(outline: np.ndarray, hole: np.ndarray | None, spec, module: float) -> tuple[float, float]:
+    """Radii (mm) a --lighten pocket may span: from a web round the hole or hub out to a rim
+    of RIM_MODULES modules (``module`` mm) under the roots."""
+    r_in = max(shapes.hole_reach(hole) if hole is not None else 0.0, spec.hub_mm[0] / 2.0) + \
+        max(WEB, 0.5 * spec.bore)
+    return r_in, min_radius(outline) - RIM_MODULES * module
+
+
 def pockets(outline: np.ndarray, hole: np.ndarray | None, spec, direction: float,
             module: float) -> list[np.ndarray]:
     """--lighten pockets (CCW rings, mm) between spokes, the first spoke under the mark:
     a rim of RIM_MODULES modules under the root, a web round the hole; none if no room."""
-    r_in = max(shapes.hole_reach(hole) if hole is not None else 0.0, spec.hub_mm[0] / 2.0) + \
-        max(WEB, 0.5 * spec.bore)
-    r_out = min_radius(outline) - RIM_MODULES * module
-    if not spec.lighten or r_out - r_in < 2.0 * POCKET_FILLET + 3.0:
+    r_in, r_out = pocket_span(outline, hole, spec, module)
+    if not spec.lighten or r_out - r_in < POCKET_ROOM:
         return []
     width = max(SPOKE_WIDTH, 0.1 * r_out)
     return spoked_pockets(r_in, r_out, SPOKES, width, direction, POCKET_FILLET)
@@ -113,7 +124,7 @@ def face_of(name: str, outline: np.ndarray, spec, direction: float, module: floa
     marks = timing_marks(outline, hole, direction, carrier=name == "wheel", hub=spec.hub_mm[0])
     cut = pockets(outline, hole, spec, direction, module)
     return GearFace(name, np.asarray(outline, dtype=float), ([] if hole is None else [hole]) + cut,
-                    marks, float(direction))
+                    marks, float(direction), pocket_span(outline, hole, spec, module))
 
 
 def saved(face: GearFace, spec) -> float:
@@ -158,7 +169,24 @@ def gear_part(face: GearFace, spec):
     # after the solid's own checks: a bore or hub too large for the gear is named as such first
     if not face.marks and spec.mark_depth > 0:
         _no_room_for_mark(face.name, face.outline, hole, spec)
+    if spec.lighten and face.name == "wheel" and not cut:
+        _no_room_for_pockets(face, spec)
     return part
+
+
+def _no_room_for_pockets(face: GearFace, spec) -> None:
+    """Refuse (DesignError) --lighten on a pair whose wheel has no room for pockets: the
+    option would cut nothing (the pinion, smaller, may go without where it has no room)."""
+    from wheelstep_cli.errors import DesignError
+
+    r_in, r_out = face.pocket_span
+    around = "hub" if spec.hub_d else "bore" if spec.bore > 0 else "axis"
+    raise DesignError("lighten", True,
+                      f"leaves no room for pockets in the wheel ({max(r_out - r_in, 0.0):.1f} mm "
+                      f"between the web round the {around} and a {RIM_MODULES} module rim under the "
+                      f"roots, a pocket needs {POCKET_ROOM:.1f} mm): a smaller --hub-d or --bore, "
+                      "or print without --lighten"
+                      ).tied_to({"hub_d": spec.hub_d, "bore": spec.bore})
 
 
 def faces_for(spec, law, pinion_outline: np.ndarray, wheel_outline: np.ndarray,
