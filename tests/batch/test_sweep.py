@@ -228,6 +228,26 @@ def test_rerun_after_interruption_computes_only_the_missing_points(tmp_path, mon
     assert len(final) == POINTS and first.items() <= final.items()
 
 
+def test_rows_of_other_code_under_the_same_version_are_computed_again(tmp_path, monkeypatch):
+    """A resumed sweep reuses a row only when wheelstep's own files are the same: a changed
+    checkout (same version number) computes every point again."""
+    from distributed import Client, LocalCluster
+
+    from wheelstep_cli.batch import sweep_point
+    from wheelstep_cli.batch.sweep_run import run_sweep
+    from wheelstep_cli.config.sweep_file import load_sweep
+
+    plan = load_sweep(write(tmp_path / "shoes.yaml", SHOES))
+    out = tmp_path / "out"
+    with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as lc, Client(lc) as client:
+        run_sweep(plan, out, client)
+        assert run_sweep(plan, out, client).computed == 0           # the same code: every row kept
+        monkeypatch.setattr(sweep_point, "package_digest", lambda: "another checkout")
+        outcome = run_sweep(plan, out, client)
+    assert (outcome.skipped, outcome.computed) == (0, POINTS)
+    assert all("another checkout" in row["versions"] for row in rows(out).values())
+
+
 def test_ctrl_c_during_the_final_merge_still_leaves_the_results(tmp_path, monkeypatch):
     """Every row computed, then Ctrl-C while they are merged: the merge is redone, so the
     results file holds them all (the interruption message promises it)."""
@@ -242,12 +262,12 @@ def test_ctrl_c_during_the_final_merge_still_leaves_the_results(tmp_path, monkey
     merge = sweep_store.ResultStore.consolidate
     calls = []
 
-    def interrupted_once(store):
+    def interrupted_once(store, keys=None):
         calls.append(1)
         if len(calls) == 1:
             store.flush()                      # rows on disk as parts, then Ctrl-C
             raise KeyboardInterrupt
-        return merge(store)
+        return merge(store, keys)
 
     monkeypatch.setattr(sweep_store.ResultStore, "consolidate", interrupted_once)
     with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as lc, Client(lc) as client:

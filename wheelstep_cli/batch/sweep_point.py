@@ -4,10 +4,12 @@
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import time
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from wheelstep_cli.config.names import yaml_message
@@ -45,13 +47,28 @@ class Point:
 
 
 def versions() -> str:
-    """The versions that decide a row's figures: wheelstep and its numeric libraries."""
+    """The versions that decide a row's figures: wheelstep (its version and the digest of its
+    own files, so a changed checkout under the same version number does not reuse rows) and
+    its numeric libraries."""
     from importlib.metadata import version
 
     from wheelstep_cli import __version__
 
     libs = {name: version(name) for name in ("numpy", "scipy", "manifold3d", "shapely")}
-    return json.dumps({"wheelstep": __version__, **libs}, sort_keys=True)
+    return json.dumps({"wheelstep": __version__, "wheelstep_files": package_digest(), **libs},
+                      sort_keys=True)
+
+
+@functools.lru_cache(maxsize=1)
+def package_digest() -> str:
+    """SHA-256 (first 16 hex digits) of wheelstep's code and shipped data (the presets): every
+    file of the installed package but compiled caches, by relative path and content."""
+    root = Path(__file__).resolve().parents[1]
+    digest = hashlib.sha256()
+    for path in sorted(p for p in root.rglob("*") if p.is_file() and "__pycache__" not in p.parts
+                       and p.suffix not in (".pyc", ".pyo")):
+        digest.update(path.relative_to(root).as_posix().encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.hexdigest()[:16]
 
 
 def point_key(command: str, design: dict, printer, tool: str) -> str:

@@ -49,7 +49,7 @@ def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, 
     points = resolve_points(plan)
     kinds = axis_kinds([p.values for p in points], plan.axes)
     store = ResultStore(out, schema(kinds, plan.tolerance), earlier)
-    done = store.done_keys()
+    done, keys = store.done_keys(), {p.key for p in points}
     todo = [p for p in points if p.key not in done]
     tool = versions()
     failures, finished = 0, 0
@@ -71,11 +71,11 @@ def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, 
             for nxt in _take(pending, 1):
                 by_future[_submit(client, futures, nxt)] = nxt
         # inside the guard: a Ctrl-C while merging must still leave a results file
-        results = store.consolidate()
+        results = store.consolidate(keys)
     except KeyboardInterrupt:
         for future in by_future:
             future.cancel()
-        store.consolidate()
+        store.consolidate(keys)
         raise
     return SweepOutcome(len(points), len(points) - len(todo), finished, failures, results)
 

@@ -126,10 +126,12 @@ class ResultStore:
         self.count += 1
         self.buffer = []
 
-    def consolidate(self) -> Path:
+    def consolidate(self, keys: set[str] | None = None) -> Path:
         """Merge the earlier results and every part file into ``results.parquet`` and
         ``results.csv`` in point order (each replaced atomically, then recorded as the
-        sweep's); parts removed. The rows are held here at once: at most MAX_POINTS small
+        sweep's); parts removed. With ``keys``, only the rows of those keys (the plan's
+        points now: rows of points left out of the grid, or computed by other code or
+        libraries, are dropped). The rows are held here at once: at most MAX_POINTS small
         rows (figures and the design's JSON, about 1 kB each; no meshes)."""
         import pyarrow as pa
         import pyarrow.csv as pcsv
@@ -140,6 +142,9 @@ class ResultStore:
         self.out.mkdir(parents=True, exist_ok=True)
         table = ordered(pa.concat_tables([pq.read_table(f, schema=self.schema) for f in files])
                         if files else self.schema.empty_table())
+        if keys is not None:
+            table = table.filter(pa.array([key in keys for key in table.column("key").to_pylist()],
+                                          type=pa.bool_()))
         staged_pq, staged_csv = self.out / f".{RESULTS}.tmp", self.out / f".{CSV}.tmp"
         pq.write_table(table, staged_pq)
         pcsv.write_csv(table, staged_csv)
