@@ -70,3 +70,16 @@ def test_a_batch_entry_with_a_law_csv_refuses_its_crank_override_at_its_line(cli
     assert line.startswith(f"wheelstep: error: {batch}:{line_of(batch, 'b: 90')}: "
                            "parts[0].overrides.b = 90: sets the crank law"), line
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("args, line", [
+    (["gears", "--z", "4_8"], "--z = 4_8: must be a whole number (digits without underscores)"),
+    (["gears", "--backlash=0_1"], "--backlash = 0_1: must be a number (digits without underscores)"),
+    (["kinematics", "--b", "1_00"], "--b = 1_00: must be a number (digits without underscores)"),
+])
+def test_a_number_with_an_underscore_is_refused_not_read_as_digits(cli, tmp_path, args, line):
+    """Python reads 4_8 as 48: a slip, not a number a person means."""
+    out = tmp_path / "out"
+    result = cli(*args, *(["--out", out] if args[0] == "gears" else []))
+    assert result.exit_code == 2 and error_line(result) == f"wheelstep: error: {line}"
+    assert not out.exists()

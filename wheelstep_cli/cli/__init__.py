@@ -183,6 +183,31 @@ def bad_number_text(err: click_errors.UsageError, argv: list[str]) -> str | None
     return f"{typed[0]} = {typed[1] or repr('')}: {kind}"
 
 
+def _number_kind(param) -> str | None:
+    """What a number option's value must be ("must be a whole number"), None for others."""
+    annotation = getattr(getattr(param, "type_descriptor", None), "annotation", None)
+    if annotation is None:   # click's own parameters carry their type
+        annotation = {"integer": int, "float": float}.get(getattr(getattr(param, "type", None), "name", None))
+    return {int: "must be a whole number", float: "must be a number"}.get(annotation)
+
+
+def underscored_number_text(group, argv: list[str]) -> str | None:
+    """One line for a number option of the named subcommand given with an underscore
+    (``--z 4_8``): Python's parsers read it as 48, a slip a person would not mean; None
+    when there is none."""
+    name = next((arg for arg in argv if arg in group.commands), None)
+    if name is None:
+        return None
+    for param in group.commands[name].params:
+        kind = _number_kind(param)
+        if param.param_type_name != "option" or kind is None:
+            continue
+        for flag, value in _flag_values(set(param.opts) | set(param.secondary_opts), argv):
+            if "_" in value:
+                return f"{flag} = {value}: {kind} (digits without underscores)"
+    return None
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run the CLI on ``argv`` and return the exit code (0 ok, 1 failed check, 2 bad input)."""
     args = sys.argv[1:] if argv is None else list(argv)
@@ -190,6 +215,10 @@ def run(argv: list[str] | None = None) -> int:
         command = typer.main.get_command(app)
     except KeyboardInterrupt:
         return _aborted()
+    underscored = underscored_number_text(command, args)
+    if underscored is not None:
+        typer.echo(f"wheelstep: error: {underscored}", err=True)
+        return 2
     try:
         with warnings.catch_warnings():
             # library warnings (numpy floating point, matplotlib layout) are not for the person
