@@ -116,17 +116,22 @@ def test_mechanism_outputs_keep_a_users_file_of_the_same_name(cli, tmp_path, com
     assert listing(tmp_path) == again                                  # byte-identical rerun
 
 
-def test_gears_plot_keeps_a_users_file_of_the_same_name(cli, tmp_path):
-    """`gears --plot` writes where the user names it: a file there that gears did not write
-    is refused before anything is written (the meshes neither), and replaced with --force."""
-    mine, out = tmp_path / "mine.png", tmp_path / "out"
+@pytest.mark.parametrize("option, name, magic", [("--plot", "mine.png", b"\x89PNG"),
+                                                 ("--gif", "mine.gif", None)])
+def test_gears_pictures_keep_a_users_file_of_the_same_name(cli, tmp_path, option, name, magic):
+    """`gears --plot` / `--gif` write where the user names them: a file there that gears did
+    not write is refused before anything is written (the meshes neither), and replaced with
+    --force."""
+    mine, out = tmp_path / name, tmp_path / "out"
     mine.write_bytes(b"the user's file")
-    args = ("gears", "--profile", "desk-demo", "--format", "stl", "--plot", mine, "--out", out, "-q")
+    args = ("gears", "--profile", "desk-demo", "--format", "stl", option, mine, "--out", out, "-q")
     line = error_line(cli(*args))
-    assert line.startswith(f"wheelstep: error: --plot = {mine}: exists and was not written"), line
-    assert listing(tmp_path) == {"mine.png": b"the user's file"}      # all or nothing
+    assert line.startswith(f"wheelstep: error: {option} = {mine}: exists and was not written"), line
+    assert listing(tmp_path) == {name: b"the user's file"}      # all or nothing
+    if option == "--gif":
+        return      # drawing the animation takes half a minute; the --plot case writes over it
     assert cli(*args, "--force").exit_code == 0
-    assert mine.read_bytes().startswith(b"\x89PNG") and (out / "pinion.stl").exists()
+    assert mine.read_bytes().startswith(magic) and (out / "pinion.stl").exists()
 
 
 def test_a_gears_picture_in_the_output_folder_survives_a_run_without_it(cli, tmp_path):
