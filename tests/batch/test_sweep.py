@@ -198,6 +198,26 @@ def test_tolerance_band_columns_are_the_gears_commands(cli, tmp_path):
     assert row["band_least_backlash_mm"] < row["backlash_min_mm"]   # the band takes play away
 
 
+def test_a_point_too_large_for_its_printers_bed_is_refused_as_gears_refuses_it(cli, tmp_path, monkeypatch):
+    """The default pair's 208 mm wheel does not go on the resin bed: the point is refused with
+    the line `gears --printer` gives, before its meshing check."""
+    import wheelstep_cli.parts.mesh_check as mesh_check
+    from wheelstep_cli.batch.sweep_point import evaluate, resolve_point, versions
+    from wheelstep_cli.config.profiles import load_printer_profile
+
+    def no_check(*args, **kwargs):
+        raise AssertionError("the pair was checked before its bed was")
+
+    printer = "resin-0.05-standard"
+    point = resolve_point(0, "gears", None, printer, load_printer_profile(printer), {}, False, versions())
+    monkeypatch.setattr(mesh_check, "check_gear_pair", no_check)
+    row = evaluate(point)           # a crash in it (the check reached) would be a failed row
+    assert row["outcome"] == "refused", row
+    line = error_line(cli("gears", "--printer", printer, "--out", tmp_path / "g"))
+    assert line == f"wheelstep: error: --printer = {printer}: {row['reason'].split(': ', 1)[1]}", row["reason"]
+    assert "does not fit the bed of printer 'resin-0.05-standard'" in line
+
+
 def test_tolerance_is_refused_for_shoes(cli, tmp_path):
     sweep = write(tmp_path / "s.yaml", "command: shoe\ntolerance: true\ngrid:\n  width: [12]\n")
     line = error_line(cli("sweep", sweep, "--out", tmp_path / "out"))
