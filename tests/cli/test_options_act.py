@@ -73,13 +73,29 @@ def test_a_batch_entry_with_a_law_csv_refuses_its_crank_override_at_its_line(cli
 
 
 @pytest.mark.parametrize("args, line", [
-    (["gears", "--z", "4_8"], "--z = 4_8: must be a whole number (digits without underscores)"),
-    (["gears", "--backlash=0_1"], "--backlash = 0_1: must be a number (digits without underscores)"),
-    (["kinematics", "--b", "1_00"], "--b = 1_00: must be a number (digits without underscores)"),
+    (["gears", "--z", "4_8"], "--z = 4_8: must be a whole number, 6..240 (pinion teeth) (digits without "
+                              "underscores)"),
+    (["gears", "--backlash=0_1"], "--backlash = 0_1: must be a number"),
+    (["gears", "-n2_0"], "-n = 2_0: must be a whole number"),
+    (["kinematics", "--b", "1_00"], "--b = 1_00: must be a number"),
+    (["teeth", "-m0_5"], "-m = 0_5: must be a number"),
+    (["stairs", "--sweep", "--sweep-angles", "1_0,20"], "--sweep-angles = 1_0,20: must be numbers"),
 ])
 def test_a_number_with_an_underscore_is_refused_not_read_as_digits(cli, tmp_path, args, line):
     """Python reads 4_8 as 48: a slip, not a number a person means."""
     out = tmp_path / "out"
     result = cli(*args, *(["--out", out] if args[0] == "gears" else []))
-    assert result.exit_code == 2 and error_line(result) == f"wheelstep: error: {line}"
+    assert result.exit_code == 2 and error_line(result).startswith(f"wheelstep: error: {line}"), result.stderr
     assert not out.exists()
+    assert cli(*args, "--help").exit_code == 0          # asking for help is not refused
+
+
+@pytest.mark.parametrize("text, read", [("4_8", 48), ("1:30", 90)])
+def test_a_yaml_number_yaml_would_misread_is_refused_naming_its_key(cli, tmp_path, text, read):
+    """YAML 1.1 reads 4_8 as 48 and 1:30 as 90 (base 60)."""
+    profile = tmp_path / "p.yaml"
+    profile.write_text(f"gears:\n  z: {text}\n")
+    line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
+    assert line == (f"wheelstep: error: {profile}:2: gears.z = {text}: write a number as plain digits "
+                    f"(YAML would read it as {read})"), line
+    assert not (tmp_path / "out").exists()

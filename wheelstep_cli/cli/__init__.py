@@ -164,10 +164,6 @@ def bad_number_text(err: click_errors.UsageError, argv: list[str]) -> str | None
     """One line for a number option whose value is not a number of its kind: the flag as
     typed, the value and what it must be, with the option's limit when the models state one
     (``--z = 1e9: must be a whole number, 6..240 (pinion teeth)``); None for other errors."""
-    from wheelstep_cli.config.design import MechanismSection
-    from wheelstep_cli.config.schema import field_limit
-    from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
-
     param = getattr(err, "param", None)
     message = err.format_message()
     kind = next((words for said, words in _NUMBER_KINDS if said in message), None)
@@ -177,10 +173,7 @@ def bad_number_text(err: click_errors.UsageError, argv: list[str]) -> str | None
     if not given:
         return None
     typed = given[-1]
-    limit = field_limit((GearPairSpec, ShoeSpec, MechanismSection), param.name or "")
-    if limit is not None and limit.startswith("must be "):
-        kind += ", " + limit[len("must be "):]
-    return f"{typed[0]} = {typed[1] or repr('')}: {kind}"
+    return f"{typed[0]} = {typed[1] or repr('')}: {_with_limit(kind, param.name or '')}"
 
 
 def _number_kind(param) -> str | None:
@@ -191,20 +184,39 @@ def _number_kind(param) -> str | None:
     return {int: "must be a whole number", float: "must be a number"}.get(annotation)
 
 
+def _with_limit(kind: str, name: str) -> str:
+    """``kind`` ("must be a whole number") with the option's limit when the models state one
+    (", 6..240 (pinion teeth)")."""
+    from wheelstep_cli.config.design import MechanismSection
+    from wheelstep_cli.config.schema import field_limit
+    from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
+
+    limit = field_limit((GearPairSpec, ShoeSpec, MechanismSection), name)
+    return kind + (", " + limit[len("must be "):] if limit is not None and limit.startswith("must be ") else "")
+
+
+def _option_values(flags: set[str], argv: list[str]) -> list[tuple[str, str]]:
+    """:func:`_flag_values`, and a short flag's value written onto it (``-m0_5``)."""
+    short = [f for f in flags if len(f) == 2 and f[0] == "-" and f[1] != "-"]
+    attached = [(arg[:2], arg[2:]) for arg in argv
+                if len(arg) > 2 and arg[:2] in short and not arg.startswith("--")]
+    return _flag_values(flags, argv) + attached
+
+
 def underscored_number_text(group, argv: list[str]) -> str | None:
     """One line for a number option of the named subcommand given with an underscore
     (``--z 4_8``): Python's parsers read it as 48, a slip a person would not mean; None
-    when there is none."""
+    when there is none (or help is asked for)."""
     name = next((arg for arg in argv if arg in group.commands), None)
-    if name is None:
+    if name is None or "-h" in argv or "--help" in argv:
         return None
     for param in group.commands[name].params:
         kind = _number_kind(param)
         if param.param_type_name != "option" or kind is None:
             continue
-        for flag, value in _flag_values(set(param.opts) | set(param.secondary_opts), argv):
+        for flag, value in _option_values(set(param.opts) | set(param.secondary_opts), argv):
             if "_" in value:
-                return f"{flag} = {value}: {kind} (digits without underscores)"
+                return f"{flag} = {value}: {_with_limit(kind, param.name or '')} (digits without underscores)"
     return None
 
 

@@ -134,18 +134,25 @@ def require_with(param: str, value, companion, what: str) -> None:
         raise DesignError(param, value, f"shapes {what}: give {what.split()[-1]} too")
 
 
+def _plain_float(text: str) -> float:
+    """``float(text)``, refusing (ValueError) the underscores Python reads as digit groups."""
+    if "_" in text:
+        raise ValueError(text)
+    return float(text)
+
+
 def number_list(text: str, param: str) -> list[float]:
     """``"a,b,c"`` or ``"start:stop:step"`` (inclusive) to floats."""
     try:
         if ":" in text:
-            start, stop, step = (float(v) for v in text.split(":"))
+            start, stop, step = (_plain_float(v) for v in text.split(":"))
             for number in (start, stop, step):
                 _check_number(number, param)
             require(step > 0, param, text, "step must be > 0")
             n = int(np.floor((stop - start) / step + 1e-9)) + 1
             require(1 <= n <= 10000, param, text, "must give 1 to 10000 values")
             return [start + i * step for i in range(n)]
-        values = [float(v) for v in text.split(",") if v.strip()]
+        values = [_plain_float(v) for v in text.split(",") if v.strip()]
         for number in values:
             _check_number(number, param)
         return values
@@ -158,7 +165,7 @@ def number_list(text: str, param: str) -> list[float]:
 def point(text: str, param: str) -> tuple[float, float]:
     """``"x,y"`` (mm) to a pair of floats."""
     try:
-        x, y = (float(v) for v in text.split(","))
+        x, y = (_plain_float(v) for v in text.split(","))
     except ValueError:
         raise DesignError(param, text, "must be 'x,y' in mm") from None
     _check_number(x, param)
