@@ -39,11 +39,16 @@ def test_the_assembly_note_of_marked_gears_on_a_round_bore_says_to_face_the_mark
     # a keyed bore sets the phase with or without marks
     keyed = spec.model_copy(update={"bore_shape": "keyway", "mark_depth": 0.0})
     assert "keyed shaft fits one way" in shaft_record(keyed, law)["note"]
+    # a hex bore without marks: in phase every way only when the teeth repeat with the hex
+    hexed = spec.model_copy(update={"bore_shape": "hex", "mark_depth": 0.0})
+    assert "every one in phase" in shaft_record(hexed, SimpleNamespace(pinion_periods=6, wheel_periods=12))["note"]
+    assert "carry no timing marks" in shaft_record(hexed, law)["note"]
 
 
 def test_lighten_with_no_room_for_a_pocket_in_the_wheel_is_refused(cli, tmp_path):
     """A 1:1 law makes the wheel as small as the pinion: at 40 mm its web has no room for a
-    pocket, so --lighten would cut nothing and is refused with the remedy; at 60 mm it cuts."""
+    pocket, so --lighten would cut nothing and is refused with the remedy; at 60 mm (the
+    remedy: a larger centre distance) it cuts."""
     turns = np.linspace(0.0, 360.0, 73)
     law = tmp_path / "law.csv"
     law.write_text("driving_deg,driven_deg\n" + "".join(
@@ -52,6 +57,8 @@ def test_lighten_with_no_room_for_a_pocket_in_the_wheel_is_refused(cli, tmp_path
     args = ("gears", "--law-csv", law, "--lighten", "--mark-depth", "0", "--format", "stl", "--out", out, "-q")
     line = error_line(cli(*args, "--center-distance", "40"))
     assert line.startswith("wheelstep: error: --lighten = on: leaves no room for pockets in the wheel ("), line
-    assert "or print without --lighten" in line and not out.exists()
+    assert "a larger --center-distance" in line and "or print without --lighten" in line
+    assert not out.exists()
+    # the remedy applied
     assert cli(*args, "--center-distance", "60", "--json").exit_code == 0
     assert json.loads((out / "gears.json").read_text())["lighten"]["wheel"]["pockets"] > 0

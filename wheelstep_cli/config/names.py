@@ -13,7 +13,9 @@ def flag_name(param: str) -> str:
 
 
 def yaml_message(err) -> str:
-    """A DesignError as a file names it: ``install_distance = 140: must be ...``."""
+    """A DesignError as a file names it: ``install_distance = 140: must be ...`` (a switch as
+    YAML writes it, true or false)."""
     from wheelstep_cli.errors import format_value
 
-    return f"{err.param} = {format_value(err.value)}: {err.limit}"
+    value = str(err.value).lower() if isinstance(err.value, bool) else format_value(err.value)
+    return f"{err.param} = {value}: {err.limit}"

@@ -181,12 +181,17 @@ def _no_room_for_pockets(face: GearFace, spec) -> None:
 
     r_in, r_out = face.pocket_span
     around = "hub" if spec.hub_d else "bore" if spec.bore > 0 else "axis"
+    room = (f"{max(r_out - r_in, 0.0):.1f} mm between the web round the {around} and a {RIM_MODULES} "
+            f"module rim under the roots")
+    why = (f"({room}, a pocket needs {POCKET_ROOM:.1f} mm)" if r_out - r_in < POCKET_ROOM
+           else f"(its {SPOKES} spokes leave no pocket in the {room})")
+    remedies = ["a larger --center-distance"] + [f"a smaller --{name}" for name, given in
+                                                 (("hub-d", spec.hub_d), ("bore", spec.bore)) if given]
     raise DesignError("lighten", True,
-                      f"leaves no room for pockets in the wheel ({max(r_out - r_in, 0.0):.1f} mm "
-                      f"between the web round the {around} and a {RIM_MODULES} module rim under the "
-                      f"roots, a pocket needs {POCKET_ROOM:.1f} mm): a smaller --hub-d or --bore, "
-                      "or print without --lighten"
-                      ).tied_to({"hub_d": spec.hub_d, "bore": spec.bore})
+                      f"leaves no room for pockets in the wheel {why}: {', '.join(remedies)}, or "
+                      "print without --lighten"
+                      ).tied_to({"hub_d": spec.hub_d, "bore": spec.bore,
+                                 "center_distance": getattr(spec, "center_distance", None)})
 
 
 def faces_for(spec, law, pinion_outline: np.ndarray, wheel_outline: np.ndarray,

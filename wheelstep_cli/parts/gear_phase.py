@@ -25,9 +25,13 @@ def shaft_record(spec, law) -> dict:
     fits = shaft_positions(shape)
     in_phase = {"pinion": in_phase_positions(fits, law.pinion_periods),
                 "wheel": in_phase_positions(fits, law.wheel_periods)}
-    if spec.mark_depth <= 0 and fits != 1:
+    mark = "mark" if spec.mark_depth > 0 else "mark direction (no mark engraved)"
+    every_way = fits not in (None, 1) and in_phase["pinion"] == in_phase["wheel"] == fits
+    if spec.mark_depth <= 0 and fits != 1 and not every_way:
         how = ("the gears carry no timing marks (mark depth 0) and the bore does not set the phase: "
                "set the pair in phase by the assembly phase with your own reference, or print with marks")
+    elif spec.mark_depth <= 0 and every_way:
+        how = f"a hex shaft fits {fits} ways, every one in phase: no mark is needed"
     elif fits is None:
         how = "a round bore carries no phase: turn each gear until the marks face each other, then clamp"
     elif fits == 1:
@@ -38,8 +42,8 @@ def shaft_record(spec, law) -> dict:
                "the assembly phase says")
     return {"bore_shape": spec.bore_shape, "key_angle_deg": spec.key_angle,
             "shaft_fits_ways": fits, "in_phase_ways": in_phase if fits is not None else None,
-            "note": "the key, flat or a hex flat faces key_angle from each gear's "
-                    f"mark (counter-clockwise seen from the top); {how}"}
+            "note": f"the key, flat or a hex flat faces key_angle from each gear's {mark} (counter-"
+                    f"clockwise seen from the top); {how}"}
 
 
 def shaft_positions(shape: BoreShape | None) -> int | None:
