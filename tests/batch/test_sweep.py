@@ -264,8 +264,36 @@ def test_rows_of_other_code_under_the_same_version_are_computed_again(tmp_path, 
         assert run_sweep(plan, out, client).computed == 0           # the same code: every row kept
         monkeypatch.setattr(sweep_point, "package_digest", lambda: "another checkout")
         outcome = run_sweep(plan, out, client)
-    assert (outcome.skipped, outcome.computed) == (0, POINTS)
+    assert (outcome.skipped, outcome.computed, outcome.dropped) == (0, POINTS, POINTS)
     assert all("another checkout" in row["versions"] for row in rows(out).values())
+
+
+def test_a_rerun_with_another_grid_keeps_its_own_points_in_its_order(cli, tmp_path):
+    """Points left out of the grid are dropped from the results (and counted); points kept
+    take their place in the new grid's order."""
+    from distributed import Client, LocalCluster
+
+    from wheelstep_cli.batch.sweep_run import run_sweep
+    from wheelstep_cli.config.sweep_file import load_sweep
+
+    out = tmp_path / "out"
+    first = load_sweep(write(tmp_path / "a.yaml", SHOES))
+    # rim 12 and 14 stay, rim 10 goes, rim 8 comes first
+    second = load_sweep(write(tmp_path / "b.yaml", SHOES.replace("{start: 10, stop: 14, step: 2}", "[8, 12, 14]")))
+    with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as lc, Client(lc) as client:
+        run_sweep(first, out, client)
+        before = {row["parameters"]: row for row in rows(out).values()}
+        said = cli("sweep", tmp_path / "b.yaml", "--out", out, "--dry-run")
+        assert said.exit_code == 0 and ("2 of 6 designs would be computed; 2 earlier rows would be "
+                                        "dropped (points no longer in the sweep") in said.stdout, said
+        outcome = run_sweep(second, out, client)
+    assert (outcome.total, outcome.skipped, outcome.computed, outcome.dropped) == (6, 4, 2, 2)
+    table = pq.read_table(out / "results.parquet").to_pylist()
+    assert [row["index"] for row in table] == list(range(6))
+    assert ([(row["p_socket_depth"], row["p_rim"]) for row in table]
+            == [(values["socket_depth"], values["rim"]) for _, values in second.points])
+    kept = {row["parameters"]: row for row in rows(out).values() if row["parameters"] in before}
+    assert len(kept) == 4 and all(kept[k]["outcome"] == before[k]["outcome"] for k in kept)
 
 
 def test_ctrl_c_during_the_final_merge_still_leaves_the_results(tmp_path, monkeypatch):

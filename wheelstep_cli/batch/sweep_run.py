@@ -25,6 +25,7 @@ class SweepOutcome:
     computed: int
     failures: int
     results: Path
+    dropped: int = 0      # rows of the results no longer of the sweep's points (other code, grid)
 
 
 def resolve_points(plan: SweepPlan) -> list[Point]:
@@ -49,7 +50,7 @@ def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, 
     points = resolve_points(plan)
     kinds = axis_kinds([p.values for p in points], plan.axes)
     store = ResultStore(out, schema(kinds, plan.tolerance), earlier)
-    done, keys = store.done_keys(), {p.key for p in points}
+    done, index_of = store.done_keys(), {p.key: p.index for p in points}
     todo = [p for p in points if p.key not in done]
     tool = versions()
     failures, finished = 0, 0
@@ -71,13 +72,13 @@ def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, 
             for nxt in _take(pending, 1):
                 by_future[_submit(client, futures, nxt)] = nxt
         # inside the guard: a Ctrl-C while merging must still leave a results file
-        results = store.consolidate(keys)
+        results = store.consolidate(index_of)
     except KeyboardInterrupt:
         for future in by_future:
             future.cancel()
-        store.consolidate(keys)
+        store.consolidate(index_of)
         raise
-    return SweepOutcome(len(points), len(points) - len(todo), finished, failures, results)
+    return SweepOutcome(len(points), len(points) - len(todo), finished, failures, results, store.dropped)
 
 
 def _take(iterator, count: int) -> list:

@@ -81,6 +81,7 @@ class ResultStore:
         self.last = time.monotonic()
         self.count = len(list(self.parts.glob("part-*.parquet"))) if self.parts.is_dir() else 0
         self._check_earlier()
+        self.dropped = 0      # rows the last consolidate left out (see consolidate)
 
     def _check_earlier(self) -> None:
         import pyarrow.parquet as pq
@@ -126,13 +127,27 @@ class ResultStore:
         self.count += 1
         self.buffer = []
 
-    def consolidate(self, keys: set[str] | None = None) -> Path:
+    def _of_points(self, table, points: dict[str, int]):
+        """The rows of ``points``' keys, each with its point's index; the others counted in
+        ``self.dropped`` (one per key)."""
+        import pyarrow as pa
+
+        keys = table.column("key").to_pylist()
+        self.dropped = len({key for key in keys if key not in points})
+        table = table.take([i for i, key in enumerate(keys) if key in points])
+        column = table.schema.get_field_index("index")
+        index = pa.array([points[key] for key in table.column("key").to_pylist()],
+                         type=table.schema.field(column).type)
+        return table.set_column(column, table.schema.field(column), index)
+
+    def consolidate(self, points: dict[str, int] | None = None) -> Path:
         """Merge the earlier results and every part file into ``results.parquet`` and
         ``results.csv`` in point order (each replaced atomically, then recorded as the
-        sweep's); parts removed. With ``keys``, only the rows of those keys (the plan's
-        points now: rows of points left out of the grid, or computed by other code or
-        libraries, are dropped). The rows are held here at once: at most MAX_POINTS small
-        rows (figures and the design's JSON, about 1 kB each; no meshes)."""
+        sweep's); parts removed. With ``points`` (key -> the point's index in the plan now),
+        only those rows, each at its point's index: rows of points left out of the grid, or
+        computed by other code or libraries, are dropped (counted in ``self.dropped``). The
+        rows are held here at once: at most MAX_POINTS small rows (figures and the design's
+        JSON, about 1 kB each; no meshes)."""
         import pyarrow as pa
         import pyarrow.csv as pcsv
         import pyarrow.parquet as pq
@@ -140,11 +155,12 @@ class ResultStore:
         self.flush()
         files = self._files()
         self.out.mkdir(parents=True, exist_ok=True)
-        table = ordered(pa.concat_tables([pq.read_table(f, schema=self.schema) for f in files])
-                        if files else self.schema.empty_table())
-        if keys is not None:
-            table = table.filter(pa.array([key in keys for key in table.column("key").to_pylist()],
-                                          type=pa.bool_()))
+        table = (pa.concat_tables([pq.read_table(f, schema=self.schema) for f in files])
+                 if files else self.schema.empty_table())
+        self.dropped = 0
+        if points is not None:
+            table = self._of_points(table, points)
+        table = ordered(table)
         staged_pq, staged_csv = self.out / f".{RESULTS}.tmp", self.out / f".{CSV}.tmp"
         pq.write_table(table, staged_pq)
         pcsv.write_csv(table, staged_csv)

@@ -74,9 +74,11 @@ def sweep(
     written += _keep_best(plan, outcome.results, out, best, show, force)
     show.report({"sweep": str(file), "out": str(out), "points": outcome.total,
                  "skipped": outcome.skipped, "computed": outcome.computed,
-                 "failures": outcome.failures, "written": [str(p) for p in written]},
+                 "failures": outcome.failures, "dropped": outcome.dropped,
+                 "written": [str(p) for p in written]},
                 lambda: [f"{outcome.computed} designs computed ({outcome.failures} refused or "
-                         f"failed), {outcome.skipped} already in {outcome.results}"])
+                         f"failed), {outcome.skipped} already in {outcome.results}"
+                         + _dropped_text(outcome.dropped, "dropped")])
     show.files(written, False)
     if outcome.failures:
         raise typer.Exit(1)
@@ -92,12 +94,22 @@ def _dry_run(plan, file: Path, out: Path, show: Output, earlier: bool) -> None:
     columns = schema(axis_kinds([p.values for p in points], plan.axes), plan.tolerance)
     done = ResultStore(out, columns, earlier).done_keys()
     todo = sum(p.key not in done for p in points)
+    dropped = len(done - {p.key for p in points})
     files = [out / "results.parquet", out / "results.csv", out / "pareto.png",
              out / ".wheelstep-sweep.json"]
     show.report({"sweep": str(file), "out": str(out), "points": len(points),
-                 "skipped": len(points) - todo, "would_compute": todo,
-                 "written": []}, lambda: [f"{todo} of {len(points)} designs would be computed"])
+                 "skipped": len(points) - todo, "would_compute": todo, "would_drop": dropped,
+                 "written": []}, lambda: [f"{todo} of {len(points)} designs would be computed"
+                                          + _dropped_text(dropped, "would be dropped")])
     show.files(files, True)
+
+
+def _dropped_text(count: int, verb: str) -> str:
+    """What becomes of the earlier rows that are not of the sweep's points now ('' if none)."""
+    if not count:
+        return ""
+    return (f"; {count} earlier row{'s' if count > 1 else ''} {verb} (points no longer in the "
+            "sweep, or computed by another wheelstep or library version)")
 
 
 def _keep_count(keep: str | None) -> int:
