@@ -61,12 +61,12 @@ def versions() -> str:
 
 @functools.lru_cache(maxsize=1)
 def package_digest() -> str:
-    """SHA-256 (first 16 hex digits) of wheelstep's code and shipped data (the presets): every
-    file of the installed package but compiled caches, by relative path and content."""
+    """SHA-256 (first 16 hex digits) of wheelstep's code: every ``.py`` file of the package,
+    by relative path and content (the presets reach a row's key through the resolved design
+    and the printer's own digest)."""
     root = Path(__file__).resolve().parents[1]
     digest = hashlib.sha256()
-    for path in sorted(p for p in root.rglob("*") if p.is_file() and "__pycache__" not in p.parts
-                       and p.suffix not in (".pyc", ".pyo")):
+    for path in sorted(p for p in root.rglob("*.py") if "__pycache__" not in p.parts):
         digest.update(path.relative_to(root).as_posix().encode() + b"\0" + path.read_bytes() + b"\0")
     return digest.hexdigest()[:16]
 
