@@ -116,16 +116,42 @@ def test_mechanism_outputs_keep_a_users_file_of_the_same_name(cli, tmp_path, com
     assert listing(tmp_path) == again                                  # byte-identical rerun
 
 
+def _no_build(*args, **kwargs):
+    raise AssertionError("the pair was built before the outputs' names were checked")
+
+
+@pytest.mark.parametrize("args, mine", [
+    (["--format", "stl"], "pinion.stl"), (["--format", "3mf"], "gears.json"),
+    (["--format", "3mf", "--dxf"], "wheel.dxf"), (["--format", "3mf", "--svg"], "pinion.svg")])
+def test_gears_refuses_a_users_file_of_a_certain_name_before_it_builds(cli, tmp_path, monkeypatch, args, mine):
+    import wheelstep_cli.cli.commands.gears_checks as gears_checks
+
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / mine).write_bytes(b"the user's file")
+    monkeypatch.setattr(gears_checks, "checked_pair", _no_build)
+    line = error_line(cli("gears", "--profile", "desk-demo", *args, "--out", out))
+    assert line.startswith(f"wheelstep: error: --out = {out / mine}: exists and was not written"), line
+    assert listing(out) == {mine: b"the user's file"}
+    (tmp_path / "afile").write_bytes(b"")
+    line = error_line(cli("gears", "--profile", "desk-demo", *args, "--out", tmp_path / "afile"))
+    assert line == f"wheelstep: error: --out = {tmp_path / 'afile'}: cannot be written (is a file, not a folder)"
+
+
 @pytest.mark.parametrize("option, name, magic", [("--plot", "mine.png", b"\x89PNG"),
                                                  ("--gif", "mine.gif", None)])
-def test_gears_pictures_keep_a_users_file_of_the_same_name(cli, tmp_path, option, name, magic):
+def test_gears_pictures_keep_a_users_file_of_the_same_name(cli, tmp_path, monkeypatch, option, name, magic):
     """`gears --plot` / `--gif` write where the user names them: a file there that gears did
-    not write is refused before anything is written (the meshes neither), and replaced with
+    not write is refused before the pair is built (so nothing is written), and replaced with
     --force."""
+    import wheelstep_cli.cli.commands.gears_checks as gears_checks
+
     mine, out = tmp_path / name, tmp_path / "out"
     mine.write_bytes(b"the user's file")
     args = ("gears", "--profile", "desk-demo", "--format", "stl", option, mine, "--out", out, "-q")
-    line = error_line(cli(*args))
+    with monkeypatch.context() as patch:
+        patch.setattr(gears_checks, "checked_pair", _no_build)
+        line = error_line(cli(*args))
     assert line.startswith(f"wheelstep: error: {option} = {mine}: exists and was not written"), line
     assert listing(tmp_path) == {name: b"the user's file"}      # all or nothing
     if option == "--gif":

@@ -217,16 +217,6 @@ def _require_slicer(slice_: bool, fmt: str, printer) -> None:
         require_slicer()
 
 
-def _collisions_first(show: Output, out: Path, fmt: str, extras: GearExtras, force: bool) -> None:
-    """Refuse a user's file where a named picture or a file of certain name (gears.json, the
-    STLs) would go before the pair is built (the build takes seconds); the plates' names
-    depend on the layout and are checked, with everything, when the files are written."""
-    named = {"plot": extras.plot, "gif": extras.gif}
-    show.write_named("gears-pictures", {p: b"" for p in named.values() if p is not None}, True, force, **named)
-    certain = [out / "gears.json", *([out / "pinion.stl", out / "wheel.stl"] if fmt in ("stl", "both") else [])]
-    show.write_owned(out, "gears", dict.fromkeys(certain, b""), True, force)
-
-
 def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interference: bool,
                 dry_run: bool, force: bool, extras: GearExtras = GearExtras(),
                 band: tuple = (False, None), slice_: bool = False) -> None:
@@ -235,13 +225,13 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     ``slice_``: slice the plates and check the G-code."""
     import typer
 
-    from wheelstep_cli.cli.commands.gears_checks import checked_pair, require_height_first
+    from wheelstep_cli.cli.commands.gears_checks import checked_pair, collisions_first, require_height_first
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
-    _collisions_first(show, out, fmt, extras, force)
+    collisions_first(show, out, fmt, extras, force)
     bed = require_height_first(spec, printer, fmt, band[1] is not None)
     pair, record, tolerance, check = checked_pair(spec, printer, show, allow_interference, band, bed)
     require_printable_teeth(pair)

@@ -3,6 +3,8 @@ bounds and, with a fit, the design before the search and the fit itself (SPEC §
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from wheelstep_cli.cli.output import Output
 
 
@@ -93,3 +95,20 @@ def require_height_first(spec, printer, fmt: str, fit: bool):
         # stated again for the footprint, so a hub length the user gave carries the note too
         raise err._with_extras(DesignError(err.param, err.value, limit).tied_to(footprint(spec))) from None
     return target
+
+
+def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
+    """Before the pair is built (seconds): refuse an ``out`` that is a file, and a user's file
+    where a named picture (``extras``: parts.gear_exports.GearExtras) or a file of certain
+    name (gears.json, the STLs, DXF, SVG, STEP asked for) would go. The plates' names depend
+    on the layout: they are checked, with everything, when the files are written."""
+    from wheelstep_cli.errors import DesignError
+
+    if out.exists() and not out.is_dir():
+        raise DesignError("out", str(out), "cannot be written (is a file, not a folder)")
+    named = {"plot": extras.plot, "gif": extras.gif}
+    show.write_named("gears-pictures", {p: b"" for p in named.values() if p is not None}, True, force, **named)
+    suffixes = [s for s, asked in (("stl", fmt in ("stl", "both")), ("dxf", extras.dxf), ("svg", extras.svg),
+                                   ("step", extras.step)) if asked]
+    certain = [out / "gears.json", *(out / f"{gear}.{s}" for s in suffixes for gear in ("pinion", "wheel"))]
+    show.write_owned(out, "gears", dict.fromkeys(certain, b""), True, force)
