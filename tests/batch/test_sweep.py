@@ -296,6 +296,22 @@ def test_a_rerun_with_another_grid_keeps_its_own_points_in_its_order(cli, tmp_pa
     assert len(kept) == 4 and all(kept[k]["outcome"] == before[k]["outcome"] for k in kept)
 
 
+def test_a_point_repeated_in_the_grid_is_one_row_at_its_first_place(tmp_path):
+    from distributed import Client, LocalCluster
+
+    from wheelstep_cli.batch.sweep_run import run_sweep
+    from wheelstep_cli.config.sweep_file import load_sweep
+
+    plan = load_sweep(write(tmp_path / "s.yaml", SHOES.replace("[10, 60]", "[10, 60, 10]")
+                                                      .replace("{start: 10, stop: 14, step: 2}", "[10]")))
+    out = tmp_path / "out"
+    with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as lc, Client(lc) as client:
+        run_sweep(plan, out, client)
+        run_sweep(plan, out, client)                 # the rerun rewrites the indices
+    table = pq.read_table(out / "results.parquet").to_pylist()
+    assert [(row["index"], row["p_socket_depth"]) for row in table] == [(0, 10), (1, 60)]
+
+
 def test_ctrl_c_during_the_final_merge_still_leaves_the_results(tmp_path, monkeypatch):
     """Every row computed, then Ctrl-C while they are merged: the merge is redone, so the
     results file holds them all (the interruption message promises it)."""

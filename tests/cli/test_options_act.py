@@ -73,13 +73,16 @@ def test_a_batch_entry_with_a_law_csv_refuses_its_crank_override_at_its_line(cli
 
 
 @pytest.mark.parametrize("args, line", [
-    (["gears", "--z", "4_8"], "--z = 4_8: must be a whole number, 6..240 (pinion teeth) (digits without "
-                              "underscores)"),
+    (["gears", "--z", "4_8"], "--z = 4_8: must be a whole number, 6..240 (pinion teeth), written without "
+                              "underscores"),
+    (["gears", "-vn4_8"], "-n = 4_8: must be a whole number"),     # bundled after a switch
     (["gears", "--backlash=0_1"], "--backlash = 0_1: must be a number"),
     (["gears", "-n2_0"], "-n = 2_0: must be a whole number"),
     (["kinematics", "--b", "1_00"], "--b = 1_00: must be a number"),
     (["teeth", "-m0_5"], "-m = 0_5: must be a number"),
-    (["stairs", "--sweep", "--sweep-angles", "1_0,20"], "--sweep-angles = 1_0,20: must be numbers"),
+    (["teeth", "-qm", "0_5"], "-m = 0_5: must be a number"),
+    (["stairs", "--sweep", "--sweep-angles", "1_0,20"], "--sweep-angles = 1_0,20: must be numbers 'a,b,c' or "
+                                                        "'start:stop:step', written without underscores"),
 ])
 def test_a_number_with_an_underscore_is_refused_not_read_as_digits(cli, tmp_path, args, line):
     """Python reads 4_8 as 48: a slip, not a number a person means."""
@@ -90,12 +93,20 @@ def test_a_number_with_an_underscore_is_refused_not_read_as_digits(cli, tmp_path
     assert cli(*args, "--help").exit_code == 0          # asking for help is not refused
 
 
-@pytest.mark.parametrize("text, read", [("4_8", 48), ("1:30", 90)])
-def test_a_yaml_number_yaml_would_misread_is_refused_naming_its_key(cli, tmp_path, text, read):
-    """YAML 1.1 reads 4_8 as 48 and 1:30 as 90 (base 60)."""
+@pytest.mark.parametrize("text", ["4_8", "1:30"])
+def test_a_yaml_number_yaml_1_1_would_misread_is_text(cli, tmp_path, text):
+    """YAML 1.1 reads 4_8 as 48 and 1:30 as 90 (base 60); read as YAML 1.2 does, as text, a
+    number field refuses it with the file's other problems, and a text field keeps it."""
     profile = tmp_path / "p.yaml"
-    profile.write_text(f"gears:\n  z: {text}\n")
-    line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
-    assert line == (f"wheelstep: error: {profile}:2: gears.z = {text}: write a number as plain digits "
-                    f"(YAML would read it as {read})"), line
+    profile.write_text(f"gears:\n  z: {text}\n  thickness: -1\n")
+    lines = cli("gears", "--profile", profile, "--out", tmp_path / "out").stderr.splitlines()
+    assert lines[0] == f"wheelstep: error: {profile}:2: gears.z = '{text}': must be a whole number", lines
+    assert lines[1].startswith(f"wheelstep: error: {profile}:3: gears.thickness = -1"), lines
     assert not (tmp_path / "out").exists()
+
+
+def test_a_yaml_name_with_an_underscore_stays_the_text_written():
+    from wheelstep_cli.config.located_yaml import parse_located_yaml
+
+    assert parse_located_yaml("name: 2024_01\nat: 12:30\nz: 48\n", "t.yaml").data == {
+        "name": "2024_01", "at": "12:30", "z": 48}

@@ -50,7 +50,9 @@ def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, 
     points = resolve_points(plan)
     kinds = axis_kinds([p.values for p in points], plan.axes)
     store = ResultStore(out, schema(kinds, plan.tolerance), earlier)
-    done, index_of = store.done_keys(), {p.key: p.index for p in points}
+    done, index_of = store.done_keys(), {}
+    for point in points:            # a point repeated in the plan (same key) sits at its first place
+        index_of.setdefault(point.key, point.index)
     todo = [p for p in points if p.key not in done]
     tool = versions()
     failures, finished = 0, 0

@@ -195,12 +195,33 @@ def _with_limit(kind: str, name: str) -> str:
     return kind + (", " + limit[len("must be "):] if limit is not None and limit.startswith("must be ") else "")
 
 
-def _option_values(flags: set[str], argv: list[str]) -> list[tuple[str, str]]:
-    """:func:`_flag_values`, and a short flag's value written onto it (``-m0_5``)."""
-    short = [f for f in flags if len(f) == 2 and f[0] == "-" and f[1] != "-"]
-    attached = [(arg[:2], arg[2:]) for arg in argv
-                if len(arg) > 2 and arg[:2] in short and not arg.startswith("--")]
-    return _flag_values(flags, argv) + attached
+def _option_values(params, argv: list[str]) -> list[tuple[object, str, str]]:
+    """(parameter, flag as typed, value) of every value-taking option of ``params`` in
+    ``argv`` as the parser reads them: ``--flag value``, ``--flag=value``, ``-f value``,
+    ``-fvalue`` and bundled ``-qfvalue``; a value is not read as an option, and nothing
+    after ``--`` is an option."""
+    by_flag = {flag: p for p in params for flag in (*p.opts, *p.secondary_opts)}
+    takes_value = {flag: not (getattr(p, "is_flag", False) or getattr(p, "count", False))
+                   for flag, p in by_flag.items()}
+    found, i = [], 0
+    while i < len(argv) and argv[i] != "--":
+        arg, i = argv[i], i + 1
+        if arg.startswith("--"):
+            flag, eq, value = arg.partition("=")
+            if takes_value.get(flag) and (eq or i < len(argv)):
+                found.append((by_flag[flag], flag, value if eq else argv[i]))
+                i += 0 if eq else 1
+            continue
+        for k in range(1, len(arg) if arg.startswith("-") else 1):
+            flag = "-" + arg[k]
+            if flag not in by_flag:
+                break
+            if takes_value[flag]:
+                if k + 1 < len(arg) or i < len(argv):
+                    found.append((by_flag[flag], flag, arg[k + 1:] if k + 1 < len(arg) else argv[i]))
+                    i += 0 if k + 1 < len(arg) else 1
+                break
+    return found
 
 
 def underscored_number_text(group, argv: list[str]) -> str | None:
@@ -210,13 +231,11 @@ def underscored_number_text(group, argv: list[str]) -> str | None:
     name = next((arg for arg in argv if arg in group.commands), None)
     if name is None or "-h" in argv or "--help" in argv:
         return None
-    for param in group.commands[name].params:
+    options = [p for p in group.commands[name].params if p.param_type_name == "option"]
+    for param, flag, value in _option_values(options, argv[argv.index(name) + 1:]):
         kind = _number_kind(param)
-        if param.param_type_name != "option" or kind is None:
-            continue
-        for flag, value in _option_values(set(param.opts) | set(param.secondary_opts), argv):
-            if "_" in value:
-                return f"{flag} = {value}: {_with_limit(kind, param.name or '')} (digits without underscores)"
+        if kind is not None and "_" in value:
+            return f"{flag} = {value}: {_with_limit(kind, param.name or '')}, written without underscores"
     return None
 
 

@@ -159,7 +159,8 @@ def number_list(text: str, param: str) -> list[float]:
     except DesignError:
         raise
     except ValueError:
-        raise DesignError(param, text, "must be numbers 'a,b,c' or 'start:stop:step'") from None
+        raise DesignError(param, text, "must be numbers 'a,b,c' or 'start:stop:step'"
+                          + (", written without underscores" if "_" in text else "")) from None
 
 
 def point(text: str, param: str) -> tuple[float, float]:
@@ -167,7 +168,8 @@ def point(text: str, param: str) -> tuple[float, float]:
     try:
         x, y = (_plain_float(v) for v in text.split(","))
     except ValueError:
-        raise DesignError(param, text, "must be 'x,y' in mm") from None
+        raise DesignError(param, text, "must be 'x,y' in mm" + (", written without underscores"
+                                                                 if "_" in text else "")) from None
     _check_number(x, param)
     _check_number(y, param)
     return x, y

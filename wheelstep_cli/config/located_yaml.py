@@ -66,7 +66,7 @@ def read_located_yaml(path: Path, label: str | None = None) -> LocatedYaml:
     return parse_located_yaml(text, label)
 
 
-#: Tags of the scalars YAML reads as numbers.
+#: Tags of the plain scalars YAML 1.1 reads as numbers.
 NUMBER_TAGS = ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")
 
 
@@ -117,11 +117,10 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
             return out
         if isinstance(node, yaml.SequenceNode):
             return [walk(item, path + (i,), inner) for i, item in enumerate(node.value)]
-        if node.tag in NUMBER_TAGS and node.style is None and ("_" in node.value or ":" in node.value):
-            # YAML 1.1 reads 4_8 as 48 and 1:30 as 90 (base 60): slips, not numbers a person means
-            name = "".join(f"[{key}]" if isinstance(key, int) else f".{key}" for key in path).lstrip(".") or "value"
-            raise YamlSyntaxError(where, f"{name} = {node.value}: write a number as plain digits "
-                                         f"(YAML would read it as {constructor.construct_object(node)})")
+        if node.tag in NUMBER_TAGS and ("_" in node.value or ":" in node.value):
+            # YAML 1.1 reads 4_8 as 48 and 1:30 as 90 (base 60); YAML 1.2 reads both as text,
+            # which is what a name means and what a number field refuses with its own line
+            return node.value
         try:
             return constructor.construct_object(node, deep=True)
         except (yaml.YAMLError, ValueError, TypeError) as err:
