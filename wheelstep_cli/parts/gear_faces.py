@@ -106,11 +106,10 @@ def pocket_span(outline: np.ndarray, hole: np.ndarray | None, spec, module: floa
     return r_in, min_radius(outline) - RIM_MODULES * module
 
 
-def pockets(outline: np.ndarray, hole: np.ndarray | None, spec, direction: float,
-            module: float) -> list[np.ndarray]:
-    """--lighten pockets (CCW rings, mm) between spokes, the first spoke under the mark:
-    a rim of RIM_MODULES modules under the root, a web round the hole; none if no room."""
-    r_in, r_out = pocket_span(outline, hole, spec, module)
+def pockets(span: tuple[float, float], spec, direction: float) -> list[np.ndarray]:
+    """--lighten pockets (CCW rings, mm) between spokes, the first spoke under the mark,
+    spanning the radii ``span`` (mm, see :func:`pocket_span`); none if no room."""
+    r_in, r_out = span
     if not spec.lighten or r_out - r_in < POCKET_ROOM:
         return []
     width = max(SPOKE_WIDTH, 0.1 * r_out)
@@ -122,9 +121,10 @@ def face_of(name: str, outline: np.ndarray, spec, direction: float, module: floa
     ``module`` (mm) sizes the --lighten rim. ``holes``: the shaft hole, then any pockets."""
     hole = shaft_hole(spec, direction)
     marks = timing_marks(outline, hole, direction, carrier=name == "wheel", hub=spec.hub_mm[0])
-    cut = pockets(outline, hole, spec, direction, module)
+    span = pocket_span(outline, hole, spec, module)
+    cut = pockets(span, spec, direction)
     return GearFace(name, np.asarray(outline, dtype=float), ([] if hole is None else [hole]) + cut,
-                    marks, float(direction), pocket_span(outline, hole, spec, module))
+                    marks, float(direction), span)
 
 
 def saved(face: GearFace, spec) -> float:
