@@ -127,18 +127,6 @@ class ResultStore:
         self.count += 1
         self.buffer = []
 
-    def _of_points(self, table, points: dict[str, int]):
-        """The rows of ``points``' keys, each with its point's index; the others counted in
-        ``self.dropped`` (one per key)."""
-        import pyarrow as pa
-
-        keys = table.column("key").to_pylist()
-        self.dropped = len({key for key in keys if key not in points})
-        table = table.take([i for i, key in enumerate(keys) if key in points])
-        column = table.schema.get_field_index("index")
-        index = pa.array([points[key] for key in table.column("key").to_pylist()],
-                         type=table.schema.field(column).type)
-        return table.set_column(column, table.schema.field(column), index)
 
     def consolidate(self, points: dict[str, int] | None = None) -> Path:
         """Merge the earlier results and every part file into ``results.parquet`` and
@@ -159,7 +147,7 @@ class ResultStore:
                  if files else self.schema.empty_table())
         self.dropped = 0
         if points is not None:
-            table = self._of_points(table, points)
+            table, self.dropped = of_points(table, points)
         table = ordered(table)
         staged_pq, staged_csv = self.out / f".{RESULTS}.tmp", self.out / f".{CSV}.tmp"
         pq.write_table(table, staged_pq)
@@ -173,6 +161,19 @@ class ResultStore:
         if self.parts.is_dir() and not any(self.parts.iterdir()):
             self.parts.rmdir()
         return self.out / RESULTS
+
+
+def of_points(table, points: dict[str, int]):
+    """(the rows of ``points``' keys, each with its point's index; how many other keys)."""
+    import pyarrow as pa
+
+    keys = table.column("key").to_pylist()
+    kept = table.take([i for i, key in enumerate(keys) if key in points])
+    column = kept.schema.get_field_index("index")
+    index = pa.array([points[key] for key in kept.column("key").to_pylist()],
+                     type=kept.schema.field(column).type)
+    return (kept.set_column(column, kept.schema.field(column), index),
+            len({key for key in keys if key not in points}))
 
 
 def ordered(table):
