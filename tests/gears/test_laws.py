@@ -3,7 +3,7 @@ the design space."""
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
 
 from tests.helpers.strategies import center_distances, crank_laws
 from wheelstep_cli.errors import DesignError

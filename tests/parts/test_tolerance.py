@@ -305,9 +305,9 @@ def test_a_fit_short_of_its_margin_or_jamming_is_refused_naming_the_fit():
     from wheelstep_cli.parts.fit import require_fit_met
 
     require_fit_met(_fitted_band(0.1, False))
-    for least, jams, found in ((0.05, False, "keeps 0.050 mm"), (-0.2, True, "jams at 7 poses, 20 um deep")):
+    for least, jammed, found in ((0.05, False, "keeps 0.050 mm"), (-0.2, True, "jams at 7 poses, 20 um deep")):
         with pytest.raises(DesignError) as err:
-            require_fit_met(_fitted_band(least, jams))
+            require_fit_met(_fitted_band(least, jammed))
         assert err.value.param == "fit" and err.value.value == "normal"
         assert found in err.value.limit and "print without --fit" in err.value.limit
 

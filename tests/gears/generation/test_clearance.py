@@ -34,7 +34,6 @@ def test_relief_lowers_head_on_tips_and_roots_where_asked_and_keeps_the_flanks()
 
 def test_ridges_in_the_spaces_are_cut_down_and_nothing_else_moves():
     rays, teeth = 6000, 6
-    grid = PolarGrid(0.0, 2 * np.pi, rays)
     phase = np.mod(np.arange(rays), rays // teeth) / (rays // teeth)
     # spaces from 88 mm to the tips at 95 mm, pitch curve at 92 mm; V-shaped flanks
     radii = 88.0 + 7.0 * np.clip(np.abs(phase - 0.5) * 4.0 - 0.5, 0.0, 1.0)
