@@ -52,6 +52,24 @@ def test_batch_reports_every_bad_value_of_an_entry_with_its_line(cli, tmp_path):
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("command", ["batch", "sweep"])
+@pytest.mark.parametrize("text, where, message", [
+    ("- a\n", 1, "must be a mapping of keys"),
+    ("just words\n", 1, "must be a mapping of keys"),
+])
+def test_a_file_that_is_not_a_mapping_is_one_line(cli, tmp_path, command, text, where, message):
+    path = write(tmp_path / "top.yaml", text)
+    line = error_line(cli(command, path, "--out", tmp_path / "out"))
+    assert line == f"wheelstep: error: {path}:{where}: {message}"
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_batch_entry_that_is_not_a_mapping_is_named_at_its_line(cli, tmp_path):
+    path = write(tmp_path / "entry.yaml", "parts:\n  - 3\n")
+    line = error_line(cli("batch", path, "--out", tmp_path / "out"))
+    assert line == f"wheelstep: error: {path}:2: parts[0]: must be a mapping of keys"
+
+
 def test_a_generator_setting_on_paper_teeth_is_refused_at_its_line(cli, tmp_path):
     """The rack cutter's settings do not shape the paper teeth: a batch entry that gives one
     with them is refused where it is written, not built with it ignored."""

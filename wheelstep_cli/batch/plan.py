@@ -119,7 +119,12 @@ def _clean(doc: LocatedYaml, path: tuple, model, bad: set) -> dict:
     """The values at ``path`` the model found no problem with."""
     value = doc.data
     for key in path:
-        value = value.get(key) if isinstance(value, dict) else (value[key] if isinstance(value, list) else None)
+        # a file whose top level is a list (or a key where an index is) holds no such values
+        if isinstance(value, dict):
+            value = value.get(key)
+        else:
+            in_list = isinstance(value, list) and isinstance(key, int) and 0 <= key < len(value)
+            value = value[key] if in_list else None
     if not isinstance(value, dict):
         return {}
     return {k: v for k, v in value.items() if k in model.model_fields and (path + (k,))[:3] not in bad}
