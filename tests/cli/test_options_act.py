@@ -110,3 +110,40 @@ def test_a_yaml_name_with_an_underscore_stays_the_text_written():
 
     assert parse_located_yaml("name: 2024_01\nat: 12:30\nz: 48\n", "t.yaml").data == {
         "name": "2024_01", "at": "12:30", "z": 48}
+
+
+@pytest.mark.parametrize("args, line", [
+    (["shoe", "--out", ""], "--out = '': must not be empty"),
+    (["shoe", "-o", "  "], "-o = '  ': must not be only spaces"),
+    (["shoe", "--out="], "--out = '': must not be empty"),
+    (["shoe", "--profile", ""], "--profile = '': must not be empty"),
+    (["trajectory", "--csv", ""], "--csv = '': must not be empty"),
+])
+def test_an_empty_value_is_refused_not_read_as_the_current_folder(cli, tmp_path, monkeypatch, args, line):
+    """A path option reads '' as '.': the files would land in the current folder."""
+    monkeypatch.chdir(tmp_path)
+    assert error_line(cli(*args)) == f"wheelstep: error: {line}"
+    assert not any(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("args, line", [
+    (["kinematics", "--plot", "speed.jpg"], "--plot = speed.jpg: must end in .png"),
+    (["stairs", "--plot", "stairs.svg"], "--plot = stairs.svg: must end in .png"),
+    (["trajectory", "--dxf", "path.txt"], "--dxf = path.txt: must end in .dxf"),
+    (["trajectory", "--csv", "path.png"], "--csv = path.png: must end in .csv"),
+    (["linkage", "--gif", "walk.png"], "--gif = walk.png: must end in .gif"),
+    (["linkage", "--plot", "walk.gif"], "--plot = walk.gif: must end in .png"),
+])
+def test_a_file_named_for_another_format_is_refused(cli, tmp_path, monkeypatch, args, line):
+    """These files are written in one format whatever their name: a .svg holding PNG bytes,
+    or two options at one path overwriting each other, would mislead."""
+    monkeypatch.chdir(tmp_path)
+    assert error_line(cli(*args)) == f"wheelstep: error: {line} (the extension sets the format)"
+    assert not any(tmp_path.iterdir())
+
+
+def test_the_extension_is_read_in_any_case(cli, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert cli("trajectory", "--plot", "path.PNG", "--csv", "path.CSV").exit_code == 0
+    assert (tmp_path / "path.PNG").read_bytes().startswith(b"\x89PNG")
+    assert (tmp_path / "path.CSV").read_text().splitlines()[0].startswith("x")

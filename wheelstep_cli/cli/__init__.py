@@ -224,10 +224,13 @@ def _option_values(params, argv: list[str]) -> list[tuple[object, str, str]]:
     return found
 
 
-def underscored_number_text(group, argv: list[str]) -> str | None:
-    """One line for a number option of the named subcommand given with an underscore
-    (``--z 4_8``): Python's parsers read it as 48, a slip a person would not mean; None
-    when there is none (or help is asked for)."""
+def misread_value_text(group, argv: list[str]) -> str | None:
+    """One line for an option value of the named subcommand that the parser would read as
+    something the person did not mean; None when there is none (or help is asked for):
+
+    * a number with an underscore (``--z 4_8``): Python's parsers read it as 48;
+    * an empty text or path (``--out ''``): a path reads it as the current folder.
+    """
     name = next((arg for arg in argv if arg in group.commands), None)
     if name is None or "-h" in argv or "--help" in argv:
         return None
@@ -236,6 +239,9 @@ def underscored_number_text(group, argv: list[str]) -> str | None:
         kind = _number_kind(param)
         if kind is not None and "_" in value:
             return f"{flag} = {value}: {_with_limit(kind, param.name or '')}, written without underscores"
+        if kind is None and not value.strip():
+            # a number's empty value gets the parser's own line ("must be a number")
+            return f"{flag} = {value!r}: must not be {'empty' if not value else 'only spaces'}"
     return None
 
 
@@ -246,9 +252,9 @@ def run(argv: list[str] | None = None) -> int:
         command = typer.main.get_command(app)
     except KeyboardInterrupt:
         return _aborted()
-    underscored = underscored_number_text(command, args)
-    if underscored is not None:
-        typer.echo(f"wheelstep: error: {underscored}", err=True)
+    misread = misread_value_text(command, args)
+    if misread is not None:
+        typer.echo(f"wheelstep: error: {misread}", err=True)
         return 2
     try:
         with warnings.catch_warnings():

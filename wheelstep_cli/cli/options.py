@@ -116,14 +116,30 @@ Verbose = Annotated[bool, opt("--verbose", "-v", help="Print more detail (on std
                                                       "resolved parameters and every file.")]
 
 
+def _suffix_check(suffixes: tuple[str, ...]):
+    """A callback refusing a file path whose extension is none of ``suffixes`` (".png"): the
+    file is written in that format whatever its name, so another name would mislabel it."""
+    def check(ctx: typer.Context, param: typer.CallbackParam, value):
+        if value is not None:
+            require(value.suffix.lower() in suffixes, param.name, str(value),
+                    f"must end in {' or '.join(suffixes)} (the extension sets the format)")
+        return value
+    return check
+
+
+def output_file(flag: str, help: str, *suffixes: str):
+    """An optional output-file option whose path must end in one of ``suffixes``."""
+    return Annotated[Optional[Path], opt(flag, help=help, callback=_suffix_check(suffixes))]
+
+
 def plot_option(what: str):
     """A ``--plot PNG`` option: ``what`` the picture shows."""
-    return Annotated[Optional[Path], opt("--plot", help=f"Write {what} (PNG).")]
+    return output_file("--plot", f"Write {what} (PNG).", ".png")
 
 
 def csv_option(what: str):
     """A ``--csv FILE`` option: ``what`` the table holds."""
-    return Annotated[Optional[Path], opt("--csv", help=f"Write {what} (CSV).")]
+    return output_file("--csv", f"Write {what} (CSV).", ".csv")
 
 
 def require_with(param: str, value, companion, what: str) -> None:

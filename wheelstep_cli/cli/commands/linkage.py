@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 from enum import Enum
-from pathlib import Path
 from typing import Annotated, List, Optional
 
-from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, plot_option,
-                                       point, require_with, signs)
+from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, output_file,
+                                       plot_option, point, require_with, signs)
 from wheelstep_cli.cli.output import Output
 
 
@@ -21,6 +20,7 @@ class Preset(str, Enum):
 Length = Optional[float]
 Csv = csv_option("the foot path at every sample")
 Plot = plot_option("the path and speed plot")
+Gif = output_file("--gif", "Write an animation of one crank turn (GIF).", ".gif")
 
 
 def linkage(
@@ -44,8 +44,7 @@ def linkage(
                                      shown="567,615")] = None,
     step: Annotated[float, opt("--step", help="Crank-angle step of the printed table, deg.")] = 15.0,
     csv: Csv = None, plot: Plot = None,
-    gif: Annotated[Optional[Path], opt("--gif", help="Write an animation of one crank turn "
-                                                     "(GIF).")] = None,
+    gif: Gif = None,
     gif_frames: Annotated[Optional[int], opt("--gif-frames", help="Frames of the GIF animation.",
                                              shown="48")] = None,
     force: Force = False,

@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 from enum import Enum
-from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, plot_option,
-                                       require_with)
+from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, output_file,
+                                       plot_option, require_with)
 from wheelstep_cli.cli.output import Output
 
 
@@ -18,6 +17,7 @@ class Root(str, Enum):
 
 Csv = csv_option("the sampled path (x, y, piece)")
 Plot = plot_option("a plot of the path")
+Dxf = output_file("--dxf", "Write the path as DXF (line and arcs).", ".dxf")
 
 
 def trajectory(
@@ -37,7 +37,7 @@ def trajectory(
     y0: Annotated[float, opt("--y0", help="Support line height y0, mm.")] = 0.0,
     spacing: Annotated[float, opt("--spacing", help="Sample spacing along the path, mm.")] = 1.0,
     csv: Csv = None,
-    dxf: Annotated[Optional[Path], opt("--dxf", help="Write the path as DXF (line and arcs).")] = None,
+    dxf: Dxf = None,
     dxf_polyline: Annotated[bool, opt("--dxf-polyline", help="DXF as one closed polyline with "
                                                              "arc bulges instead.")] = False,
     plot: Plot = None,
