@@ -138,6 +138,20 @@ def test_gears_refuses_a_users_file_of_a_certain_name_before_it_builds(cli, tmp_
     assert line == f"wheelstep: error: --out = {tmp_path / 'afile'}: cannot be written (is a file, not a folder)"
 
 
+@pytest.mark.parametrize("picture, gear", [("pinion.svg", "pinion"), ("sub/../wheel.svg", "wheel")])
+def test_gears_refuses_a_picture_where_its_own_export_goes_before_it_builds(cli, tmp_path, monkeypatch,
+                                                                          picture, gear):
+    """--plot OUT/pinion.svg with --svg: the picture and the export would share one path."""
+    import wheelstep_cli.cli.commands.gears_checks as gears_checks
+
+    monkeypatch.setattr(gears_checks, "checked_pair", _no_build)
+    out = tmp_path / "out"
+    line = error_line(cli("gears", "--profile", "desk-demo", "--svg", "--out", out, "--plot", out / picture))
+    assert line == (f"wheelstep: error: --plot = {out / picture}: is where this run writes the {gear}'s "
+                    "SVG (--svg): give the picture another name")
+    assert not out.exists()
+
+
 @pytest.mark.parametrize("option, name, magic", [("--plot", "mine.png", b"\x89PNG"),
                                                  ("--gif", "mine.gif", None)])
 def test_gears_pictures_keep_a_users_file_of_the_same_name(cli, tmp_path, monkeypatch, option, name, magic):

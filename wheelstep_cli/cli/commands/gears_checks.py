@@ -110,5 +110,14 @@ def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
     show.write_named("gears-pictures", {p: b"" for p in named.values() if p is not None}, True, force, **named)
     suffixes = [s for s, asked in (("stl", fmt in ("stl", "both")), ("dxf", extras.dxf), ("svg", extras.svg),
                                    ("step", extras.step)) if asked]
-    certain = [out / "gears.json", *(out / f"{gear}.{s}" for s in suffixes for gear in ("pinion", "wheel"))]
+    certain = {out / "gears.json": "the report",
+               **{out / f"{gear}.{s}": f"the {gear}'s {s.upper()}" + (f" (--{s})" if s != "stl" else "")
+                  for s in suffixes for gear in ("pinion", "wheel")}}
+    # a picture where this run writes a file of its own would overwrite it, or be refused as
+    # not written by the pictures' record once the meshes are written (--plot OUT/pinion.svg --svg)
+    own = {path.resolve(): what for path, what in certain.items()}
+    for option, path in named.items():
+        if path is not None and path.resolve() in own:
+            raise DesignError(option, str(path), f"is where this run writes {own[path.resolve()]}: "
+                                                 "give the picture another name")
     show.write_owned(out, "gears", dict.fromkeys(certain, b""), True, force)
