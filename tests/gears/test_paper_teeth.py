@@ -1,6 +1,7 @@
 """Sector-involute teeth (SPEC §5): reference points and closed outlines."""
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -14,6 +15,7 @@ from wheelstep_cli.gears.laws import CrankLaw
 from wheelstep_cli.gears.pitch_curves import pinion_radius, wheel_radius
 from wheelstep_cli.mechanism.crank import CrankMechanism
 from wheelstep_cli.gears.sectors import sector_partition
+from tests.helpers.clicheck import error_line
 
 
 def test_reference_points(cli):
@@ -28,6 +30,26 @@ def test_reference_points(cli):
     assert [round(p["phi_deg"], 2) for p in w1] == [-43.80, -43.87, -44.01, -44.18, -44.39]
     assert [round(p["phi_s_deg"], 2) for p in w1] == [-41.87, -41.80, -41.66, -41.49, -41.28]
     assert len(data["pinion"]) == 24 and len(data["wheel"]) == 24
+
+
+def test_teeth_takes_the_paper_rules_not_the_generators(cli):
+    """`teeth` prints sector-involute teeth: a module and the distance their sectors roll at
+    go together, as for `gears --teeth paper` (the generator's rule would refuse them)."""
+    result = cli("teeth", "--module", "2", "--center-distance", "143.5", "--json", "-v")
+    assert result.exit_code == 0, result.stderr
+    assert "teeth = paper" in result.stderr
+    assert len(json.loads(result.stdout)["pinion"]) == 24
+
+
+def test_a_module_too_large_names_one_that_works(cli):
+    """The desk demo at half scale cannot carry the paper teeth's default module 2: the
+    refusal names the largest module that can, and that module is accepted."""
+    line = error_line(cli("teeth", "--profile", "desk-demo", "--json"))
+    found = re.search(r"use --module ([0-9.]+) or less", line)
+    assert line.startswith("wheelstep: error: --module = 2: too large for the tooth pitch") and found, line
+    assert cli("teeth", "--profile", "desk-demo", "--module", found.group(1), "--json").exit_code == 0
+    above = f"{float(found.group(1)) + 0.05:.2f}"
+    assert cli("teeth", "--profile", "desk-demo", "--module", above, "--backlash", "0.5").exit_code == 2
 
 
 def test_involute_polar_angle_matches_definition():

@@ -8,7 +8,7 @@ radians, lengths in mm; outlines are counter-clockwise polar (angle, radius).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -100,6 +100,20 @@ def check_tooth_form(part: SectorPartition, form: ToothForm) -> None:
     smallest = float(min(part.r_pinion.min(), part.r_wheel.min()))
     require(smallest - 1.25 * m > 0, "module", m,
             f"must be < {smallest / 1.25:.3f} mm (root radius of the smallest sector must be > 0)")
+    worst, gap = _tip_land_and_gap(part, form)
+    if worst < MIN_TIP_LAND:
+        raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: teeth come "
+                          f"to a point (tip land {worst:.3f} mm < {MIN_TIP_LAND} mm); use "
+                          f"--module {_largest_module(part, form)} or less, less backlash (--backlash) "
+                          "or fewer teeth (--z: fewer teeth, longer pitch)")
+    if gap <= 0:
+        raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: "
+                          f"tooth spaces close at the root; use --module {_largest_module(part, form)} "
+                          "or less")
+
+
+def _tip_land_and_gap(part: SectorPartition, form: ToothForm) -> tuple[float, float]:
+    """(narrowest tip land, narrowest space bottom) in mm of both gears' teeth."""
     pinion = pinion_flanks(part, form)
     wheel = wheel_flanks(part, form)
     # Pinion tooth tip land and wheel tooth tip land (between sectors, continued periodically).
@@ -110,16 +124,19 @@ def check_tooth_form(part: SectorPartition, form: ToothForm) -> None:
     pinion_next_left = np.append(pinion.left[1:, 0], pinion.left[0, 0] + pinion.period)
     pinion_gap = (pinion_next_left - pinion.right[:, 0]) * pinion.root_radius
     wheel_gap = (wheel.right[:, 0] - wheel.left[:, 0]) * wheel.root_radius
-    worst = min(pinion_tip.min(), wheel_tip.min())
-    if worst < MIN_TIP_LAND:
-        pitch = part.arc
-        raise DesignError("module", m, f"too large for the tooth pitch {pitch:.3f} mm: teeth come "
-                          f"to a point (tip land {worst:.3f} mm < {MIN_TIP_LAND} mm); "
-                          "use a smaller module (--module), less backlash (--backlash) or fewer "
-                          "teeth (--z: fewer teeth, longer pitch)")
-    if min(pinion_gap.min(), wheel_gap.min()) <= 0:
-        raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: "
-                          "tooth spaces close at the root")
+    return float(min(pinion_tip.min(), wheel_tip.min())), float(min(pinion_gap.min(), wheel_gap.min()))
+
+
+def _largest_module(part: SectorPartition, form: ToothForm) -> str:
+    """The largest module (mm, rounded down to 0.01) below ``form``'s whose teeth keep their
+    tip lands and space bottoms, with ``form``'s backlash: a smaller module's own default
+    backlash (0.25 module) is smaller still, so the remedy holds either way."""
+    lo, hi = 0.0, form.module
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        worst, gap = _tip_land_and_gap(part, replace(form, module=mid))
+        lo, hi = (mid, hi) if worst >= MIN_TIP_LAND and gap > 0 else (lo, mid)
+    return f"{np.floor(lo * 100.0) / 100.0:g}"
 
 
 def pinion_outline(part: SectorPartition, form: ToothForm) -> np.ndarray:

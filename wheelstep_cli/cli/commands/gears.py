@@ -70,8 +70,9 @@ def teeth(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
     from wheelstep_cli.parts.gear_tables import teeth_report
 
     out = Output(json, quiet, verbose)
+    # the sector-involute teeth of SPEC §5 are the paper's: their rules, not the generator's
     spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
-                          module=module, backlash=backlash)
+                          module=module, backlash=backlash, teeth="paper")
     out.parameters(vars(spec))
     report = teeth_report(spec)
     out.report(report, lambda: _teeth_lines(report))
