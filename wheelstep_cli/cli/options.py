@@ -142,12 +142,12 @@ def csv_option(what: str):
     return output_file("--csv", f"Write {what} (CSV).", ".csv")
 
 
-def require_with(param: str, value, companion, what: str) -> None:
+def require_with(param: str, value, companion, flag: str) -> None:
     """Refuse option ``param`` given (``value`` not None) without the ``companion`` option's
-    value it shapes (None: not given): it would do nothing. ``what``: what it shapes, as
-    the message names it (e.g. "--dxf")."""
+    value it shapes (None: not given): it would do nothing. ``flag``: the companion's flag
+    (e.g. "--dxf")."""
     if value is not None and companion is None:
-        raise DesignError(param, value, f"shapes {what}: give {what.split()[-1]} too")
+        raise DesignError(param, value, f"shapes {flag}: give {flag} too")
 
 
 def _plain_float(text: str) -> float:

@@ -8,6 +8,7 @@ from typing import Annotated, List, Optional
 from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, output_file,
                                        plot_option, point, require_with, signs)
 from wheelstep_cli.cli.output import Output
+from wheelstep_cli.errors import DesignError
 
 
 class Preset(str, Enum):
@@ -42,7 +43,8 @@ def linkage(
                                 shown="70.8")] = None,
     o1: Annotated[Optional[str], opt("--o1", help="four-bar: rocker pivot 'x,y', mm.",
                                      shown="567,615")] = None,
-    step: Annotated[float, opt("--step", help="Crank-angle step of the printed table, deg.")] = 15.0,
+    step: Annotated[Optional[float], opt("--step", help="Crank-angle step of the printed table "
+                                                        "(and of --json's), deg.", shown="15")] = None,
     csv: Csv = None, plot: Plot = None,
     gif: Gif = None,
     gif_frames: Annotated[Optional[int], opt("--gif-frames", help="Frames of the GIF animation.",
@@ -55,7 +57,10 @@ def linkage(
     from wheelstep_cli.parts.mechanism_files import linkage_files
 
     show = Output(json, quiet, verbose)
-    require_with("gif_frames", gif_frames, gif, "the --gif animation")
+    require_with("gif_frames", gif_frames, gif, "--gif")
+    if step is not None and quiet and not json:
+        raise DesignError("step", step, "shapes the printed table, which -q does not print (--json does)")
+    step = 15.0 if step is None else step
     gif_frames = 48 if gif_frames is None else gif_frames
     ls.check_sampling(samples, scale, gif_frames, step)
     four_bar = {"l1": l1, "l2": l2, "l3": l3, "l4": l4, "beta_deg": beta,
