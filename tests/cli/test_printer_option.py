@@ -19,12 +19,30 @@ from tests.helpers.files import write
                                  "profile (a printer profile goes in --printer)"),
     ("--printer", "desk-demo", "--printer = desk-demo: is a design profile, not a printer "
                                "profile (a design profile goes in --profile)"),
-    ("--printer", "fdm-0.6-abs", "--printer = fdm-0.6-abs: not found; known profiles:"),
+    ("--printer", "fdm-0.6-abs", "--printer = fdm-0.6-abs: not found; known printer profiles: fdm-0.4-petg, "
+                                 "fdm-0.4-pla, resin-0.05-standard"),
+    ("--profile", "bntu", "--profile = bntu: not found; known design profiles: bntu-2024, desk-demo"),
 ])
 def test_the_wrong_kind_of_profile_is_refused_naming_the_right_option(cli, tmp_path, command, option,
                                                                     name, expect):
     result = cli(command, option, name, "--out", tmp_path / "out")
     assert expect in error_line(result)
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("option", ["--profile", "--printer"])
+@pytest.mark.parametrize("text, why", [("", "is empty"), ("- a\n- b\n", "holds a list"),
+                                       ("3\n", "holds a single value"), (None, "folder")])
+def test_a_profile_file_that_is_no_mapping_is_told_so_not_called_the_other_kind(cli, tmp_path, option,
+                                                                                 text, why):
+    given = tmp_path / "p.yaml" if text is not None else tmp_path / "folder"
+    if text is None:
+        given.mkdir()
+        expect = f"{option} = {given}: is a folder, not a profile file"
+    else:
+        write(given, text)
+        expect = f"{option} = {given}: must be a mapping of sections; the file {why}"
+    assert error_line(cli("shoe", option, given, "--out", tmp_path / "out")) == f"wheelstep: error: {expect}"
     assert not (tmp_path / "out").exists()
 
 

@@ -34,8 +34,10 @@ def profile_dirs() -> list[Path]:
     return [Path.cwd() / "profiles", shipped_profiles()]
 
 
-def find_profile(name_or_path: str) -> Path:
-    """Path of a profile given as a file path or a bare name."""
+def find_profile(name_or_path: str, printer: bool | None = None) -> Path:
+    """Path of a profile given as a file path or a bare name; when not found, the message
+    lists the known profiles of the kind asked for (``printer``: True printer profiles,
+    False design profiles, None both)."""
     path = Path(name_or_path)
     if path.suffix in (".yaml", ".yml") and path.is_file():
         return path
@@ -44,8 +46,22 @@ def find_profile(name_or_path: str) -> Path:
             candidate = folder / f"{name_or_path}{suffix}"
             if candidate.is_file():
                 return candidate
-    known = sorted({p.stem for d in profile_dirs() if d.is_dir() for p in d.glob("*.yaml")})
-    raise DesignError("profile", name_or_path, f"not found; known profiles: {', '.join(known) or 'none'}")
+    if path.is_dir():
+        raise DesignError("profile", name_or_path, "is a folder, not a profile file")
+    if printer is None:
+        known = sorted({p.stem for d in profile_dirs() if d.is_dir() for p in d.glob("*.yaml")})
+        what = "profiles"
+    else:
+        known, what = profile_names(printer), "printer profiles" if printer else "design profiles"
+    raise DesignError("profile", name_or_path, f"not found; known {what}: {', '.join(known) or 'none'}")
+
+
+def _not_sections(data: Any) -> str | None:
+    """Why a profile file's top level is no mapping of sections (None: it is one)."""
+    if isinstance(data, dict):
+        return None
+    what = "is empty" if data is None else f"holds a {'list' if isinstance(data, list) else 'single value'}"
+    return f"must be a mapping of sections; the file {what}"
 
 
 def load_profile(name_or_path: str) -> tuple[Path, dict[str, Any]]:
@@ -100,7 +116,9 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
             doc = read_located_yaml(file, profile_label(file))
         except YamlSyntaxError as err:
             raise InvalidInput([Issue(err.where, "", err.limit)]) from None
-    if is_printer_profile(doc.data) or not isinstance(doc.data, dict):
+    if _not_sections(doc.data):
+        raise DesignError("design", name, _not_sections(doc.data))
+    if is_printer_profile(doc.data):
         raise DesignError("design", name, "is not a design profile; design profiles: "
                           + ", ".join(profile_names(printer=False)))
     return validate_file(DesignProfile, doc)
@@ -109,12 +127,14 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
 def load_design_profile(name_or_path: str):
     """Find and check a design profile (a name or a path) given as a command's ``--profile``,
     see :func:`design_from_file`; a printer profile is refused naming the option it belongs to."""
-    file = find_profile(name_or_path)
+    file = find_profile(name_or_path, printer=False)
     try:
         return design_from_file(name_or_path, file)
     except DesignError as err:
         if err.param != "design":
             raise
+        if err.limit.startswith("must be a mapping"):
+            raise DesignError("profile", name_or_path, err.limit) from None
         raise DesignError("profile", name_or_path, "is a printer profile, not a design profile (a "
                           "printer profile goes in --printer); design profiles: "
                           + ", ".join(profile_names(printer=False))) from None
@@ -126,7 +146,7 @@ def load_printer_profile(name_or_path: str):
     from wheelstep_cli.config.printers import is_printer_profile
 
     try:
-        file = find_profile(name_or_path)
+        file = find_profile(name_or_path, printer=True)
     except DesignError as err:
         raise DesignError("printer", name_or_path, err.limit) from None
     label = profile_label(file)
@@ -134,6 +154,8 @@ def load_printer_profile(name_or_path: str):
         doc = read_located_yaml(file, label)
     except YamlSyntaxError as err:
         raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+    if _not_sections(doc.data):
+        raise DesignError("printer", name_or_path, _not_sections(doc.data))
     if not is_printer_profile(doc.data):
         raise DesignError("printer", name_or_path, "is a design profile, not a printer profile (a "
                           "design profile goes in --profile); printer profiles: "
