@@ -433,6 +433,29 @@ def test_too_many_points_refused(cli, tmp_path):
     assert "the sweep has 20000 points; at most 10000" in line
 
 
+@pytest.mark.parametrize("extra, line", [
+    ("objectives: [drive_f_i_um, volume_mm3]\nprinters: [fdm-0.4-pla]\n",
+     "objectives[0] = 'drive_f_i_um': is not a figure of command: shoe; its figures: volume_mm3, mass_g"),
+    ("objectives: [volume_mm3, mass_g]\n",
+     "objectives[1] = 'mass_g': needs `printers:` (the mass is the volume times the printer's "
+     "material density)"),
+])
+def test_objectives_the_rows_cannot_hold_are_refused_at_their_line(cli, tmp_path, extra, line):
+    sweep = write(tmp_path / "s.yaml", "command: shoe\ndesign: desk-demo\ngrid:\n  width: [12]\n" + extra)
+    found = error_line(cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1"))
+    assert found == f"wheelstep: error: {sweep}:5: {line}"
+    assert not (tmp_path / "out").exists()
+
+
+def test_keep_is_refused_when_the_default_objectives_cannot_rank_the_rows(cli, tmp_path):
+    """A shoe sweep without printers has no mass: --keep could keep nothing."""
+    sweep = write(tmp_path / "s.yaml", "command: shoe\ndesign: desk-demo\ngrid:\n  width: [12]\n")
+    line = error_line(cli("sweep", sweep, "--out", tmp_path / "out", "--keep", "best:2", "--dry-run"))
+    assert line == ("wheelstep: error: --keep = best:2: ranks by the objectives volume_mm3 and mass_g; "
+                    "mass_g needs `printers:` in the sweep file")
+    assert not (tmp_path / "out").exists()
+
+
 def test_keep_best_writes_the_best_designs(cli, tmp_path):
     sweep = write(tmp_path / "shoes.yaml", SHOES + "objectives: [volume_mm3, mass_g]\n")
     result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "--keep", "best:2", "-q")

@@ -32,6 +32,10 @@ COMMANDS = {"gears": (GearPairSpec, "gears"), "shoe": (ShoeSpec, "shoe")}
 OBJECTIVES = ("drive_f_i_um", "coast_f_i_um", "drive_F_i_um", "coast_F_i_um", "drive_ripple_pct",
               "coast_ripple_pct", "backlash_max_mm", "backlash_min_mm", "volume_mm3", "mass_g")
 DEFAULT_OBJECTIVES = {"gears": ["drive_f_i_um", "backlash_max_mm"], "shoe": ["volume_mm3", "mass_g"]}
+#: The figures each command's rows hold (a shoe has no teeth to measure).
+COMMAND_OBJECTIVES = {"gears": OBJECTIVES, "shoe": ("volume_mm3", "mass_g")}
+#: The figure that needs a printer: the volume times the printer's material density.
+NEEDS_PRINTER = "mass_g"
 
 
 class Range(BaseModel):
@@ -110,7 +114,7 @@ def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
     command = data.get("command")
     if command in COMMANDS:
         _check_values(doc, COMMANDS[command][0], command, data, grid, random, issues)
-    _check_objectives(doc, data.get("objectives"), issues)
+    _check_objectives(doc, data.get("objectives"), command, bool(data.get("printers")), issues)
     _check_printers(doc, data.get("printers"), issues)
     _check_bands(doc, command, data.get("printers"), data.get("tolerance") is True, issues)
     if issues:
@@ -186,12 +190,20 @@ def _value_issues(doc, fields, at: tuple, key: str, axis, values: list) -> list[
     return []
 
 
-def _check_objectives(doc: LocatedYaml, names, issues: list[Issue]) -> None:
+def _check_objectives(doc: LocatedYaml, names, command, printers: bool, issues: list[Issue]) -> None:
+    """Each objective is a figure the command's rows hold: one of its figures, and the mass
+    only where the sweep names printers (a row without one has no mass)."""
     for i, name in enumerate(names if isinstance(names, list) else []):
+        at = ("objectives", i)
         if name not in OBJECTIVES:
-            at = ("objectives", i)
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: must be one of: "
                                 + ", ".join(OBJECTIVES)))
+        elif command in COMMAND_OBJECTIVES and name not in COMMAND_OBJECTIVES[command]:
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: is not a figure of "
+                                f"command: {command}; its figures: " + ", ".join(COMMAND_OBJECTIVES[command])))
+        elif name == NEEDS_PRINTER and not printers:
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: needs `printers:` (the "
+                                "mass is the volume times the printer's material density)"))
 
 
 def _check_printers(doc: LocatedYaml, names, issues: list[Issue]) -> None:

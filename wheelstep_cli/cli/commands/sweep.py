@@ -56,6 +56,7 @@ def sweep(
         for line in err.lines():
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
+    _require_keep_ranks(best, plan)
     earlier = owned_results(out, force)     # a user's file among the outputs: refused here
     if dry_run:
         _dry_run(plan, file, out, show, earlier)
@@ -110,6 +111,17 @@ def _dropped_text(count: int, verb: str) -> str:
         return ""
     return (f"; {count} earlier row{'s' if count > 1 else ''} {verb} (points no longer in the "
             "sweep, or computed by another wheelstep or library version)")
+
+
+def _require_keep_ranks(best: int, plan) -> None:
+    """Refuse --keep when the plan's objectives cannot rank its rows: the default objectives
+    of a shoe sweep hold the mass, which rows without a printer do not have."""
+    from wheelstep_cli.config.sweep_file import NEEDS_PRINTER
+    from wheelstep_cli.errors import DesignError
+
+    if best and NEEDS_PRINTER in plan.objectives and all(printer is None for printer, _ in plan.points):
+        raise DesignError("keep", f"best:{best}", f"ranks by the objectives {' and '.join(plan.objectives)}; "
+                          f"{NEEDS_PRINTER} needs `printers:` in the sweep file")
 
 
 def _keep_count(keep: str | None) -> int:
