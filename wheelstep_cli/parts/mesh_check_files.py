@@ -47,12 +47,20 @@ def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
     """Check the inputs and read both meshes' mid-thickness sections (mm, own frames)."""
     from wheelstep_cli.formats.mesh_read import read_outline
 
-    design_law(check.spec)
+    law = design_law(check.spec)
     check.validate()
     outlines = (read_outline(check.pinion, "pinion", default_name="pinion"),
                 read_outline(check.wheel, "wheel", default_name="wheel"))
     require_a_pair(outlines, installed_distance(check.spec), check.wheel)
+    require_pinion_first(outlines, law, check.pinion)
     return outlines
+
+
+def _radius_by_area(outline: np.ndarray) -> float:
+    """sqrt(area / pi) of a closed outline (N, 2) mm: its teeth above and below the pitch
+    curve cancel, so this is near the mean pitch radius."""
+    x, y = outline[:, 0], outline[:, 1]
+    return float(np.sqrt(abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))) / (2 * np.pi)))
 
 
 def require_a_pair(outlines: tuple[np.ndarray, np.ndarray], distance: float, wheel: str) -> None:
@@ -60,16 +68,26 @@ def require_a_pair(outlines: tuple[np.ndarray, np.ndarray], distance: float, whe
     ``distance`` mm, e.g. two wheels or two pinions: their radii by area (the teeth above
     and below the pitch curve cancel) must add to the distance within SIZE_SLACK. Checked
     before the poses: two wheels overlap everywhere and their check ran for minutes."""
-    def radius(outline: np.ndarray) -> float:
-        x, y = outline[:, 0], outline[:, 1]
-        return float(np.sqrt(abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))) / (2 * np.pi)))
-
-    pinion, wheel_r = (radius(o) for o in outlines)
+    pinion, wheel_r = (_radius_by_area(o) for o in outlines)
     total = pinion + wheel_r
     require(abs(total - distance) <= SIZE_SLACK * distance, "wheel", wheel,
             f"its radius by area {wheel_r:.1f} mm and the pinion's {pinion:.1f} mm add to "
             f"{total:.1f} mm, not the centre distance {distance:g} mm +-{100 * SIZE_SLACK:.0f} %: "
             "give the pinion and the wheel of one pair (two wheels or two pinions cannot mesh)")
+
+
+def require_pinion_first(outlines: tuple[np.ndarray, np.ndarray], law, pinion: str) -> None:
+    """Refuse (naming the pinion) outlines (mm) given wheel first: where the law turns the
+    wheel slower than the pinion on average (by more than SIZE_SLACK), the wheel is the
+    larger gear. Checked up front: swapped, every pose interferes."""
+    period = float(law.theta_period)
+    turned = law.carrier_angle(np.array([0.0, period]))
+    ratio = abs(float(turned[1] - turned[0])) / period      # mean wheel turn per pinion turn
+    first, second = (_radius_by_area(o) for o in outlines)
+    require(not (ratio < 1.0 - SIZE_SLACK and first > second), "pinion", pinion,
+            f"is the larger gear (radius by area {first:.1f} mm, the wheel given {second:.1f} mm) "
+            f"while the law turns the wheel {1.0 / ratio:.3g} times slower than the pinion: the two "
+            "look swapped; give the pinion first, then the wheel")
 
 
 def run_written_pair_check(check: WrittenPairCheck, outlines: tuple[np.ndarray, np.ndarray],

@@ -91,6 +91,21 @@ def test_mesh_check_bad_input_one_line_exit_2(paper_pair, cli, tmp_path, args, p
     assert not (tmp_path / "x.pdf").exists()
 
 
+def test_a_pair_given_wheel_first_is_told_to_swap_before_any_pose(paper_pair, cli, monkeypatch):
+    """Wheel first, every pose interferes: the check would run for nothing."""
+    import wheelstep_cli.parts.mesh_check_files as files
+
+    def no_check(*args, **kwargs):
+        raise AssertionError("the check ran on a swapped pair")
+
+    monkeypatch.setattr(files, "run_written_pair_check", no_check)
+    wheel, pinion = paper_pair / "wheel.stl", paper_pair / "pinion.stl"
+    line = error_line(cli("mesh-check", wheel, pinion))
+    assert line.startswith(f"wheelstep: error: pinion = {wheel}: is the larger gear (radius by area ")
+    assert line.endswith("while the law turns the wheel 2 times slower than the pinion: the two look "
+                         "swapped; give the pinion first, then the wheel"), line
+
+
 def test_blend_10_is_checked_against_the_blended_law_and_written(cli, tmp_path):
     # the pair is cut for the blended law and checked against it, with the design's own
     # default backlash (measured on the blended law the play looked free and the default
