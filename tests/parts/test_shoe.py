@@ -337,3 +337,19 @@ def test_deepest_socket_keeps_two_mm_of_plastic_to_the_sole(cli, tmp_path):
     # the hole really reaches that deep: just above its bottom the section still has it
     loops = mesh.section(plane_normal=[0, 1, 0], plane_origin=[0, top - limit + 0.1, 0]).discrete
     assert len(loops) == 2
+
+
+@pytest.mark.parametrize("args, named", [
+    (["--a", "0.001", "--b", "5"], "--a = 0.001: with it, socket-depth = 25 fails: "),
+    (["--socket-depth", "80"], "--socket-depth = 80: "),
+])
+def test_a_socket_deeper_than_the_body_names_what_the_user_gave(cli, tmp_path, args, named):
+    """The default depth does not fit a small mechanism's body: the line names the option the
+    user gave, and its limit is a depth that fits."""
+    line = error_line(cli("shoe", *args, "--out", tmp_path / "out"))
+    assert line.startswith(f"wheelstep: error: {named}must be <= "), line
+    assert line.endswith("mm (socket deeper than the body: keep 2 mm of plastic between it and the sole)")
+    limit = line.split("must be <= ")[1].split(" mm")[0]
+    assert cli("shoe", *args[:4 if args[0] == "--a" else 0], "--socket-depth", limit, "--out",
+               tmp_path / "ok", "-q").exit_code == 0
+    assert not (tmp_path / "out").exists()

@@ -92,10 +92,10 @@ Out = Annotated[Path, opt("--out", "-o", help="Output folder.")]
 AllowInterference = Annotated[bool, opt(
     "--allow-interference", help="Write the pair even if the meshing check finds overlapping "
                                  "teeth (the paper method's pair does, at the shoe handovers).")]
-Force = Annotated[bool, opt("--force", help="Overwrite files at the paths it writes (the output "
-                                            "folder, a --plot path) that wheelstep did not "
-                                            "write or that were changed since (refused "
-                                            "otherwise).")]
+Force = Annotated[bool, opt("--force", help="Overwrite files at the paths it writes (in its "
+                                            "output folder, if it has one, and the files named "
+                                            "by its options) that wheelstep did not write or "
+                                            "that were changed since (refused otherwise).")]
 Tolerance = Annotated[bool, opt(
     "--tolerance", help="Also run the meshing check over the printer's dimensional band (SPEC "
                         "§11): grown and shrunk outlines at the band's centre distances.")]
