@@ -81,6 +81,16 @@ def format_value(value: object) -> str:
     return str(value)
 
 
+def rounded_down(limit: float, places: int = 2) -> str:
+    """An upper limit printed to ``places`` decimals, rounded down: a value the user copies
+    from the line then passes (rounded to nearest, 64.534 showed as 64.53 but 64.536 as 64.54,
+    which fails)."""
+    import math
+
+    scale = 10.0 ** places
+    return f"{math.floor(limit * scale) / scale:.{places}f}"
+
+
 def require(condition: bool, param: str, value: object, limit: str) -> None:
     """Raise :class:`DesignError` unless ``condition`` holds."""
     if not condition:

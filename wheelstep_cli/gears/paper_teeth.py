@@ -12,7 +12,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.errors import DesignError, require, rounded_down
 from wheelstep_cli.gears.sectors import SectorPartition
 
 #: Points per involute flank in the written outline (the tables keep the paper's five).
@@ -99,7 +99,7 @@ def check_tooth_form(part: SectorPartition, form: ToothForm) -> None:
     m = form.module
     smallest = float(min(part.r_pinion.min(), part.r_wheel.min()))
     require(smallest - 1.25 * m > 0, "module", m,
-            f"must be < {smallest / 1.25:.3f} mm (root radius of the smallest sector must be > 0)")
+            f"must be < {rounded_down(smallest / 1.25, 3)} mm (root radius of the smallest sector must be > 0)")
     worst, gap = _tip_land_and_gap(part, form)
     if worst < MIN_TIP_LAND:
         raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: teeth come "

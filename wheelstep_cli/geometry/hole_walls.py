@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import DesignError, rounded_down
 from wheelstep_cli.geometry.planar import min_radius
 
 #: Least wall (mm) from a shaft hole (bore, key, flat corner, hex corner) to the root.
@@ -29,10 +29,10 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
             # no key depth helps: the bore itself is too large for this gear
             allowed = root - MIN_HOLE_WALL
             largest = 2.0 * (np.sqrt(max(allowed ** 2 - (bore[1] / 2.0) ** 2, 0.0)) - value)
-            raise DesignError("bore", bore[0], f"must be < {max(largest, 0.0):.2f} mm with the "
+            raise DesignError("bore", bore[0], f"must be < {rounded_down(max(largest, 0.0))} mm with the "
                               f"keyway's {value:g} mm depth (leave {MIN_HOLE_WALL:g} mm of wall "
                               f"inside the {name}'s root)")
-        raise DesignError(hole_param, hole_value, f"must be < {limit:.2f} mm (leave "
+        raise DesignError(hole_param, hole_value, f"must be < {rounded_down(limit)} mm (leave "
                           f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import DesignError, rounded_down
 from wheelstep_cli.geometry.hole_walls import MIN_HOLE_WALL, corner_clear_of, require_hub_fits, require_wall
 from wheelstep_cli.geometry.mesh_checks import Part, tooth_zone_middle
 from wheelstep_cli.geometry.staircase import staircase_mesh
@@ -41,7 +41,7 @@ def extrude_plate(name: str, outline: np.ndarray, thickness: float, bore: float 
         wall = min_radius(outline) - bore / 2.0
         if wall < 1.0:
             raise DesignError(bore_param, bore,
-                              f"must be < {2 * (min_radius(outline) - 1.0):.2f} mm "
+                              f"must be < {rounded_down(2 * (min_radius(outline) - 1.0))} mm "
                               f"(leave 1 mm of wall inside the {name}'s root)")
         segments = bore_segments(bore)
         # circumscribed polygon: its flats touch the nominal circle, so the shaft fits

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from wheelstep_cli.config.specs import ShoeSpec
-from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.errors import DesignError, require, rounded_down
 from wheelstep_cli.geometry.planar import check_outline, polyline_box_distance, signed_area
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
 from wheelstep_cli.geometry.solids import bore_segments, circle, extrude_with_socket
@@ -63,11 +63,6 @@ def side_outline(sole_part: np.ndarray, top: float) -> np.ndarray:
     return np.vstack([sole_part, corners])
 
 
-def _down(limit: float) -> str:
-    """An upper limit (mm) printed to 0.01 mm, rounded down so that the value shown passes."""
-    return f"{np.floor(limit * 100.0) / 100.0:.2f}"
-
-
 def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
     """Check the socket fits in the body; return the wall between it and the sole (mm)."""
     d = spec.strut_diameter
@@ -76,7 +71,7 @@ def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
     if d > limit:
         across = "width" if spec.width <= length else f"sole length {length:.1f} mm"
         why = f"(socket wider than the body: {across} less {MIN_WALL:g} mm wall each side)"
-        raise DesignError("strut_diameter", d, f"must be <= {_down(limit)} mm {why}",
+        raise DesignError("strut_diameter", d, f"must be <= {rounded_down(limit)} mm {why}",
                           {"width": (spec.width, f"must be >= {d + 2.0 * MIN_WALL:.2f} mm {why}")}
                           if spec.width <= length else {})
     floor = polyline_box_distance(sole_part, (-d / 2.0, top - spec.socket_depth, d / 2.0, top))
@@ -90,7 +85,7 @@ def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
         # the body's height comes from the rim and the sole the mechanism draws: a user who
         # gave those rather than the depth is told which of theirs leaves the default too deep
         raise DesignError("socket_depth", spec.socket_depth,
-                          f"must be <= {_down(lo)} mm (socket deeper than the body: keep "
+                          f"must be <= {rounded_down(lo)} mm (socket deeper than the body: keep "
                           f"{MIN_WALL:g} mm of plastic between it and the sole)"
                           ).tied_to({"rim": spec.rim, "a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min})
     return floor

@@ -22,12 +22,15 @@ Workers = Annotated[int, opt("--workers", help="Worker processes of the local cl
 MAX_KEEP = 50
 
 
+Keep = Annotated[Optional[str], opt("--keep", help="best:N writes the files of the N best designs "
+                                                   "into OUT/best-K/.")]
+
+
 def sweep(
     file: Path = typer.Argument(..., help="Sweep YAML: command, grid/random axes, fixed values, printers."),
     out: Out = Path("wheelstep-sweep"),
     scheduler: Scheduler = None, workers: Workers = 0,
-    keep: Annotated[Optional[str], opt("--keep", help="best:N writes the files of the N best "
-                                                      "designs into OUT/best-K/.")] = None,
+    keep: Keep = None,
     force: Force = False, json: Json = False, dry_run: DryRun = False, quiet: Quiet = False,
     verbose: Verbose = False,
 ) -> None:
