@@ -88,6 +88,23 @@ def test_files_of_every_writing_command_follow_the_umask(cli, tmp_path):
     assert {p.name: stat.S_IMODE(p.stat().st_mode) for p in files} == {p.name: 0o644 for p in files}
 
 
+@pytest.mark.parametrize("name", ["plate-1.png", "print-sheet.md", "reports/shoe-1.json"])
+def test_batch_refuses_a_file_changed_since_at_a_certain_name_before_it_builds(cli, tmp_path, monkeypatch,
+                                                                              name):
+    import wheelstep_cli.batch.run as run
+
+    batch = write(tmp_path / "shoe1.yaml", SHOE)
+    out = tmp_path / "out"
+    assert cli("batch", batch, "--out", out, "--jobs", "1", "-q").exit_code == 0
+    (out / name).write_text("edited by the user")
+    before = listing(out)
+    monkeypatch.setattr(run, "build_entry", _no_build)
+    line = error_line(cli("batch", batch, "--out", out, "--jobs", "1"))
+    assert line.endswith(f"{out / name}: exists and was changed since this command wrote it: it is kept; "
+                         "move it away or give --force to overwrite it"), line
+    assert listing(out) == before
+
+
 def test_batch_dry_run_refuses_what_the_run_would_refuse(cli, tmp_path):
     batch = write(tmp_path / "shoe1.yaml", SHOE)
     out = tmp_path / "out"

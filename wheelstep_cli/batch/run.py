@@ -38,8 +38,12 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
     from wheelstep_cli.formats.owned import check_collisions, stale_files
 
     record, ours = previous_record(out)
-    if not ours:  # refused before the build (the names of the other files are known only after)
-        check_collisions(out, {out / MANIFEST: b""}, {}, force)
+    # refused before the build (minutes for gear pairs), as after it: a user's file, or one
+    # changed since, at a name this run writes whatever the layout — the manifest, the print
+    # sheet, the first plate and the entries' reports (the other plates' names come with it)
+    early = [out / MANIFEST, out / "print-sheet.md", out / "plate-1.3mf", out / "plate-1.png",
+             *(out / "reports" / f"{entry.name}.json" for entry in plan.entries)]
+    check_collisions(out, dict.fromkeys(early, b""), record, force, own=(MANIFEST,) if ours else ())
     advance = progress or (lambda stage, total: (lambda: None))
     with executor(jobs, scheduler) as pool:
         step = advance("building parts", len(plan.entries))
