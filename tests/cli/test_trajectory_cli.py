@@ -55,3 +55,11 @@ def test_dxf_run_prints_no_library_log_line(tmp_path):
                          cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     assert run.stderr == "" and (tmp_path / "p.dxf").is_file()
+
+
+@pytest.mark.parametrize("option", ["--r1", "--r2"])
+def test_an_arc_below_the_least_radius_is_refused_by_its_own_limit(cli, option):
+    """A 1e-9 mm arc lost its tangent points' digits and was refused as 'turning 360.0 deg
+    instead of 360'; it is refused by the radius's own limit, which 0.01 mm meets."""
+    assert error_line(cli("trajectory", option, "1e-9")) == f"wheelstep: error: {option} = 1e-9: must be >= 0.01 mm"
+    assert cli("trajectory", option, "0.01", "-q").exit_code == 0

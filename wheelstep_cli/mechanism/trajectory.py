@@ -106,10 +106,15 @@ class FootPath:
         return float(sum(p.length for p in self.pieces))
 
 
+#: Smallest arc radius (mm): below it an arc is a corner no printer or machine follows, and
+#: its tangent points, found from the top arc's centre hundreds of mm away, lose their digits.
+MIN_ARC = 0.01
+
+
 def _check_common(support_length, r1, r2):
     require(support_length > 0, "support-length", support_length, "must be > 0 mm")
-    require(r1 > 0, "r1", r1, "must be > 0 mm")
-    require(r2 > 0, "r2", r2, "must be > 0 mm")
+    require(r1 >= MIN_ARC, "r1", r1, f"must be >= {MIN_ARC:g} mm")
+    require(r2 >= MIN_ARC, "r2", r2, f"must be >= {MIN_ARC:g} mm")
 
 
 def top_arc_for_clearance(support_length, r1, r2, h_max, x0=0.0, y0=0.0):
