@@ -98,3 +98,11 @@ def test_outline_simple_over_designs(b, z):
     check_tooth_form(part, form)
     assert shapely.LinearRing(pinion_outline(part, form)).is_simple
     assert shapely.LinearRing(wheel_outline(part, form)).is_simple
+
+
+def test_pitch_shows_only_the_parameters_its_partition_uses(cli):
+    result = cli("pitch", "-v", "--json")
+    assert result.exit_code == 0, result.stderr
+    shown = [line.split("=")[0].strip() for line in result.stderr.splitlines() if " = " in line]
+    assert shown == ["a", "b", "c", "z", "turns", "center_distance"]
+    assert "center_distance = 143.5" in result.stderr        # the paper sectors' L_p

@@ -44,8 +44,11 @@ def pitch(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
     from wheelstep_cli.parts.gear_tables import pitch_report
 
     out = Output(json, quiet, verbose)
-    spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
-    out.parameters(vars(spec))
+    # the sector partition of SPEC §4 is the paper method's, at the distance its sectors roll at
+    spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
+                          teeth="paper")
+    out.parameters({"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
+                    "center_distance": spec.paper_distances[0]})
     report = pitch_report(spec)
     out.report(report, lambda: _pitch_lines(report))
 
