@@ -37,8 +37,31 @@ def test_teeth_takes_the_paper_rules_not_the_generators(cli):
     go together, as for `gears --teeth paper` (the generator's rule would refuse them)."""
     result = cli("teeth", "--module", "2", "--center-distance", "143.5", "--json", "-v")
     assert result.exit_code == 0, result.stderr
-    assert "teeth = paper" in result.stderr
+    assert "center_distance = 143.5" in result.stderr and "module = 2.0" in result.stderr
     assert len(json.loads(result.stdout)["pinion"]) == 24
+
+
+@pytest.mark.parametrize("command", ["pitch", "teeth"])
+@pytest.mark.parametrize("gears, args", [
+    # a profile tuned for generated teeth: the generator's settings and the part's shape
+    ("{z: 42, install_distance: 72.125, tilt: 0.8, blend: 10, thickness: 6, bore: 5}", []),
+    ("{z: 42, install_distance: 72.125}", ["--center-distance", "80"]),   # mounted nowhere
+    ("{z: 42, install_distance: 72.125}", ["--z", "120"]),
+])
+def test_the_tables_read_only_what_they_draw_from_a_profile(cli, tmp_path, command, gears, args):
+    """pitch and teeth draw the paper method's sectors: a profile's generator settings, bore
+    and installed distance do not refuse them (they are not mounted)."""
+    profile = tmp_path / "tuned.yaml"
+    profile.write_text(f"mechanism: {{a: 30, b: 50, c: 180}}\ngears: {gears}\n")
+    extra = ["--module", "0.4"] if command == "teeth" else []
+    result = cli(command, "--profile", profile, *args, *extra, "--json")
+    assert result.exit_code == 0, result.stderr
+    assert json.loads(result.stdout)
+
+
+def test_a_backlash_no_module_can_carry_names_no_module(cli):
+    line = error_line(cli("teeth", "--backlash", "6.1"))
+    assert "teeth come to a point" in line and "--module" not in line.split("use ")[1], line
 
 
 def test_a_module_too_large_names_one_that_works(cli):

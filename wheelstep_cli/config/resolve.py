@@ -106,6 +106,45 @@ def gear_pair_spec(profile, **cli) -> GearPairSpec:
     return spec
 
 
+#: What the paper method's tables (``pitch``, ``teeth``) read of a profile's gear pair; the rest
+#: (the generator's settings, a law CSV, bore, hub, face) shapes only the part, so a profile
+#: tuned for generated teeth still gives its tables.
+PAPER_TABLE_KEYS = ("z", "turns", "center_distance", "install_distance", "module", "backlash")
+
+
+class _TableValues:
+    """A design profile seen by the paper tables: its mechanism, and of its gear pair only
+    :data:`PAPER_TABLE_KEYS`."""
+
+    def __init__(self, profile):
+        self.profile = profile
+
+    def values(self, section: str) -> dict[str, Any]:
+        found = self.profile.values(section)
+        return found if section == "mechanism" else {k: v for k, v in found.items() if k in PAPER_TABLE_KEYS}
+
+
+def paper_table_spec(profile, **cli) -> GearPairSpec:
+    """The spec of the paper method's tables (SPEC §4, §5): command line over the profile's
+    mechanism and :data:`PAPER_TABLE_KEYS`, paper teeth at their design distance L_p (the
+    one given, else the installed distance less the paper's opening). The tables do not
+    mount the pair, so it is taken as mounted at L_p and without a bore."""
+    from wheelstep_cli.config.specs import DEFAULT_INSTALL, PAPER_OPENING
+
+    loaded = _profile(profile)
+    values = spec_values(GearPairSpec, "gears", None if loaded is None else _TableValues(loaded),
+                         {**cli, "teeth": "paper", "bore": 0.0})
+    # L_p as GearPairSpec.paper_distances reads it; a distance that is no number is left to
+    # the spec's own check
+    center = values.get("center_distance")
+    if center is None:
+        install = values.get("install_distance")
+        install = DEFAULT_INSTALL if install is None else install
+        center = install - PAPER_OPENING if isinstance(install, (int, float)) else install
+    return _named_for(cli, build, GearPairSpec, {**values, "center_distance": center,
+                                                 "install_distance": center})
+
+
 def shoe_spec(profile, **cli) -> ShoeSpec:
     """Resolve a ShoeSpec: command line over profile (``shoe:``, ``mechanism:``) over defaults."""
     spec = _named_for(cli, build, ShoeSpec, spec_values(ShoeSpec, "shoe", _profile(profile), cli))

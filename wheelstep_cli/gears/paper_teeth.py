@@ -94,22 +94,26 @@ def wheel_flanks(part: SectorPartition, form: ToothForm, points: int = 5) -> Fla
     return _sector_flanks(part.phi, part.dphi, part.r_wheel, form, points, -1.0, np.pi / 2.0)
 
 
-def check_tooth_form(part: SectorPartition, form: ToothForm) -> None:
-    """Reject modules the sectors cannot carry: negative radii, pointed or overlapping teeth."""
+def check_tooth_form(part: SectorPartition, form: ToothForm, least_module: float = 0.0) -> None:
+    """Reject modules the sectors cannot carry: negative radii, pointed or overlapping teeth;
+    a refusal names the largest module that can, when that is at least ``least_module`` mm
+    (the smallest a spec takes), else only the other remedies."""
     m = form.module
     smallest = float(min(part.r_pinion.min(), part.r_wheel.min()))
     require(smallest - 1.25 * m > 0, "module", m,
             f"must be < {rounded_down(smallest / 1.25, 3)} mm (root radius of the smallest sector must be > 0)")
     worst, gap = _tip_land_and_gap(part, form)
+    if worst >= MIN_TIP_LAND and gap > 0:
+        return
+    largest = _largest_module(part, form)
+    smaller = [f"--module {largest:g} or less"] if largest >= max(least_module, 0.01) else []
     if worst < MIN_TIP_LAND:
+        remedies = [*smaller, "less backlash (--backlash)", "fewer teeth (--z: fewer teeth, longer pitch)"]
         raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: teeth come "
                           f"to a point (tip land {worst:.3f} mm < {MIN_TIP_LAND} mm); use "
-                          f"--module {_largest_module(part, form)} or less, less backlash (--backlash) "
-                          "or fewer teeth (--z: fewer teeth, longer pitch)")
-    if gap <= 0:
-        raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: "
-                          f"tooth spaces close at the root; use --module {_largest_module(part, form)} "
-                          "or less")
+                          + ", ".join(remedies[:-1]) + " or " + remedies[-1])
+    raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: tooth spaces "
+                      "close at the root" + (f"; use {smaller[0]}" if smaller else ""))
 
 
 def _tip_land_and_gap(part: SectorPartition, form: ToothForm) -> tuple[float, float]:
@@ -127,7 +131,7 @@ def _tip_land_and_gap(part: SectorPartition, form: ToothForm) -> tuple[float, fl
     return float(min(pinion_tip.min(), wheel_tip.min())), float(min(pinion_gap.min(), wheel_gap.min()))
 
 
-def _largest_module(part: SectorPartition, form: ToothForm) -> str:
+def _largest_module(part: SectorPartition, form: ToothForm) -> float:
     """The largest module (mm, rounded down to 0.01) below ``form``'s whose teeth keep their
     tip lands and space bottoms, with ``form``'s backlash: a smaller module's own default
     backlash (0.25 module) is smaller still, so the remedy holds either way."""
@@ -136,7 +140,7 @@ def _largest_module(part: SectorPartition, form: ToothForm) -> str:
         mid = 0.5 * (lo + hi)
         worst, gap = _tip_land_and_gap(part, replace(form, module=mid))
         lo, hi = (mid, hi) if worst >= MIN_TIP_LAND and gap > 0 else (lo, mid)
-    return f"{np.floor(lo * 100.0) / 100.0:g}"
+    return float(np.floor(lo * 100.0) / 100.0)
 
 
 def pinion_outline(part: SectorPartition, form: ToothForm) -> np.ndarray:

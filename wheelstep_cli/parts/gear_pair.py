@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from wheelstep_cli.config.specs import GearPairSpec
+from wheelstep_cli.config.specs import MIN_MODULE, GearPairSpec
 from wheelstep_cli.gears.paper_teeth import check_tooth_form, pinion_outline, wheel_outline
 from wheelstep_cli.gears.laws import CrankLaw
 from wheelstep_cli.gears.sectors import SectorPartition, sector_partition, sectors_per_quarter
@@ -111,7 +111,7 @@ def check_paper_teeth(partition: SectorPartition, form, spec: GearPairSpec) -> N
     from wheelstep_cli.errors import DesignError
 
     try:
-        check_tooth_form(partition, form)
+        check_tooth_form(partition, form, least_module=MIN_MODULE)
     except DesignError as err:
         # the tooth count and backlash first: the remedy's own levers, named before the mechanism
         raise err.tied_to({"z": spec.z, "backlash": form.backlash, **spec.sizing()}) from None

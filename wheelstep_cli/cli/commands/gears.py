@@ -10,7 +10,7 @@ from wheelstep_cli.cli.options import (A, AllowInterference, B, Blend, C, Center
                                        Json, LawCsv, MeshFormat, Out, Printer, Profile, Quiet, Tolerance,
                                        Turns, Verbose, Z, opt)
 from wheelstep_cli.cli.output import Output
-from wheelstep_cli.config.resolve import gear_pair_spec
+from wheelstep_cli.config.resolve import gear_pair_spec, paper_table_spec
 from wheelstep_cli.config.specs import BoreShape, Corner, Teeth
 from wheelstep_cli.parts.gear_exports import GearExtras, checked_extras
 
@@ -45,10 +45,9 @@ def pitch(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
 
     out = Output(json, quiet, verbose)
     # the sector partition of SPEC §4 is the paper method's, at the distance its sectors roll at
-    spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
-                          teeth="paper")
+    spec = paper_table_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
     out.parameters({"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
-                    "center_distance": spec.paper_distances[0]})
+                    "center_distance": spec.center_distance})
     report = pitch_report(spec)
     out.report(report, lambda: _pitch_lines(report))
 
@@ -74,9 +73,11 @@ def teeth(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
 
     out = Output(json, quiet, verbose)
     # the sector-involute teeth of SPEC §5 are the paper's: their rules, not the generator's
-    spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
-                          module=module, backlash=backlash, teeth="paper")
-    out.parameters(vars(spec))
+    spec = paper_table_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
+                            module=module, backlash=backlash)
+    out.parameters({"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
+                    "center_distance": spec.center_distance, "module": spec.paper_module,
+                    "backlash": spec.backlash_mm})
     report = teeth_report(spec)
     out.report(report, lambda: _teeth_lines(report))
 
