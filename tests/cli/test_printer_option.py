@@ -137,3 +137,14 @@ def test_the_backlash_line_says_how_the_printers_clearance_makes_it_up(cli):
     assert float(found[1]) == pytest.approx(float(found[2]) + 0.15, abs=1e-4)
     plain = cli("gears", "--profile", "desk-demo", "--dry-run")
     assert "designed +" not in plain.stdout and "backlash j_n = " in plain.stdout
+
+
+def test_a_name_not_found_lists_only_readable_profiles_whatever_lies_in_profiles(cli, tmp_path, monkeypatch):
+    """The list of known names reads ./profiles/*.yaml: a binary file, a folder or an empty
+    file there must not break the one-line message, nor be offered as a profile."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "profiles" / "folder.yaml").mkdir(parents=True)
+    (tmp_path / "profiles" / "binary.yaml").write_bytes(b"\xff\xfe\x00")
+    (tmp_path / "profiles" / "empty.yaml").write_text("")
+    line = error_line(cli("shoe", "--profile", "nosuch"))
+    assert line == "wheelstep: error: --profile = nosuch: not found; known design profiles: bntu-2024, desk-demo"

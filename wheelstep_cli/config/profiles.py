@@ -96,10 +96,10 @@ def profile_names(printer: bool) -> list[str]:
     for folder in profile_dirs():
         for file in folder.glob("*.yaml") if folder.is_dir() else []:
             try:
-                data = yaml.safe_load(file.read_text(encoding="utf-8"))
-            except yaml.YAMLError:
-                continue
-            if is_printer_profile(data) == printer:
+                data = yaml.safe_load(file.read_text(encoding="utf-8")) if file.is_file() else None
+            except (yaml.YAMLError, OSError, UnicodeDecodeError):
+                continue    # not a profile to offer (a message listing names must not fail on it)
+            if isinstance(data, dict) and is_printer_profile(data) == printer:
                 names.add(file.stem)
     return sorted(names)
 
