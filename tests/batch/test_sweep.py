@@ -456,6 +456,16 @@ def test_keep_is_refused_when_the_default_objectives_cannot_rank_the_rows(cli, t
     assert not (tmp_path / "out").exists()
 
 
+def test_a_shoe_sweep_without_printers_is_told_its_pareto_plot_will_be_empty(cli, tmp_path):
+    sweep = write(tmp_path / "s.yaml", "command: shoe\ndesign: desk-demo\ngrid:\n  width: [12]\n")
+    result = cli("sweep", sweep, "--out", tmp_path / "out", "--dry-run")
+    assert result.exit_code == 0, result.stderr
+    assert ("wheelstep: warning: pareto.png plots volume_mm3 against mass_g, and mass_g needs `printers:` "
+            "in the sweep file: it will show no design") in result.stderr
+    with_printer = write(tmp_path / "p.yaml", sweep.read_text() + "printers: [fdm-0.4-pla]\n")
+    assert "warning" not in cli("sweep", with_printer, "--out", tmp_path / "out", "--dry-run").stderr
+
+
 def test_keep_best_writes_the_best_designs(cli, tmp_path):
     sweep = write(tmp_path / "shoes.yaml", SHOES + "objectives: [volume_mm3, mass_g]\n")
     result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "--keep", "best:2", "-q")

@@ -59,7 +59,7 @@ def sweep(
         for line in err.lines():
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
-    _require_keep_ranks(best, plan)
+    _require_ranking(best, plan, show)
     earlier = owned_results(out, force)     # a user's file among the outputs: refused here
     if dry_run:
         _dry_run(plan, file, out, show, earlier)
@@ -116,15 +116,21 @@ def _dropped_text(count: int, verb: str) -> str:
             "sweep, or computed by another wheelstep or library version)")
 
 
-def _require_keep_ranks(best: int, plan) -> None:
-    """Refuse --keep when the plan's objectives cannot rank its rows: the default objectives
-    of a shoe sweep hold the mass, which rows without a printer do not have."""
+def _require_ranking(best: int, plan, show: Output) -> None:
+    """When the plan's objectives cannot rank its rows (the default objectives of a shoe sweep
+    hold the mass, which rows without a printer do not have): refuse --keep, and say so of
+    pareto.png, which will show no design."""
     from wheelstep_cli.config.sweep_file import NEEDS_PRINTER
     from wheelstep_cli.errors import DesignError
 
-    if best and NEEDS_PRINTER in plan.objectives and all(printer is None for printer, _ in plan.points):
+    if NEEDS_PRINTER not in plan.objectives or any(printer is not None for printer, _ in plan.points):
+        return
+    why = f"{NEEDS_PRINTER} needs `printers:` in the sweep file"
+    if best:
         raise DesignError("keep", f"best:{best}", f"ranks by the objectives {' and '.join(plan.objectives)}; "
-                          f"{NEEDS_PRINTER} needs `printers:` in the sweep file")
+                          + why)
+    show.warning(f"wheelstep: warning: pareto.png plots {' against '.join(plan.objectives)}, and {why}: "
+                 "it will show no design (results.csv holds the volumes)")
 
 
 def _keep_count(keep: str | None) -> int:
