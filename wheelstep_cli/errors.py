@@ -91,6 +91,14 @@ def rounded_down(limit: float, places: int = 2) -> str:
     return f"{math.floor(limit * scale) / scale:.{places}f}"
 
 
+def rounded_up(limit: float, places: int = 2) -> str:
+    """A lower limit printed to ``places`` decimals, rounded up (see :func:`rounded_down`)."""
+    import math
+
+    scale = 10.0 ** places
+    return f"{math.ceil(limit * scale) / scale:.{places}f}"
+
+
 def require(condition: bool, param: str, value: object, limit: str) -> None:
     """Raise :class:`DesignError` unless ``condition`` holds."""
     if not condition:

@@ -353,3 +353,11 @@ def test_a_socket_deeper_than_the_body_names_what_the_user_gave(cli, tmp_path, a
     assert cli("shoe", *args[:4 if args[0] == "--a" else 0], "--socket-depth", limit, "--out",
                tmp_path / "ok", "-q").exit_code == 0
     assert not (tmp_path / "out").exists()
+
+
+def test_a_strut_wider_than_a_small_mechanisms_body_names_what_the_user_gave(cli, tmp_path):
+    line = error_line(cli("shoe", "--rmin", "0.5", "--a", "5", "--b", "5", "--out", tmp_path / "out"))
+    assert line.startswith("wheelstep: error: --a = 5: with it, strut-diameter = 12 fails: must be <= "), line
+    limit = line.split("must be <= ")[1].split(" mm")[0]
+    assert cli("shoe", "--rmin", "0.5", "--a", "5", "--b", "5", "--strut-diameter", limit, "--socket-depth",
+               "1", "--rim", "30", "--out", tmp_path / "ok", "-q").exit_code == 0

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError, rounded_down
+from wheelstep_cli.errors import DesignError, rounded_down, rounded_up
 from wheelstep_cli.geometry.planar import min_radius
 
 #: Least wall (mm) from a shaft hole (bore, key, flat corner, hex corner) to the root.
@@ -42,10 +42,10 @@ def require_hub_fits(outline: np.ndarray, hole: np.ndarray | None, diameter: flo
     root = min_radius(outline)
     reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1]))) if hole is not None else 0.0
     if diameter / 2.0 > root - MIN_HOLE_WALL:
-        raise DesignError("hub_d", diameter, f"must be <= {2 * (root - MIN_HOLE_WALL):.2f} mm (leave "
+        raise DesignError("hub_d", diameter, f"must be <= {rounded_down(2 * (root - MIN_HOLE_WALL))} mm (leave "
                           f"{MIN_HOLE_WALL:g} mm to the root)")
     if diameter / 2.0 < reach + MIN_HOLE_WALL:
-        raise DesignError("hub_d", diameter, f"must be >= {2 * (reach + MIN_HOLE_WALL):.2f} mm (leave "
+        raise DesignError("hub_d", diameter, f"must be >= {rounded_up(2 * (reach + MIN_HOLE_WALL))} mm (leave "
                           f"{MIN_HOLE_WALL:g} mm of wall round the shaft hole)")
 
 

@@ -35,7 +35,8 @@ def checked_extras(plot: Path | None = None, gif: Path | None = None, dxf: bool 
         require(extras.plot.suffix.lower() in (".png", ".svg"), "plot", str(extras.plot),
                 "must end in .png or .svg (the extension sets the format)")
     if extras.gif is not None:
-        require(extras.gif.suffix.lower() == ".gif", "gif", str(extras.gif), "must end in .gif")
+        require(extras.gif.suffix.lower() == ".gif", "gif", str(extras.gif),
+                "must end in .gif (the extension sets the format)")
     if extras.step:
         # only when asked for: the STEP writer loads scipy's spline fitting (about 1 s)
         from wheelstep_cli.formats.step import EXTRA, step_available

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from wheelstep_cli.config.specs import ShoeSpec
-from wheelstep_cli.errors import DesignError, require, rounded_down
+from wheelstep_cli.errors import DesignError, require, rounded_down, rounded_up
 from wheelstep_cli.geometry.planar import check_outline, polyline_box_distance, signed_area
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
 from wheelstep_cli.geometry.solids import bore_segments, circle, extrude_with_socket
@@ -71,9 +71,12 @@ def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
     if d > limit:
         across = "width" if spec.width <= length else f"sole length {length:.1f} mm"
         why = f"(socket wider than the body: {across} less {MIN_WALL:g} mm wall each side)"
-        raise DesignError("strut_diameter", d, f"must be <= {rounded_down(limit)} mm {why}",
-                          {"width": (spec.width, f"must be >= {d + 2.0 * MIN_WALL:.2f} mm {why}")}
-                          if spec.width <= length else {})
+        # the width is the other side of the rule when it is the narrower; the mechanism
+        # draws the sole, so a user who gave its sizes rather than the diameter is named
+        alternatives = {"width": (spec.width, f"must be >= {rounded_up(d + 2.0 * MIN_WALL)} mm {why}")
+                        } if spec.width <= length else {}
+        raise DesignError("strut_diameter", d, f"must be <= {rounded_down(limit)} mm {why}", alternatives
+                          ).tied_to({"a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min})
     floor = polyline_box_distance(sole_part, (-d / 2.0, top - spec.socket_depth, d / 2.0, top))
     if floor < MIN_WALL:
         # deepest socket that keeps the wall (the wall shrinks as the socket deepens): bisection
