@@ -18,6 +18,11 @@ from tests.helpers.meshcheck import assert_printable_stl
     (["--bore-shape", "oval"], "--bore-shape"),
     (["--key-angle", "400"], "--key-angle = 400"),
     (["--mark-depth", "3"], "--mark-depth = 3"),
+    # an engraving through the face: was a mesh defect ("a defect of wheelstep") after the build
+    (["--thickness", "1", "--mark-depth", "1.2"], "--mark-depth = 1.2: must be <= half the thickness, 0.5 mm"),
+    (["--thickness", "0.5"], "--thickness = 0.5: must be >= twice the mark depth, 1 mm"),
+    # the key width is the bore's DIN default: the bore the user gave is named
+    (["--bore-shape", "keyway", "--bore", "1"], "--bore = 1: must be > the key width 2 mm"),
     (["--hub-d", "90"], "--hub-d = 90: must be <="),                      # larger than the root
     (["--hub-d", "9"], "--hub-d = 9: must be >="),                        # no wall round the bore
     (["--hub-length", "9"], "--hub-length = 9: needs --hub-d"),

@@ -183,8 +183,17 @@ class GearPairSpec(BaseModel):
                 "needs --hub-d (the screw goes through the hub)")
         if self.bore_shape == BoreShape.keyway:
             require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a keyway")
-            require(self.key_width < self.bore, "key_width", self.key_width,
-                    f"must be < the bore {self.bore:g} mm")
+            if not self.key_width < self.bore:
+                # the key width defaults from the bore (DIN 6885): name the bore when that was given
+                raise DesignError("key_width", self.key_width, f"must be < the bore {self.bore:g} mm",
+                                  {"bore": (self.bore, f"must be > the key width {self.key_width:g} mm")})
+        # the timing marks are engraved into the faces: at most half the face width, so the
+        # arrow never cuts through the gear
+        if not self.mark_depth <= 0.5 * self.thickness:
+            raise DesignError("mark_depth", self.mark_depth,
+                              f"must be <= half the thickness, {0.5 * self.thickness:g} mm",
+                              {"thickness": (self.thickness, f"must be >= twice the mark depth, "
+                                                             f"{2.0 * self.mark_depth:g} mm")})
         if self.bore_shape == BoreShape.hex:
             require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a hex (across flats)")
         require(self.set_screw is None or self.bore > 0, "set_screw", self.set_screw,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -9,8 +10,28 @@ import numpy as np
 from wheelstep_cli.errors import DesignError, require
 
 
+#: A plain decimal number as a law CSV writes one (no underscores, no nan or inf).
+_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
+
+
+def _row(cells: list[str], line: int) -> tuple[float, float] | None:
+    """The (driving, driven) degrees of a row's cells, None for a header line; a row that is
+    neither a header nor two plain numbers is a DesignError's text (raised as ValueError)."""
+    numeric = [bool(_NUMBER.fullmatch(c)) for c in cells]
+    if not any(numeric):
+        return None
+    bad = next((c for c, ok in zip(cells, numeric) if not ok), None)
+    if bad is not None:
+        raise ValueError(f"line {line}: {bad!r} is not a plain number")
+    if len(cells) != 2:
+        raise ValueError(f"line {line}: has {len(cells)} values; a row is 'driving_deg, driven_deg'")
+    return float(cells[0]), float(cells[1])
+
+
 def read_law_csv(path, param: str = "law_csv"):
-    """Read the rows (header lines allowed; ``;`` or ``,``) and build the tabulated law."""
+    """Read the rows (header lines first; ``;`` or ``,``) and build the tabulated law. A line
+    that is neither, or a header line after the first row, is refused naming its line: a
+    typo skipped would change the law."""
     from wheelstep_cli.gears.laws import law_from_samples
 
     try:
@@ -23,14 +44,21 @@ def read_law_csv(path, param: str = "law_csv"):
     except UnicodeDecodeError:
         raise DesignError(param, str(path), "is not UTF-8 text") from None
     rows = []
-    for line in text.splitlines():
-        cells = [c.strip() for c in line.replace(";", ",").split(",") if c.strip()]
-        if len(cells) < 2:
-            continue
+    for number, line in enumerate(text.splitlines(), start=1):
+        cells = [c.strip() for c in line.replace(";", ",").split(",")]
+        while cells and not cells[-1]:
+            cells.pop()                  # a spreadsheet's trailing separators
+        if not cells:
+            continue                     # a blank line
         try:
-            rows.append((float(cells[0]), float(cells[1])))
-        except ValueError:
-            continue  # a header line
+            row = _row(cells, number)
+        except ValueError as err:
+            raise DesignError(param, str(path), str(err)) from None
+        if row is None and rows:
+            raise DesignError(param, str(path), f"line {number}: {line.strip()[:40]!r} is not a row "
+                                                "of two numbers (a header goes before the rows)")
+        if row is not None:
+            rows.append(row)
     require(len(rows) >= 8, param, str(path), "needs at least 8 numeric rows 'driving_deg, driven_deg'")
     data = np.array(rows)
     return law_from_samples(data[:, 0], data[:, 1], param)

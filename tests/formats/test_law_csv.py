@@ -1,0 +1,48 @@
+"""A law CSV is read row by row: a line that is not a row of two plain numbers (after the
+header lines) is refused naming its line, never skipped — a skipped typo changes the law."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tests.helpers.clicheck import error_line
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.formats.law_csv import read_law_csv
+
+DRIVING = np.arange(0.0, 180.01, 2.5)
+ROWS = [f"{a:.6f},{a / 2 + 3 * np.sin(np.radians(2 * a)):.6f}" for a in DRIVING]
+
+
+def _write(tmp_path, rows, header=("driving_deg,driven_deg",)):
+    path = tmp_path / "law.csv"
+    path.write_text("\n".join([*header, *rows]) + "\n")
+    return path
+
+
+@pytest.mark.parametrize("line, text, why", [
+    (31, "72O500000,37.970729", "line 32: '72O500000' is not a plain number"),
+    (31, "7_5.000000,39.000000", "line 32: '7_5.000000' is not a plain number"),
+    (31, "75,nan", "line 32: 'nan' is not a plain number"),
+    (5, "12.5,6.25,3", "line 6: has 3 values; a row is 'driving_deg, driven_deg'"),
+    (5, "driving,driven", "line 6: 'driving,driven' is not a row of two numbers (a header goes before the rows)"),
+])
+def test_a_bad_row_is_refused_naming_its_line(cli, tmp_path, line, text, why):
+    rows = list(ROWS)
+    rows[line - 1] = text
+    path = _write(tmp_path, rows)
+    found = error_line(cli("gears", "--law-csv", path, "--dry-run", "--out", tmp_path / "out"))
+    assert found == f"wheelstep: error: --law-csv = {path}: {why}"
+
+
+def test_headers_blank_lines_semicolons_and_trailing_separators_are_read(tmp_path):
+    plain = read_law_csv(_write(tmp_path, ROWS))
+    other = read_law_csv(_write(tmp_path, ["", *(r.replace(",", ";") + ";" for r in ROWS), ""],
+                                header=("# a law from a spreadsheet", "in;out")))
+    theta = np.linspace(0.0, 3.0, 7)
+    assert np.array_equal(plain.carrier_angle(theta), other.carrier_angle(theta))
+
+
+def test_too_few_rows_is_one_line(tmp_path):
+    with pytest.raises(DesignError, match="needs at least 8 numeric rows"):
+        read_law_csv(_write(tmp_path, ROWS[:5]))
