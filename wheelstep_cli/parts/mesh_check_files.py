@@ -73,7 +73,8 @@ def require_a_pair(outlines: tuple[np.ndarray, np.ndarray], distance: float, whe
     require(abs(total - distance) <= SIZE_SLACK * distance, "wheel", wheel,
             f"its radius by area {wheel_r:.1f} mm and the pinion's {pinion:.1f} mm add to "
             f"{total:.1f} mm, not the centre distance {distance:g} mm +-{100 * SIZE_SLACK:.0f} %: "
-            "give the pinion and the wheel of one pair (two wheels or two pinions cannot mesh)")
+            "give the pinion and the wheel of one pair (two wheels or two pinions cannot mesh), "
+            "at the distance they were designed for (--distance, or their design's --profile)")
 
 
 def require_pinion_first(outlines: tuple[np.ndarray, np.ndarray], law, pinion: str) -> None:
