@@ -106,6 +106,14 @@ def test_a_pair_given_wheel_first_is_told_to_swap_before_any_pose(paper_pair, cl
                          "swapped; give the pinion first, then the wheel"), line
 
 
+def test_a_window_narrower_than_the_default_is_refused_before_any_pose(paper_pair, cli):
+    """A narrow window loses contacts: 'contact LOST' or a wrong backlash band, reported as
+    the pair's (the paper pair's smaller outer radius is the pinion's, about 62 mm)."""
+    line = error_line(cli("mesh-check", paper_pair / "pinion.stl", paper_pair / "wheel.stl", "--window", "2"))
+    assert line.startswith("wheelstep: error: --window = 2: must be >= 15."), line
+    assert line.endswith("mm (about 0.25 x the smaller outer radius: a narrower window misses contacts)")
+
+
 def test_blend_10_is_checked_against_the_blended_law_and_written(cli, tmp_path):
     # the pair is cut for the blended law and checked against it, with the design's own
     # default backlash (measured on the blended law the play looked free and the default

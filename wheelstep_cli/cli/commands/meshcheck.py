@@ -44,7 +44,9 @@ def mesh_check(
                                                       "wheelstep:pair id).", shown="every pair")] = None,
     samples: Annotated[int, opt("--samples", help="Poses over one period of the pinion.")] = 1536,
     window: Annotated[Optional[float], opt("--window", help="Half-height of the mesh window round "
-                                                            "the line of centres, mm.",
+                                                            "the line of centres, mm; larger than "
+                                                            "the default only (a narrower one "
+                                                            "misses contacts).",
                                            shown="0.25 x the smaller outer radius")] = None,
     plot: Plot = None, tolerance: Tolerance = False, printer: BandPrinter = None,
     gcode: Gcode = None, force: Force = False,

@@ -11,6 +11,7 @@ from typing import Callable
 
 import numpy as np
 
+from wheelstep_cli.errors import require, rounded_up
 from wheelstep_cli.gears.meshing.figures import BAND_HARMONICS, Track, count_teeth, pitch_arc
 from wheelstep_cli.gears.meshing.outlines import MeshWindow
 from wheelstep_cli.gears.meshing.report import MeshingReport
@@ -26,13 +27,21 @@ def mesh_window(pinion: np.ndarray, wheel: np.ndarray, distance: float,
 
     Contacts are searched for at the vertices inside the box; edges are taken from the
     box widened by the margin. Its half-height is ``settings.window`` (mm) or, when
-    that is None, ``settings.window_fraction`` times the smaller outer radius.
+    that is None, ``settings.window_fraction`` times the smaller outer radius, the least
+    it may be (DesignError naming ``window`` below it).
     """
     rp = float(np.hypot(pinion[:, 0], pinion[:, 1]).max())
     rw = float(np.hypot(wheel[:, 0], wheel[:, 1]).max())
-    half_height = settings.window
-    if half_height is None:
-        half_height = settings.window_fraction * min(rp, rw)
+    default = settings.window_fraction * min(rp, rw)
+    half_height = default if settings.window is None else settings.window
+    # contacts lie up to about that far from the line of centres (round the pitch-curve
+    # corners too): a narrower window loses them and reports contact lost or a wrong band.
+    # 1 % below is let through, so a window given at the design's default still serves the
+    # band check's outlines grown by a printer's deviation
+    least = 0.99 * default
+    require(half_height >= least, "window", half_height,
+            f"must be >= {rounded_up(least)} mm (about {settings.window_fraction:g} x the smaller "
+            "outer radius: a narrower window misses contacts)")
     # contacts lie between the wheel's tips (x = D - rw) and the pinion's (x = rp); the
     # margin keeps the outline round an overlapping vertex in view for its depth
     return MeshWindow(distance - rw - 1e-6, rp + 1e-6, float(half_height),
