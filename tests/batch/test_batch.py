@@ -265,6 +265,11 @@ parts:
     (VALID_ENTRY.replace("design: desk-demo", "design: fdm-0.4-pla"), "design", "is not a design profile"),
     (VALID_ENTRY + "  - name: 'pair'\n    kind: shoe\n    printer: fdm-0.4-pla\n", "'pair'",
      "= 'pair': already used at"),
+    # one report file on a case-insensitive file system
+    (VALID_ENTRY + "  - name: 'PAIR'\n    kind: shoe\n    printer: fdm-0.4-pla\n", "'PAIR'",
+     "= 'PAIR': already used at"),
+    (VALID_ENTRY + "  - name: '.'\n    kind: shoe\n    printer: fdm-0.4-pla\n", "'.'",
+     "starting with a letter or digit"),
     (VALID_ENTRY + "    quantity: 1\n    quantity: 2\n", "quantity: 2", "duplicate key 'quantity'"),
     (VALID_ENTRY + "    quantity: 1: 2\n", "quantity: 1: 2", "is not valid YAML"),
 ])

@@ -195,10 +195,12 @@ def _name(check: _Check, path: tuple, index: int, entry: BatchEntry, kind_name, 
     doc = check.doc
     name = entry.name or f"{kind_name}-{index + 1}"
     at = path + ("name",)
-    if name in check.names:
-        issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: already used at {check.names[name]}"))
+    # names its report file: two names one case apart are one file on Windows and macOS
+    if name.casefold() in check.names:
+        issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: already used at "
+                            f"{check.names[name.casefold()]} (names are compared ignoring case)"))
     else:
-        check.names[name] = doc.where(path)
+        check.names[name.casefold()] = doc.where(path)
     return name
 
 

@@ -53,7 +53,8 @@ class BatchEntry(BaseModel):
     model_config = STRICT
 
     name: Optional[str] = Field(None, strict=True, pattern=NAME_PATTERN, max_length=64, json_schema_extra={
-        "limit": "must be 1..64 letters, digits, '.', '_' or '-' (it names the entry's files)"})
+        "limit": "must be 1..64 letters, digits, '.', '_' or '-', starting with a letter or digit "
+                 "(it names the entry's files)"})
     kind: Kind
     design: ProfileName
     overrides: Optional[dict[str, Any]] = None
