@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 
 import numpy as np
+import pytest
 
 from tests.helpers.clicheck import error_line
 
@@ -16,7 +17,7 @@ def test_a_hub_that_leaves_the_pinion_no_room_for_its_mark_is_refused(cli, tmp_p
     line = error_line(cli(*args))
     assert line.startswith("wheelstep: error: --hub-d = 34: with it, mark-depth = 0.5 fails: leaves "
                            "the pinion no room for its timing mark"), line
-    assert "--mark-depth 0 for no marks" in line and not out.exists()
+    assert line.endswith(": a smaller --hub-d or --bore, or --mark-depth 0 for no marks") and not out.exists()
     # the remedy, applied: no marks asked for, none missing
     result = cli(*args, "--mark-depth", "0")
     assert result.exit_code == 0, result.stderr
@@ -24,6 +25,19 @@ def test_a_hub_that_leaves_the_pinion_no_room_for_its_mark_is_refused(cli, tmp_p
     # and the assembly note does not send the user to marks that are not there
     note = json.loads((out / "gears.json").read_text())["phase"]["shaft"]["note"]
     assert "carry no timing marks (mark depth 0)" in note and "marks face each other" not in note
+
+
+@pytest.mark.parametrize("args, start, remedy", [
+    (["--bore-shape", "keyway", "--key-depth", "15"], "--key-depth = 15", "a smaller --key-depth or --bore"),
+    (["--bore-shape", "hex", "--bore", "30"], "--bore = 30", "a smaller --bore"),
+])
+def test_the_mark_room_refusal_names_what_narrows_the_web(cli, tmp_path, args, start, remedy):
+    """The option the user gave that narrows the web is named, and only levers that are set
+    are offered (no --hub-d without a hub)."""
+    line = error_line(cli("gears", "--profile", "desk-demo", *args, "--dry-run", "--out", tmp_path / "out"))
+    assert line.startswith(f"wheelstep: error: {start}: with it, mark-depth = 0.5 fails: leaves the pinion "
+                           "no room for its timing mark"), line
+    assert line.endswith(f": {remedy}, or --mark-depth 0 for no marks"), line
 
 
 def test_the_assembly_note_of_marked_gears_on_a_round_bore_says_to_face_the_marks():

@@ -85,13 +85,17 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec) -> None:
 
     inner, outer = _mark_span(outline, hole, spec.hub_mm[0])
     around = "hub" if spec.hub_d else "bore" if hole is not None else "axis"
+    keyed = spec.bore_shape == "keyway"
+    smaller = [flag for flag, used in (("--hub-d", bool(spec.hub_d)), ("--key-depth", keyed),
+                                       ("--bore", hole is not None)) if used]
+    remedy = (f"a smaller {' or '.join(smaller)}, or " if smaller else "") + "--mark-depth 0 for no marks"
     raise DesignError("mark_depth", spec.mark_depth,
                       f"leaves the {name} no room for its timing mark ({max(outer - inner, 0.0):.1f} "
                       f"mm of web between the {around} and the tooth roots, the mark needs "
-                      f"{MARK_LENGTH:.1f} mm): a smaller --hub-d or --bore, or --mark-depth 0 for no "
-                      "marks"
-                      ).tied_to({"hub_d": spec.hub_d, "bore": spec.bore, "bore_shape": spec.bore_shape,
-                                 "key_depth": spec.key_depth, "key_width": spec.key_width})
+                      f"{MARK_LENGTH:.1f} mm): {remedy}"
+                      # what narrows the web, the most specific first: named when the user gave it
+                      ).tied_to({"key_depth": spec.key_depth, "key_width": spec.key_width, "hub_d": spec.hub_d,
+                                 "bore": spec.bore, "bore_shape": spec.bore_shape})
 
 
 #: Least radial room (mm) for a pocket: its two corner fillets and 3 mm between them.
