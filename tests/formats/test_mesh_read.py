@@ -84,3 +84,19 @@ def test_bad_files_raise_design_errors(written, tmp_path):
     with pytest.raises(DesignError) as err:
         read_outline(str(open_box), "wheel")
     assert err.value.param == "wheel"
+
+
+def test_a_binary_stl_cut_short_is_called_truncated(tmp_path):
+    import trimesh
+
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.formats.mesh_read import read_mesh
+
+    whole = tmp_path / "whole.stl"
+    trimesh.creation.icosphere(subdivisions=3).export(whole)
+    cut = tmp_path / "cut.stl"
+    cut.write_bytes(whole.read_bytes()[:84 + 50 * 100 + 7])
+    with pytest.raises(DesignError) as err:
+        read_mesh(str(cut), "pinion")
+    assert err.value.param == "pinion" and "truncated: declares 1280 triangles, holds 100" in err.value.limit
+    assert len(read_mesh(str(whole), "pinion")[1]) == 1280

@@ -74,9 +74,25 @@ def _readable(param: str, where: str, kind: str, read):
                           f"({type(err).__name__}: {str(err)[:80]})") from None
 
 
+def _binary_stl_shortfall(path: Path) -> str | None:
+    """Why a binary STL is cut short (its header declares more triangles than it holds), else
+    None (an ASCII STL, or one whole)."""
+    with open(path, "rb") as stream:
+        head = stream.read(84)
+    size = path.stat().st_size
+    if len(head) < 84 or head[:5].lower() == b"solid" and b"facet" in path.read_bytes()[:1024]:
+        return None
+    declared = int.from_bytes(head[80:84], "little")
+    held = (size - 84) // 50
+    return f"truncated: declares {declared} triangles, holds {held}" if held < declared else None
+
+
 def _read_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
     import trimesh
 
+    short = _binary_stl_shortfall(path)
+    if short is not None:
+        raise ValueError(short)
     mesh = trimesh.load(path, file_type="stl", force="mesh", process=True)
     if len(mesh.faces) == 0:
         raise ValueError("no triangles")
