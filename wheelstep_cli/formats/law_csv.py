@@ -18,8 +18,8 @@ def _row(cells: list[str], line: int) -> tuple[float, float] | None:
     """The (driving, driven) degrees of a row's cells, None for a header line; a row that is
     neither a header nor two plain numbers is a DesignError's text (raised as ValueError)."""
     numeric = [bool(_NUMBER.fullmatch(c)) for c in cells]
-    if not any(numeric):
-        return None
+    if not numeric[0]:
+        return None                      # a header line (names, or a note such as 'period,360')
     bad = next((c for c, ok in zip(cells, numeric) if not ok), None)
     if bad is not None:
         raise ValueError(f"line {line}: {bad!r} is not a plain number")
@@ -40,7 +40,7 @@ def read_law_csv(path, param: str = "law_csv"):
         raise DesignError(param, str(path), f"cannot be read ({err.strerror or err})") from None
     require(len(data) <= 1 << 22, param, str(path), "is larger than 4 MiB; one period of samples is enough")
     try:
-        text = data.decode("utf-8")
+        text = data.decode("utf-8-sig").replace("\x1a", "")   # a spreadsheet's BOM, an old end-of-file mark
     except UnicodeDecodeError:
         raise DesignError(param, str(path), "is not UTF-8 text") from None
     rows = []
@@ -48,15 +48,15 @@ def read_law_csv(path, param: str = "law_csv"):
         cells = [c.strip() for c in line.replace(";", ",").split(",")]
         while cells and not cells[-1]:
             cells.pop()                  # a spreadsheet's trailing separators
-        if not cells:
-            continue                     # a blank line
+        if not cells or cells[0].startswith("#"):
+            continue                     # a blank or comment line
         try:
             row = _row(cells, number)
         except ValueError as err:
             raise DesignError(param, str(path), str(err)) from None
         if row is None and rows:
             raise DesignError(param, str(path), f"line {number}: {line.strip()[:40]!r} is not a row "
-                                                "of two numbers (a header goes before the rows)")
+                                                "of two plain numbers (headers and notes go before the rows)")
         if row is not None:
             rows.append(row)
     require(len(rows) >= 8, param, str(path), "needs at least 8 numeric rows 'driving_deg, driven_deg'")

@@ -75,27 +75,28 @@ def _readable(param: str, where: str, kind: str, read):
 
 
 def _binary_stl_shortfall(path: Path) -> str | None:
-    """Why a binary STL is cut short (its header declares more triangles than it holds), else
-    None (an ASCII STL, or one whole)."""
+    """Why an STL that read as no mesh may be a binary one cut short (its header declares
+    more triangles than it holds), else None. Asked only after the reader failed, so a text
+    STL is never judged by its first bytes."""
     with open(path, "rb") as stream:
         head = stream.read(84)
-    size = path.stat().st_size
-    if len(head) < 84 or head[:5].lower() == b"solid" and b"facet" in path.read_bytes()[:1024]:
-        return None
-    declared = int.from_bytes(head[80:84], "little")
-    held = (size - 84) // 50
-    return f"truncated: declares {declared} triangles, holds {held}" if held < declared else None
+    declared = int.from_bytes(head[80:84], "little") if len(head) == 84 else 0
+    held = (path.stat().st_size - 84) // 50
+    return f"truncated: declares {declared} triangles, holds {held}" if 0 <= held < declared else None
 
 
 def _read_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
     import trimesh
 
-    short = _binary_stl_shortfall(path)
-    if short is not None:
-        raise ValueError(short)
-    mesh = trimesh.load(path, file_type="stl", force="mesh", process=True)
-    if len(mesh.faces) == 0:
-        raise ValueError("no triangles")
+    try:
+        mesh = trimesh.load(path, file_type="stl", force="mesh", process=True)
+        faces = len(mesh.faces)
+    except Exception:
+        if _binary_stl_shortfall(path) is None:
+            raise
+        faces = 0
+    if faces == 0:
+        raise ValueError(_binary_stl_shortfall(path) or "no triangles")
     return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64)
 
 
