@@ -59,8 +59,8 @@ def sweep(
         for line in err.lines():
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
-    _require_ranking(best, plan, show)
     earlier = owned_results(out, force)     # a user's file among the outputs: refused here
+    _require_ranking(best, plan, show)      # (after it: a refused run prints its one line only)
     if dry_run:
         _dry_run(plan, file, out, show, earlier)
         return
