@@ -28,15 +28,9 @@ class GearExtras:
 
 def checked_extras(plot: Path | None = None, gif: Path | None = None, dxf: bool = False,
                    svg: bool = False, step: bool = False) -> GearExtras:
-    """The extras asked for; refuses (DesignError, before anything is built) a picture path
-    of another format, or ``step`` without the optional CAD extra."""
+    """The extras asked for; refuses (DesignError, before anything is built) ``step`` without
+    the optional CAD extra. (The pictures' extensions are their options' own check.)"""
     extras = GearExtras(plot, gif, dxf, svg, step)
-    if extras.plot is not None:
-        require(extras.plot.suffix.lower() in (".png", ".svg"), "plot", str(extras.plot),
-                "must end in .png or .svg (the extension sets the format)")
-    if extras.gif is not None:
-        require(extras.gif.suffix.lower() == ".gif", "gif", str(extras.gif),
-                "must end in .gif (the extension sets the format)")
     if extras.step:
         # only when asked for: the STEP writer loads scipy's spline fitting (about 1 s)
         from wheelstep_cli.formats.step import EXTRA, step_available

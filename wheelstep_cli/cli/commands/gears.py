@@ -8,7 +8,7 @@ from typing import Annotated, Optional
 from wheelstep_cli.cli.options import (A, AllowInterference, B, Blend, C, CenterDistance, DryRun,
                                        FitChoice, Force, Format,
                                        Json, LawCsv, MeshFormat, Out, Printer, Profile, Quiet, Tolerance,
-                                       Turns, Verbose, Z, opt)
+                                       Turns, Verbose, Z, opt, output_file)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec, paper_table_spec
 from wheelstep_cli.config.specs import BoreShape, Corner, Teeth
@@ -23,10 +23,10 @@ Backlash = Annotated[Optional[float], opt("--backlash", help="Normal backlash j_
                                           shown="0.25 x module for paper teeth; for generated teeth the "
                                                 "most, up to that, whose play costs each flank at most "
                                                 "half the 1 % hub speed ripple bound")]
-Plot = Annotated[Optional[Path], opt("--plot", help="Write a picture of the pair in assembly phase "
-                                                    "with its dimensions (PNG or SVG, by the extension).")]
-Gif = Annotated[Optional[Path], opt("--gif", help="Write the pair turning through a shoe handover, "
-                                                  "with contact point, TE and hub speed (GIF).")]
+Plot = output_file("--plot", "Write a picture of the pair in assembly phase with its dimensions (PNG "
+                            "or SVG, by the extension).", ".png", ".svg")
+Gif = output_file("--gif", "Write the pair turning through a shoe handover, with contact point, TE and "
+                           "hub speed (GIF).", ".gif")
 Dxf = Annotated[bool, opt("--dxf", help="Also write pinion.dxf and wheel.dxf (mm outlines) in --out.")]
 Svg = Annotated[bool, opt("--svg", help="Also write pinion.svg and wheel.svg (mm outlines) in --out.")]
 Slice = Annotated[bool, opt("--slice", help="Slice the 3MF plate(s) with PrusaSlicer (prusa-slicer on "
