@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from enum import Enum
 from typing import Iterable
 
@@ -85,18 +86,17 @@ def rounded_down(limit: float, places: int = 2) -> str:
     """An upper limit printed to ``places`` decimals, rounded down: a value the user copies
     from the line then passes (rounded to nearest, 64.534 showed as 64.53 but 64.536 as 64.54,
     which fails)."""
-    import math
-
-    scale = 10.0 ** places
-    return f"{math.floor(limit * scale) / scale:.{places}f}"
+    return _rounded(limit, places, math.floor)
 
 
 def rounded_up(limit: float, places: int = 2) -> str:
     """A lower limit printed to ``places`` decimals, rounded up (see :func:`rounded_down`)."""
-    import math
+    return _rounded(limit, places, math.ceil)
 
+
+def _rounded(limit: float, places: int, direction) -> str:
     scale = 10.0 ** places
-    return f"{math.ceil(limit * scale) / scale:.{places}f}"
+    return f"{direction(limit * scale) / scale:.{places}f}"
 
 
 def require(condition: bool, param: str, value: object, limit: str) -> None:
