@@ -51,8 +51,9 @@ def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
     check.validate()
     outlines = (read_outline(check.pinion, "pinion", default_name="pinion"),
                 read_outline(check.wheel, "wheel", default_name="wheel"))
-    require_a_pair(outlines, installed_distance(check.spec), check.wheel)
-    require_pinion_first(outlines, law, check.pinion)
+    radii = tuple(_radius_by_area(o) for o in outlines)
+    require_a_pair(radii, installed_distance(check.spec), check.wheel)
+    require_pinion_first(radii, law, check.pinion)
     return outlines
 
 
@@ -63,12 +64,12 @@ def _radius_by_area(outline: np.ndarray) -> float:
     return float(np.sqrt(abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))) / (2 * np.pi)))
 
 
-def require_a_pair(outlines: tuple[np.ndarray, np.ndarray], distance: float, wheel: str) -> None:
-    """Refuse (naming the wheel) two outlines (mm) that cannot be a pinion and its wheel at
-    ``distance`` mm, e.g. two wheels or two pinions: their radii by area (the teeth above
-    and below the pitch curve cancel) must add to the distance within SIZE_SLACK. Checked
-    before the poses: two wheels overlap everywhere and their check ran for minutes."""
-    pinion, wheel_r = (_radius_by_area(o) for o in outlines)
+def require_a_pair(radii: tuple[float, float], distance: float, wheel: str) -> None:
+    """Refuse (naming the wheel) two outlines that cannot be a pinion and its wheel at
+    ``distance`` mm, e.g. two wheels or two pinions: their ``radii`` by area (mm; the teeth
+    above and below the pitch curve cancel) must add to the distance within SIZE_SLACK.
+    Checked before the poses: two wheels overlap everywhere and their check ran for minutes."""
+    pinion, wheel_r = radii
     total = pinion + wheel_r
     require(abs(total - distance) <= SIZE_SLACK * distance, "wheel", wheel,
             f"its radius by area {wheel_r:.1f} mm and the pinion's {pinion:.1f} mm add to "
@@ -77,14 +78,15 @@ def require_a_pair(outlines: tuple[np.ndarray, np.ndarray], distance: float, whe
             "at the distance they were designed for (--distance, or their design's --profile)")
 
 
-def require_pinion_first(outlines: tuple[np.ndarray, np.ndarray], law, pinion: str) -> None:
-    """Refuse (naming the pinion) outlines (mm) given wheel first: where the law turns the
-    wheel slower than the pinion on average (by more than SIZE_SLACK), the wheel is the
-    larger gear. Checked up front: swapped, every pose interferes."""
+def require_pinion_first(radii: tuple[float, float], law, pinion: str) -> None:
+    """Refuse (naming the pinion) outlines given wheel first (``radii`` by area, mm, in the
+    order given): where the law turns the wheel slower than the pinion on average (by more
+    than SIZE_SLACK), the wheel is the larger gear. Checked up front: swapped, every pose
+    interferes."""
     period = float(law.theta_period)
     turned = law.carrier_angle(np.array([0.0, period]))
     ratio = abs(float(turned[1] - turned[0])) / period      # mean wheel turn per pinion turn
-    first, second = (_radius_by_area(o) for o in outlines)
+    first, second = radii
     require(not (ratio < 1.0 - SIZE_SLACK and first > second), "pinion", pinion,
             f"is the larger gear (radius by area {first:.1f} mm, the wheel given {second:.1f} mm) "
             f"while the law turns the wheel {1.0 / ratio:.3g} times slower than the pinion: the two "
