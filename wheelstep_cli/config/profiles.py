@@ -116,8 +116,8 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
             doc = read_located_yaml(file, profile_label(file))
         except YamlSyntaxError as err:
             raise InvalidInput([Issue(err.where, "", err.limit)]) from None
-    if _not_sections(doc.data):
-        raise DesignError("design", name, _not_sections(doc.data))
+    if (why := _not_sections(doc.data)) is not None:
+        raise DesignError("design", name, why)
     if is_printer_profile(doc.data):
         raise DesignError("design", name, "is not a design profile; design profiles: "
                           + ", ".join(profile_names(printer=False)))
@@ -154,8 +154,8 @@ def load_printer_profile(name_or_path: str):
         doc = read_located_yaml(file, label)
     except YamlSyntaxError as err:
         raise InvalidInput([Issue(err.where, "", err.limit)]) from None
-    if _not_sections(doc.data):
-        raise DesignError("printer", name_or_path, _not_sections(doc.data))
+    if (why := _not_sections(doc.data)) is not None:
+        raise DesignError("printer", name_or_path, why)
     if not is_printer_profile(doc.data):
         raise DesignError("printer", name_or_path, "is a design profile, not a printer profile (a "
                           "design profile goes in --profile); printer profiles: "

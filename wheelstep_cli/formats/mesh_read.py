@@ -90,12 +90,12 @@ def _read_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
 
     try:
         mesh = trimesh.load(path, file_type="stl", force="mesh", process=True)
-        faces = len(mesh.faces)
     except Exception:
-        if _binary_stl_shortfall(path) is None:
+        short = _binary_stl_shortfall(path)    # the reader's own error, unless the file is cut short
+        if short is None:
             raise
-        faces = 0
-    if faces == 0:
+        raise ValueError(short) from None
+    if len(mesh.faces) == 0:
         raise ValueError(_binary_stl_shortfall(path) or "no triangles")
     return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64)
 

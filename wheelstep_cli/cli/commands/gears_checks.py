@@ -117,7 +117,8 @@ def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
     # not written by the pictures' record once the meshes are written (--plot OUT/pinion.svg --svg)
     own = {path.resolve(): what for path, what in certain.items()}
     for option, path in named.items():
-        if path is not None and path.resolve() in own:
-            raise DesignError(option, str(path), f"is where this run writes {own[path.resolve()]}: "
-                                                 "give the picture another name")
+        what = own.get(path.resolve()) if path is not None else None
+        if what is not None:
+            raise DesignError(option, str(path), f"is where this run writes {what}: give the picture "
+                                                 "another name")
     show.write_owned(out, "gears", dict.fromkeys(certain, b""), True, force)
