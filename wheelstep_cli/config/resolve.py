@@ -129,18 +129,13 @@ def paper_table_spec(profile, **cli) -> GearPairSpec:
     mechanism and :data:`PAPER_TABLE_KEYS`, paper teeth at their design distance L_p (the
     one given, else the installed distance less the paper's opening). The tables do not
     mount the pair, so it is taken as mounted at L_p and without a bore."""
-    from wheelstep_cli.config.specs import DEFAULT_INSTALL, PAPER_OPENING
+    from wheelstep_cli.config.specs import paper_design_distance
 
     loaded = _profile(profile)
     values = spec_values(GearPairSpec, "gears", None if loaded is None else _TableValues(loaded),
                          {**cli, "teeth": "paper", "bore": 0.0})
-    # L_p as GearPairSpec.paper_distances reads it; a distance that is no number is left to
-    # the spec's own check
-    center = values.get("center_distance")
-    if center is None:
-        install = values.get("install_distance")
-        install = DEFAULT_INSTALL if install is None else install
-        center = install - PAPER_OPENING if isinstance(install, (int, float)) else install
+    # the profile's values were checked when it was read, the command line's are numbers
+    center = paper_design_distance(values.get("center_distance"), values.get("install_distance"))
     return _named_for(cli, build, GearPairSpec, {**values, "center_distance": center,
                                                  "install_distance": center})
 

@@ -45,6 +45,14 @@ MIN_MODULE = 0.1
 MIN_THICKNESS = 0.5
 
 
+def paper_design_distance(center: float | None, install: float | None) -> float:
+    """The paper teeth's design distance L_p (mm): the centre distance given, else the
+    installed distance (the source's 144 when none) less the source's 0.5 mm opening."""
+    if center is not None:
+        return float(center)
+    return (DEFAULT_INSTALL if install is None else float(install)) - PAPER_OPENING
+
+
 class Teeth(str, Enum):
     """How the teeth are made: generated conjugate teeth (SPEC §9) or the paper's involutes (§5)."""
 
@@ -227,12 +235,11 @@ class GearPairSpec(BaseModel):
     def paper_distances(self) -> tuple[float, float]:
         """The paper teeth's design distance L_p and installed distance (mm): as given, else
         the source's 0.5 mm apart (143.5 and 144 when neither is given)."""
+        center = paper_design_distance(self.center_distance, self.install_distance)
+        given = self.install_distance
         if self.center_distance is not None:
-            center = float(self.center_distance)
-            given = self.install_distance
             return center, float(given) if given is not None else center + PAPER_OPENING
-        install = DEFAULT_INSTALL if self.install_distance is None else float(self.install_distance)
-        return install - PAPER_OPENING, install
+        return center, DEFAULT_INSTALL if given is None else float(given)
 
     @property
     def chamfer_mm(self) -> float:
