@@ -97,3 +97,17 @@ def test_pair_outside_the_bounds_is_refused_like_gears_with_its_remedy(cli, tmp_
     assert entries["source24"]["meshing"]["interference"] is False
     assert [f["name"] for f in manifest["failed"]] == ["source24"]
     assert "| source24 |" in (out / "print-sheet.md").read_text().split("## Parts")[0]
+
+
+def test_an_entry_mounted_so_close_that_it_interferes_names_its_distance_and_the_remedy(cli, tmp_path):
+    """An interfering pair mounted inside its rolling distance is refused for that distance, with
+    the remedy as the entry's override keys (as `wheelstep gears` names --install-distance)."""
+    batch = write(tmp_path / "close.yaml", "parts:\n  - name: close\n    kind: gear-pair\n"
+                  "    design: desk-demo\n    printer: fdm-0.4-pla\n    overrides:\n"
+                  "      center_distance: 72.4\n")
+    out = tmp_path / "out"
+    result = cli("batch", batch, "--out", out, "--jobs", "1")
+    assert result.exit_code == 1
+    assert f"close ({batch}:" in result.stderr
+    assert "install_distance = 72.125: the teeth interfere at " in result.stderr
+    assert "use overrides {install_distance: 72.4} (for more play, more backlash)" in result.stderr

@@ -172,6 +172,23 @@ def test_generated_teeth_roll_at_the_center_distance_and_mount_at_the_install_di
                                                              abs=0.5)
 
 
+def test_a_pair_mounted_so_close_that_it_interferes_is_the_distance_s_error(cli, tmp_path):
+    """Mounted far enough inside its rolling distance the pair interferes: the cause is the
+    distance the user gave, refused like a pair mounted farther off (exit 2, one line naming
+    the option, the remedy), not as a failed check (exit 1)."""
+    closer = cli("gears", "--profile", "desk-demo", "--center-distance", "72.4", "--out", tmp_path / "a")
+    line = error_line(closer, code=2)
+    assert line.startswith("wheelstep: error: --center-distance = 72.4: with it, install-distance = "
+                           "72.125 fails: the teeth interfere at ")
+    assert "0.275 mm closer than the pitch curves roll (72.4 mm)" in line
+    assert line.endswith("use --install-distance 72.4 (for more play, more backlash)")
+    given = cli("gears", "--profile", "desk-demo", "--center-distance", "72.4", "--install-distance",
+                "72.125", "--out", tmp_path / "a")
+    assert error_line(given, code=2).startswith("wheelstep: error: --install-distance = 72.125: the teeth "
+                                                "interfere at ")
+    assert not (tmp_path / "a").exists()
+
+
 def test_a_module_sets_where_the_presets_pair_rolls_and_the_plate_is_checked_there(cli, tmp_path):
     """--module on the desk preset (which gives an installed distance): the module's distance
     replaces the preset's (generated teeth roll and are mounted where the module fits), and

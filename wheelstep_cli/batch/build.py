@@ -64,7 +64,7 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
                  else design_pair(entry.spec, entry.printer))
         mating = kind.mating_check(built) if kind.mating_check is not None else None
         result = EntryResult(entry.index, _parts(kind, built), _report(kind, built, mating), mating=mating)
-        refused = _refused(entry, result) or _out_of_bounds(entry, built, result, printer)
+        refused = _refused(entry, built, result) or _out_of_bounds(entry, built, result, printer)
         if refused is not None:
             return refused
         if fit is not None:
@@ -135,16 +135,25 @@ def _checks(check) -> dict[str, bool]:
             "volume_matches_outline": check.volume_error < 1e-3}
 
 
-def _refused(entry: Entry, result: EntryResult) -> EntryResult | None:
-    """The entry refused (no parts) when its gear teeth interfere, unless it allows it."""
+def _refused(entry: Entry, built, result: EntryResult) -> EntryResult | None:
+    """The entry refused (no parts) when its gear teeth interfere, unless it allows it: named
+    for its installed distance when the pair is mounted off its rolling distance (with the
+    remedy), else for its teeth."""
+    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml, require_mounted_where_rolling
+
     mating = result.mating
     if mating is None or not mating["interference"] or entry.allow_interference:
         return None
+    interfere = (f"the teeth interfere at {mating['interfering_poses']} of {mating['samples']} poses "
+                 f"at {mating['distance_mm']:g} mm (max overlap {mating['max_overlap_area_mm2']:.3f} mm2)")
+    try:
+        require_mounted_where_rolling(built, interfere)
+    except DesignError as err:
+        return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
+                           param=err.param, mating=mating)
     printed = entry.printed
     teeth = getattr(printed.teeth, "value", printed.teeth)
-    reason = (f"teeth = {teeth}: the teeth interfere at {mating['interfering_poses']} of "
-              f"{mating['samples']} poses at {mating['distance_mm']:g} mm (max overlap "
-              f"{mating['max_overlap_area_mm2']:.3f} mm2); allow_interference: true builds it anyway")
+    reason = f"teeth = {teeth}: {interfere}; allow_interference: true builds it anyway"
     return EntryResult(entry.index, report=result.report, error=reason, param="teeth", mating=mating)
 
 

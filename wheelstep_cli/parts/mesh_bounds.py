@@ -225,13 +225,19 @@ def opening_phrase(pair) -> str:
             f"pitch curves roll ({pair.design_distance:g} mm), where they do not follow the law")
 
 
-def opening_remedy(pair) -> str:
-    """The remedy clause (starting '; ') for a generated pair mounted off its rolling
-    distance, else ''."""
+def require_mounted_where_rolling(pair, failure: str) -> None:
+    """Refuse (DesignError on the installed distance, with the remedy) a generated pair mounted
+    off its rolling distance whose check found ``failure``; nothing for a pair mounted where
+    its pitch curves roll."""
     if pair.generated is None or abs(pair.opening) <= OPENING_TOLERANCE:
-        return ""
-    return (f"; {opening_phrase(pair)}: mount them where they roll, --install-distance "
-            f"{pair.design_distance:g} (more play by --backlash)")
+        return
+    design = pair.printing.design if pair.printing is not None else pair.spec
+    error = DesignError("install_distance", pair.mounted_distance,
+                        f"{failure}; {opening_phrase(pair)}; nothing written; use --install-distance "
+                        f"{pair.design_distance:g} (for more play, more backlash)")
+    error.remedy = {"install_distance": pair.design_distance}
+    # the rolling distance comes from the centre distance or the module: named if given instead
+    raise error.tied_to({"center_distance": design.center_distance, "module": design.module})
 
 
 def remedy_in_yaml(err) -> str:

@@ -56,15 +56,19 @@ def _meshing_or_refused(show: Output, pair, check, allow_interference: bool) -> 
     the teeth interfere and that is not allowed."""
     import typer
 
-    from wheelstep_cli.parts.mesh_bounds import opening_remedy
+    from wheelstep_cli.parts.mesh_bounds import require_mounted_where_rolling
     from wheelstep_cli.parts.mesh_check import meshing_record
 
     record = meshing_record(check)
     if record["interference"] and not allow_interference:
-        show.error(f"wheelstep: refused: the teeth interfere at {record['interfering_poses']} of "
-                   f"{record['samples']} poses at {record['distance_mm']:g} mm (max overlap "
-                   f"{record['max_overlap_area_mm2']:.3f} mm2){opening_remedy(pair)}; nothing "
-                   "written (--allow-interference writes them anyway)")
+        interfere = (f"the teeth interfere at {record['interfering_poses']} of {record['samples']} "
+                     f"poses at {record['distance_mm']:g} mm (max overlap "
+                     f"{record['max_overlap_area_mm2']:.3f} mm2)")
+        # mounted off the rolling distance the user's distance is the cause: refused as bad
+        # input (exit 2) like a pair mounted farther off, whose figures break the bounds
+        require_mounted_where_rolling(pair, interfere)
+        show.error(f"wheelstep: refused: {interfere}; nothing written (--allow-interference "
+                   "writes them anyway)")
         raise typer.Exit(1)
     return record
 
