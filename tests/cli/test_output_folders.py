@@ -200,3 +200,31 @@ def test_a_gears_picture_in_the_output_folder_survives_a_run_without_it(cli, tmp
     picture = (out / "p.png").read_bytes()
     assert cli(*args).exit_code == 0
     assert (out / "p.png").read_bytes() == picture
+
+
+def test_a_dry_run_names_the_files_the_run_would_remove(cli, tmp_path):
+    """A dry run says all the real run would do to the folder: the files of the earlier run it
+    would remove as well as those it would write; and it removes none."""
+    out = tmp_path / "shoe"
+    assert cli("shoe", "--out", out, "--format", "both", "-q").exit_code == 0
+    said = cli("shoe", "--out", out, "--format", "stl", "--dry-run")
+    assert said.exit_code == 0
+    assert f"would remove {out / 'shoe.3mf'} (written by an earlier run)" in said.stdout.splitlines()
+    assert (out / "shoe.3mf").exists()
+    assert "would remove" not in cli("shoe", "--out", out, "--format", "both", "--dry-run").stdout
+    two = write(tmp_path / "two.yaml", SHOE + SHOE.split("\n", 1)[1].replace("fdm-0.4-pla", "resin-0.05-standard")
+                .replace("- kind", "- name: resin\n    kind"))
+    folder = tmp_path / "batch"
+    assert cli("batch", two, "--out", folder, "--jobs", "1", "-q").exit_code == 0
+    assert (folder / "plate-2.3mf").exists()
+    one = write(tmp_path / "one.yaml", SHOE)
+    before = listing(folder)
+    said = cli("batch", one, "--out", folder, "--jobs", "1", "--dry-run")
+    assert said.exit_code == 0, said.stderr
+    removed = sorted(line for line in said.stdout.splitlines() if line.startswith("would remove"))
+    # the second printer's plate, picture, slicer settings and the dropped entry's report
+    gone = ("plate-2.3mf", "plate-2.png", "reports/resin.json", "resin-0.05-standard.ini")
+    assert removed == sorted(f"would remove {folder / name} (written by an earlier run)" for name in gone)
+    assert listing(folder) == before
+    assert cli("batch", one, "--out", folder, "--jobs", "1", "-q").exit_code == 0
+    assert not any((folder / name).exists() for name in gone)

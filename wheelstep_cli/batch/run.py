@@ -69,6 +69,14 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
     return BatchOutcome(written, plates, failed, built, results)
 
 
+def stale_batch_files(out: Path, paths) -> list[Path]:
+    """The files of an earlier batch in ``out`` that a run writing ``paths`` removes (as
+    :func:`run_batch` does; for a dry run, built elsewhere)."""
+    from wheelstep_cli.formats.owned import stale_files
+
+    return stale_files(out, dict.fromkeys(paths, b""), previous_record(out)[0])
+
+
 def check_folder(out: Path, paths, force: bool) -> None:
     """Refuse (DesignError) writing ``paths`` into ``out`` over files an earlier batch there did
     not write, as :func:`run_batch` does (for a dry run, built elsewhere)."""

@@ -6,7 +6,7 @@ details (``-v``) and errors go to stderr. ``-q`` leaves errors and the requested
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Iterable, Mapping
 
@@ -22,6 +22,8 @@ class Output:
     json: bool = False
     quiet: bool = False
     verbose: bool = False
+    #: Files of an earlier run that a dry run's real run would remove (said by :meth:`files`).
+    would_remove: list = field(default_factory=list, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.quiet and self.verbose:
@@ -74,13 +76,14 @@ class Output:
         return written
 
     def write_owned(self, folder: Path, command: str, files: Mapping[Path, bytes], dry_run: bool,
-                    force: bool) -> list[Path]:
+                    force: bool, check_only: bool = False) -> list[Path]:
         """Write ``files`` into ``folder`` as ``command``'s output (see formats.owned): a file
         there that this command did not write is refused unless ``force``; the record
         ``.wheelstep-COMMAND.json`` is written with them and the files of the previous run
         that this one does not write (and that are unchanged) are removed. Nothing with
-        ``dry_run`` (the check still runs). Returns the paths written (would be, with
-        ``dry_run``), the record last."""
+        ``dry_run`` (the check still runs; the files it would remove are said with the
+        files, unless ``check_only``: ``files`` are not all of the run's). Returns the paths
+        written (would be, with ``dry_run``), the record last."""
         from wheelstep_cli.formats.atomic import remove_files
         from wheelstep_cli.formats.owned import check_collisions, read_record, record_bytes, stale_files
 
@@ -88,6 +91,8 @@ class Output:
         record = read_record(record_path)
         check_collisions(folder, files, record, force)
         if dry_run:
+            if not check_only:
+                self.would_remove.extend(stale_files(folder, files, record))
             return [*files, record_path]
         written = self.write({**files, record_path: record_bytes(f"wheelstep {command}", folder, files)},
                              dry_run)
@@ -129,6 +134,9 @@ class Output:
         if not names:
             return
         lines = [f"{verb} " + ", ".join(names)] if joined else [f"{verb} {n}" for n in names]
+        if dry_run:
+            # a dry run says all the real run would do to the folder
+            lines += [f"would remove {p} (written by an earlier run)" for p in self.would_remove]
         for text in lines:
             if not self.json:
                 self.line(text)

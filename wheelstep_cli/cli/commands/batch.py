@@ -69,7 +69,7 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, s
     import tempfile
 
     from wheelstep_cli.batch import run_batch
-    from wheelstep_cli.batch.run import check_folder
+    from wheelstep_cli.batch.run import check_folder, stale_batch_files
     from wheelstep_cli.cli.progress import Progress
     from wheelstep_cli.errors import DesignError
 
@@ -85,6 +85,7 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, s
                                     tolerance=tolerance)
                 written = [out / p.relative_to(scratch) for p in outcome.written]
                 check_folder(out, written, force)   # what the real run would refuse
+                show.would_remove.extend(stale_batch_files(out, written))
                 return outcome, written
     except OSError as err:
         raise DesignError("out", str(out), f"cannot be written ({err.strerror or err})") from None

@@ -125,4 +125,4 @@ def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
         if what is not None:
             raise DesignError(option, str(path), f"is where this run writes {what}: give the picture "
                                                  "another name")
-    show.write_owned(out, "gears", dict.fromkeys(certain, b""), True, force)
+    show.write_owned(out, "gears", dict.fromkeys(certain, b""), True, force, check_only=True)
