@@ -294,6 +294,31 @@ def test_all_problems_reported_together(cli, tmp_path):
     assert "needs a printer" in lines[2]
 
 
+def test_every_override_at_fault_is_reported_at_once_in_the_files_words(cli, tmp_path):
+    """The shaft rules stop at the first input at fault; the entry is checked again without it,
+    so one run names every override to fix, each at its line, by its key (not its flag)."""
+    batch = write(tmp_path / "bad.yaml", VALID_ENTRY + "    overrides:\n      key_angle: 30\n"
+                  "      hub_length: 5\n      flat_depth: 1\n      z: 48\n")
+    out = tmp_path / "out"
+    result = cli("batch", batch, "--out", out)
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert lines == [
+        f"wheelstep: error: {batch}:{line_of(batch, 'key_angle')}: parts[0].overrides.key_angle = 30: orients "
+        "a keyed bore or a set screw: needs bore_shape d-flat, keyway or hex, or set_screw",
+        f"wheelstep: error: {batch}:{line_of(batch, 'hub_length')}: parts[0].overrides.hub_length = 5: needs hub_d",
+        f"wheelstep: error: {batch}:{line_of(batch, 'flat_depth')}: parts[0].overrides.flat_depth = 1: needs "
+        "bore_shape d-flat"]
+    assert not out.exists()
+    # each remedy applied, the entry passes the plan's checks
+    fixed = write(tmp_path / "fixed.yaml", VALID_ENTRY + "    overrides:\n      key_angle: 30\n"
+                  "      hub_length: 5\n      flat_depth: 1\n      bore_shape: d-flat\n      hub_d: 16\n")
+    from wheelstep_cli.batch.plan import load_batch
+
+    (entry,) = load_batch(fixed, str(fixed)).entries
+    assert (entry.spec.key_angle, entry.spec.hub_length, entry.spec.flat_depth) == (30, 5, 1)
+
+
 @pytest.mark.parametrize("file, text, replaced, expect", [
     ("wobbly.yaml", "printer:\n  technology: fdm\n  bed: [200, 200]\n  tooth_clearance: -0.1\n"
      "material:\n  density: 1.2\n", "fdm-0.4-pla",

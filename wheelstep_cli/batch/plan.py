@@ -13,7 +13,7 @@ from pydantic import ValidationError
 from wheelstep_cli.batch.lookup import Profiles, profile_label
 from wheelstep_cli.config.batch_file import DEFAULT_DESIGN, KIND_NAMES, BatchDefaults, BatchEntry, BatchFile
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
-from wheelstep_cli.config.names import yaml_message
+from wheelstep_cli.config.names import in_file_words, yaml_message
 from wheelstep_cli.config.printers import Printer
 from wheelstep_cli.config.profiles import profile_names
 from wheelstep_cli.config.resolve import spec_problems, spec_values
@@ -161,7 +161,7 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     flawed = any(loc[:2] == path for loc in check.bad)
     if len(issues) > before or flawed or kind is None or printer is None or design is None:
         return None
-    spec, printed, problems = _resolve(kind, design[0], overrides, printer)
+    spec, printed, problems = _every_problem(kind, design[0], overrides, printer)
     for err in problems:
         issues.append(_problem(doc, path, err, override_where, design_name, overrides))
     if problems:
@@ -215,6 +215,28 @@ def _check_overrides(doc, path, kind: PartKind, overrides: dict, issues: list[Is
     return {key: doc.where(at + (key,)) for key in overrides if key in model.model_fields}
 
 
+def _every_problem(kind: PartKind, design, overrides: dict, printer: Printer):
+    """:func:`_resolve`, with every override at fault: a rule stops at the first input it
+    finds at fault, so the entry is checked again without the overrides found so far (their
+    design's values instead) while that finds another override at fault, and the user
+    fixes them in one go."""
+    spec, printed, problems = _resolve(kind, design, overrides, printer)
+    left = dict(overrides)
+    found = list(problems)
+    while problems and len(found) < len(overrides):
+        blamed = {err.for_given(left).param.replace("-", "_") for err in problems}
+        if not blamed <= set(left):
+            break           # a problem of no override's: the others may stem from it
+        left = {key: value for key, value in left.items() if key not in blamed}
+        problems = [err for err in _resolve(kind, design, left, printer)[2]
+                    if err.for_given(left).param.replace("-", "_") in left]
+        found += problems
+    # in the order the file gives the overrides, an entry's own problems first
+    order = {key: k for k, key in enumerate(overrides)}
+    found.sort(key=lambda err: order.get(err.for_given(overrides).param.replace("-", "_"), -1))
+    return spec, printed, found
+
+
 def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
     """(spec, printed spec, problems): overrides over the kind's profile section over the
     mechanism section, checked by the spec's model and the kind's domain checks."""
@@ -251,6 +273,6 @@ def _problem(doc, path, err: DesignError, override_where, design_name, overrides
     param = err.param.replace("-", "_")
     if param in override_where:
         return Issue(override_where[param], dotted(path + ("overrides", param)),
-                     f"= {show(err.value)}: {err.limit}")
+                     f"= {show(err.value)}: {in_file_words(err.limit)}")
     given = f", with overrides {', '.join(overrides)}" if overrides else ""
     return Issue(doc.where(path), dotted(path), f"{yaml_message(err)} (from design {design_name}{given})")

@@ -6,6 +6,8 @@ also the YAML key. A file names it as the key; the command line as the flag.
 
 from __future__ import annotations
 
+import re
+
 
 def flag_name(param: str) -> str:
     """The command-line flag of a parameter: ``install_distance`` -> ``--install-distance``."""
@@ -18,4 +20,27 @@ def yaml_message(err) -> str:
     from wheelstep_cli.errors import format_value
 
     value = str(err.value).lower() if isinstance(err.value, bool) else format_value(err.value)
-    return f"{err.param} = {value}: {err.limit}"
+    return f"{err.param} = {value}: {in_file_words(err.limit)}"
+
+
+def in_file_words(text: str) -> str:
+    """``text`` with the flags of a part's parameters named as a file's keys (``needs
+    --bore-shape d-flat`` -> ``needs bore_shape d-flat``): a rule's words serve both the
+    command line and a file. Other flags (a command's own, such as ``--force``) stay."""
+    keys = _file_keys()
+
+    def key(match: re.Match) -> str:
+        name = match.group(1).replace("-", "_")
+        return name if name in keys else match.group(0)
+
+    return _FLAG.sub(key, text)
+
+
+_FLAG = re.compile(r"(?<![\w-])--([a-z][a-z0-9-]*)")
+
+
+def _file_keys() -> frozenset[str]:
+    """The keys a batch entry gives a part's parameters by (its overrides, its printer)."""
+    from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
+
+    return frozenset({*GearPairSpec.model_fields, *ShoeSpec.model_fields, "printer", "allow_interference"})

@@ -243,15 +243,15 @@ def require_mounted_where_rolling(pair, failure: str) -> None:
 def remedy_in_yaml(err) -> str:
     """A bounds refusal (:func:`require_within_bounds`) as a batch file states it: the
     remedy as the entry's override keys (``z: 90, backlash: 0.239``), not as flags."""
-    from wheelstep_cli.config.names import yaml_message
+    from wheelstep_cli.config.names import in_file_words, yaml_message
 
-    message = yaml_message(err)
+    message = yaml_message(err)   # its flags already said as keys (in_file_words)
     for tried in getattr(err, "tried", None) or []:
-        message = message.replace(_as_options(tried), f"overrides {{{_as_keys(tried)}}}")
+        message = message.replace(in_file_words(_as_options(tried)), f"overrides {{{_as_keys(tried)}}}")
     remedy = getattr(err, "remedy", None)
     if not remedy:
         return message
-    return message.replace(f"use {_as_options(remedy)}", f"use overrides {{{_as_keys(remedy)}}}")
+    return message.replace(in_file_words(f"use {_as_options(remedy)}"), f"use overrides {{{_as_keys(remedy)}}}")
 
 
 def _as_keys(remedy: dict) -> str:
