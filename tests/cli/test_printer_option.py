@@ -46,6 +46,21 @@ def test_a_profile_file_that_is_no_mapping_is_told_so_not_called_the_other_kind(
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("option", ["--profile", "--printer"])
+def test_a_profile_file_that_is_not_text_is_said_of_the_option_that_named_it(cli, tmp_path, monkeypatch,
+                                                                             option):
+    """Found by its name in ./profiles or given as a path, an unreadable profile is named by the
+    option the user gave, the file's path added when a name found it."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "profiles").mkdir()
+    (tmp_path / "profiles" / "bin.yaml").write_bytes(b"\xff\xfe\x00binary")
+    by_name = error_line(cli("shoe", option, "bin", "--out", tmp_path / "out"))
+    assert by_name == f"wheelstep: error: {option} = bin: profiles/bin.yaml is not UTF-8 text (byte 0)"
+    by_path = error_line(cli("shoe", option, "profiles/bin.yaml", "--out", tmp_path / "out"))
+    assert by_path == f"wheelstep: error: {option} = profiles/bin.yaml: is not UTF-8 text (byte 0)"
+    assert not (tmp_path / "out").exists()
+
+
 def test_shoe_for_a_printer_has_the_bore_enlarged_the_foot_inset_and_says_so(cli, tmp_path):
     assert cli("shoe", "--out", tmp_path / "plain", "-q").exit_code == 0
     assert cli("shoe", "--printer", "fdm-0.4-pla", "--out", tmp_path / "pla", "-q").exit_code == 0

@@ -131,6 +131,8 @@ def load_design_profile(name_or_path: str):
     try:
         return design_from_file(name_or_path, file)
     except DesignError as err:
+        if err.param == "file":
+            raise _unreadable("profile", name_or_path, err) from None
         if err.param != "design":
             raise
         if err.limit.startswith("must be a mapping"):
@@ -138,6 +140,13 @@ def load_design_profile(name_or_path: str):
         raise DesignError("profile", name_or_path, "is a printer profile, not a design profile (a "
                           "printer profile goes in --printer); design profiles: "
                           + ", ".join(profile_names(printer=False))) from None
+
+
+def _unreadable(option: str, name_or_path: str, err: DesignError) -> DesignError:
+    """A profile file that cannot be read (``err``, of its ``file``) said of the ``option``
+    that named it, with the file's path when a name found it."""
+    same = Path(str(err.value)).resolve() == Path(name_or_path).resolve()
+    return DesignError(option, name_or_path, err.limit if same else f"{err.value} {err.limit}")
 
 
 def load_printer_profile(name_or_path: str):
@@ -154,6 +163,8 @@ def load_printer_profile(name_or_path: str):
         doc = read_located_yaml(file, label)
     except YamlSyntaxError as err:
         raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+    except DesignError as err:
+        raise _unreadable("printer", name_or_path, err) from None
     if (why := _not_sections(doc.data)) is not None:
         raise DesignError("printer", name_or_path, why)
     if not is_printer_profile(doc.data):
