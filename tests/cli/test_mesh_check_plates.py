@@ -2,6 +2,7 @@
 metadata and reproduces what `gears` measured; parts too large or tall are refused."""
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -129,6 +130,29 @@ def test_two_wheels_or_two_pinions_are_refused_before_any_work(desk_pair, cli, t
     apart = cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile",
                   "desk-demo", "--samples", "64", "--distance", "75")
     assert apart.exit_code in (0, 1), apart.stderr       # a real pair a little apart: checked
+
+
+def test_a_part_without_the_teeth_of_the_pair_is_refused_though_the_sizes_add_up(desk_pair, cli, tmp_path):
+    """A shoe or a plain disc of the right size passed the size checks and was reported as
+    interfering at every pose: teeth are counted along each pitch curve first."""
+    import trimesh
+
+    shoe = tmp_path / "shoe"
+    assert cli("shoe", "--out", shoe, "--format", "stl", "-q").exit_code == 0
+    result = cli("mesh-check", desk_pair / "pinion.stl", shoe / "shoe.stl", "--profile", "desk-demo")
+    assert error_line(result) == (
+        f"wheelstep: error: wheel = {shoe / 'shoe.stl'}: has 1 tooth along its pitch curve, not the 84 "
+        "that the pinion's 42 need under the law: give the wheel of this pinion's pair, and its design "
+        "(--profile, --a/--b/--c, --law-csv)")
+    disc = tmp_path / "disc.stl"
+    disc.write_bytes(trimesh.creation.cylinder(radius=24.0, height=6.0, sections=256).export(file_type="stl"))
+    line = error_line(cli("mesh-check", disc, desk_pair / "wheel.stl", "--profile", "desk-demo"))
+    # (a disc crosses the non-circular pitch curve once or twice per lobe)
+    assert re.match(f"wheelstep: error: pinion = {re.escape(str(disc))}: has [0-2] teeth? along the pitch "
+                    "curve of the law; a pinion has at least 6: give the pinion mesh of a gear pair", line), line
+    # the pair itself: its teeth counted as the law needs them, checked
+    assert cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile", "desk-demo",
+               "--samples", "64", "-q").exit_code == 0
 
 
 def test_a_plot_over_a_users_file_is_refused_unless_forced(desk_pair, cli, tmp_path):

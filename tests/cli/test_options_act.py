@@ -63,7 +63,7 @@ def test_a_batch_entry_with_a_law_csv_refuses_its_crank_override_at_its_line(cli
     from tests.helpers.files import line_of, write
 
     csv = tmp_path / "law.csv"
-    csv.write_text("driving_deg,driven_deg\n0,0\n180,90\n360,180\n")
+    csv.write_text("driving_deg,driven_deg\n" + "".join(f"{d},{d / 2:g}\n" for d in range(0, 361, 45)))
     batch = write(tmp_path / "b.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"
                   "    printer: fdm-0.4-pla\n    overrides:\n      law_csv: " + str(csv) + "\n"
                   "      b: 90\n")

@@ -46,22 +46,17 @@ class WrittenPairCheck:
 def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
     """Check the inputs and read both meshes' mid-thickness sections (mm, own frames)."""
     from wheelstep_cli.formats.mesh_read import read_outline
+    from wheelstep_cli.gears.meshing.check import radius_by_area
 
     law = design_law(check.spec)
     check.validate()
     outlines = (read_outline(check.pinion, "pinion", default_name="pinion"),
                 read_outline(check.wheel, "wheel", default_name="wheel"))
-    radii = tuple(_radius_by_area(o) for o in outlines)
+    radii = tuple(radius_by_area(o) for o in outlines)
     require_a_pair(radii, installed_distance(check.spec), check.wheel)
     require_pinion_first(radii, law, check.pinion)
+    require_gear_teeth(outlines, law, (check.pinion, check.wheel))
     return outlines
-
-
-def _radius_by_area(outline: np.ndarray) -> float:
-    """sqrt(area / pi) of a closed outline (N, 2) mm: its teeth above and below the pitch
-    curve cancel, so this is near the mean pitch radius."""
-    x, y = outline[:, 0], outline[:, 1]
-    return float(np.sqrt(abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))) / (2 * np.pi)))
 
 
 def require_a_pair(radii: tuple[float, float], distance: float, wheel: str) -> None:
@@ -91,6 +86,33 @@ def require_pinion_first(radii: tuple[float, float], law, pinion: str) -> None:
             f"is the larger gear (radius by area {first:.1f} mm, the wheel given {second:.1f} mm) "
             f"while the law turns the wheel {1.0 / ratio:.3g} times slower than the pinion: the two "
             "look swapped; give the pinion first, then the wheel")
+
+
+#: How far (a fraction) the wheel's teeth counted may lie from those the pinion's need.
+TEETH_SLACK = 0.05
+
+
+def require_gear_teeth(outlines: tuple[np.ndarray, np.ndarray], law, names: tuple[str, str]) -> None:
+    """Refuse (naming the mesh) a pinion outline with fewer teeth than a gear has (a shoe, a
+    plain disc), or a wheel whose teeth, counted along its pitch curve, are not the ones the
+    pinion's need under ``law`` (another pair's wheel): sizes alone can add up by chance,
+    and such a check reports interference at every pose."""
+    from wheelstep_cli.config.specs import MIN_TEETH
+    from wheelstep_cli.gears.meshing.check import pair_teeth
+
+    z_p, z_w, needed = pair_teeth(*outlines, law)
+    require(z_p >= MIN_TEETH, "pinion", names[0],
+            f"has {_teeth(z_p)} along the pitch curve of the law; a pinion has "
+            f"at least {MIN_TEETH}: give the pinion mesh of a gear pair, and its design (--profile, "
+            "--a/--b/--c, --law-csv)")
+    require(abs(z_w - needed) <= max(1.0, TEETH_SLACK * needed), "wheel", names[1],
+            f"has {_teeth(z_w)} along its pitch curve, not the {needed:.0f} that the pinion's {z_p} "
+            "need under the law: give the wheel of this pinion's pair, and its design (--profile, "
+            "--a/--b/--c, --law-csv)")
+
+
+def _teeth(count: int) -> str:
+    return f"{count} tooth" if count == 1 else f"{count} teeth"
 
 
 def run_written_pair_check(check: WrittenPairCheck, outlines: tuple[np.ndarray, np.ndarray],

@@ -74,7 +74,7 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, d
     slices = [slice(lo, min(lo + batch, samples)) for lo in range(0, samples, batch)]
     contacts = _search(make_pair, theta, phi_law, slices, settings, progress)
     if teeth is None:
-        teeth = max(1, count_teeth(pinion, lambda a: _pinion_pitch_radius(law, a, float(distance))))
+        teeth = max(1, pair_teeth(pinion, None, law)[0])
     return _report(law, theta, phi_law, contacts, float(distance), start, teeth)
 
 
@@ -83,6 +83,49 @@ def _pinion_pitch_radius(law: TransmissionLaw, angle: np.ndarray, distance: floa
     ``distance`` mm: the pitch point for theta lies at body angle theta."""
     rate = _law_rate(law, angle)
     return distance * rate / (1.0 + rate)
+
+
+def pair_teeth(pinion: np.ndarray, wheel: np.ndarray | None,
+               law: TransmissionLaw) -> tuple[int, int | None, float]:
+    """(pinion teeth, wheel teeth, wheel teeth a pinion of those teeth needs) counted on two
+    outlines (N, 2) mm in their own frames (``wheel`` None: its count None), each along the
+    pitch curve of ``law`` scaled to the outline's radius by area, so that any distance the
+    pair is mounted at counts alike. Over a period the pinion turns theta_P and the wheel
+    the law's rise, so the wheel has z_p theta_P / |rise| teeth."""
+    period = float(law.theta_period)
+    ends = np.asarray(law.carrier_angle(np.array([0.0, period])), dtype=float)
+    rise = max(abs(float(ends[1] - ends[0])), 1e-9)
+    # pitch radius at unit centre distance: the pinion's at body angle theta, rate / (1 + rate)
+    z_p = _teeth_along(pinion, lambda a: _pinion_pitch_radius(law, a, 1.0))
+    if wheel is None:
+        return z_p, None, z_p * period / rise
+    # the wheel's pitch point for phi lies at body angle -phi, at D - r_p = D / (1 + rate):
+    # sampled over the periods one wheel turn takes
+    periods = int(np.ceil(2.0 * np.pi / rise)) + 1
+    theta = np.linspace(0.0, periods * period, 4096 * periods, endpoint=False)
+    body = np.mod(-np.asarray(law.carrier_angle(theta), dtype=float), 2.0 * np.pi)
+    order = np.argsort(body, kind="stable")
+    body, unit = body[order], (1.0 / (1.0 + _law_rate(law, theta)))[order]
+    z_w = _teeth_along(wheel, lambda a: np.interp(a, body, unit, period=2.0 * np.pi))
+    return z_p, z_w, z_p * period / rise
+
+
+def _teeth_along(outline: np.ndarray, shape: Callable[[np.ndarray], np.ndarray]) -> int:
+    """Teeth of an outline (N, 2) mm along the pitch curve of radius ``shape(angle)`` (body
+    angle, rad), scaled so that it encloses the outline's area: teeth above and below it
+    cancel, so the curve runs through the teeth at any mounted distance."""
+    turn = np.linspace(0.0, 2.0 * np.pi, 4096, endpoint=False)
+    rms = float(np.sqrt(np.mean(shape(turn) ** 2)))
+    # a law that does not turn the wheel has no pitch curve to scale (radius 0 throughout)
+    scale = radius_by_area(outline) / rms if rms > 0.0 else 1.0
+    return count_teeth(outline, lambda a: scale * shape(a))
+
+
+def radius_by_area(outline: np.ndarray) -> float:
+    """sqrt(area / pi) of a closed outline (N, 2) mm: its teeth above and below the pitch
+    curve cancel, so this is near the mean pitch radius."""
+    x, y = outline[:, 0], outline[:, 1]
+    return float(np.sqrt(abs(np.sum(x * np.roll(y, -1)) - np.sum(y * np.roll(x, -1))) / (2.0 * np.pi)))
 
 
 def _law_rate(law: TransmissionLaw, theta: np.ndarray, step: float = 1e-6) -> np.ndarray:
