@@ -61,6 +61,26 @@ extra: 1
     assert MAX_POINTS == 10_000
 
 
+@pytest.mark.parametrize("grid, expect", [
+    # a tiny step: refused at its line before its values are listed (1e10 of them filled the memory)
+    ("  width: {start: 20, stop: 30, step: 1.0e-9}\n",
+     "s.yaml:3: grid.width: range 20..30 step 1e-09 holds 10000000001 values; a sweep has at most 10000 points"),
+    # two axes within the limit whose product is not: counted, not listed
+    ("  width: {start: 20, stop: 30, step: 0.01}\n  a: {start: 100, stop: 200, step: 0.02}\n",
+     "s.yaml:1: the sweep has 5006001 points; at most 10000"),
+])
+def test_a_sweep_too_large_is_refused_before_its_points_are_listed(tmp_path, monkeypatch, grid, expect):
+    import wheelstep_cli.config.sweep_file as sweep_file
+
+    def listed(*args):
+        raise AssertionError("the points were listed")
+
+    monkeypatch.setattr(sweep_file, "_points", listed)
+    with pytest.raises(InvalidInput) as info:
+        load_sweep(write(tmp_path / "s.yaml", "command: shoe\ngrid:\n" + grid))
+    assert [line.endswith(expect) for line in info.value.lines()] == [True], info.value.lines()
+
+
 def test_tolerance_needs_printers_with_a_band(tmp_path):
     """``tolerance: true`` on a printer profile without a ``band:`` is refused at its line
     (never taken as a perfect printer); with the presets (all have one) it is planned."""

@@ -119,10 +119,13 @@ def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
     _check_bands(doc, command, data.get("printers"), data.get("tolerance") is True, issues)
     if issues:
         raise InvalidInput(issues)
-    points = _points(sweep, grid, random)
-    if len(points) > MAX_POINTS:
-        raise InvalidInput([Issue(doc.where(()), "", f"the sweep has {len(points)} points; at most "
+    # counted before the points are listed (a product of long axes would not fit in memory)
+    count = math.prod([len(sweep.printers or [None]), random.samples if random else 1,
+                       *(len(a) if isinstance(a, list) else _range_count(a) for a in grid.values())])
+    if count > MAX_POINTS:
+        raise InvalidInput([Issue(doc.where(()), "", f"the sweep has {count} points; at most "
                                                      f"{MAX_POINTS}")])
+    points = _points(sweep, grid, random)
     objectives = tuple(sweep.objectives or DEFAULT_OBJECTIVES[sweep.command])
     axes = tuple(grid) + tuple(random.bounds if random else ())
     return SweepPlan(label, sweep.command, sweep.design, objectives, sweep.allow_interference,
@@ -138,7 +141,12 @@ def _grid(doc: LocatedYaml, raw, issues: list[Issue]) -> dict[str, list | Range]
             axes[key] = axis
         elif isinstance(axis, dict):
             found = validate_file(Range, doc, at, issues)
-            if found is not None:
+            if found is not None and _range_count(found) > MAX_POINTS:
+                # said before its values are listed: a tiny step would exhaust the memory
+                issues.append(Issue(doc.where(at), dotted(at), f"range {show(found.start)}..{show(found.stop)} "
+                                    f"step {show(found.step)} holds {_range_count(found)} values; a sweep "
+                                    f"has at most {MAX_POINTS} points"))
+            elif found is not None:
                 axes[key] = found
         else:
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(axis)}: must be a list of values "
@@ -248,13 +256,18 @@ def _check_bands(doc: LocatedYaml, command, names, tolerance: bool, issues: list
                                 f"you keep with `wheelstep gears --printer {name}`"))
 
 
+def _range_count(axis: Range) -> int:
+    """How many values a range holds (0 when stop is before start)."""
+    return max(math.floor((axis.stop - axis.start) / axis.step + 1e-9) + 1, 0)
+
+
 def _axis_values(axis: list | Range) -> list:
     """The values of a grid axis; a range's computed without float drift."""
     if isinstance(axis, list):
         return list(axis)
-    count = math.floor((axis.stop - axis.start) / axis.step + 1e-9) + 1
+    count = _range_count(axis)
     whole = all(isinstance(v, int) for v in (axis.start, axis.stop, axis.step))
-    values = [axis.start + i * axis.step for i in range(max(count, 0))]
+    values = [axis.start + i * axis.step for i in range(count)]
     return values if whole else [round(v, 12) for v in values]
 
 
