@@ -155,6 +155,23 @@ def test_a_part_without_the_teeth_of_the_pair_is_refused_though_the_sizes_add_up
                "--samples", "64", "-q").exit_code == 0
 
 
+def test_two_plates_each_holding_a_pair_are_both_checked(desk_pair, cli, tmp_path, monkeypatch):
+    """Two plates of two `gears` runs hold a pair each, of one pair id: both pairs are checked
+    (they were refused as 'not a gear pair'); one plate named twice is checked once."""
+    other = tmp_path / "other"
+    assert cli("gears", "--profile", "desk-demo", "--z", "44", "--format", "3mf", "--out", other,
+               "-q").exit_code == 0
+    result = cli("mesh-check", desk_pair / "gears.3mf", other / "gears.3mf", "--samples", "128", "--json")
+    assert result.exit_code == 0, result.stderr
+    pairs = json.loads(result.stdout)["pairs"]
+    assert [p["pinion_teeth"] for p in pairs] == [42, 44]
+    assert [p["pinion"] for p in pairs] == [f"{desk_pair / 'gears.3mf'}:pinion", f"{other / 'gears.3mf'}:pinion"]
+    monkeypatch.chdir(other)
+    twice = cli("mesh-check", "gears.3mf", "./gears.3mf", "--samples", "128", "--json")
+    assert twice.exit_code == 0, twice.stderr
+    assert len(json.loads(twice.stdout)["pairs"]) == 1
+
+
 def test_a_plot_over_a_users_file_is_refused_unless_forced(desk_pair, cli, tmp_path):
     mine = tmp_path / "mine.png"
     mine.write_bytes(b"the user's picture")

@@ -40,22 +40,31 @@ def is_plate_input(pinion: str, wheel: str | None) -> bool:
 
 
 def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePair]:
-    """The gear pairs of the plates ``files`` (each pair once, in file order; of two plates,
-    the pairs with a gear on each), or the one named ``pair``; refused (DesignError) when
-    there is none or the meshes are not a pair."""
+    """The gear pairs of the plates ``files`` (each pair once, in file order: on one plate or
+    with a gear on each), or the one named ``pair``; refused (DesignError) when there is
+    none or the meshes are not a pair."""
     groups: dict[str, dict[str, tuple[str, MeshObject]]] = {}
+    read: set[Path] = set()
     for file, param in zip(files, GEARS):
         path = Path(file)
         if path.suffix.lower() != ".3mf" or not path.is_file():
             raise DesignError(param, file, "must be a 3MF plate written by wheelstep (or name two "
                                            "meshes, the pinion and the wheel)")
+        if path.resolve() in read:
+            continue        # one plate named twice (./a.3mf a.3mf): its pairs once
+        read.add(path.resolve())
+        own: dict[str, dict[str, tuple[str, MeshObject]]] = {}
         for obj in read_3mf_objects(path, param):
             part, pair_id = obj.metadata.get("part"), obj.metadata.get("pair")
             if part in GEARS and pair_id:
-                groups.setdefault(pair_id, {}).setdefault(part, (file, obj))
+                own.setdefault(pair_id, {}).setdefault(part, (file, obj))
+        for pair_id, gears in own.items():
+            if len(gears) == 2 and pair_id in groups:
+                # two plates each holding a pair of one id (two `gears` runs): both checked
+                groups[f"{pair_id} ({file})"] = gears
+            else:       # a pair on this plate, or a gear whose mate is on the other plate
+                groups.setdefault(pair_id, {}).update(gears)
     complete = [k for k, g in groups.items() if len(g) == 2]
-    if len(set(files)) == 2:   # two plates name one pair across them: a gear from each
-        complete = [k for k in complete if groups[k]["pinion"][0] != groups[k]["wheel"][0]]
     where = " + ".join(files)
     if not complete:
         what = "are not a gear pair" if len(files) == 2 else "holds no gear pair"
