@@ -3,6 +3,7 @@
 import json
 
 import numpy as np
+import pytest
 
 from tests.helpers.clicheck import error_line
 
@@ -41,3 +42,16 @@ def test_cli_impossible_linkage_one_line_exit_2(cli, tmp_path):
     assert line.startswith("wheelstep: error: --l1 = 500: ") and "crank angle 195.5 deg" in line
     res = cli("linkage", "--preset", "jansen", "--branch", "Q=+1")
     assert res.exit_code == 2 and res.stderr.startswith("wheelstep: error: --branch = Q")
+
+
+def test_a_table_step_between_the_sampled_crank_angles_is_refused_with_the_ones_it_takes(cli):
+    """The path table lists sampled angles: --step 10.3 printed every 10.5 deg."""
+    line = error_line(cli("linkage", "--step", "10.3", "--json"))
+    assert line == ("wheelstep: error: --step = 10.3: must be a whole multiple of the crank angles' spacing "
+                    "0.5 deg (360 / --samples 720): 10 or 10.5")
+    for step in (10.0, 10.5):       # the remedies, applied: the table steps by them
+        rows = json.loads(cli("linkage", "--step", str(step), "--json").stdout)["path"]
+        assert np.diff([r["crank_deg"] for r in rows]) == pytest.approx(step)
+    assert error_line(cli("linkage", "--step", "0.3", "--json")).endswith("(360 / --samples 720): 0.5")
+    assert error_line(cli("linkage", "--step", "7", "--samples", "100", "--json")).endswith(
+        "spacing 3.6 deg (360 / --samples 100): 3.6 or 7.2")

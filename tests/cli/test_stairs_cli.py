@@ -51,3 +51,15 @@ def test_cli_bad_input_one_line_exit_2(cli, tmp_path, args, param):
     res = cli("stairs", *args, "--plot", png)
     assert error_line(res).startswith(f"wheelstep: error: --{param} =")
     assert not png.exists()
+
+
+@pytest.mark.parametrize("args, line", [
+    # an empty list printed an empty table, exit 0
+    (("--sweep", "--sweep-angles", ",,,"), "--sweep-angles = ,,,: has an empty value between commas"),
+    (("--sweep", "--sweep-angles", "-90,,-45"), "--sweep-angles = -90,,-45: has an empty value"),
+    (("--sweep", "--sweep-radii", ","), "--sweep-radii = ,: has an empty value between commas"),
+    # -q prints no table: the step would shape nothing
+    (("--step", "7", "-q"), "--step = 7: shapes the printed tables, which -q does not print (--json does)"),
+])
+def test_options_that_would_do_nothing_are_refused(cli, args, line):
+    assert error_line(cli("stairs", *args)).startswith(f"wheelstep: error: {line}")

@@ -168,7 +168,11 @@ def number_list(text: str, param: str) -> list[float]:
             n = int(np.floor((stop - start) / step + 1e-9)) + 1
             require(1 <= n <= 10000, param, text, "must give 1 to 10000 values")
             return [start + i * step for i in range(n)]
-        values = [_plain_float(v) for v in text.split(",") if v.strip()]
+        items = text.split(",")
+        # an empty item is a typo (a value left out), and a list of none gives an empty table
+        require(all(v.strip() for v in items), param, text,
+                "has an empty value between commas: list numbers 'a,b,c' or give 'start:stop:step'")
+        values = [_plain_float(v) for v in items]
         for number in values:
             _check_number(number, param)
         return values

@@ -60,9 +60,12 @@ def linkage(
     require_with("gif_frames", gif_frames, gif, "--gif")
     if step is not None and quiet and not json:
         raise DesignError("step", step, "shapes the printed table, which -q does not print (--json does)")
+    given_step = step is not None
     step = 15.0 if step is None else step
     gif_frames = 48 if gif_frames is None else gif_frames
     ls.check_sampling(samples, scale, gif_frames, step)
+    if given_step:
+        ls.require_step_on_samples(step, samples)
     four_bar = {"l1": l1, "l2": l2, "l3": l3, "l4": l4, "beta_deg": beta,
                 "o1": None if o1 is None else point(o1, "o1")}
     request = ls.LinkageRequest(preset.value, rpm, samples, scale, signs(branch, "branch"),

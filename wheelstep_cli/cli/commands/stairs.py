@@ -51,6 +51,8 @@ def stairs(
     from wheelstep_cli.parts.mechanism_files import stairs_files
 
     show = Output(json, quiet, verbose)
+    if step is not None and quiet and not json:
+        raise DesignError("step", step, "shapes the printed tables, which -q does not print (--json does)")
     _only_with(sweep, sweep_angles=sweep_angles, sweep_radii=sweep_radii)
     if sweep:
         _only_with(False, a=a, b=b, y1=y1, y2=y2, sole_radius=sole_radius,
@@ -110,7 +112,7 @@ def _sweep(show: Output, run: float, rise: float, angles: list[float], radii_tex
     from wheelstep_cli.mechanism.stairs_report import sweep_report
 
     radii = number_list(radii_text, "sweep-radii")
-    require(len(radii) > 0 and min(radii) > 0, "sweep-radii", radii_text, "must be > 0 mm")
+    require(min(radii) > 0, "sweep-radii", radii_text, "must be > 0 mm")
     rows = sizing_sweep(run, rise, np.radians(angles), radii)
     show.report(sweep_report(run, rise, rows), lambda: _sweep_lines(run, rise, angles, radii, rows))
 

@@ -44,6 +44,19 @@ def check_sampling(samples: int, scale: float, gif_frames: int, step_deg: float)
     require(0 < step_deg <= 180, "step", step_deg, "must be in (0, 180] deg")
 
 
+def require_step_on_samples(step_deg: float, samples: int) -> None:
+    """Refuse (DesignError) a table step (deg) that is not a whole number of the ``samples``
+    crank angles' spacing: the table lists sampled angles, so such a step would be rounded."""
+    spacing = 360.0 / samples
+    count = step_deg / spacing
+    if abs(count - round(count)) <= 1e-9 * max(1.0, count) and round(count) >= 1:
+        return
+    below, above = max(1, int(np.floor(count))) * spacing, int(np.ceil(count)) * spacing
+    choices = f"{below:g} or {above:g}" if above != below else f"{above:g}"
+    raise DesignError("step", step_deg, f"must be a whole multiple of the crank angles' spacing "
+                                        f"{spacing:g} deg (360 / --samples {samples}): {choices}")
+
+
 def build_leg(request: LinkageRequest) -> Linkage:
     """The leg of ``request``: preset or custom four-bar, its branches set, scaled."""
     custom = {k: v for k, v in request.four_bar.items() if v is not None}
