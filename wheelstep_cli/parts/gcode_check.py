@@ -303,8 +303,11 @@ def band_prediction(read: GcodeCheck, printer, progress=None) -> dict:
 
 
 def least_backlash_range(band: dict) -> list | None:
-    """The least backlash (mm) a band record predicts for a print: its cases' lowest to highest."""
-    least = [c["backlash_min_mm"] for c in band.get("cases", []) if c["backlash_min_mm"] is not None]
+    """The least backlash (mm) a band record predicts for a print: its cases' lowest to highest,
+    a case that jams counted as 0 (its backlash figure is an estimate where rigid teeth cannot
+    go: several mm below zero)."""
+    least = [0.0 if c["jams"] else c["backlash_min_mm"] for c in band.get("cases", [])
+             if c["jams"] or c["backlash_min_mm"] is not None]
     return [min(least), max(least)] if least else None
 
 
@@ -332,7 +335,8 @@ def gcode_lines(summary: dict) -> list[str]:
     if band and band.get("least_backlash_range_mm") and summary["backlash_min_mm"] is not None:
         lo, hi = band["least_backlash_range_mm"]
         inside = summary["gcode"].get("inside_band")
+        low = "0 (jams)" if band.get("jams") and lo == 0.0 else f"{lo:.3f}"
         lines.append(f"printed least backlash {summary['backlash_min_mm']:.3f} mm: "
                      + ("inside" if inside else "OUTSIDE")
-                     + f" the band's prediction {lo:.3f}..{hi:.3f} mm (tight to loose corner)")
+                     + f" the band's prediction {low}..{hi:.3f} mm (tight to loose corner)")
     return lines

@@ -9,6 +9,7 @@ from wheelstep_cli.cli.options import (A, AllowInterference, B, Blend, C, Center
                                        FitChoice, Force, Format,
                                        Json, LawCsv, MeshFormat, Out, Printer, Profile, Quiet, Tolerance,
                                        Turns, Verbose, Z, opt, output_file)
+from wheelstep_cli.cli.commands.meshcheck_shared import warn_band_jams
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import gear_pair_spec, paper_table_spec
 from wheelstep_cli.config.specs import BoreShape, Corner, Teeth
@@ -259,6 +260,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
               "written": [] if dry_run else [str(p) for p in written]}
     show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
     _warn_interference(show, record)
+    warn_band_jams(show, record.get("tolerance"))
     show.files(written, dry_run, joined=True)
     if sliced is not None and not sliced["meshes"]:
         raise typer.Exit(1)

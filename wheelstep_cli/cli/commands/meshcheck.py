@@ -10,7 +10,7 @@ import typer
 from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Force, Json, LawCsv,
                                        Profile, Quiet, Tolerance, Turns, Verbose, opt, plot_option)
 from wheelstep_cli.cli.commands.meshcheck_shared import (band_printer_of, design_spec, no_design_options,
-                                                    pair_lines)
+                                                    pair_lines, warn_band_jams)
 from wheelstep_cli.cli.output import Output
 
 Plot = plot_option("the transfer function, the position error of both flanks and hub speed")
@@ -126,6 +126,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     files = written_pair_files(check, report)
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report(summary, lambda: pair_lines(summary, installed_distance(spec), samples))
+    warn_band_jams(show, summary.get("tolerance"))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
 

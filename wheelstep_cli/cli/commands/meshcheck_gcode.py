@@ -12,7 +12,7 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     """Read the pair of ``plates`` (default: FILE.3mf beside each FILE.gcode) back from the
     G-code files and check it; ``how`` = (samples, window, plot), ``band`` = (--tolerance,
     --printer), ``writing`` = (dry run, quiet, force). True when the print would not mesh."""
-    from wheelstep_cli.cli.commands.meshcheck_shared import band_printer_of, pair_lines
+    from wheelstep_cli.cli.commands.meshcheck_shared import band_printer_of, pair_lines, warn_band_jams
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.errors import require
     from wheelstep_cli.parts.gcode_check import (band_prediction, gcode_lines,
@@ -38,6 +38,7 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report(summary, lambda: pair_lines(summary, summary["distance_mm"], samples)[:1]
                 + gcode_lines(summary) + _rest(summary, samples, tolerance_lines))
+    warn_band_jams(show, summary.get("tolerance"))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
 

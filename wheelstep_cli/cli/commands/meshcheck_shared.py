@@ -72,3 +72,14 @@ def _band_lines(summary: dict) -> list[str]:
     from wheelstep_cli.parts.tolerance_cli import tolerance_lines
 
     return tolerance_lines(summary["tolerance"])
+
+
+def warn_band_jams(show, band: dict | None) -> None:
+    """A warning line on stderr (``show``: cli.output.Output) when a checked band (SPEC §11) jams in some case: the report
+    says JAMS among its lines, and a person at the printer should not miss it."""
+    if not band or not band.get("jams"):
+        return
+    jammed = [case["case"] for case in band["cases"] if case["jams"]]
+    show.warning(f"WARNING: over the band of {band['printer']} the pair jams in {len(jammed)} of "
+                 f"{len(band['cases'])} cases ({'; '.join(jammed)}): printed there it may not turn; "
+                 "`wheelstep gears --fit auto` draws the teeth to clear the band")
