@@ -51,8 +51,8 @@ def stairs(
     from wheelstep_cli.parts.mechanism_files import stairs_files
 
     show = Output(json, quiet, verbose)
-    if step is not None and quiet and not json:
-        raise DesignError("step", step, "shapes the printed tables, which -q does not print (--json does)")
+    require(step is None or not quiet or json, "step", step,
+            "shapes the printed tables, which -q does not print (--json does)")
     _only_with(sweep, sweep_angles=sweep_angles, sweep_radii=sweep_radii)
     if sweep:
         _only_with(False, a=a, b=b, y1=y1, y2=y2, sole_radius=sole_radius,
