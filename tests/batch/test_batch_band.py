@@ -106,7 +106,7 @@ def test_a_printer_band_with_a_fit_has_batch_inset_its_gear_pairs_to_the_band(cl
                           and abs(float(meta["wheelstep:backlash"]) - report["printed_parameters"]["backlash"]) < 1e-9
                           and meta["wheelstep:module"] == "1.2" and "wheelstep:center_distance" not in meta
                           for meta in placed)
-    read = cli("mesh-check", plates[0], "--samples", "96", "--json")
+    read = cli("mesh-check", plates[0], "--samples", "256", "--json")
     assert read.exit_code == 0, read.stderr
     (measured,) = json.loads(read.stdout)["pairs"]
     assert measured["interference"] is False and measured["backlash_min_mm"] > 0.0

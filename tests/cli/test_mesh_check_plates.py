@@ -32,7 +32,7 @@ def test_mesh_check_on_gears_3mf_reproduces_the_gears_figures(desk_pair, cli):
     assert measured["pair"] == "gears" and measured["interference"] == stored["interference"]
     for key in ("backlash_min_mm", "backlash_max_mm"):
         assert measured[key] == pytest.approx(stored[key], rel=0.01), key
-    text = cli("mesh-check", desk_pair / "gears.3mf", "--pair", "gears", "--samples", "64")
+    text = cli("mesh-check", desk_pair / "gears.3mf", "--pair", "gears", "--samples", "160")
     assert text.exit_code == 0 and "pair gears" in text.stdout
 
 
@@ -68,7 +68,7 @@ def test_two_meshes_that_are_not_a_pair_are_refused(desk_pair, cli, tmp_path):
 
 def test_two_mesh_form_still_works(desk_pair, cli):
     result = cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile",
-                 "desk-demo", "--samples", "64", "--pair", "x")
+                 "desk-demo", "--samples", "160", "--pair", "x")
     assert result.exit_code == 2 and "--pair" in result.stderr
 
 
@@ -108,7 +108,7 @@ def test_the_same_mesh_twice_is_refused_before_any_work(desk_pair, cli, tmp_path
     copy = tmp_path / "copy.stl"
     copy.write_bytes(wheel.read_bytes())
     for pinion in (wheel, copy):
-        result = cli("mesh-check", pinion, wheel, "--profile", "desk-demo", "--samples", "64")
+        result = cli("mesh-check", pinion, wheel, "--profile", "desk-demo", "--samples", "160")
         line = error_line(result)
         assert line.startswith(f"wheelstep: error: wheel = {wheel}: is the same mesh as the pinion"), line
 
@@ -128,7 +128,7 @@ def test_two_wheels_or_two_pinions_are_refused_before_any_work(desk_pair, cli, t
         assert line.startswith(f"wheelstep: error: wheel = {other}: its radius by area"), line
         assert "not the centre distance 72.125 mm" in line and "two wheels or two pinions" in line
     apart = cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile",
-                  "desk-demo", "--samples", "64", "--distance", "75")
+                  "desk-demo", "--samples", "160", "--distance", "75")
     assert apart.exit_code in (0, 1), apart.stderr       # a real pair a little apart: checked
 
 
@@ -152,7 +152,7 @@ def test_a_part_without_the_teeth_of_the_pair_is_refused_though_the_sizes_add_up
                     "curve of the law; a pinion has at least 6: give the pinion mesh of a gear pair", line), line
     # the pair itself: its teeth counted as the law needs them, checked
     assert cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile", "desk-demo",
-               "--samples", "64", "-q").exit_code == 0
+               "--samples", "160", "-q").exit_code == 0
 
 
 def test_two_plates_each_holding_a_pair_are_both_checked(desk_pair, cli, tmp_path, monkeypatch):
@@ -161,13 +161,13 @@ def test_two_plates_each_holding_a_pair_are_both_checked(desk_pair, cli, tmp_pat
     other = tmp_path / "other"
     assert cli("gears", "--profile", "desk-demo", "--z", "44", "--format", "3mf", "--out", other,
                "-q").exit_code == 0
-    result = cli("mesh-check", desk_pair / "gears.3mf", other / "gears.3mf", "--samples", "128", "--json")
+    result = cli("mesh-check", desk_pair / "gears.3mf", other / "gears.3mf", "--samples", "160", "--json")
     assert result.exit_code == 0, result.stderr
     pairs = json.loads(result.stdout)["pairs"]
     assert [p["pinion_teeth"] for p in pairs] == [42, 44]
     assert [p["pinion"] for p in pairs] == [f"{desk_pair / 'gears.3mf'}:pinion", f"{other / 'gears.3mf'}:pinion"]
     monkeypatch.chdir(other)
-    twice = cli("mesh-check", "gears.3mf", "./gears.3mf", "--samples", "128", "--json")
+    twice = cli("mesh-check", "gears.3mf", "./gears.3mf", "--samples", "160", "--json")
     assert twice.exit_code == 0, twice.stderr
     assert len(json.loads(twice.stdout)["pairs"]) == 1
 
@@ -191,10 +191,24 @@ def test_a_band_that_jams_is_warned_of_on_stderr(desk_pair, cli):
     assert least_backlash_range(band)[0] == 0.0
 
 
+def test_too_few_poses_for_the_figures_are_refused_with_the_least_that_serves(desk_pair, cli):
+    """16 poses over the desk pair's 21 teeth a period gave f'i 0.0 um: the band-limited figures
+    need 7 poses per tooth pitch (3 tooth harmonics). The least is named, and it serves."""
+    for args in ([desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile", "desk-demo"],
+                 [desk_pair / "gears.3mf"]):
+        line = error_line(cli("mesh-check", *args, "--samples", "146"))
+        assert line == ("wheelstep: error: --samples = 146: must be >= 147 for a pinion of 42 teeth (7 poses "
+                        "per tooth pitch: fewer cannot hold the 3 tooth harmonics of the figures)")
+    result = cli("mesh-check", desk_pair / "gears.3mf", "--samples", "147", "--json")
+    assert result.exit_code == 0, result.stderr
+    (measured,) = json.loads(result.stdout)["pairs"]
+    assert measured["drive"]["f_i_tooth_um"] > 0.0
+
+
 def test_a_plot_over_a_users_file_is_refused_unless_forced(desk_pair, cli, tmp_path):
     mine = tmp_path / "mine.png"
     mine.write_bytes(b"the user's picture")
-    args = ["mesh-check", desk_pair / "gears.3mf", "--samples", "64", "--plot", mine]
+    args = ["mesh-check", desk_pair / "gears.3mf", "--samples", "160", "--plot", mine]
     assert "--plot = " in error_line(cli(*args))
     assert mine.read_bytes() == b"the user's picture"
     assert cli(*args, "--force").exit_code == 0

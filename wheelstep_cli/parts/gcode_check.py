@@ -256,7 +256,9 @@ def gcode_sections(gcode_files: list[Path], pair, samples: int, window: float | 
     from wheelstep_cli.parts.gear_pair import design_law, generation_law, installed_distance
     from wheelstep_cli.parts.tolerance import NOMINAL, SectionedPair, check_case, mid_play
 
-    design_law(pair.spec)
+    from wheelstep_cli.parts.mesh_check_files import require_poses_per_tooth
+
+    require_poses_per_tooth(samples, int(pair.spec.z), design_law(pair.spec))
     found, records = printed_pair(gcode_files, pair)
     designs = design_sections(pair)
     _, blended = generation_law(pair.spec)

@@ -3,6 +3,7 @@ and summarised, the optional plot rendered (SPEC §10)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
@@ -55,7 +56,8 @@ def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
     radii = tuple(radius_by_area(o) for o in outlines)
     require_a_pair(radii, installed_distance(check.spec), check.wheel)
     require_pinion_first(radii, law, check.pinion)
-    require_gear_teeth(outlines, law, (check.pinion, check.wheel))
+    teeth = require_gear_teeth(outlines, law, (check.pinion, check.wheel))
+    require_poses_per_tooth(check.samples, teeth, law)
     return outlines
 
 
@@ -92,11 +94,11 @@ def require_pinion_first(radii: tuple[float, float], law, pinion: str) -> None:
 TEETH_SLACK = 0.05
 
 
-def require_gear_teeth(outlines: tuple[np.ndarray, np.ndarray], law, names: tuple[str, str]) -> None:
+def require_gear_teeth(outlines: tuple[np.ndarray, np.ndarray], law, names: tuple[str, str]) -> int:
     """Refuse (naming the mesh) a pinion outline with fewer teeth than a gear has (a shoe, a
     plain disc), or a wheel whose teeth, counted along its pitch curve, are not the ones the
     pinion's need under ``law`` (another pair's wheel): sizes alone can add up by chance,
-    and such a check reports interference at every pose."""
+    and such a check reports interference at every pose. Returns the pinion's teeth."""
     from wheelstep_cli.config.specs import MIN_TEETH
     from wheelstep_cli.gears.meshing.check import pair_teeth
 
@@ -109,6 +111,21 @@ def require_gear_teeth(outlines: tuple[np.ndarray, np.ndarray], law, names: tupl
             f"has {_teeth(z_w)} along its pitch curve, not the {needed:.0f} that the pinion's {z_p} "
             "need under the law: give the wheel of this pinion's pair, and its design (--profile, "
             "--a/--b/--c, --law-csv)")
+    return z_p
+
+
+def require_poses_per_tooth(samples: int, teeth: int, law) -> None:
+    """Refuse (naming --samples) fewer poses over the law's period than the figures of SPEC §10
+    need for a pinion of ``teeth`` teeth: the band-limited ripple keeps BAND_HARMONICS tooth
+    harmonics, which fewer than 2 x that + 1 poses per tooth pitch cannot hold (f'i came out
+    0 um at 16 poses)."""
+    from wheelstep_cli.gears.meshing.figures import BAND_HARMONICS
+
+    per_tooth = 2 * BAND_HARMONICS + 1
+    least = math.ceil(per_tooth * teeth * float(law.theta_period) / (2.0 * math.pi) - 1e-9)
+    require(samples >= least, "samples", samples,
+            f"must be >= {least} for a pinion of {teeth} teeth ({per_tooth} poses per tooth pitch: "
+            f"fewer cannot hold the {BAND_HARMONICS} tooth harmonics of the figures)")
 
 
 def _teeth(count: int) -> str:
@@ -157,7 +174,7 @@ def run_plate_pair_check(pair, samples: int, window: float | None,
     distance of the design in its metadata; returns the report and its summary."""
     check = WrittenPairCheck(f"{pair.files[0]}:{pair.pinion.name}", f"{pair.files[1]}:{pair.wheel.name}",
                              pair.spec, samples, window)
-    design_law(pair.spec)
     check.validate()
+    require_poses_per_tooth(samples, int(pair.spec.z), design_law(pair.spec))
     report, summary = run_written_pair_check(check, plate_pair_outlines(pair), progress)
     return report, {"pair": pair.pair, "distance_mm": installed_distance(pair.spec), **summary}

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from wheelstep_cli.config.specs import GearPairSpec
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.formats.mesh_read import MeshObject, read_3mf_objects, split_mesh_spec
 
 GEARS = ("pinion", "wheel")
@@ -78,6 +78,13 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
         if pair not in complete:
             raise DesignError("pair", pair, f"must be one of {', '.join(complete)}")
         complete = [pair]
+    else:
+        # every plate named takes part: one without a gear of these pairs was named by mistake
+        used = {Path(gear[0]).resolve() for k in complete for gear in groups[k].values()}
+        for file, param in zip(files, GEARS):
+            require(Path(file).resolve() in used, param, file,
+                    "holds no gear of a gear pair: no pinion or wheel with a wheelstep:pair id in "
+                    "its 3MF metadata that meshes with one on these plates")
     return [_plate_pair(k, groups[k]) for k in complete]
 
 
