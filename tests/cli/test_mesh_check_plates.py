@@ -205,6 +205,15 @@ def test_too_few_poses_for_the_figures_are_refused_with_the_least_that_serves(de
     assert measured["drive"]["f_i_tooth_um"] > 0.0
 
 
+def test_one_gear_alone_is_told_to_name_its_wheel(desk_pair, cli):
+    """A single STL (or one 3MF object) is half a pair: it was taken for a plate and refused
+    for --profile, 'which comes from the plate's metadata'."""
+    for one in (desk_pair / "pinion.stl", f"{desk_pair / 'gears.3mf'}:pinion"):
+        line = error_line(cli("mesh-check", one, "--profile", "desk-demo"))
+        assert line == (f"wheelstep: error (wheelstep mesh-check): Missing argument 'WHEEL': {one} is one "
+                        "gear; give the wheel mesh after it (PINION WHEEL), or a plate (3MF) holding the pair")
+
+
 def test_a_plot_over_a_users_file_is_refused_unless_forced(desk_pair, cli, tmp_path):
     mine = tmp_path / "mine.png"
     mine.write_bytes(b"the user's picture")

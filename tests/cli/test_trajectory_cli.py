@@ -1,6 +1,7 @@
 """`wheelstep trajectory` (SPEC §8): the files it writes and its bad input."""
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -63,3 +64,10 @@ def test_an_arc_below_the_least_radius_is_refused_by_its_own_limit(cli, option):
     instead of 360'; it is refused by the radius's own limit, which 0.01 mm meets."""
     assert error_line(cli("trajectory", option, "1e-9")) == f"wheelstep: error: {option} = 1e-9: must be >= 0.01 mm"
     assert cli("trajectory", option, "0.01", "-q").exit_code == 0
+
+
+@pytest.mark.skipif(not Path("/proc/self").is_dir(), reason="needs Linux's /proc, where no file can be made")
+def test_a_file_that_cannot_be_made_is_named_by_its_option_not_by_a_hidden_temporary(cli):
+    """The atomic writer's hidden `.x.csv.NNN.part` was named, with no option."""
+    assert error_line(cli("trajectory", "--csv", "/proc/x.csv")) == (
+        "wheelstep: error: --csv = /proc/x.csv: cannot be written (No such file or directory)")

@@ -71,7 +71,10 @@ def _make_folders(folder: Path, made: list[Path]) -> None:
 
 def _staged(path: Path, data: bytes | None, mode: int, suffix: str) -> Path:
     """A hidden temporary file beside ``path`` holding ``data`` (None: an empty placeholder)."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
+    except OSError as err:     # said of the file asked for, not of the hidden temporary one
+        raise type(err)(err.errno, err.strerror, str(path)) from None
     os.fchmod(fd, mode)
     with os.fdopen(fd, "wb") as fh:
         if data:

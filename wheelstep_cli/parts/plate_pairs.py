@@ -31,7 +31,8 @@ def is_plate_input(pinion: str, wheel: str | None) -> bool:
     specs = [pinion] if wheel is None else [pinion, wheel]
     paths = [split_mesh_spec(s) for s in specs]
     if wheel is None:
-        return True
+        # one mesh alone is a plate only as a whole 3MF file (a named object or an STL is half a pair)
+        return paths[0][1] is None and paths[0][0].suffix.lower() == ".3mf"
     if any(name is not None or path.suffix.lower() != ".3mf" or not path.is_file()
            for path, name in paths):
         return False

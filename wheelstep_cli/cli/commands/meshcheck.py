@@ -60,8 +60,6 @@ def mesh_check(
     the pinion and wheel of each pair are found by their metadata and checked with the law and
     installed distance stored there. With --gcode, the pair as PrusaSlicer's G-code prints it
     (SPEC §11). Exit 1 if they interfere or lose contact."""
-    from wheelstep_cli.parts.plate_pairs import is_plate_input
-
     show = Output(json, quiet, verbose)
     design = {"distance": distance, "a": a, "b": b, "c": c, "turns": turns,
               "center_distance": center_distance, "law_csv": law_csv, "blend": blend, "profile": profile}
@@ -71,13 +69,7 @@ def mesh_check(
 
         failed = check_gcode(show, gcode, [a for a in (pinion, wheel) if a], pair, design,
                              (samples, window, plot), band, (dry_run, quiet, force))
-    elif pinion is None:
-        from wheelstep_cli.cli import click_errors
-
-        # worded as Click words a missing argument: the user did not give one to name
-        raise click_errors.UsageError("Missing argument 'PINION': give the PINION and WHEEL meshes, a "
-                               "plate, or --gcode FILE")
-    elif is_plate_input(pinion, wheel):
+    elif _plates_given(pinion, wheel):
         _no_band_on_plates(tolerance, printer)
         failed = _check_plates(show, [pinion] + ([wheel] if wheel else []), pair, design, samples,
                                window, plot, dry_run, quiet, force)
@@ -86,6 +78,22 @@ def mesh_check(
                                force, band)
     if failed:
         raise typer.Exit(1)
+
+
+def _plates_given(pinion: str | None, wheel: str | None) -> bool:
+    """Whether the meshes named are plates (3MF) whose pairs their metadata finds; a missing
+    mesh refused as Click refuses a missing argument (the user gave none to name)."""
+    from wheelstep_cli.cli import click_errors
+    from wheelstep_cli.parts.plate_pairs import is_plate_input
+
+    if pinion is None:
+        raise click_errors.UsageError("Missing argument 'PINION': give the PINION and WHEEL meshes, a "
+                                      "plate, or --gcode FILE")
+    plates = is_plate_input(pinion, wheel)
+    if wheel is None and not plates:
+        raise click_errors.UsageError(f"Missing argument 'WHEEL': {pinion} is one gear; give the wheel "
+                                      "mesh after it (PINION WHEEL), or a plate (3MF) holding the pair")
+    return plates
 
 
 def _no_band_on_plates(tolerance: bool, printer) -> None:
