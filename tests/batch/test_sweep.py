@@ -479,6 +479,14 @@ def test_keep_best_writes_the_best_designs(cli, tmp_path):
         assert stls and all(p.name in json.dumps(record) for p in stls)   # the shoe command's files
     assert not (tmp_path / "out" / "best-3").exists()
     assert ok[0]["p_rim"] == 10.0        # the smallest body is the best of both objectives
+    # a rerun keeping fewer removes the earlier run's files beyond them; a user's file stays
+    (tmp_path / "out" / "best-2" / "notes.txt").write_text("mine")
+    again = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "--keep", "best:1", "-q")
+    assert again.exit_code == 0, again.stderr     # the refused rows were computed by the first run
+    assert (tmp_path / "out" / "best-1" / ".wheelstep-shoe.json").exists()
+    assert [p.name for p in (tmp_path / "out" / "best-2").iterdir()] == ["notes.txt"]
+    assert cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "-q").exit_code == 0
+    assert not (tmp_path / "out" / "best-1").exists()
 
 
 def test_batch_on_the_scheduler(cli, tmp_path, cluster):

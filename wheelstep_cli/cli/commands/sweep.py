@@ -182,7 +182,27 @@ def _keep_best(plan, results: Path, out: Path, count: int, show: Output, force: 
 
             files = shoe_files(built, folder, "both")
         written += show.write_owned(folder, point.command, files, False, force)
+    _drop_earlier_best(out, count, show)
     return written
+
+
+def _drop_earlier_best(out: Path, count: int, show: Output) -> None:
+    """Remove the best-K folders of an earlier run beyond the ``count`` kept now, as far as
+    that run wrote them (per each folder's record; a file changed since, or the user's, is
+    kept with its folder)."""
+    from wheelstep_cli.formats.atomic import remove_files
+    from wheelstep_cli.formats.owned import read_record, stale_files
+
+    rank = count + 1
+    while (folder := out / f"best-{rank}").is_dir():
+        for record_path in sorted(folder.glob(".wheelstep-*.json")):
+            remove_files([*stale_files(folder, {}, read_record(record_path)), record_path])
+        try:
+            folder.rmdir()
+            show.detail(f"  removed {folder} (written by an earlier run)")
+        except OSError:
+            pass        # it holds a file this command did not write: kept
+        rank += 1
 
 
 class _Bar:
