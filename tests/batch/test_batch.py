@@ -319,6 +319,18 @@ def test_every_override_at_fault_is_reported_at_once_in_the_files_words(cli, tmp
     assert (entry.spec.key_angle, entry.spec.hub_length, entry.spec.flat_depth) == (30, 5, 1)
 
 
+@pytest.mark.parametrize("overrides, expect", [
+    # b's rule ties c: checked again without c, the design's c must not be blamed on b
+    ("      c: -5\n      b: 100\n", ["c = -5: must be > 0 mm"]),
+    ("      b: -5\n      c: 100\n", ["b = -5: must be >= 0 mm"]),
+])
+def test_a_rule_tied_to_an_override_at_fault_is_not_reported_again(cli, tmp_path, overrides, expect):
+    batch = write(tmp_path / "bad.yaml", VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n"
+                  + overrides)
+    lines = cli("batch", batch, "--out", tmp_path / "out").stderr.strip().splitlines()
+    assert [line.split("parts[0].overrides.", 1)[1] for line in lines] == expect
+
+
 @pytest.mark.parametrize("file, text, replaced, expect", [
     ("wobbly.yaml", "printer:\n  technology: fdm\n  bed: [200, 200]\n  tooth_clearance: -0.1\n"
      "material:\n  density: 1.2\n", "fdm-0.4-pla",

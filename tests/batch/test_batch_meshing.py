@@ -109,5 +109,7 @@ def test_an_entry_mounted_so_close_that_it_interferes_names_its_distance_and_the
     result = cli("batch", batch, "--out", out, "--jobs", "1")
     assert result.exit_code == 1
     assert f"close ({batch}:" in result.stderr
-    assert "install_distance = 72.125: the teeth interfere at " in result.stderr
+    # named for the override given, the installed distance it leaves the pair at stated
+    assert "center_distance = 72.4: with it, install-distance = 72.125 fails: the teeth interfere at " \
+        in result.stderr
     assert "use overrides {install_distance: 72.4} (for more play, more backlash)" in result.stderr

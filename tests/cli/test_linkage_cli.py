@@ -55,3 +55,8 @@ def test_a_table_step_between_the_sampled_crank_angles_is_refused_with_the_ones_
     assert error_line(cli("linkage", "--step", "0.3", "--json")).endswith("(360 / --samples 720): 0.5")
     assert error_line(cli("linkage", "--step", "7", "--samples", "100", "--json")).endswith(
         "spacing 3.6 deg (360 / --samples 100): 3.6 or 7.2")
+    # a spacing that is no short decimal: the multiples printed to 10 digits are taken as given
+    line = error_line(cli("linkage", "--samples", "700", "--step", "10", "--json"))
+    above = line.rsplit(" or ", 1)[1]
+    assert above == "10.28571429"
+    assert cli("linkage", "--samples", "700", "--step", above, "--json").exit_code == 0

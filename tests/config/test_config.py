@@ -132,6 +132,10 @@ def test_flag_is_derived_from_the_snake_case_name():
     assert flag_name("r_min") == "--r-min"
     err = DesignError("install_distance", 140.0, "must be >= the centre distance 143.5 mm")
     assert yaml_message(err) == "install_distance = 140: must be >= the centre distance 143.5 mm"
+    # a part's flags said as a file's keys; a command's own flags and a quoted command line kept
+    err = DesignError("flat_depth", 1.0, "needs --bore-shape d-flat; give --force; `wheelstep gears --printer P`")
+    assert yaml_message(err) == ("flat_depth = 1: needs bore_shape d-flat; give --force; "
+                                 "`wheelstep gears --printer P`")
 
 
 def test_specs_refuse_unknown_and_wrong_typed_values_naming_the_parameter():

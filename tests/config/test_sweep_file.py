@@ -68,6 +68,10 @@ extra: 1
     # two axes within the limit whose product is not: counted, not listed
     ("  width: {start: 20, stop: 30, step: 0.01}\n  a: {start: 100, stop: 200, step: 0.02}\n",
      "s.yaml:1: the sweep has 5006001 points; at most 10000"),
+    # too many to count: a float overflow, not a traceback
+    ("  width: {start: 0, stop: 20, step: 1.0e-320}\n", "holds too many values; a sweep has at most 10000 points"),
+    ("  width: {start: -1.0e+308, stop: 1.0e+308, step: 1}\n", "holds too many values; a sweep has at most"
+                                                               " 10000 points"),
 ])
 def test_a_sweep_too_large_is_refused_before_its_points_are_listed(tmp_path, monkeypatch, grid, expect):
     import wheelstep_cli.config.sweep_file as sweep_file

@@ -149,6 +149,7 @@ def _refused(entry: Entry, built, result: EntryResult) -> EntryResult | None:
     try:
         require_mounted_where_rolling(built, interfere)
     except DesignError as err:
+        err = err.for_given(entry.overrides)     # the override that moved the distance
         return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
                            param=err.param, mating=mating)
     printed = entry.printed

@@ -224,17 +224,27 @@ def _every_problem(kind: PartKind, design, overrides: dict, printer: Printer):
     left = dict(overrides)
     found = list(problems)
     while problems and len(found) < len(overrides):
-        blamed = {err.for_given(left).param.replace("-", "_") for err in problems}
+        blamed = {_key(err.for_given(left)) for err in problems}
         if not blamed <= set(left):
             break           # a problem of no override's: the others may stem from it
         left = {key: value for key, value in left.items() if key not in blamed}
-        problems = [err for err in _resolve(kind, design, left, printer)[2]
-                    if err.for_given(left).param.replace("-", "_") in left]
+        removed = set(overrides) - set(left)
+        # only a rule none of the removed overrides takes part in: the design's values standing
+        # in for them must not be blamed on the user's other keys
+        problems = [DesignError(given.param, given.value, given.limit)
+                    for err in _resolve(kind, design, left, printer)[2]
+                    if not ({_key(err), *map(_key, err.alternatives)} & removed)
+                    and _key(given := err.for_given(left)) in left]
         found += problems
     # in the order the file gives the overrides, an entry's own problems first
     order = {key: k for k, key in enumerate(overrides)}
-    found.sort(key=lambda err: order.get(err.for_given(overrides).param.replace("-", "_"), -1))
+    found.sort(key=lambda err: order.get(_key(err.for_given(overrides)), -1))
     return spec, printed, found
+
+
+def _key(err_or_name) -> str:
+    """A DesignError's parameter (or a name) as a file's key."""
+    return getattr(err_or_name, "param", err_or_name).replace("-", "_")
 
 
 def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):

@@ -165,8 +165,9 @@ def number_list(text: str, param: str) -> list[float]:
             for number in (start, stop, step):
                 _check_number(number, param)
             require(step > 0, param, text, "step must be > 0")
-            n = int(np.floor((stop - start) / step + 1e-9)) + 1
-            require(1 <= n <= 10000, param, text, "must give 1 to 10000 values")
+            steps = (stop - start) / step      # inf for a step of 1e-320: too many to count
+            require(math.isfinite(steps) and 0 <= steps < 10000, param, text, "must give 1 to 10000 values")
+            n = int(np.floor(steps + 1e-9)) + 1
             return [start + i * step for i in range(n)]
         items = text.split(",")
         # an empty item is a typo (a value left out), and a list of none gives an empty table

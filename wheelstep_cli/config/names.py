@@ -33,7 +33,10 @@ def in_file_words(text: str) -> str:
         name = match.group(1).replace("-", "_")
         return name if name in keys else match.group(0)
 
-    return _FLAG.sub(key, text)
+    # a command line quoted in backticks (`wheelstep gears --printer NAME`) keeps its flags:
+    # the even pieces lie outside backticks
+    pieces = text.split("`")
+    return "`".join(_FLAG.sub(key, piece) if i % 2 == 0 else piece for i, piece in enumerate(pieces))
 
 
 _FLAG = re.compile(r"(?<![\w-])--([a-z][a-z0-9-]*)")

@@ -144,7 +144,7 @@ def _grid(doc: LocatedYaml, raw, issues: list[Issue]) -> dict[str, list | Range]
             if found is not None and _range_count(found) > MAX_POINTS:
                 # said before its values are listed: a tiny step would exhaust the memory
                 issues.append(Issue(doc.where(at), dotted(at), f"range {show(found.start)}..{show(found.stop)} "
-                                    f"step {show(found.step)} holds {_range_count(found)} values; a sweep "
+                                    f"step {show(found.step)} holds {_count_text(_range_count(found))} values; a sweep "
                                     f"has at most {MAX_POINTS} points"))
             elif found is not None:
                 axes[key] = found
@@ -256,9 +256,15 @@ def _check_bands(doc: LocatedYaml, command, names, tolerance: bool, issues: list
                                 f"you keep with `wheelstep gears --printer {name}`"))
 
 
-def _range_count(axis: Range) -> int:
-    """How many values a range holds (0 when stop is before start)."""
-    return max(math.floor((axis.stop - axis.start) / axis.step + 1e-9) + 1, 0)
+def _range_count(axis: Range) -> float:
+    """How many values a range holds (0 when stop is before start; inf when too many to count,
+    a step of 1e-320 or a span of 1e308 overflowing)."""
+    steps = (axis.stop - axis.start) / axis.step
+    return max(math.floor(steps + 1e-9) + 1, 0) if math.isfinite(steps) else math.inf
+
+
+def _count_text(count: float) -> str:
+    return str(count) if math.isfinite(count) else "too many"
 
 
 def _axis_values(axis: list | Range) -> list:

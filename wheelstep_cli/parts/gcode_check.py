@@ -256,11 +256,14 @@ def gcode_sections(gcode_files: list[Path], pair, samples: int, window: float | 
     from wheelstep_cli.parts.gear_pair import design_law, generation_law, installed_distance
     from wheelstep_cli.parts.tolerance import NOMINAL, SectionedPair, check_case, mid_play
 
+    from wheelstep_cli.gears.meshing.check import pair_teeth
     from wheelstep_cli.parts.mesh_check_files import require_poses_per_tooth
 
-    require_poses_per_tooth(samples, int(pair.spec.z), design_law(pair.spec))
-    found, records = printed_pair(gcode_files, pair)
+    law = design_law(pair.spec)
     designs = design_sections(pair)
+    # the designed pinion's own teeth (two meshes named with design options need not have z's)
+    require_poses_per_tooth(samples, pair_teeth(designs["pinion"][0], None, law)[0], law)
+    found, records = printed_pair(gcode_files, pair)
     _, blended = generation_law(pair.spec)
     settings = replace(MeshingSettings(), samples=samples, window=window)
     design = SectionedPair(designs["pinion"][0], designs["wheel"][0], blended,

@@ -117,15 +117,15 @@ def require_gear_teeth(outlines: tuple[np.ndarray, np.ndarray], law, names: tupl
 def require_poses_per_tooth(samples: int, teeth: int, law) -> None:
     """Refuse (naming --samples) fewer poses over the law's period than the figures of SPEC §10
     need for a pinion of ``teeth`` teeth: the band-limited ripple keeps BAND_HARMONICS tooth
-    harmonics, which fewer than 2 x that + 1 poses per tooth pitch cannot hold (f'i came out
-    0 um at 16 poses)."""
+    harmonics, which the period's samples hold only above twice their count per tooth pitch
+    (f'i came out 0 um at 16 poses). The default 1536 serves 240 teeth over a whole turn."""
     from wheelstep_cli.gears.meshing.figures import BAND_HARMONICS
 
-    per_tooth = 2 * BAND_HARMONICS + 1
-    least = math.ceil(per_tooth * teeth * float(law.theta_period) / (2.0 * math.pi) - 1e-9)
+    per_tooth = 2 * BAND_HARMONICS
+    least = math.floor(per_tooth * teeth * float(law.theta_period) / (2.0 * math.pi) + 1e-9) + 1
     require(samples >= least, "samples", samples,
-            f"must be >= {least} for a pinion of {teeth} teeth ({per_tooth} poses per tooth pitch: "
-            f"fewer cannot hold the {BAND_HARMONICS} tooth harmonics of the figures)")
+            f"must be >= {least} for a pinion of {teeth} teeth (more than {per_tooth} poses per tooth "
+            f"pitch: fewer cannot hold the {BAND_HARMONICS} tooth harmonics of the figures)")
 
 
 def _teeth(count: int) -> str:

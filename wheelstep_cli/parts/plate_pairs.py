@@ -64,7 +64,9 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
                 # two plates each holding a pair of one id (two `gears` runs): both checked
                 groups[f"{pair_id} ({file})"] = gears
             else:       # a pair on this plate, or a gear whose mate is on the other plate
-                groups.setdefault(pair_id, {}).update(gears)
+                mates = groups.setdefault(pair_id, {})
+                for part, gear in gears.items():
+                    mates.setdefault(part, gear)
     complete = [k for k, g in groups.items() if len(g) == 2]
     where = " + ".join(files)
     if not complete:
@@ -79,13 +81,14 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
         if pair not in complete:
             raise DesignError("pair", pair, f"must be one of {', '.join(complete)}")
         complete = [pair]
-    else:
-        # every plate named takes part: one without a gear of these pairs was named by mistake
-        used = {Path(gear[0]).resolve() for k in complete for gear in groups[k].values()}
-        for file, param in zip(files, GEARS):
-            require(Path(file).resolve() in used, param, file,
-                    "holds no gear of a gear pair: no pinion or wheel with a wheelstep:pair id in "
-                    "its 3MF metadata that meshes with one on these plates")
+    # every plate named takes part: one without a gear of these pairs was named by mistake
+    used = {Path(gear[0]).resolve() for k in complete for gear in groups[k].values()}
+    for file, param in zip(files, GEARS):
+        require(Path(file).resolve() in used, param, file,
+                f"holds no gear of pair '{pair}' (--pair): name only the plates that hold it"
+                if pair is not None else
+                "holds no gear of a gear pair: no pinion or wheel with a wheelstep:pair id in its 3MF "
+                "metadata that meshes with one on these plates")
     return [_plate_pair(k, groups[k]) for k in complete]
 
 

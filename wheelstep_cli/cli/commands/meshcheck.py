@@ -42,8 +42,8 @@ def mesh_check(
     profile: Profile = None,
     pair: Annotated[Optional[str], opt("--pair", help="On plates: the pair to check (its "
                                                       "wheelstep:pair id).", shown="every pair")] = None,
-    samples: Annotated[int, opt("--samples", help="Poses over one period of the pinion (at least 7 per "
-                                                     "tooth pitch).")] = 1536,
+    samples: Annotated[int, opt("--samples", help="Poses over one period of the pinion (more than 6 "
+                                                     "per tooth pitch).")] = 1536,
     window: Annotated[Optional[float], opt("--window", help="Half-height of the mesh window round "
                                                             "the line of centres, mm; larger than "
                                                             "the default only (a narrower one "

@@ -193,16 +193,18 @@ def _drop_earlier_best(out: Path, count: int, show: Output) -> None:
     from wheelstep_cli.formats.atomic import remove_files
     from wheelstep_cli.formats.owned import read_record, stale_files
 
-    rank = count + 1
-    while (folder := out / f"best-{rank}").is_dir():
+    earlier = [f for f in out.glob("best-*") if f.is_dir() and f.name[5:].isdigit() and int(f.name[5:]) > count]
+    for folder in sorted(earlier):
         for record_path in sorted(folder.glob(".wheelstep-*.json")):
-            remove_files([*stale_files(folder, {}, read_record(record_path)), record_path])
+            record = read_record(record_path)
+            stale = stale_files(folder, {}, record)
+            # the record goes with the last of its files: one changed since stays listed as ours
+            remove_files(stale + ([record_path] if len(stale) == len(record) else []))
         try:
             folder.rmdir()
             show.detail(f"  removed {folder} (written by an earlier run)")
         except OSError:
             pass        # it holds a file this command did not write: kept
-        rank += 1
 
 
 class _Bar:

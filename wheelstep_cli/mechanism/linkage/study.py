@@ -49,12 +49,13 @@ def require_step_on_samples(step_deg: float, samples: int) -> None:
     crank angles' spacing: the table lists sampled angles, so such a step would be rounded."""
     spacing = 360.0 / samples
     count = step_deg / spacing
-    if abs(count - round(count)) <= 1e-9 * max(1.0, count) and round(count) >= 1:
+    # within the digits the multiples are printed with (10), so a printed one is taken
+    if abs(count - round(count)) <= 1e-8 * max(1.0, count) and round(count) >= 1:
         return
     below, above = max(1, int(np.floor(count))) * spacing, int(np.ceil(count)) * spacing
-    choices = f"{below:g} or {above:g}" if above != below else f"{above:g}"
+    choices = f"{below:.10g} or {above:.10g}" if above != below else f"{above:.10g}"
     raise DesignError("step", step_deg, f"must be a whole multiple of the crank angles' spacing "
-                                        f"{spacing:g} deg (360 / --samples {samples}): {choices}")
+                                        f"{spacing:.10g} deg (360 / --samples {samples}): {choices}")
 
 
 def build_leg(request: LinkageRequest) -> Linkage:
