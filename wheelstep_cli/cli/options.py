@@ -150,6 +150,13 @@ def require_with(param: str, value, companion, flag: str) -> None:
         raise DesignError(param, value, f"shapes {flag}: give {flag} too")
 
 
+def require_printed(param: str, value, unprinted: bool, what: str) -> None:
+    """Refuse option ``param`` given (``value`` not None) that shapes the printed ``what``
+    where none is printed (``unprinted``: -q without --json): it would do nothing."""
+    if value is not None and unprinted:
+        raise DesignError(param, value, f"shapes the printed {what}, which -q does not print (--json does)")
+
+
 def _plain_float(text: str) -> float:
     """``float(text)``, refusing (ValueError) the underscores Python reads as digit groups."""
     if "_" in text:

@@ -6,9 +6,8 @@ from enum import Enum
 from typing import Annotated, List, Optional
 
 from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, output_file,
-                                       plot_option, point, require_with, signs)
+                                       plot_option, point, require_printed, require_with, signs)
 from wheelstep_cli.cli.output import Output
-from wheelstep_cli.errors import DesignError
 
 
 class Preset(str, Enum):
@@ -58,8 +57,7 @@ def linkage(
 
     show = Output(json, quiet, verbose)
     require_with("gif_frames", gif_frames, gif, "--gif")
-    if step is not None and quiet and not json:
-        raise DesignError("step", step, "shapes the printed table, which -q does not print (--json does)")
+    require_printed("step", step, quiet and not json, "table")
     given_step = step is not None
     step = 15.0 if step is None else step
     gif_frames = 48 if gif_frames is None else gif_frames

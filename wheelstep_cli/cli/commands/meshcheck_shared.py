@@ -75,8 +75,9 @@ def _band_lines(summary: dict) -> list[str]:
 
 
 def warn_band_jams(show, band: dict | None) -> None:
-    """A warning line on stderr (``show``: cli.output.Output) when a checked band (SPEC §11) jams in some case: the report
-    says JAMS among its lines, and a person at the printer should not miss it."""
+    """A warning line on stderr (``show``: cli.output.Output) when a checked band (SPEC §11)
+    jams in some case: the report says JAMS among its lines, and a person at the printer
+    should not miss it."""
     if not band or not band.get("jams"):
         return
     jammed = [case["case"] for case in band["cases"] if case["jams"]]

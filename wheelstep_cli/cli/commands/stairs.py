@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import DryRun, Force, Json, Quiet, Verbose, number_list, opt, plot_option
+from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, number_list, opt, plot_option,
+                                       require_printed)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.errors import DesignError, require
 
@@ -51,7 +52,7 @@ def stairs(
     from wheelstep_cli.parts.mechanism_files import stairs_files
 
     show = Output(json, quiet, verbose)
-    _no_step_unprinted(step, quiet and not json)
+    require_printed("step", step, quiet and not json, "tables")
     _only_with(sweep, sweep_angles=sweep_angles, sweep_radii=sweep_radii)
     if sweep:
         _only_with(False, a=a, b=b, y1=y1, y2=y2, sole_radius=sole_radius,
@@ -90,12 +91,6 @@ def _request(run: float, rise: float, sole_radius, landing_angle, step, design: 
     return sr.StairRequest(run, rise, 70.0 if sole_radius is None else sole_radius,
                            -90.0 if landing_angle is None else landing_angle,
                            step, sr.given_design(*design, tol), tol)
-
-
-def _no_step_unprinted(step, unprinted: bool) -> None:
-    """Refuse --step where no table is printed (-q without --json): it would shape nothing."""
-    require(step is None or not unprinted, "step", step,
-            "shapes the printed tables, which -q does not print (--json does)")
 
 
 def _only_with(used: bool, **given) -> None:
