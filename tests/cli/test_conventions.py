@@ -114,6 +114,22 @@ def test_verbose_adds_detail_on_stderr_only(cli):
     assert "b = " in verbose.stderr and plain.stderr == ""
 
 
+@pytest.mark.parametrize("args, resolved, left", [
+    (["shoe", "--dry-run"], ["c = 360.0", "r_min = 20.0"], None),     # filled by the design's rule
+    (["linkage", "--dry-run"], ["preset = four-bar"], "four_bar.l1"),  # the preset's leg
+])
+def test_verbose_never_prints_none(cli, tmp_path, args, resolved, left):
+    result = cli(*args, "-v", "--out" if args[0] == "shoe" else "--csv",
+                 str(tmp_path / ("o" if args[0] == "shoe" else "o.csv")))
+    assert result.exit_code == 0, result.stderr
+    assert "None" not in result.stderr
+    for line in resolved:
+        assert f"  {line}\n" in result.stderr
+    if left:
+        assert any(line.startswith("  not given") and left in line
+                   for line in result.stderr.splitlines())
+
+
 @pytest.mark.parametrize("args, shown", [
     (["gears", "--teeth", "paper", "--center-distance", "143.5", "--install-distance", "140"],
      "--install-distance = 140"),

@@ -60,9 +60,18 @@ class Output:
         typer.echo(text, err=True)
 
     def parameters(self, values: Mapping) -> None:
-        """The resolved parameters, one ``name = value`` per line (with -v)."""
-        for name, value in values.items():
-            self.detail(f"  {name} = {value}")
+        """The parameters as resolved so far, one ``name = value`` per line (with -v); a nested
+        mapping's entries as ``name.key``. Those still None are left to the design or preset
+        (the report gives the values they take) or do not apply: they are named on one last
+        line, never printed as ``None``."""
+        left = []
+        for name, value in _flat(values):
+            if value is None:
+                left.append(name)
+            else:
+                self.detail(f"  {name} = {value}")
+        if left:
+            self.detail(f"  not given (set by the design or preset, or not used): {', '.join(left)}")
 
     def write(self, files: Mapping[Path, bytes], dry_run: bool) -> list[Path]:
         """Write ``files`` atomically, or nothing with ``dry_run``; the paths written."""
@@ -142,3 +151,15 @@ class Output:
                 self.line(text)
             elif dry_run:
                 self.warning(text)
+
+
+def _flat(values: Mapping, prefix: str = "") -> list[tuple[str, object]]:
+    """(name, value) of every entry, a nested mapping's entries named ``name.key``; an empty
+    nested mapping stays one entry."""
+    rows = []
+    for name, value in values.items():
+        if isinstance(value, Mapping) and value:
+            rows += _flat(value, f"{prefix}{name}.")
+        else:
+            rows.append((f"{prefix}{name}", value))
+    return rows

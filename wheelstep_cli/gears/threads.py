@@ -26,5 +26,9 @@ THREADS = _threads()
 
 def thread_map(fn: Callable[[T], R], items: Iterable[T], threads: int = THREADS) -> Iterator[R]:
     """``fn`` of every item on ``threads`` threads; the results in the items' order."""
+    if threads <= 1:
+        # One thread: no pool, so that profiles and tracebacks see the work itself.
+        yield from map(fn, items)
+        return
     with ThreadPoolExecutor(max_workers=threads) as pool:
         yield from pool.map(fn, items)

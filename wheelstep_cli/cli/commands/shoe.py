@@ -48,7 +48,8 @@ def shoe(
     show = Output(json, quiet, verbose)
     spec = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min, width=width,
                      strut_diameter=strut_diameter, socket_depth=socket_depth, rim=rim)
-    show.parameters(vars(spec))
+    design = spec.design()
+    show.parameters({**vars(spec), "c": design.c, "r_min": design.r_min})
     built = build_for_printer("shoe", spec, load_printer_profile(printer) if printer else None)
     files = shoe_files(built, out, fmt.value)
     written = show.write_owned(out, "shoe", files, dry_run, force)
