@@ -71,3 +71,19 @@ def test_a_file_that_cannot_be_made_is_named_by_its_option_not_by_a_hidden_tempo
     """The atomic writer's hidden `.x.csv.NNN.part` was named, with no option."""
     assert error_line(cli("trajectory", "--csv", "/proc/x.csv")) == (
         "wheelstep: error: --csv = /proc/x.csv: cannot be written (No such file or directory)")
+
+
+def test_the_clearance_rule_names_the_arc_given_not_the_support_length(cli):
+    """h_max > 2 max(r1, r2) does not involve H, yet `--r1 1e6 -H 300` was blamed on -H."""
+    assert error_line(cli("trajectory", "--r1", "1e6", "-H", "300")) == (
+        "wheelstep: error: --r1 = 1e6: with it, h-max = 100 fails: must be > 2 max(r1, r2) = "
+        "2e+06 mm for the top arc to touch both arcs from outside")
+
+
+def test_a_path_hundreds_of_metres_long_is_not_refused_for_the_rounding_of_its_sweeps(cli):
+    """The arcs' sweeps of a 1 km path add up to 360 deg within 7e-9 rad; that was refused as
+    'they turn 360.0 deg instead of 360'. The spacing's own limit is what remains."""
+    result = cli("trajectory", "-H", "1e6", "--r1", "0.01", "--h-max", "1e6")
+    assert error_line(result) == "wheelstep: error: --spacing = 1: gives over a million points"
+    assert cli("trajectory", "-H", "1e6", "--r1", "0.01", "--h-max", "1e6", "--spacing", "10",
+               "-q").exit_code == 0

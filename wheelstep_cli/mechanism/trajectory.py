@@ -161,6 +161,11 @@ def _angle(v) -> float:
     return float(np.arctan2(v[1], v[0]))
 
 
+#: The sizes a rule of the path involves besides its own parameter, where not all of them
+#: are (the clearance rule h_max > 2 max(r1, r2) does not depend on the support length).
+_RULE_INPUTS = {"h-max": ("r1", "r2")}
+
+
 def foot_path(support_length: float, r1: float, r2: float, r3: float | None = None,
               h_max: float | None = None, x0: float = 0.0, y0: float = 0.0,
               root: str = "lower") -> FootPath:
@@ -174,8 +179,9 @@ def foot_path(support_length: float, r1: float, r2: float, r3: float | None = No
     try:
         return _foot_path(support_length, r1, r2, r3, h_max, x0, y0, root)
     except DesignError as err:   # every size of the path shares the blame for its shape
-        raise err.tied_to({"support_length": support_length, "r1": r1, "r2": r2, "r3": r3,
-                           "h_max": h_max}) from None
+        sizes = {"support_length": support_length, "r1": r1, "r2": r2, "r3": r3, "h_max": h_max}
+        involved = _RULE_INPUTS.get(err.param, tuple(sizes))
+        raise err.tied_to({name: sizes[name] for name in involved}) from None
 
 
 def _foot_path(support_length: float, r1: float, r2: float, r3: float | None, h_max: float | None,
@@ -193,8 +199,11 @@ def _foot_path(support_length: float, r1: float, r2: float, r3: float | None, h_
     arc2 = Arc(o2, r2, -np.pi / 2, (_angle(c - o2) + np.pi / 2) % two_pi)
     arc3 = Arc(o3, r3, _angle(c - o3), (_angle(b - o3) - _angle(c - o3)) % two_pi)
     arc1 = Arc(o1, r1, _angle(b - o1), (-np.pi / 2 - _angle(b - o1)) % two_pi)
+    # the pieces meet tangentially by construction, so the arcs turn a whole number of turns
+    # (each sweep lies in [0, 2 pi)): one turn is a convex loop, none or two are not. Half a
+    # turn of margin keeps a path hundreds of metres long off the rounding of its sweeps.
     turning = arc1.sweep + arc2.sweep + arc3.sweep
-    require(abs(turning - two_pi) < 1e-9, "r3", r3,
+    require(abs(turning - two_pi) < 0.5 * np.pi, "r3", r3,
             "the arcs cannot be joined into one convex closed path (they turn "
             f"{np.degrees(turning):.1f} deg instead of 360)")
     pieces = (Segment(a, dpt), arc2, arc3, arc1)
