@@ -481,6 +481,13 @@ def test_keep_best_writes_the_best_designs(cli, tmp_path):
     assert ok[0]["p_rim"] == 10.0        # the smallest body is the best of both objectives
     # a rerun keeping fewer removes the earlier run's files beyond them; a user's file stays
     (tmp_path / "out" / "best-2" / "notes.txt").write_text("mine")
+    # a dry run says so (it listed nothing it would remove); the user's file is not among them
+    dry = cli("sweep", sweep, "--out", tmp_path / "out", "--keep", "best:1", "--dry-run")
+    assert dry.exit_code == 0, dry.stderr
+    removes = sorted(line for line in dry.stdout.splitlines() if line.startswith("would remove"))
+    best2 = sorted(p for p in (tmp_path / "out" / "best-2").iterdir() if p.name != "notes.txt")
+    assert removes == sorted(f"would remove {p} (written by an earlier run)" for p in best2)
+    assert (tmp_path / "out" / "best-2" / ".wheelstep-shoe.json").exists()   # nothing removed
     again = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "--keep", "best:1", "-q")
     assert again.exit_code == 0, again.stderr     # the refused rows were computed by the first run
     assert (tmp_path / "out" / "best-1" / ".wheelstep-shoe.json").exists()

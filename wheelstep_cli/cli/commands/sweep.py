@@ -62,7 +62,7 @@ def sweep(
     earlier = owned_results(out, force)     # a user's file among the outputs: refused here
     _require_ranking(best, plan, show)      # (after it: a refused run prints its one line only)
     if dry_run:
-        _dry_run(plan, file, out, show, earlier)
+        _dry_run(plan, file, out, show, (earlier, best))
         return
     with dask_client(scheduler, workers) as client:
         show.detail(f"  {len(plan.points)} points on {len(client.scheduler_info()['workers'])} worker(s)")
@@ -88,11 +88,15 @@ def sweep(
         raise typer.Exit(1)
 
 
-def _dry_run(plan, file: Path, out: Path, show: Output, earlier: bool) -> None:
+def _dry_run(plan, file: Path, out: Path, show: Output, run: tuple[bool, int]) -> None:
     """Say how many points would be computed (those not in ``out``'s own results) and what
-    would be written; nothing is computed or written."""
+    would be written and removed; nothing is computed or written. ``run`` = (``out`` holds
+    an earlier run's results, best designs kept)."""
     from wheelstep_cli.batch.sweep_run import resolve_points
     from wheelstep_cli.batch.sweep_store import ResultStore, axis_kinds, schema
+
+    earlier, best = run
+    _drop_earlier_best(out, best, show, dry_run=True)
 
     points = resolve_points(plan)
     columns = schema(axis_kinds([p.values for p in points], plan.axes), plan.tolerance)
@@ -186,10 +190,11 @@ def _keep_best(plan, results: Path, out: Path, count: int, show: Output, force: 
     return written
 
 
-def _drop_earlier_best(out: Path, count: int, show: Output) -> None:
+def _drop_earlier_best(out: Path, count: int, show: Output, dry_run: bool = False) -> None:
     """Remove the best-K folders of an earlier run beyond the ``count`` kept now, as far as
     that run wrote them (per each folder's record; a file changed since, or the user's, is
-    kept with its folder)."""
+    kept with its folder). With ``dry_run`` the files are only listed as the real run's
+    removals (said with the files)."""
     from wheelstep_cli.formats.atomic import remove_files
     from wheelstep_cli.formats.owned import read_record, stale_files
 
@@ -199,7 +204,13 @@ def _drop_earlier_best(out: Path, count: int, show: Output) -> None:
             record = read_record(record_path)
             stale = stale_files(folder, {}, record)
             # the record goes with the last of its files: one changed since stays listed as ours
-            remove_files(stale + ([record_path] if len(stale) == len(record) else []))
+            stale += [record_path] if len(stale) == len(record) else []
+            if dry_run:
+                show.would_remove.extend(stale)
+            else:
+                remove_files(stale)
+        if dry_run:
+            continue
         try:
             folder.rmdir()
             show.detail(f"  removed {folder} (written by an earlier run)")
