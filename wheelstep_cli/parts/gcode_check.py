@@ -245,7 +245,7 @@ class GcodeCheck:
     sources: tuple
 
 
-def gcode_sections(gcode_files: list[Path], pair, samples: int, window: float | None,
+def gcode_sections(gcode_files: list[Path], pair, samples: int | None, window: float | None,
                    progress=None) -> GcodeCheck:
     """Read the pair back from the G-code files and check the designed pair once (its play
     is where the printed pair's poses start: generated teeth may keep their play on one
@@ -275,7 +275,7 @@ def gcode_sections(gcode_files: list[Path], pair, samples: int, window: float | 
                       (found["pinion"].part.source, found["wheel"].part.source))
 
 
-def run_gcode_check(gcode_files: list[Path], pair, samples: int, window: float | None,
+def run_gcode_check(gcode_files: list[Path], pair, samples: int | None, window: float | None,
                     progress=None):
     """The meshing check of plate pair ``pair`` as the G-code files print it: (report,
     summary with the per gear read-back under ``gcode``, the GcodeCheck)."""

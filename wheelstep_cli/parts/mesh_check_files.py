@@ -29,7 +29,7 @@ class WrittenPairCheck:
     pinion: str
     wheel: str
     spec: GearPairSpec
-    samples: int
+    samples: int | None
     window: float | None = None
     plot: Path | None = None
 
@@ -38,7 +38,8 @@ class WrittenPairCheck:
         dist = installed_distance(self.spec)
         require(dist > 0, "distance", dist, "must be > 0 mm")
         # each pose sections and intersects both outlines: the count bounds the run time
-        require(16 <= self.samples <= MAX_SAMPLES, "samples", self.samples, f"must be in [16, {MAX_SAMPLES}]")
+        require(self.samples is None or 16 <= self.samples <= MAX_SAMPLES, "samples", self.samples,
+                f"must be in [16, {MAX_SAMPLES}]")
         require(self.window is None or self.window > 0, "window", self.window, "must be > 0 mm")
         if self.plot is not None:
             require(self.plot.suffix.lower() == ".png", "plot", str(self.plot), "must be a .png file")
@@ -114,13 +115,15 @@ def require_gear_teeth(outlines: tuple[np.ndarray, np.ndarray], law, names: tupl
     return z_p
 
 
-def require_poses_per_tooth(samples: int, teeth: int, law) -> None:
+def require_poses_per_tooth(samples: int | None, teeth: int, law) -> None:
     """Refuse (naming --samples) fewer poses over the law's period than the figures of SPEC §10
     need for a pinion of ``teeth`` teeth: the band-limited ripple keeps BAND_HARMONICS tooth
     harmonics, which the period's samples hold only above twice their count per tooth pitch
-    (f'i came out 0 um at 16 poses). The default 1536 serves 240 teeth over a whole turn."""
+    (f'i came out 0 um at 16 poses). None (the default, 16 per tooth pitch) passes."""
     from wheelstep_cli.gears.meshing.figures import BAND_HARMONICS
 
+    if samples is None:
+        return
     per_tooth = 2 * BAND_HARMONICS
     least = math.floor(per_tooth * teeth * float(law.theta_period) / (2.0 * math.pi) + 1e-9) + 1
     require(samples >= least, "samples", samples,

@@ -59,7 +59,6 @@ def slice_and_check(files: dict[Path, bytes], band: dict | None = None,
     (G-code path beside each plate -> bytes, the report record, whether it meshes);
     with ``band`` (the pair's band record, ``--tolerance``) also whether the printed least
     backlash lies in the range it predicts. ``progress(done, total)`` hears of each stage."""
-    from wheelstep_cli.gears.meshing import MeshingSettings
     from wheelstep_cli.parts.gcode_check import run_gcode_check
     from wheelstep_cli.parts.plate_pairs import find_plate_pairs
 
@@ -71,7 +70,7 @@ def slice_and_check(files: dict[Path, bytes], band: dict | None = None,
         if progress is not None:
             progress(1, 2)
         pair = find_plate_pairs([str(Path(scratch) / p.name) for p in plates])[0]
-        report, summary, _ = run_gcode_check(list(sliced.values()), pair, MeshingSettings.samples, None)
+        report, summary, _ = run_gcode_check(list(sliced.values()), pair, None, None)
         names = {str(g): plate.with_suffix(".gcode").name for plate, g in sliced.items()}
         written = {plate.with_suffix(".gcode"): gcode.read_bytes() for plate, gcode in sliced.items()}
         header = next(iter(written.values()))[:200].decode(errors="replace").splitlines()[0]

@@ -385,3 +385,24 @@ def test_overlap_area_of_body_cut_pieces_equals_the_whole_posed_outlines(paper_p
                              theta, phi, centre, box)
     assert (whole > 1e-3).sum() >= 10
     np.testing.assert_allclose(cut, whole, rtol=1e-12, atol=1e-12)
+
+
+def test_the_default_sampling_keeps_sixteen_poses_per_tooth_pitch():
+    """SPEC §10 asks for at least 16 poses per tooth; a flat 1536 gave 12.8 to a 120-tooth
+    pinion. The default keeps 1536 up to 96 teeth a period and 16 per tooth beyond."""
+    from wheelstep_cli.gears.meshing.settings import POSES_PER_TOOTH, default_samples
+
+    assert POSES_PER_TOOTH == 16
+    assert default_samples(1) == default_samples(96) == 1536
+    assert default_samples(120) == 1920 and default_samples(100) == 1600
+    assert default_samples(97.5) == 1600      # 1560 poses, in whole batches of 64
+    # a 100-tooth spur pinion over a whole turn: counted on its outline, sampled 16 per tooth
+    teeth = 100
+    pinion = involute_gear(teeth, 1.0, 0.05, space_at_zero=False, flank_points=12)
+    wheel = involute_gear(teeth, 1.0, 0.05, space_at_zero=True, flank_points=12)
+    law = FunctionLaw(lambda t: np.asarray(t), 2.0 * np.pi)
+    report = check_meshing(pinion, wheel, law, float(teeth))
+    assert report.teeth == teeth and len(report.theta) == 1600
+    assert not report.interferes and not report.contact_lost
+    given = check_meshing(pinion, wheel, law, float(teeth), MeshingSettings(samples=1024))
+    assert len(given.theta) == 1024        # a count given is kept

@@ -42,8 +42,9 @@ def mesh_check(
     profile: Profile = None,
     pair: Annotated[Optional[str], opt("--pair", help="On plates: the pair to check (its "
                                                       "wheelstep:pair id).", shown="every pair")] = None,
-    samples: Annotated[int, opt("--samples", help="Poses over one period of the pinion (more than 6 "
-                                                     "per tooth pitch).")] = 1536,
+    samples: Annotated[Optional[int], opt("--samples", help="Poses over one period of the pinion "
+                                                               "(more than 6 per tooth pitch).",
+                                          shown="16 per tooth pitch, at least 1536")] = None,
     window: Annotated[Optional[float], opt("--window", help="Half-height of the mesh window round "
                                                             "the line of centres, mm; larger than "
                                                             "the default only (a narrower one "
@@ -134,7 +135,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
         summary["tolerance"] = outline_band(outlines, check, report, chosen)
     files = written_pair_files(check, report)
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
-    show.report(summary, lambda: pair_lines(summary, installed_distance(spec), samples))
+    show.report(summary, lambda: pair_lines(summary, installed_distance(spec)))
     warn_band_jams(show, summary.get("tolerance"))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
@@ -161,7 +162,7 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
                                                          window, plot), report))
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report({"pairs": summaries}, lambda: [line for s in summaries
-                                               for line in pair_lines(s, s["distance_mm"], samples)])
+                                               for line in pair_lines(s, s["distance_mm"])])
     show.files(named, dry_run)
     return failed
 

@@ -36,8 +36,8 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     files = written_pair_files(WrittenPairCheck(summary["pinion"], summary["wheel"], found[0].spec,
                                                 samples, window, plot), report)
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
-    show.report(summary, lambda: pair_lines(summary, summary["distance_mm"], samples)[:1]
-                + gcode_lines(summary) + _rest(summary, samples, tolerance_lines))
+    show.report(summary, lambda: pair_lines(summary, summary["distance_mm"])[:1]
+                + gcode_lines(summary) + _rest(summary, tolerance_lines))
     warn_band_jams(show, summary.get("tolerance"))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
@@ -69,7 +69,7 @@ def _designs(args: list[str], gcode: list[Path], pair, design: dict) -> list:
                                                   "plate's G-code too (--gcode FILE2.gcode)") from None
 
 
-def _rest(summary: dict, samples: int, tolerance_lines) -> list[str]:
+def _rest(summary: dict, tolerance_lines) -> list[str]:
     from wheelstep_cli.parts.mesh_check import meshing_lines
 
     return meshing_lines(summary) + (tolerance_lines(summary["tolerance"]) if "tolerance" in summary

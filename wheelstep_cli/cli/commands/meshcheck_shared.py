@@ -56,13 +56,13 @@ def no_design_options(design: dict) -> None:
                                            "two meshes (PINION WHEEL) instead of plates")
 
 
-def pair_lines(summary: dict, distance: float, samples: int) -> list[str]:
+def pair_lines(summary: dict, distance: float) -> list[str]:
     """The text report of one checked pair (mm, deg at the edge)."""
     from wheelstep_cli.parts.mesh_check import meshing_lines
 
     pair = f"pair {summary['pair']}: " if "pair" in summary else ""
     return [f"meshing check: {pair}{summary['pinion']} + {summary['wheel']} at {distance:g} mm, "
-            f"{samples} poses over {summary['period_deg']:g} deg of pinion", *meshing_lines(summary),
+            f"{summary['samples']} poses over {summary['period_deg']:g} deg of pinion", *meshing_lines(summary),
             *_band_lines(summary)]
 
 

@@ -16,7 +16,7 @@ from wheelstep_cli.gears.meshing.figures import BAND_HARMONICS, Track, count_tee
 from wheelstep_cli.gears.meshing.outlines import MeshWindow
 from wheelstep_cli.gears.meshing.report import MeshingReport
 from wheelstep_cli.gears.meshing.search import Pair, PoseContacts, batch_contacts, prepare
-from wheelstep_cli.gears.meshing.settings import MeshingSettings
+from wheelstep_cli.gears.meshing.settings import MeshingSettings, default_samples
 from wheelstep_cli.gears.threads import thread_map
 from wheelstep_cli.gears.transmission import TransmissionLaw
 
@@ -58,14 +58,18 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, d
     orientation). ``law``: read through ``carrier_angle`` (the wheel angle the pair
     should have), ``theta_period`` and ``hub_speed_factor``. ``distance``: installed
     centre distance (mm). ``settings.samples`` poses over the period, from ``start``
-    (rad). ``progress(done, total)`` is called after every batch of poses. ``teeth``:
-    the pinion's tooth count (None: counted on its outline), which sets the tooth pitch
-    and the band of the figures of merit.
+    (rad; None: :func:`~wheelstep_cli.gears.meshing.settings.default_samples`).
+    ``progress(done, total)`` is called after every batch of poses. ``teeth``: the
+    pinion's tooth count (None: counted on its outline), which sets the tooth pitch, the
+    band of the figures of merit and the default pose count.
     """
     pinion = np.asarray(pinion, dtype=float)
     wheel = np.asarray(wheel, dtype=float)
     period = float(law.theta_period)
-    samples = settings.samples
+    if teeth is None:
+        teeth = max(1, pair_teeth(pinion, None, law)[0])
+    samples = (default_samples(teeth * period / (2.0 * np.pi)) if settings.samples is None
+               else settings.samples)
     theta = start + period * np.arange(samples) / samples
     phi_law = np.asarray(law.carrier_angle(theta), dtype=float)
     box = mesh_window(pinion, wheel, distance, settings)
@@ -73,8 +77,6 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, d
     batch = max(1, min(settings.batch, settings.batch_points // (len(pinion) + len(wheel))))
     slices = [slice(lo, min(lo + batch, samples)) for lo in range(0, samples, batch)]
     contacts = _search(make_pair, theta, phi_law, slices, settings, progress)
-    if teeth is None:
-        teeth = max(1, pair_teeth(pinion, None, law)[0])
     return _report(law, theta, phi_law, contacts, float(distance), start, teeth)
 
 
