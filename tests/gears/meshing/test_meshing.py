@@ -389,7 +389,8 @@ def test_overlap_area_of_body_cut_pieces_equals_the_whole_posed_outlines(paper_p
 
 def test_the_default_sampling_keeps_sixteen_poses_per_tooth_pitch():
     """SPEC §10 asks for at least 16 poses per tooth; a flat 1536 gave 12.8 to a 120-tooth
-    pinion. The default keeps 1536 up to 96 teeth a period and 16 per tooth beyond."""
+    pinion with n = 4 (a period is one pinion turn; with n = 2 half a turn, so from z = 194 on).
+    The default keeps 1536 up to 96 teeth a period and 16 per tooth beyond."""
     from wheelstep_cli.gears.meshing.settings import POSES_PER_TOOTH, default_samples
 
     assert POSES_PER_TOOTH == 16
