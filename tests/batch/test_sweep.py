@@ -447,6 +447,31 @@ def test_objectives_the_rows_cannot_hold_are_refused_at_their_line(cli, tmp_path
     assert not (tmp_path / "out").exists()
 
 
+def test_profile_files_that_cannot_be_read_are_named_at_their_line_of_the_sweep_file(cli, tmp_path):
+    """`design: bin.yaml` (not UTF-8) was said as `profile = bin.yaml`, with no line, after the
+    plot warning; a printer file likewise as `printer = ...`; every one is now listed at once."""
+    from wheelstep_cli.config.profiles import profile_names
+
+    (tmp_path / "bin.yaml").write_bytes(b"a: 60\n\xff\n")
+    (tmp_path / "pbin.yaml").write_bytes(b"name: x\n\xff\n")
+    sweep = write(tmp_path / "s.yaml", f"command: gears\ndesign: {tmp_path / 'bin.yaml'}\n"
+                  f"printers: [{tmp_path / 'pbin.yaml'}, fdm-0.4-pla, {tmp_path / 'none.yaml'}]\n"
+                  "grid:\n  z: [48]\n")
+    result = cli("sweep", sweep, "--out", tmp_path / "out", "--dry-run")
+    assert result.exit_code == 2
+    assert result.stderr.splitlines() == [
+        f"wheelstep: error: {sweep}:2: design = '{tmp_path / 'bin.yaml'}': is not UTF-8 text (byte 6)",
+        f"wheelstep: error: {sweep}:3: printers[0] = '{tmp_path / 'pbin.yaml'}': is not UTF-8 text (byte 8)",
+        f"wheelstep: error: {sweep}:3: printers[2] = '{tmp_path / 'none.yaml'}': not found; known printer "
+        "profiles: " + ", ".join(profile_names(printer=True))]
+    # a profile's own problem is said at its own line
+    (tmp_path / "badz.yaml").write_text("gears:\n  z: 3\n")
+    sweep = write(tmp_path / "s.yaml", f"command: gears\ndesign: {tmp_path / 'badz.yaml'}\ngrid:\n  z: [48]\n")
+    assert error_line(cli("sweep", sweep, "--out", tmp_path / "out", "--dry-run")) == (
+        f"wheelstep: error: {tmp_path / 'badz.yaml'}:2: gears.z = 3: must be 6..240 (pinion teeth)")
+    assert not (tmp_path / "out").exists()
+
+
 def test_keep_is_refused_when_the_default_objectives_cannot_rank_the_rows(cli, tmp_path):
     """A shoe sweep without printers has no mass: --keep could keep nothing."""
     sweep = write(tmp_path / "s.yaml", "command: shoe\ndesign: desk-demo\ngrid:\n  width: [12]\n")

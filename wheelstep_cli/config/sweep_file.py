@@ -116,6 +116,7 @@ def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
         _check_values(doc, COMMANDS[command][0], command, data, grid, random, issues)
     _check_objectives(doc, data.get("objectives"), command, bool(data.get("printers")), issues)
     _check_printers(doc, data.get("printers"), issues)
+    _check_profile_files(doc, data.get("design"), data.get("printers"), issues)
     _check_bands(doc, command, data.get("printers"), data.get("tolerance") is True, issues)
     if issues:
         raise InvalidInput(issues)
@@ -224,6 +225,25 @@ def _check_printers(doc: LocatedYaml, names, issues: list[Issue]) -> None:
             at = ("printers", i)
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: unknown printer preset; "
                                 "known: " + ", ".join(known)))
+
+
+def _check_profile_files(doc: LocatedYaml, design, printers, issues: list[Issue]) -> None:
+    """The design profile and the printers given as files can be read as profiles of their
+    kind: said at their line of the sweep file (a profile's own problems at its own lines),
+    before any point is listed. Printers given by name are :func:`_check_printers`'."""
+    from wheelstep_cli.config.profiles import load_design_profile, load_printer_profile
+
+    named = [(("design",), design, load_design_profile)] if isinstance(design, str) else []
+    named += [(("printers", i), name, load_printer_profile)
+              for i, name in enumerate(printers if isinstance(printers, list) else [])
+              if isinstance(name, str) and name.endswith((".yaml", ".yml"))]
+    for at, name, load in named:
+        try:
+            load(name)
+        except InvalidInput as err:
+            issues.extend(err.issues)
+        except DesignError as err:
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: {err.limit}"))
 
 
 def _check_bands(doc: LocatedYaml, command, names, tolerance: bool, issues: list[Issue]) -> None:
