@@ -512,6 +512,8 @@ def test_keep_best_writes_the_best_designs(cli, tmp_path):
     removes = sorted(line for line in dry.stdout.splitlines() if line.startswith("would remove"))
     best2 = sorted(p for p in (tmp_path / "out" / "best-2").iterdir() if p.name != "notes.txt")
     assert removes == sorted(f"would remove {p} (written by an earlier run)" for p in best2)
+    assert f"would write {tmp_path / 'out' / 'best-1'}" in dry.stdout.splitlines()
+    assert not any("best-2" in line for line in dry.stdout.splitlines() if "would write" in line)
     assert (tmp_path / "out" / "best-2" / ".wheelstep-shoe.json").exists()   # nothing removed
     again = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "--keep", "best:1", "-q")
     assert again.exit_code == 0, again.stderr     # the refused rows were computed by the first run

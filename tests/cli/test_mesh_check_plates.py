@@ -242,3 +242,21 @@ def test_a_plate_says_whether_its_parts_were_drawn_for_its_printer(desk_pair, cl
     assert cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--format", "3mf",
                "--out", out, "-q").exit_code == 0
     assert _model_metadata(out / "gears.3mf")["compensated"] == "yes"
+
+
+def test_the_pose_count_a_design_needs_is_the_one_run_and_printed(cli, tmp_path):
+    """With n = 4 a 64-tooth pinion's shortest tooth pitch needs more than 1536 poses for 16
+    (SPEC §10): gears and mesh-check on its plates run and print that count."""
+    from wheelstep_cli.config.specs import GearPairSpec
+    from wheelstep_cli.gears.meshing.check import default_pose_count
+
+    need = default_pose_count(GearPairSpec(z=64, turns=4).law(), 64)
+    assert need > 1536
+    out = tmp_path / "p"
+    made = cli("gears", "--teeth", "paper", "--z", "64", "--turns", "4", "--module", "1.2",
+               "--allow-interference", "--out", out, "-q", "--json")
+    assert made.exit_code == 0, made.stderr
+    assert json.loads(made.stdout)["meshing"]["samples"] == need
+    checked = cli("mesh-check", *sorted(out.glob("gears-*.3mf")))
+    assert f", {need} poses over 360 deg of pinion" in checked.stdout.splitlines()[0]
+    assert "interference: YES at " in checked.stdout and f" of {need} poses" in checked.stdout

@@ -62,8 +62,8 @@ class Output:
     def parameters(self, values: Mapping) -> None:
         """The parameters as resolved so far, one ``name = value`` per line (with -v); a nested
         mapping's entries as ``name.key``. Those still None are left to the design or preset
-        (the report gives the values they take) or do not apply: they are named on one last
-        line, never printed as ``None``."""
+        (a command passes the values it has resolved by then) or do not apply: they are
+        named on one last line, never printed as ``None``."""
         left = []
         for name, value in _flat(values):
             if value is None:

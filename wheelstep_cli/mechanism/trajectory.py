@@ -161,9 +161,13 @@ def _angle(v) -> float:
     return float(np.arctan2(v[1], v[0]))
 
 
-#: The sizes a rule of the path involves besides its own parameter, where not all of them
-#: are (the clearance rule h_max > 2 max(r1, r2) does not depend on the support length).
-_RULE_INPUTS = {"h-max": ("r1", "r2")}
+def _involved(param: str, sizes: dict[str, float | None]) -> tuple[str, ...]:
+    """The sizes the rule of ``param`` depends on besides ``param`` itself: the clearance rule
+    h_max > 2 max(r1, r2) only on the larger arc; the others on every size of the path."""
+    if param == "h-max":
+        big = max(sizes["r1"], sizes["r2"])
+        return tuple(name for name in ("r1", "r2") if sizes[name] == big)
+    return tuple(sizes)
 
 
 def foot_path(support_length: float, r1: float, r2: float, r3: float | None = None,
@@ -180,8 +184,7 @@ def foot_path(support_length: float, r1: float, r2: float, r3: float | None = No
         return _foot_path(support_length, r1, r2, r3, h_max, x0, y0, root)
     except DesignError as err:   # every size of the path shares the blame for its shape
         sizes = {"support_length": support_length, "r1": r1, "r2": r2, "r3": r3, "h_max": h_max}
-        involved = _RULE_INPUTS.get(err.param, tuple(sizes))
-        raise err.tied_to({name: sizes[name] for name in involved}) from None
+        raise err.tied_to({name: sizes[name] for name in _involved(err.param, sizes)}) from None
 
 
 def _foot_path(support_length: float, r1: float, r2: float, r3: float | None, h_max: float | None,
@@ -200,8 +203,9 @@ def _foot_path(support_length: float, r1: float, r2: float, r3: float | None, h_
     arc3 = Arc(o3, r3, _angle(c - o3), (_angle(b - o3) - _angle(c - o3)) % two_pi)
     arc1 = Arc(o1, r1, _angle(b - o1), (-np.pi / 2 - _angle(b - o1)) % two_pi)
     # the pieces meet tangentially by construction, so the arcs turn a whole number of turns
-    # (each sweep lies in [0, 2 pi)): one turn is a convex loop, none or two are not. Half a
-    # turn of margin keeps a path hundreds of metres long off the rounding of its sweeps.
+    # (each sweep lies in [0, 2 pi)): one turn is a convex loop, none or two are not. A quarter
+    # turn of margin either way keeps a path hundreds of metres long off the rounding of its
+    # sweeps.
     turning = arc1.sweep + arc2.sweep + arc3.sweep
     require(abs(turning - two_pi) < 0.5 * np.pi, "r3", r3,
             "the arcs cannot be joined into one convex closed path (they turn "

@@ -19,7 +19,7 @@ def check_outlines(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, 
                    samples: int | None = None, window: float | None = None,
                    progress: Callable[[int, int], None] | None = None) -> MeshingReport:
     """Run the meshing check of two outlines (mm, own frames) over one period of any law:
-    ``samples`` poses (None: 16 per tooth pitch, at least 1536), mesh window half-height
+    ``samples`` poses (None: 16 in the shortest tooth pitch, at least 1536), mesh window half-height
     ``window`` mm (None: the settings' default)."""
     settings = replace(MeshingSettings(), samples=samples, window=window)
     report = check_meshing(pinion, wheel, law, distance, settings, progress=progress)

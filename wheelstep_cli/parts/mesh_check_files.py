@@ -119,7 +119,7 @@ def require_poses_per_tooth(samples: int | None, teeth: int, law) -> None:
     """Refuse (naming --samples) fewer poses over the law's period than the figures of SPEC §10
     need for a pinion of ``teeth`` teeth: the band-limited ripple keeps BAND_HARMONICS tooth
     harmonics, which the period's samples hold only above twice their count per tooth pitch
-    (f'i came out 0 um at 16 poses). None (the default, 16 per tooth pitch) passes."""
+    (f'i came out 0 um at 16 poses). None (the default, 16 in the shortest tooth pitch) passes."""
     from wheelstep_cli.gears.meshing.figures import BAND_HARMONICS
 
     if samples is None:
@@ -170,7 +170,7 @@ def plate_pair_outlines(pair) -> tuple[np.ndarray, np.ndarray]:
             section_outline(pair.wheel.vertices, pair.wheel.faces, "wheel"))
 
 
-def run_plate_pair_check(pair, samples: int, window: float | None,
+def run_plate_pair_check(pair, samples: int | None, window: float | None,
                          progress: Callable[[int, int], None] | None = None
                          ) -> tuple[MeshingReport, dict]:
     """Check a pair found on plates (parts.plate_pairs.PlatePair) with the law and installed

@@ -388,9 +388,10 @@ def test_overlap_area_of_body_cut_pieces_equals_the_whole_posed_outlines(paper_p
 
 
 def test_the_default_sampling_keeps_sixteen_poses_per_tooth_pitch():
-    """SPEC §10 asks for at least 16 poses per tooth; a flat 1536 gave 12.8 to a 120-tooth
-    pinion with n = 4 (a period is one pinion turn; with n = 2 half a turn, so from z = 194 on).
-    The default keeps 1536 up to 96 teeth a period and 16 per tooth beyond."""
+    """SPEC §10 asks for at least 16 poses per tooth; a flat 1536 gave 12.8 per average tooth
+    pitch to a 120-tooth pinion with n = 4 (a period is one pinion turn; with n = 2 half a
+    turn). default_samples counts 16 per tooth pitch it is given, at least 1536; on a circle
+    every tooth pitch is the average one."""
     from wheelstep_cli.gears.meshing.settings import POSES_PER_TOOTH, default_samples
 
     assert POSES_PER_TOOTH == 16
@@ -407,3 +408,24 @@ def test_the_default_sampling_keeps_sixteen_poses_per_tooth_pitch():
     assert not report.interferes and not report.contact_lost
     given = check_meshing(pinion, wheel, law, float(teeth), MeshingSettings(samples=1024))
     assert len(given.theta) == 1024        # a count given is kept
+
+
+@pytest.mark.parametrize("z, turns", [(48, 2), (240, 2), (64, 4), (120, 4)])
+def test_the_default_sampling_gives_every_tooth_of_a_crank_law_pinion_sixteen_poses(z, turns):
+    """The teeth are equal arcs of the pinion's pitch curve, so those where it runs fastest
+    span the least pinion angle: 16 per average tooth pitch left such teeth 10.2 poses."""
+    from wheelstep_cli.config.specs import GearPairSpec
+    from wheelstep_cli.gears.meshing.check import default_pose_count
+    from wheelstep_cli.gears.pitch_curves import pitch_curves
+
+    law = GearPairSpec(z=z, turns=turns).law()
+    samples = default_pose_count(law, z)
+    curves = pitch_curves(law, 144.0, 65536)
+    per_period = z * law.theta_period / (2.0 * np.pi)
+    # tooth edges at equal arcs along the curve, read back as pinion angles over the period
+    theta = np.unwrap(np.arctan2(curves.pinion[:, 1], curves.pinion[:, 0]))
+    edges = np.interp(curves.period_arc * np.arange(round(per_period) + 1) / per_period,
+                      curves.arc, np.abs(theta - theta[0]))
+    poses_per_tooth = np.diff(edges) / law.theta_period * samples
+    assert poses_per_tooth.min() >= 16.0
+    assert samples == 1536 or poses_per_tooth.min() < 17.5    # not more than the least needs

@@ -44,7 +44,7 @@ def mesh_check(
                                                       "wheelstep:pair id).", shown="every pair")] = None,
     samples: Annotated[Optional[int], opt("--samples", help="Poses over one period of the pinion "
                                                                "(more than 6 per tooth pitch).",
-                                          shown="16 per tooth pitch, at least 1536")] = None,
+                                          shown="16 in the shortest tooth pitch, at least 1536")] = None,
     window: Annotated[Optional[float], opt("--window", help="Half-height of the mesh window round "
                                                             "the line of centres, mm; larger than "
                                                             "the default only (a narrower one "
@@ -106,7 +106,7 @@ def _no_band_on_plates(tolerance: bool, printer) -> None:
                           "checks two named meshes (PINION WHEEL), not plates")
 
 
-def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, samples: int, window,
+def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, samples: int | None, window,
                   plot, dry_run: bool, quiet: bool, force: bool,
                   band: tuple = (False, None)) -> bool:
     """Two meshes named on the command line, the design from the options; with
@@ -141,7 +141,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     return report.interferes or report.contact_lost
 
 
-def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: int, window, plot,
+def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: int | None, window, plot,
                   dry_run: bool, quiet: bool, force: bool) -> bool:
     """Every gear pair of the plates (or the one --pair names), designs from their metadata."""
     from wheelstep_cli.cli.progress import with_progress

@@ -103,8 +103,9 @@ def _dry_run(plan, file: Path, out: Path, show: Output, run: tuple[bool, int]) -
     done = ResultStore(out, columns, earlier).done_keys()
     todo = sum(p.key not in done for p in points)
     dropped = len(done - {p.key for p in points})
+    # the best designs' folders: their files are named by the designs the run will rank
     files = [out / "results.parquet", out / "results.csv", out / "pareto.png",
-             out / ".wheelstep-sweep.json"]
+             out / ".wheelstep-sweep.json", *(out / f"best-{k}" for k in range(1, best + 1))]
     show.report({"sweep": str(file), "out": str(out), "points": len(points),
                  "skipped": len(points) - todo, "would_compute": todo, "would_drop": dropped,
                  "written": []}, lambda: [f"{todo} of {len(points)} designs would be computed"

@@ -57,19 +57,18 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, d
     ``pinion``, ``wheel``: closed outlines (N, 2) in mm in their own frames (any
     orientation). ``law``: read through ``carrier_angle`` (the wheel angle the pair
     should have), ``theta_period`` and ``hub_speed_factor``. ``distance``: installed
-    centre distance (mm). ``settings.samples`` poses over the period, from ``start``
-    (rad; None: :func:`~wheelstep_cli.gears.meshing.settings.default_samples`).
-    ``progress(done, total)`` is called after every batch of poses. ``teeth``: the
-    pinion's tooth count (None: counted on its outline), which sets the tooth pitch, the
-    band of the figures of merit and the default pose count.
+    centre distance (mm). ``settings.samples`` poses over the period (None:
+    :func:`default_pose_count`), from ``start`` (rad). ``progress(done, total)`` is called
+    after every batch of poses. ``teeth``: the pinion's tooth count (None: counted on its
+    outline), which sets the tooth pitch, the band of the figures of merit and the default
+    pose count.
     """
     pinion = np.asarray(pinion, dtype=float)
     wheel = np.asarray(wheel, dtype=float)
     period = float(law.theta_period)
     if teeth is None:
         teeth = max(1, pair_teeth(pinion, None, law)[0])
-    samples = (default_samples(teeth * period / (2.0 * np.pi)) if settings.samples is None
-               else settings.samples)
+    samples = default_pose_count(law, teeth) if settings.samples is None else settings.samples
     theta = start + period * np.arange(samples) / samples
     phi_law = np.asarray(law.carrier_angle(theta), dtype=float)
     box = mesh_window(pinion, wheel, distance, settings)
@@ -78,6 +77,22 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, d
     slices = [slice(lo, min(lo + batch, samples)) for lo in range(0, samples, batch)]
     contacts = _search(make_pair, theta, phi_law, slices, settings, progress)
     return _report(law, theta, phi_law, contacts, float(distance), start, teeth)
+
+
+def default_pose_count(law: TransmissionLaw, teeth: int) -> int:
+    """The poses over one period of ``law`` that give a pinion of ``teeth`` teeth the default
+    count (:func:`~wheelstep_cli.gears.meshing.settings.default_samples`) in its shortest
+    tooth pitch. The teeth are equal arcs of the pitch curve, so a tooth spans less pinion
+    angle where the curve runs faster (ds/dtheta largest): the period's average tooth pitch
+    count is scaled by max / mean of ds/dtheta (about 1.64 for the crank law)."""
+    period = float(law.theta_period)
+    turn = np.linspace(0.0, 2.0 * np.pi, 4096, endpoint=False)
+    radius = _pinion_pitch_radius(law, turn, 1.0)
+    slope = np.gradient(np.concatenate([radius[-1:], radius, radius[:1]]), turn[1] - turn[0])[1:-1]
+    speed = np.hypot(radius, slope)
+    # a law that does not turn the wheel has no pitch curve: its teeth are counted evenly
+    factor = float(speed.max() / speed.mean()) if speed.mean() > 0.0 else 1.0
+    return default_samples(teeth * period / (2.0 * np.pi) * factor)
 
 
 def _pinion_pitch_radius(law: TransmissionLaw, angle: np.ndarray, distance: float) -> np.ndarray:

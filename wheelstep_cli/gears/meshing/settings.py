@@ -15,16 +15,19 @@ from wheelstep_cli.gears.threads import THREADS
 #: Poses per pinion tooth pitch the check samples by default (SPEC §10: at least 16).
 POSES_PER_TOOTH = 16
 
-#: The fewest poses over a period the check samples by default: a pair of up to 96 teeth a
-#: period gets more than 16 per tooth pitch, which keeps its largest pose-to-pose TE step (a
-#: figure that shrinks with the sampling) fine at a cost of about 2 s on two cores.
+#: The fewest poses over a period the check samples by default: more than 16 per tooth pitch
+#: for most designs, which keeps their largest pose-to-pose TE step (a figure that shrinks
+#: with the sampling) fine at a cost of about 2 s on two cores.
 LEAST_SAMPLES = 1536
 
 
 def default_samples(teeth_per_period: float) -> int:
     """The default pose count (whole batches of 64) over a period in which ``teeth_per_period``
-    pinion tooth pitches pass: :data:`POSES_PER_TOOTH` each, at least :data:`LEAST_SAMPLES`."""
-    need = math.ceil(POSES_PER_TOOTH * teeth_per_period - 1e-9)
+    pinion tooth pitches pass: :data:`POSES_PER_TOOTH` each, at least :data:`LEAST_SAMPLES`.
+    A non-circular pinion's shortest tooth pitch counts as more of them
+    (:func:`~wheelstep_cli.gears.meshing.check.default_pose_count`)."""
+    # a millionth off: a count read off a law by finite differences is not exact
+    need = math.ceil(POSES_PER_TOOTH * teeth_per_period * (1.0 - 1e-6))
     return max(LEAST_SAMPLES, -(-need // 64) * 64)
 
 
@@ -33,8 +36,8 @@ class MeshingSettings:
     """How the meshing check samples, windows and searches the poses of a pair."""
 
     samples: int | None = None
-    """Poses over one period of the law (count); None: :func:`default_samples` of the pinion
-    tooth pitches in the period."""
+    """Poses over one period of the law (count); None: 16 in the pinion's shortest tooth
+    pitch, at least 1536 (:func:`~wheelstep_cli.gears.meshing.check.default_pose_count`)."""
 
     window: float | None = None
     """Half-height (mm) of the mesh window round the line of centres; None: ``window_fraction``
