@@ -94,10 +94,11 @@ def test_a_number_with_an_underscore_is_refused_not_read_as_digits(cli, tmp_path
     assert cli(*args, "--help").exit_code == 0          # asking for help is not refused
 
 
-@pytest.mark.parametrize("text", ["4_8", "1:30"])
+@pytest.mark.parametrize("text", ["4_8", "1:30", "060", "0x30", "0b110000", "0o60", "-010"])
 def test_a_yaml_number_yaml_1_1_would_misread_is_text(cli, tmp_path, text):
-    """YAML 1.1 reads 4_8 as 48 and 1:30 as 90 (base 60); read as YAML 1.2 does, as text, a
-    number field refuses it with the file's other problems, and a text field keeps it."""
+    """YAML 1.1 reads 4_8 as 48, 1:30 as 90 (base 60), 060 as 48 (octal: a thickness of 010
+    printed 8 mm), 0x30 and 0b110000 as 48; read as text, a number field refuses it with the
+    file's other problems, and a text field keeps it."""
     profile = tmp_path / "p.yaml"
     profile.write_text(f"gears:\n  z: {text}\n  thickness: -1\n")
     lines = cli("gears", "--profile", profile, "--out", tmp_path / "out").stderr.splitlines()
@@ -111,6 +112,8 @@ def test_a_yaml_name_with_an_underscore_stays_the_text_written():
 
     assert parse_located_yaml("name: 2024_01\nat: 12:30\nz: 48\n", "t.yaml").data == {
         "name": "2024_01", "at": "12:30", "z": 48}
+    assert parse_located_yaml("id: 007\nz: -48\nn: +2\nzero: 0\nt: 10.0\n", "t.yaml").data == {
+        "id": "007", "z": -48, "n": 2, "zero": 0, "t": 10.0}
 
 
 @pytest.mark.parametrize("args, line", [

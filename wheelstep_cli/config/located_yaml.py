@@ -7,6 +7,7 @@ recorded under its path, e.g. ``("parts", 1, "overrides", "z")``.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -68,6 +69,8 @@ def read_located_yaml(path: Path, label: str | None = None) -> LocatedYaml:
 
 #: Tags of the plain scalars YAML 1.1 reads as numbers.
 NUMBER_TAGS = ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")
+#: A whole number as plain decimal digits (no leading zero, base prefix or separator).
+_PLAIN_INTEGER = re.compile(r"[-+]?(0|[1-9][0-9]*)\Z")
 
 
 def parse_located_yaml(text: str, label: str) -> LocatedYaml:
@@ -120,6 +123,10 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
         if node.tag in NUMBER_TAGS and ("_" in node.value or ":" in node.value):
             # YAML 1.1 reads 4_8 as 48 and 1:30 as 90 (base 60); YAML 1.2 reads both as text,
             # which is what a name means and what a number field refuses with its own line
+            return node.value
+        if node.tag == NUMBER_TAGS[0] and not _PLAIN_INTEGER.match(node.value):
+            # YAML 1.1 reads 010 as 8 (octal), 0x30 and 0b110000 as 48: a thickness of 010
+            # would print 8 mm. Only plain decimal digits are read as a whole number
             return node.value
         try:
             return constructor.construct_object(node, deep=True)
