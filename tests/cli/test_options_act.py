@@ -3,6 +3,8 @@ line naming it (as the user wrote it), exit 2, nothing written."""
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
 from tests.helpers.clicheck import error_line
@@ -92,6 +94,30 @@ def test_a_number_with_an_underscore_is_refused_not_read_as_digits(cli, tmp_path
     assert result.exit_code == 2 and error_line(result).startswith(f"wheelstep: error: {line}"), result.stderr
     assert not out.exists()
     assert cli(*args, "--help").exit_code == 0          # asking for help is not refused
+
+
+@pytest.mark.parametrize("args, line", [
+    (["gears", "--z", "40", "--z", "48"], "--z = 48: given twice (--z = 40 before it); give it once"),
+    (["gears", "--z=40", "-n", "2", "--turns", "4"], "--turns = 4: given twice (-n = 2 before it)"),
+    (["trajectory", "--csv", "p.csv", "--csv", "q.csv"], "--csv = q.csv: given twice (--csv = p.csv "
+                                                         "before it)"),
+    (["linkage", "--preset", "chebyshev", "--branch", "C=+1", "--branch", "C=-1"],
+     "--branch = C=-1: gives C a second sign (C=+1 before it); give each joint once"),
+])
+def test_an_option_given_twice_is_refused_not_read_as_its_last_value(cli, tmp_path, monkeypatch, args, line):
+    """The parser kept the last of two values and dropped the other unsaid (`--csv p.csv --csv
+    q.csv` wrote only q.csv). Switches (-v -v) and options that collect values (--branch of
+    different joints, --gcode) stay repeatable."""
+    monkeypatch.chdir(tmp_path)
+    result = cli(*args)
+    assert result.exit_code == 2 and error_line(result).startswith(f"wheelstep: error: {line}"), result.stderr
+    assert list(tmp_path.iterdir()) == []
+    both = cli("linkage", "--preset", "jansen", "--branch", "F=+1", "--branch", "K=-1", "--json")
+    assert both.exit_code == 0, both.stderr
+    branches = json.loads(both.stdout)["branches"]
+    assert (branches["F"], branches["K"]) == (1, -1)
+    twice = cli("pitch", "-v", "-v")
+    assert twice.exit_code == 0 and "a = 60" in twice.stderr
 
 
 @pytest.mark.parametrize("text", ["4_8", "1:30", "060", "0x30", "0b110000", "0o60", "-010"])

@@ -229,13 +229,20 @@ def misread_value_text(group, argv: list[str]) -> str | None:
     something the person did not mean; None when there is none (or help is asked for):
 
     * a number with an underscore (``--z 4_8``): Python's parsers read it as 48;
-    * an empty text or path (``--out ''``): a path reads it as the current folder.
+    * an empty text or path (``--out ''``): a path reads it as the current folder;
+    * an option given twice that takes one value (``--z 40 --z 48``): the parser keeps the
+      last and drops the other unsaid.
     """
     name = next((arg for arg in argv if arg in group.commands), None)
     if name is None or "-h" in argv or "--help" in argv:
         return None
     options = [p for p in group.commands[name].params if p.param_type_name == "option"]
+    seen: dict[str, tuple[str, str]] = {}
     for param, flag, value in _option_values(options, argv[argv.index(name) + 1:]):
+        if not getattr(param, "multiple", False) and param.name in seen:
+            first = seen[param.name]
+            return f"{flag} = {value}: given twice ({first[0]} = {first[1]} before it); give it once"
+        seen[param.name] = (flag, value)
         kind = _number_kind(param)
         if kind is not None and "_" in value:
             return f"{flag} = {value}: {_with_limit(kind, param.name or '')}, written without underscores"
