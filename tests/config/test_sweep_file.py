@@ -120,3 +120,14 @@ def test_a_gear_sweep_refuses_a_printer_whose_band_names_a_fit(tmp_path):
         row = 4 + bool(tolerance)
         assert line.startswith(f"{sweep}:{row}: printers[1] = ") and "its band names fit: normal" in line
         assert f"wheelstep gears --printer {tmp_path / 'fitted.yaml'}" in line
+
+
+def test_a_value_listed_twice_on_an_axis_is_refused_at_its_line(tmp_path):
+    """`rim: [8, 9, 8.0]` made one point of 8 and 8.0: '3 designs computed', 2 rows."""
+    sweep = write(tmp_path / "s.yaml", "command: shoe\ngrid:\n  width: [12]\n  rim: [8, 9, 8.0]\n")
+    with pytest.raises(InvalidInput) as err:
+        load_sweep(sweep)
+    assert err.value.lines() == [f"{sweep}:4: grid.rim[2] = 8: repeats grid.rim[0] = 8; list each "
+                                 "value once"]
+    plan = load_sweep(write(tmp_path / "t.yaml", "command: shoe\ngrid:\n  rim: [8, 9, 8.5]\n"))
+    assert [values["rim"] for _, values in plan.points] == [8, 9, 8.5]

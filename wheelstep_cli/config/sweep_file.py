@@ -189,6 +189,12 @@ def _value_issues(doc, fields, at: tuple, key: str, axis, values: list) -> list[
                                                   f"{show(axis.step)} holds no value")]
     if isinstance(axis, list) and not axis:
         return [Issue(doc.where(at), dotted(at), "must list at least one value")]
+    for i, value in enumerate(axis if isinstance(axis, list) else []):
+        earlier = next((k for k in range(i) if _same(axis[k], value)), None)
+        if earlier is not None:
+            # the two would be one point: computed once, one row, where two were asked for
+            return [Issue(doc.where(at + (i,)), dotted(at + (i,)), f"= {show(value)}: repeats "
+                          f"{dotted(at + (earlier,))} = {show(axis[earlier])}; list each value once")]
     for i, value in enumerate(values):
         try:
             fields.model_validate({key: value})
@@ -274,6 +280,13 @@ def _check_bands(doc: LocatedYaml, command, names, tolerance: bool, issues: list
                                 f"{band.fit}, which a sweep does not search for each design; "
                                 "sweep on a copy of the profile without `fit:`, then fit the designs "
                                 f"you keep with `wheelstep gears --printer {name}`"))
+
+
+def _same(a, b) -> bool:
+    """Whether two axis values make the same point (8 and 8.0 do; True and 1 do not)."""
+    if isinstance(a, bool) or isinstance(b, bool):
+        return a is b
+    return a == b
 
 
 def _range_count(axis: Range) -> float:
