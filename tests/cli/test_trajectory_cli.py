@@ -87,8 +87,12 @@ def test_the_clearance_rule_names_the_arc_given_not_the_support_length(cli):
 
 def test_a_path_hundreds_of_metres_long_is_not_refused_for_the_rounding_of_its_sweeps(cli):
     """The arcs' sweeps of a 1 km path add up to 360 deg within 7e-9 rad; that was refused as
-    'they turn 360.0 deg instead of 360'. The spacing's own limit is what remains."""
+    'they turn 360.0 deg instead of 360'. The sampling's limit is what remains, said of a size
+    the user gave (the spacing was not given) with the spacing that serves, which passes."""
     result = cli("trajectory", "-H", "1e6", "--r1", "0.01", "--h-max", "1e6")
-    assert error_line(result) == "wheelstep: error: --spacing = 1: gives over a million points"
-    assert cli("trajectory", "-H", "1e6", "--r1", "0.01", "--h-max", "1e6", "--spacing", "10",
+    assert error_line(result) == ("wheelstep: error: -H = 1e6: with it, spacing = 1 fails: gives over "
+                                  "a million points along the 3.768e+06 mm path; must be >= 3.77 mm")
+    assert cli("trajectory", "-H", "1e6", "--r1", "0.01", "--h-max", "1e6", "--spacing", "3.77",
                "-q").exit_code == 0
+    assert error_line(cli("trajectory", "--h-max", "1e6")).startswith(
+        "wheelstep: error: --h-max = 1e6: with it, spacing = 1 fails: gives over a million points")

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from wheelstep_cli.errors import require
+from wheelstep_cli.errors import DesignError, require, rounded_up
 from wheelstep_cli.mechanism import trajectory as tr
 
 #: The pieces of the path in order (counter-clockwise), and the points the report lists.
@@ -29,6 +29,10 @@ class TrajectoryStudy:
         return "symmetric" if self.path.r1 == self.path.r2 else "general"
 
 
+#: Most points a path is sampled into (count).
+MAX_POINTS = 1_000_000
+
+
 def trajectory_study(support_length: float, r1: float, r2: float | None, r3: float | None,
                      h_max: float | None, x0: float, y0: float, root: str,
                      spacing: float) -> TrajectoryStudy:
@@ -40,7 +44,12 @@ def trajectory_study(support_length: float, r1: float, r2: float | None, r3: flo
     require(r3 is None or h_max is None, "h-max", h_max, "give either --r3 or --h-max, not both")
     require(spacing > 0, "spacing", spacing, "must be > 0 mm")
     path = tr.foot_path(support_length, r1, r2, r3=r3, h_max=h_max, x0=x0, y0=y0, root=root)
-    require(path.length / spacing <= 1e6, "spacing", spacing, "gives over a million points")
+    if path.length / spacing > MAX_POINTS:
+        # the sizes make the path that long: the line names the one the user gave
+        raise DesignError("spacing", spacing, f"gives over a million points along the "
+                          f"{path.length:.4g} mm path; must be >= {rounded_up(path.length / MAX_POINTS)} mm"
+                          ).tied_to({"support_length": support_length, "r1": r1, "r2": r2, "r3": r3,
+                                     "h_max": h_max})
     points, pieces = tr.sample_path(path, spacing)
     return TrajectoryStudy(path, points, pieces, "h_max" if r3 is None else "r3")
 
