@@ -120,6 +120,29 @@ def test_an_option_given_twice_is_refused_not_read_as_its_last_value(cli, tmp_pa
     assert twice.exit_code == 0 and "a = 60" in twice.stderr
 
 
+@pytest.mark.parametrize("args, files", [
+    (["kinematics", "--dry-run"], "--plot"),
+    (["kinematics", "--force", "-q"], "--plot"),
+    (["stairs", "--force", "-q"], "--plot"),
+    (["stairs", "--sweep", "--dry-run"], "--plot"),
+    (["linkage", "--dry-run", "-q"], "--csv or --plot or --gif"),
+    (["trajectory", "--dry-run"], "--csv or --dxf or --plot"),
+])
+def test_dry_run_or_force_without_a_file_to_write_is_refused(cli, tmp_path, monkeypatch, args, files):
+    """These commands write only the files their options name: without one, --dry-run and
+    --force did nothing and exited 0 silently."""
+    monkeypatch.chdir(tmp_path)
+    flag = "--dry-run" if "--dry-run" in args else "--force"
+    assert error_line(cli(*args)) == (f"wheelstep: error: {flag} = on: acts on the files the command "
+                                      f"writes, and without {files} it writes none")
+    plot = cli(*args, "--plot", "p.png")      # with a file to write, the flag acts
+    assert "acts on the files" not in plot.stderr
+    if flag == "--dry-run":
+        assert not (tmp_path / "p.png").exists()
+    elif args[0] != "stairs" or "--sweep" not in args:
+        assert plot.exit_code == 0 and (tmp_path / "p.png").is_file(), plot.stderr
+
+
 @pytest.mark.parametrize("text", ["4_8", "1:30", "060", "0x30", "0b110000", "0o60", "-010"])
 def test_a_yaml_number_yaml_1_1_would_misread_is_text(cli, tmp_path, text):
     """YAML 1.1 reads 4_8 as 48, 1:30 as 90 (base 60), 060 as 48 (octal: a thickness of 010

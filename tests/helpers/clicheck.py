@@ -9,3 +9,16 @@ def error_line(result, code: int = 2) -> str:
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1, result.stderr
     return lines[0]
+
+
+def with_remedy(args, remedy: list[str]) -> list[str]:
+    """The command line ``args`` with a refusal's remedy (``["--z", "54", ...]``: flag, value
+    pairs) applied as a user applies it: a flag already given takes the new value (given
+    twice, an option is refused), the others are added."""
+    line = [str(a) for a in args]
+    for flag, value in zip(remedy[::2], remedy[1::2]):
+        if flag in line:
+            line[line.index(flag) + 1] = value
+        else:
+            line += [flag, value]
+    return line

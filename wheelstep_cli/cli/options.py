@@ -150,6 +150,19 @@ def require_with(param: str, value, companion, flag: str) -> None:
         raise DesignError(param, value, f"shapes {flag}: give {flag} too")
 
 
+def require_a_file(dry_run: bool, force: bool, **named) -> None:
+    """Refuse --dry-run or --force where none of the file options ``named`` (option name ->
+    path, None: not given) is given: the command then writes nothing, so either would do
+    nothing."""
+    if any(path is not None for path in named.values()):
+        return
+    flags = " or ".join(f"--{name.replace('_', '-')}" for name in named)
+    for param, given in (("dry_run", dry_run), ("force", force)):
+        if given:
+            raise DesignError(param, "on", f"acts on the files the command writes, and without "
+                                           f"{flags} it writes none")
+
+
 def require_printed(param: str, value, unprinted: bool, what: str) -> None:
     """Refuse option ``param`` given (``value`` not None) that shapes the printed ``what``
     where none is printed (``unprinted``: -q without --json): it would do nothing."""

@@ -120,13 +120,7 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
             return out
         if isinstance(node, yaml.SequenceNode):
             return [walk(item, path + (i,), inner) for i, item in enumerate(node.value)]
-        if node.tag in NUMBER_TAGS and ("_" in node.value or ":" in node.value):
-            # YAML 1.1 reads 4_8 as 48 and 1:30 as 90 (base 60); YAML 1.2 reads both as text,
-            # which is what a name means and what a number field refuses with its own line
-            return node.value
-        if node.tag == NUMBER_TAGS[0] and not _PLAIN_INTEGER.match(node.value):
-            # YAML 1.1 reads 010 as 8 (octal), 0x30 and 0b110000 as 48: a thickness of 010
-            # would print 8 mm. Only plain decimal digits are read as a whole number
+        if _misread_number(node):
             return node.value
         try:
             return constructor.construct_object(node, deep=True)
@@ -134,6 +128,16 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
             raise YamlSyntaxError(where, f"bad value ({_one_line(err)})") from None
 
     return LocatedYaml(label, walk(root, ()), lines)
+
+
+def _misread_number(node) -> bool:
+    """Whether YAML 1.1 would read the scalar ``node`` as a number the text does not mean; it
+    is then kept as text, which is what a name means and what a number field refuses with
+    its own line."""
+    if node.tag in NUMBER_TAGS and ("_" in node.value or ":" in node.value):
+        return True     # 4_8 read as 48, 1:30 as 90 (base 60); YAML 1.2 reads both as text
+    # 010 read as 8 (octal: a thickness of 010 would print 8 mm), 0x30 and 0b110000 as 48
+    return node.tag == NUMBER_TAGS[0] and not _PLAIN_INTEGER.match(node.value)
 
 
 def _one_line(err: Exception) -> str:

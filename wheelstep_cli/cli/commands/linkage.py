@@ -6,7 +6,8 @@ from enum import Enum
 from typing import Annotated, List, Optional
 
 from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, output_file,
-                                       plot_option, point, require_printed, require_with, signs)
+                                       plot_option, point, require_a_file, require_printed, require_with,
+                                       signs)
 from wheelstep_cli.cli.output import Output
 
 
@@ -56,6 +57,7 @@ def linkage(
     from wheelstep_cli.parts.mechanism_files import linkage_files
 
     show = Output(json, quiet, verbose)
+    require_a_file(dry_run, force, csv=csv, plot=plot, gif=gif)
     require_with("gif_frames", gif_frames, gif, "--gif")
     require_printed("step", step, quiet and not json, "table")
     given_step = step is not None

@@ -8,7 +8,8 @@ from typing import Annotated, List, Optional
 import typer
 
 from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Force, Json, LawCsv,
-                                       Profile, Quiet, Tolerance, Turns, Verbose, opt, plot_option)
+                                       Profile, Quiet, Tolerance, Turns, Verbose, opt, plot_option,
+                                       require_a_file)
 from wheelstep_cli.cli.commands.meshcheck_shared import (band_printer_of, design_spec, no_design_options,
                                                     pair_lines, warn_band_jams)
 from wheelstep_cli.cli.output import Output
@@ -62,6 +63,7 @@ def mesh_check(
     installed distance stored there. With --gcode, the pair as PrusaSlicer's G-code prints it
     (SPEC §11). Exit 1 if they interfere or lose contact."""
     show = Output(json, quiet, verbose)
+    require_a_file(dry_run, force, plot=plot)
     design = {"distance": distance, "a": a, "b": b, "c": c, "turns": turns,
               "center_distance": center_distance, "law_csv": law_csv, "blend": blend, "profile": profile}
     band = (tolerance, printer)

@@ -6,7 +6,7 @@ from pathlib import Path
 from typing import Annotated, Optional
 
 from wheelstep_cli.cli.options import (A, B, C, DryRun, Force, Format, Json, MeshFormat, Out, Printer, Profile,
-                                       Quiet, RMin, Turns, Verbose, opt, plot_option)
+                                       Quiet, RMin, Turns, Verbose, opt, plot_option, require_a_file)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import shoe_spec
 
@@ -94,6 +94,7 @@ def kinematics(
     from wheelstep_cli.parts.mechanism_files import kinematics_files
 
     show = Output(json, quiet, verbose)
+    require_a_file(dry_run, force, plot=plot)
     if rows is not None and (json or quiet):
         from wheelstep_cli.errors import DesignError
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Annotated, Optional
 
 from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, number_list, opt, plot_option,
-                                       require_printed)
+                                       require_a_file, require_printed)
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.errors import DesignError, require
 
@@ -52,13 +52,13 @@ def stairs(
     from wheelstep_cli.parts.mechanism_files import stairs_files
 
     show = Output(json, quiet, verbose)
+    require_a_file(dry_run, force, plot=plot)
     require_printed("step", step, quiet and not json, "tables")
     _only_with(sweep, sweep_angles=sweep_angles, sweep_radii=sweep_radii)
     if sweep:
         _only_with(False, a=a, b=b, y1=y1, y2=y2, sole_radius=sole_radius,
                    landing_angle=landing_angle, step=step, tol=tol, plot=plot)
-    step = 5.0 if step is None else step
-    sr.check_stair(run, rise, step)
+    sr.check_stair(run, rise, step := 5.0 if step is None else step)
     if sweep:
         _sweep(show, run, rise, number_list(sweep_angles or "-180:0:15", "sweep_angles"),
                sweep_radii or "40,70,100,150,192")

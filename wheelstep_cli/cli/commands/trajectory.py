@@ -6,7 +6,7 @@ from enum import Enum
 from typing import Annotated, Optional
 
 from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_option, opt, output_file,
-                                       plot_option, require_with)
+                                       plot_option, require_a_file, require_with)
 from wheelstep_cli.cli.output import Output
 
 
@@ -49,6 +49,7 @@ def trajectory(
     from wheelstep_cli.parts.mechanism_files import trajectory_files
 
     show = Output(json, quiet, verbose)
+    require_a_file(dry_run, force, csv=csv, dxf=dxf, plot=plot)
     require_with("o3_root", o3_root.value if o3_root is not None else None, r3, "--r3")
     require_with("dxf_polyline", "on" if dxf_polyline else None, dxf, "--dxf")
     study = trajectory_study(support_length, r1, r2, r3, h_max, x0, y0,
