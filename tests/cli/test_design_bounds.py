@@ -8,7 +8,7 @@ import json
 import pytest
 from hypothesis import HealthCheck, given, seed, settings
 
-from tests.helpers.clicheck import error_line
+from tests.helpers.clicheck import error_line, with_remedy
 from tests.helpers.strategies import generated_gear_options
 from wheelstep_cli.parts.mesh_bounds import bound_violations
 
@@ -18,9 +18,11 @@ def remedy_options(line: str) -> list[str]:
     return line.rsplit("; use ", 1)[1].split()
 
 
-# the desk demonstrator as it was (z 24, j_n 0.375 mm), and the source design with z = 32
+# the desk demonstrator as it was (z 24, j_n 0.375 mm), the source design with z = 32, and with
+# z = 18 (f'i 17 x its bound: the 1/z estimate of 302 teeth, beyond the limit, was said as
+# "no tooth count up to 240 brings it within them", while z = 48 is the default)
 @pytest.mark.parametrize("design", [["--profile", "desk-demo", "--z", "24", "--backlash", "0.375"],
-                                    ["--z", "32"]])
+                                    ["--z", "32"], ["--z", "18"]])
 def test_refused_design_passes_with_its_remedy(cli, tmp_path, design):
     out = tmp_path / "out"
     line = error_line(cli("gears", *design, "--format", "stl", "--out", out))
@@ -28,7 +30,7 @@ def test_refused_design_passes_with_its_remedy(cli, tmp_path, design):
     assert not out.exists() or not any(out.iterdir())
     remedy = remedy_options(line)
     assert remedy[0] == "--z"
-    result = cli("gears", *design, *remedy, "--format", "stl", "--out", out)
+    result = cli("gears", *with_remedy(design, remedy), "--format", "stl", "--out", out)
     assert result.exit_code == 0, result.stderr
     meshing = json.loads((out / "gears.json").read_text())["meshing"]
     assert bound_violations(meshing) == []
@@ -61,7 +63,7 @@ def test_teeth_too_thin_for_the_printer_are_refused_with_a_remedy_that_prints(cl
     assert "nothing written" in line and not out.exists()
     remedy = line.rsplit("; use ", 1)[1].split()[:2]
     assert remedy == ["--z", "42"]
-    result = cli("gears", *design, *remedy, "--printer", "fdm-0.4-petg", "--out", out)
+    result = cli("gears", *with_remedy(design, remedy), "--printer", "fdm-0.4-petg", "--out", out)
     assert result.exit_code == 0, result.stderr
     assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
     resin = cli("gears", *design, "--printer", "resin-0.05-standard", "--out", tmp_path / "resin")
@@ -79,7 +81,7 @@ def test_thin_teeth_under_a_fit_are_refused_with_a_tooth_count_that_keeps_its_ti
     assert "nothing written" in line and not out.exists()
     remedy = line.rsplit("; use ", 1)[1].split()[:2]
     assert remedy[0] == "--z" and int(remedy[1]) < 42
-    result = cli("gears", *design, *remedy, "--json", "-q", "--out", out)
+    result = cli("gears", *with_remedy(design, remedy), "--json", "-q", "--out", out)
     assert result.exit_code == 0, result.stderr
     assert json.loads((out / "gears.json").read_text())["meshing"]["tolerance"]["fit"]["inset_mm"] > 0.0
 
@@ -109,7 +111,7 @@ def test_a_remedy_beyond_the_tooth_limit_sets_the_changed_generator_setting_back
     assert line.startswith("wheelstep: error: --tilt = 0: ") and not out.exists()
     remedy = remedy_options(line)
     assert remedy == ["--tilt", f"{GearPairSpec.model_fields['tilt'].default:g}"]
-    result = cli("gears", "--tilt", "0", *remedy, "--format", "stl", "--out", out)
+    result = cli("gears", *with_remedy(["--tilt", "0"], remedy), "--format", "stl", "--out", out)
     assert result.exit_code == 0, result.stderr
     assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
 

@@ -88,16 +88,18 @@ def backlash_remedy(law, record: dict, backlash: float, bounds: MeshBounds = Mes
     return float(np.floor(1000.0 * scale * backlash) / 1000.0)
 
 
-def teeth_remedy(record: dict, z: int, periods: int, bounds: MeshBounds = MeshBounds()) -> int:
+def teeth_remedy(record: dict, z: int, periods: int, bounds: MeshBounds = MeshBounds(),
+                 squared: bool = False) -> int:
     """Pinion teeth at which F'i and f'i should meet the bounds: the composite deviations of
     the generated teeth fall at least as fast as 1/z (about 1/z^2 measured), so z is scaled
-    by the worst ratio to its bound, rounded up to whole law periods."""
+    by the worst ratio to its bound (or its square root with ``squared``: as 1/z^2), rounded
+    up to whole law periods."""
     worst = 1.0
     for side in ("drive", "coast"):
         flank = record[side]
         for key, limit in (("F_i_total_um", bounds.total_um), ("f_i_tooth_um", bounds.tooth_um)):
             worst = max(worst, (flank[key] if flank[key] is not None else 2 * limit) / limit)
-    return int(periods * np.ceil(z * worst / periods))
+    return int(periods * np.ceil(z * (np.sqrt(worst) if squared else worst) / periods))
 
 
 #: Remedies tried (each a build and a meshing check) before a refusal offers one.
@@ -164,8 +166,13 @@ def _as_options(remedy: dict) -> str:
 def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
     """The options (name -> value) the figures of ``record`` point to for ``design``."""
     broken, remedy = _broken(record, bounds), {}
+    periods = pair.generated.law.pinion_periods
     if any("F'i" in text or "f'i" in text for text in broken):
-        remedy["z"] = teeth_remedy(record, design.z, pair.generated.law.pinion_periods, bounds)
+        remedy["z"] = teeth_remedy(record, design.z, periods, bounds)
+        if remedy["z"] > MAX_TEETH and not _changed_settings(design):
+            # nothing to set back: the deviations fall about as 1/z^2, so a pair far outside
+            # the bounds (z = 18: f'i 17 x its bound) is offered that count to try
+            remedy["z"] = min(MAX_TEETH, teeth_remedy(record, design.z, periods, bounds, squared=True))
     if any("ripple" in text for text in broken):
         remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
     return _within_the_tooth_limit(design, remedy)
@@ -202,13 +209,18 @@ def _within_the_tooth_limit(design, remedy: dict) -> dict:
     """``remedy``, or, when its tooth count is more than a design may have, the generator
     settings the design changed set back to their defaults (those teeth are the cause);
     empty when it changed none (no remedy of teeth or settings)."""
-    from wheelstep_cli.config.specs import GearPairSpec
-
     if remedy.get("z", 0) <= MAX_TEETH:
         return remedy
-    fields = GearPairSpec.model_fields
     # the defaults' teeth with the design's own backlash: the backlash part of the remedy was
     # sized for the other tooth count
+    return _changed_settings(design)
+
+
+def _changed_settings(design) -> dict:
+    """The generator settings ``design`` changes, at their defaults (name -> value)."""
+    from wheelstep_cli.config.specs import GearPairSpec
+
+    fields = GearPairSpec.model_fields
     return {name: fields[name].default for name in GENERATOR_SETTINGS
             if getattr(design, name) != fields[name].default}
 
