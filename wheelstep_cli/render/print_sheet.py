@@ -65,16 +65,28 @@ def _meshing(built, results) -> list[str]:
         return []
     lines = ["## Gear meshing (checked on the printed meshes)", "",
              "| entry | at (mm) | interference | backlash (mm) | F'i / f'i drive (um) | "
-             "F'i / f'i coast (um) | hub speed ripple drive / coast (%) |",
-             "| --- | ---: | --- | --- | ---: | ---: | ---: |"]
+             "F'i / f'i coast (um) | hub speed ripple drive / coast (%) | over the printer's band |",
+             "| --- | ---: | --- | --- | ---: | ---: | ---: | --- |"]
     for entry, m in rows:
         verdict = (f"YES at {m['interfering_poses']} of {m['samples']} poses (allowed)"
                    if m["interference"] else f"none ({m['samples']} poses)")
         lines.append(f"| {entry.name} | {m['distance_mm']:g} | {verdict} | {_fmt(m['backlash_min_mm'], '.3f')}"
                      f" .. {_fmt(m['backlash_max_mm'], '.3f')} | {_flank(m['drive'])} | {_flank(m['coast'])} | "
                      f"{_fmt(m['drive']['hub_speed_ripple_pct'], '.2f')} / "
-                     f"{_fmt(m['coast']['hub_speed_ripple_pct'], '.2f')} |")
+                     f"{_fmt(m['coast']['hub_speed_ripple_pct'], '.2f')} | "
+                     f"{_band(getattr(results[entry.index], 'band', None))} |")
     return lines + [""]
+
+
+def _band(band: dict | None) -> str:
+    """The band check's verdict for the person at the printer: a pair that jams is said so."""
+    if band is None or not band["checked"]:
+        return "not checked (the printer profile has no band)" if band is not None else "not checked"
+    if band["jams"]:
+        return (f"**JAMS** on {band['printer']}: see the report's tolerance section "
+                "(`gears --fit auto` insets the teeth until the band clears)")
+    least = band.get("least_backlash_mm")
+    return f"clears on {band['printer']}" + (f" (least backlash {least:.3f} mm)" if least is not None else "")
 
 
 def _flank(flank: dict) -> str:
