@@ -44,7 +44,9 @@ def end_to_end(runs: int, extra: list[str]) -> tuple[list[float], list[float]]:
     """(wall s, CPU s) of each of ``runs`` CLI runs after a warm-up."""
     walls, cpus = [], []
     with tempfile.TemporaryDirectory() as out:
-        argv = command() + ["gears", "--z", "48", "--out", out, "--force", *extra]
+        # an option is given once: extra options replace the defaults' (e.g. `-- --z 32`)
+        default = [] if "--z" in extra else ["--z", "48"]
+        argv = command() + ["gears", *default, "--out", out, "--force", *extra]
         for i in range(runs + 1):
             cpu0, start = _children_cpu(), time.perf_counter()
             subprocess.run(argv, check=True, capture_output=True, cwd=ROOT)

@@ -96,3 +96,8 @@ def test_a_path_hundreds_of_metres_long_is_not_refused_for_the_rounding_of_its_s
                "-q").exit_code == 0
     assert error_line(cli("trajectory", "--h-max", "1e6")).startswith(
         "wheelstep: error: --h-max = 1e6: with it, spacing = 1 fails: gives over a million points")
+    # the least spacing to three digits, rounded up: it passes (0.01 was said for 0.000803)
+    assert error_line(cli("trajectory", "--spacing", "0.0001")) == (
+        "wheelstep: error: --spacing = 0.0001: gives over a million points along the 802.5 mm path; "
+        "must be >= 0.000803 mm")
+    assert cli("trajectory", "--spacing", "0.000803", "-q").exit_code == 0

@@ -131,3 +131,10 @@ def test_a_value_listed_twice_on_an_axis_is_refused_at_its_line(tmp_path):
                                  "value once"]
     plan = load_sweep(write(tmp_path / "t.yaml", "command: shoe\ngrid:\n  rim: [8, 9, 8.5]\n"))
     assert [values["rim"] for _, values in plan.points] == [8, 9, 8.5]
+    # a printer listed twice doubled the points likewise
+    sweep = write(tmp_path / "p.yaml", "command: shoe\nprinters: [fdm-0.4-pla, fdm-0.4-petg, fdm-0.4-pla]\n"
+                  "grid:\n  rim: [8, 9]\n")
+    with pytest.raises(InvalidInput) as err:
+        load_sweep(sweep)
+    assert err.value.lines() == [f"{sweep}:2: printers[2] = 'fdm-0.4-pla': repeats printers[0]; list "
+                                 "each printer once"]

@@ -237,6 +237,9 @@ def misread_value_text(group, argv: list[str]) -> str | None:
     if name is None or "-h" in argv or "--help" in argv:
         return None
     options = [p for p in group.commands[name].params if p.param_type_name == "option"]
+    both = _both_ways(options, argv[argv.index(name) + 1:])
+    if both is not None:
+        return both
     seen: dict[str, tuple[str, str]] = {}
     for param, flag, value in _option_values(options, argv[argv.index(name) + 1:]):
         if not getattr(param, "multiple", False) and param.name in seen:
@@ -249,6 +252,18 @@ def misread_value_text(group, argv: list[str]) -> str | None:
         if kind is None and not value.strip():
             # a number's empty value gets the parser's own line ("must be a number")
             return f"{flag} = {value!r}: must not be {'empty' if not value else 'only spaces'}"
+    return None
+
+
+def _both_ways(params, argv: list[str]) -> str | None:
+    """One line for a switch given both on and off (``--tolerance --no-tolerance``: the parser
+    keeps the last), None when there is none."""
+    words = argv[:argv.index("--")] if "--" in argv else argv
+    for param in params:
+        on = [w for w in words if w in param.opts]
+        off = [w for w in words if w in getattr(param, "secondary_opts", ())]
+        if on and off:
+            return f"{off[0]} = on: contradicts {on[0]}, given too; give one of them"
     return None
 
 

@@ -219,11 +219,11 @@ def point(text: str, param: str) -> tuple[float, float]:
 def signs(items: list[str], param: str) -> dict[str, int]:
     """``["NAME=+1", "OTHER=-1"]`` to ``{"NAME": 1, "OTHER": -1}``; a name given twice is
     refused (one of its signs would be dropped unsaid)."""
-    out = {}
+    out, typed = {}, {}
     for item in items:
         name, _, sign = item.partition("=")
         require(sign in ("+1", "1", "-1"), param, item, "must be NAME=+1 or NAME=-1")
-        require(name not in out, param, item, f"gives {name} a second sign ({name}={out.get(name, 0):+d} "
-                                              "before it); give each joint once")
-        out[name] = int(sign)
+        require(name not in out, param, item, f"gives joint {name} again ({typed.get(name)} before "
+                                              "it); give each joint once")
+        out[name], typed[name] = int(sign), item
     return out

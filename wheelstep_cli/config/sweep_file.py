@@ -189,12 +189,15 @@ def _value_issues(doc, fields, at: tuple, key: str, axis, values: list) -> list[
                                                   f"{show(axis.step)} holds no value")]
     if isinstance(axis, list) and not axis:
         return [Issue(doc.where(at), dotted(at), "must list at least one value")]
+    first: dict = {}
     for i, value in enumerate(axis if isinstance(axis, list) else []):
-        earlier = next((k for k in range(i) if _same(axis[k], value)), None)
-        if earlier is not None:
+        same = _point_key(value)
+        if same in first:
             # the two would be one point: computed once, one row, where two were asked for
+            earlier = first[same]
             return [Issue(doc.where(at + (i,)), dotted(at + (i,)), f"= {show(value)}: repeats "
                           f"{dotted(at + (earlier,))} = {show(axis[earlier])}; list each value once")]
+        first[same] = i
     for i, value in enumerate(values):
         try:
             fields.model_validate({key: value})
@@ -226,11 +229,16 @@ def _check_printers(doc: LocatedYaml, names, issues: list[Issue]) -> None:
     from wheelstep_cli.config.profiles import profile_names
 
     known = profile_names(printer=True)
-    for i, name in enumerate(names if isinstance(names, list) else []):
+    listed = names if isinstance(names, list) else []
+    for i, name in enumerate(listed):
+        at = ("printers", i)
         if isinstance(name, str) and name not in known and not name.endswith((".yaml", ".yml")):
-            at = ("printers", i)
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: unknown printer preset; "
                                 "known: " + ", ".join(known)))
+        elif isinstance(name, str) and name in listed[:i]:
+            # its points would be the same points: computed once, their rows once
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: repeats "
+                                f"{dotted(('printers', listed.index(name)))}; list each printer once"))
 
 
 def _check_profile_files(doc: LocatedYaml, design, printers, issues: list[Issue]) -> None:
@@ -282,11 +290,14 @@ def _check_bands(doc: LocatedYaml, command, names, tolerance: bool, issues: list
                                 f"you keep with `wheelstep gears --printer {name}`"))
 
 
-def _same(a, b) -> bool:
-    """Whether two axis values make the same point (8 and 8.0 do; True and 1 do not)."""
-    if isinstance(a, bool) or isinstance(b, bool):
-        return a is b
-    return a == b
+def _point_key(value) -> tuple:
+    """A key equal for two axis values that make the same point (8 and 8.0; not True and 1);
+    a value that cannot be a key (a list, a mapping) by its text."""
+    try:
+        hash(value)
+    except TypeError:
+        return ("text", repr(value))
+    return (type(value) is bool, value)
 
 
 def _range_count(axis: Range) -> float:

@@ -3,11 +3,12 @@ support segment and three tangent arcs, sampled, as plain data (mm; arc angles i
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError, require, rounded_up
+from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.mechanism import trajectory as tr
 
 #: The pieces of the path in order (counter-clockwise), and the points the report lists.
@@ -47,11 +48,17 @@ def trajectory_study(support_length: float, r1: float, r2: float | None, r3: flo
     if path.length / spacing > MAX_POINTS:
         # the sizes make the path that long: the line names the one the user gave
         raise DesignError("spacing", spacing, f"gives over a million points along the "
-                          f"{path.length:.4g} mm path; must be >= {rounded_up(path.length / MAX_POINTS)} mm"
+                          f"{path.length:.4g} mm path; must be >= {_up(path.length / MAX_POINTS)} mm"
                           ).tied_to({"support_length": support_length, "r1": r1, "r2": r2, "r3": r3,
                                      "h_max": h_max})
     points, pieces = tr.sample_path(path, spacing)
     return TrajectoryStudy(path, points, pieces, "h_max" if r3 is None else "r3")
+
+
+def _up(value: float) -> str:
+    """A positive lower limit to 3 significant digits, rounded up (so that it passes)."""
+    unit = 10.0 ** (math.floor(math.log10(value)) - 2)
+    return f"{math.ceil(value / unit - 1e-9) * unit:.3g}"
 
 
 def _point(p) -> list[float]:

@@ -218,7 +218,8 @@ def mesh_pair(pinion: str, wheel: str, spec) -> MeshPair:
 
 def default_plates(gcode_files: list[Path]) -> list[str]:
     """The plates a G-code read-back takes its design from when none is named: FILE.3mf
-    beside each FILE.gcode (as ``gears --slice`` and ``prusa-slicer -g FILE.3mf --output FILE.gcode`` write)."""
+    beside each FILE.gcode (as ``gears --slice`` and ``prusa-slicer -g FILE.3mf --output
+    FILE.gcode`` write)."""
     plates = []
     for path in gcode_files:
         plate = path.with_suffix(".3mf")

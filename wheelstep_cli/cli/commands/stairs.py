@@ -52,12 +52,12 @@ def stairs(
     from wheelstep_cli.parts.mechanism_files import stairs_files
 
     show = Output(json, quiet, verbose)
-    require_a_file(dry_run, force, plot=plot)
     require_printed("step", step, quiet and not json, "tables")
     _only_with(sweep, sweep_angles=sweep_angles, sweep_radii=sweep_radii)
-    if sweep:
-        _only_with(False, a=a, b=b, y1=y1, y2=y2, sole_radius=sole_radius,
-                   landing_angle=landing_angle, step=step, tol=tol, plot=plot)
+    if sweep:   # a sweep prints a table and writes no file
+        _only_with(False, a=a, b=b, y1=y1, y2=y2, sole_radius=sole_radius, landing_angle=landing_angle,
+                   step=step, tol=tol, plot=plot, dry_run=dry_run or None, force=force or None)
+    require_a_file(dry_run, force, plot=plot)
     sr.check_stair(run, rise, step := 5.0 if step is None else step)
     if sweep:
         _sweep(show, run, rise, number_list(sweep_angles or "-180:0:15", "sweep_angles"),
