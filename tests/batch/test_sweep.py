@@ -296,14 +296,18 @@ def test_a_rerun_with_another_grid_keeps_its_own_points_in_its_order(cli, tmp_pa
     assert len(kept) == 4 and all(kept[k]["outcome"] == before[k]["outcome"] for k in kept)
 
 
-def test_a_point_repeated_in_the_grid_is_one_row_at_its_first_place(tmp_path):
+def test_a_point_repeated_in_the_plan_is_one_row_at_its_first_place(tmp_path):
+    """A value listed twice is refused in the file (tests/config); two points can still
+    coincide where a range's values round alike: the run computes and keeps one row."""
+    from dataclasses import replace
+
     from distributed import Client, LocalCluster
 
     from wheelstep_cli.batch.sweep_run import run_sweep
     from wheelstep_cli.config.sweep_file import load_sweep
 
-    plan = load_sweep(write(tmp_path / "s.yaml", SHOES.replace("[10, 60]", "[10, 60, 10]")
-                                                      .replace("{start: 10, stop: 14, step: 2}", "[10]")))
+    plan = load_sweep(write(tmp_path / "s.yaml", SHOES.replace("{start: 10, stop: 14, step: 2}", "[10]")))
+    plan = replace(plan, points=(*plan.points, plan.points[0]))
     out = tmp_path / "out"
     with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as lc, Client(lc) as client:
         run_sweep(plan, out, client)
