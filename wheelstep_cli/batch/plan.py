@@ -15,7 +15,7 @@ from wheelstep_cli.config.batch_file import DEFAULT_DESIGN, KIND_NAMES, BatchDef
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
 from wheelstep_cli.config.names import in_file_words, yaml_message
 from wheelstep_cli.config.printers import Printer
-from wheelstep_cli.config.profiles import profile_names
+from wheelstep_cli.config.profiles import beside, profile_names
 from wheelstep_cli.config.resolve import spec_problems, spec_values
 from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, located_issues, section_model, show
 from wheelstep_cli.errors import DesignError
@@ -154,6 +154,9 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     design_name = design_name or DEFAULT_DESIGN
     design = None if check.flawed(path, "design") else check.profiles.design(doc, design_at, design_name, issues)
     overrides = dict(entry.overrides or {})
+    if isinstance(overrides.get("law_csv"), str):
+        # an entry's law CSV beside the batch file first, as its profiles are
+        overrides["law_csv"] = beside(check.profiles.folder, overrides["law_csv"])
     override_where: dict[str, str] = {}
     if kind is not None:
         override_where = _check_overrides(doc, path, kind, overrides, issues)

@@ -104,6 +104,15 @@ def profile_names(printer: bool) -> list[str]:
     return sorted(names)
 
 
+def beside(folder: Path, given: str | None) -> str | None:
+    """A file a YAML file names (``given``, a path), looked up beside that file (in
+    ``folder``) first, as a batch file's profiles are; as given (from the working folder) when
+    it is absolute or not there."""
+    if given is None or Path(given).is_absolute() or not (folder / given).is_file():
+        return given
+    return str(folder / given)
+
+
 def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
     """The checked design profile in ``file`` (``doc``: the file already parsed); every
     problem raised at once as InvalidInput with ``file:line``."""
@@ -121,7 +130,13 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
     if is_printer_profile(doc.data):
         raise DesignError("design", name, "is not a design profile; design profiles: "
                           + ", ".join(profile_names(printer=False)))
-    return validate_file(DesignProfile, doc)
+    profile = validate_file(DesignProfile, doc)
+    gears = profile.gears
+    if gears is not None and gears.law_csv is not None:
+        # the profile's law CSV beside the profile, wherever the command is run from
+        gears = gears.model_copy(update={"law_csv": beside(Path(file).parent, gears.law_csv)})
+        profile = profile.model_copy(update={"gears": gears})
+    return profile
 
 
 def load_design_profile(name_or_path: str):

@@ -239,3 +239,25 @@ def test_settings_are_values_changed_with_replace():
         base.tilt = 0.1
     with pytest.raises(DesignError, match="backlash_mode"):
         GenerationSettings(backlash_mode="sideways")
+
+
+def test_a_profiles_law_csv_is_read_beside_the_profile(cli, tmp_path, monkeypatch):
+    # the profile names its CSV by a bare file name; the command runs from another folder
+    folder = tmp_path / "designs"
+    folder.mkdir()
+    phi = np.linspace(0.0, 360.0, 361)
+    psi = np.degrees(np.radians(phi) - 0.3 * np.sin(np.radians(phi)))
+    distance = center_distance_for_module(law_from_samples(phi, psi), 28, 1.5)
+    (folder / "law.csv").write_text("driving_deg,driven_deg\n"
+                                    + "\n".join(f"{a:.9f},{b:.9f}" for a, b in zip(phi, psi)))
+    (folder / "smooth.yaml").write_text(
+        f"gears:\n  law_csv: law.csv\n  z: 28\n  center_distance: {distance:.6f}\n"
+        f"  install_distance: {distance:.6f}\n  bore: 4\n")
+    elsewhere = tmp_path / "run"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    result = cli("gears", "--profile", folder / "smooth.yaml", "--format", "stl", "--out", "out")
+    assert result.exit_code == 0, result.stderr
+    report = json.loads((elsewhere / "out" / "gears.json").read_text())
+    assert report["parameters"]["law_csv"] == str(folder / "law.csv")
+    assert report["generated"]["pinion_teeth"] == 28
