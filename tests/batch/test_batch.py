@@ -319,6 +319,20 @@ def test_every_override_at_fault_is_reported_at_once_in_the_files_words(cli, tmp
     assert (entry.spec.key_angle, entry.spec.hub_length, entry.spec.flat_depth) == (30, 5, 1)
 
 
+def test_an_entrys_law_csv_is_found_beside_the_batch_file(tmp_path, monkeypatch):
+    from wheelstep_cli.batch.plan import load_batch
+
+    jobs = tmp_path / "jobs"
+    jobs.mkdir()
+    phi = np.linspace(0.0, 360.0, 37)
+    (jobs / "law.csv").write_text("driving_deg,driven_deg\n" + "\n".join(
+        f"{a:.9f},{np.degrees(np.radians(a) - 0.3 * np.sin(np.radians(a))):.9f}" for a in phi))
+    batch = write(jobs / "b.yaml", VALID_ENTRY + "    overrides:\n      law_csv: law.csv\n")
+    monkeypatch.chdir(tmp_path)         # no law.csv here: only the batch file's folder has one
+    (entry,) = load_batch(batch, str(batch)).entries
+    assert entry.spec.law_csv == str(jobs / "law.csv")
+
+
 @pytest.mark.parametrize("overrides, expect", [
     # b's rule ties c: checked again without c, the design's c must not be blamed on b
     ("      c: -5\n      b: 100\n", ["c = -5: must be > 0 mm"]),
