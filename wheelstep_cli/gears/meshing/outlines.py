@@ -39,6 +39,13 @@ def rotate(points: np.ndarray, angle) -> np.ndarray:
     return np.stack([c * x - s * y, s * x + c * y], axis=-1)
 
 
+def turn(points: np.ndarray, cos: np.ndarray, sin: np.ndarray) -> np.ndarray:
+    """:func:`rotate` by angles given by their cosines and sines (broadcasting against
+    ``points[..., 0]``): a batch's few pose angles are looked up once, not per point."""
+    x, y = points[..., 0], points[..., 1]
+    return np.stack([cos * x - sin * y, sin * x + cos * y], axis=-1)
+
+
 def wrap(angle: np.ndarray) -> np.ndarray:
     """Angles (rad) into (-pi, pi]."""
     return np.pi - np.mod(np.pi - angle, 2.0 * np.pi)
@@ -268,8 +275,11 @@ def band_at(body: np.ndarray, band: RadialBand):
     outline, mm)."""
     bins = band.bins
     r = np.hypot(body[:, 0], body[:, 1])
-    cell = (np.floor(np.mod(np.arctan2(body[:, 1], body[:, 0]), 2.0 * np.pi)
-                     / (2.0 * np.pi / bins)).astype(np.intp)) % bins
+    angle = np.arctan2(body[:, 1], body[:, 0])
+    # into [0, 2 pi) as np.mod would put it (arctan2 lies in [-pi, pi]), then its bin
+    np.add(angle, 2.0 * np.pi, out=angle, where=angle < 0.0)
+    cell = (angle / (2.0 * np.pi / bins)).astype(np.intp)
+    cell[cell >= bins] -= bins
     return r, band.rmin[cell], band.rmax[cell]
 
 

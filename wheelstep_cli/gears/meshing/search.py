@@ -16,7 +16,7 @@ from wheelstep_cli.gears.meshing.contacts import edge_table, gaps, rotations_to_
 from wheelstep_cli.gears.meshing.interference import contains, depth, posed_overlap_area
 from wheelstep_cli.gears.meshing.outlines import (MeshWindow, Pose, RadialBand, SortedOutline,
                                                   Window, band_at, near_band, posed_window,
-                                                  radial_band, rotate, sector, sorted_outline)
+                                                  radial_band, sector, sorted_outline, turn)
 from wheelstep_cli.gears.meshing.settings import MeshingSettings
 from wheelstep_cli.geometry.planar import prepared_polygon
 
@@ -88,9 +88,12 @@ def posed_sides(pair: Pair, theta: np.ndarray, phi: np.ndarray, reach: float) ->
     centre, box = pair.centre, pair.box
     pw = posed_window(pair.pinion, Pose(-theta, None, pair.pinion_sector, theta), box)
     ww = posed_window(pair.wheel, Pose(np.pi + phi, centre, pair.wheel_sector, -np.pi - phi), box)
+    # each pose's turns into the wheel's and the pinion's own frames (cosine, sine per pose)
+    to_wheel = -(np.pi + phi)
+    cw, sw, cp, sp = np.cos(to_wheel), np.sin(to_wheel), np.cos(theta), np.sin(theta)
     # vertices inside the other outline, tested in that outline's own frame
-    pv_body = rotate(pw.v - centre, -(np.pi + phi[pw.v_pose]))
-    wv_body = rotate(ww.v, theta[ww.v_pose])
+    pv_body = turn(pw.v - centre, cw[pw.v_pose], sw[pw.v_pose])
+    wv_body = turn(ww.v, cp[ww.v_pose], sp[ww.v_pose])
     # where the vertices fall in the other outline's band: asked twice below, found once
     pv_seen = band_at(pv_body, pair.wheel_band) if pair.wheel_band is not None else None
     wv_seen = band_at(wv_body, pair.pinion_band) if pair.pinion_band is not None else None
@@ -104,12 +107,12 @@ def posed_sides(pair: Pair, theta: np.ndarray, phi: np.ndarray, reach: float) ->
     w_half, p_half = (0.5 * np.hypot(*(e.e1 - e.e0).T) for e in (ww, pw))
     mid = lambda e: 0.5 * (e.e0 + e.e1)  # noqa: E731
     # wheel edges: crossed by a pinion vertex that turned at most the reach about the wheel axis
-    we_near = near_band(rotate(mid(ww) + centre, theta[ww.e_pose]),
+    we_near = near_band(turn(mid(ww) + centre, cp[ww.e_pose], sp[ww.e_pose]),
                         reach * np.sqrt(np.maximum(np.einsum("ij,ij->i", ww.e0, ww.e0),
                                                    np.einsum("ij,ij->i", ww.e1, ww.e1)))
                         + w_half + 1e-9, pair.pinion_band)
     # pinion edges: crossed by a wheel vertex at the same radius and within the reach of angle
-    pe_near = near_band(rotate(mid(pw), -(np.pi + phi[pw.e_pose])), p_half + 1e-9,
+    pe_near = near_band(turn(mid(pw), cw[pw.e_pose], sw[pw.e_pose]), p_half + 1e-9,
                         pair.wheel_band)
     # the bands' angular margins allow for short edges only: never skip a longer one
     we_near |= w_half > 0.5 * pair.wheel.e_length
