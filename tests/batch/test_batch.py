@@ -252,6 +252,9 @@ parts:
     # taller than the printer prints: refused before anything is built, at its line
     (VALID_ENTRY + "    overrides:\n      thickness: 300\n", "thickness: 300",
      "overrides.thickness = 300: makes part 'pinion' 300.0 mm tall, more than the 250 mm printer"),
+    # a shoe stands on its side: its width is its height on the bed
+    (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      width: 300\n", "width: 300",
+     "overrides.width = 300: makes part 'shoe' 300.0 mm tall, more than the 250 mm printer"),
     (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      width: -3\n", "width",
      "parts[0].overrides.width = -3: must be > 0 mm"),
     # the R_min rule names the parameter the entry gave (b), not the design's strut c

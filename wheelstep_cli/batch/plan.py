@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 from pydantic import ValidationError
 
 from wheelstep_cli.batch.lookup import Profiles, profile_label
@@ -263,21 +264,25 @@ def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
             return None, None, problems
         printed = printed_spec(kind, spec, printer)
         problems = kind.problems(printed)
-        if not problems and kind.name == "gear-pair":
-            _require_height(printed, printer)
+        if not problems:
+            _require_height(kind, printed, printer)
     except DesignError as err:
         return None, None, [err]
     return (None, None, problems) if problems else (spec, printed, [])
 
 
-def _require_height(printed, printer: Printer) -> None:
-    """A gear pair taller than its printer prints, refused before it is built (as the plate
-    would refuse it after)."""
+def _require_height(kind: PartKind, printed, printer: Printer) -> None:
+    """A part taller than its printer prints, refused before it is built (as the plate would
+    refuse it after): a gear pair stands on its face, a shoe on its side (its width upright)."""
     from wheelstep_cli.parts.gear_pair import footprint
     from wheelstep_cli.parts.plate_layout import gear_pair_height, require_height
 
-    require_height("pinion", gear_pair_height(printed), printer, "thickness", printed.thickness,
-                   footprint(printed))
+    if kind.name == "gear-pair":
+        require_height("pinion", gear_pair_height(printed), printer, "thickness", printed.thickness,
+                       footprint(printed))
+    elif kind.name == "shoe":
+        # as the mesh's float32 vertices hold it (the plate's check sees that)
+        require_height("shoe", float(np.float32(printed.width)), printer, "width", printed.width)
 
 
 def _problem(doc, path, err: DesignError, override_where, design_name, overrides) -> Issue:
