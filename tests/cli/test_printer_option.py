@@ -47,6 +47,15 @@ def test_a_profile_file_that_is_no_mapping_is_told_so_not_called_the_other_kind(
 
 
 @pytest.mark.parametrize("option", ["--profile", "--printer"])
+def test_a_profile_file_not_named_yaml_is_told_so_not_called_missing(cli, tmp_path, option):
+    given = write(tmp_path / "p1.txt", "gears:\n  z: 48\n")
+    assert error_line(cli("shoe", option, given, "--out", tmp_path / "out")) == (
+        f"wheelstep: error: {option} = {given}: is not a profile file: a profile is a YAML file "
+        "named *.yaml or *.yml")
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("option", ["--profile", "--printer"])
 def test_a_profile_file_that_is_not_text_is_said_of_the_option_that_named_it(cli, tmp_path, monkeypatch,
                                                                              option):
     """Found by its name in ./profiles or given as a path, an unreadable profile is named by the

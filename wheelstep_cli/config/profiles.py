@@ -48,6 +48,10 @@ def find_profile(name_or_path: str, printer: bool | None = None) -> Path:
                 return candidate
     if path.is_dir():
         raise DesignError("profile", name_or_path, "is a folder, not a profile file")
+    if path.is_file():
+        # a file by another name: the name decides what it is (a preset is looked up by it)
+        raise DesignError("profile", name_or_path, "is not a profile file: a profile is a YAML "
+                          "file named *.yaml or *.yml")
     if printer is None:
         known = sorted({p.stem for d in profile_dirs() if d.is_dir() for p in d.glob("*.yaml")})
         what = "profiles"
