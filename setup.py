@@ -6,5 +6,5 @@ from setuptools import find_packages, setup
 setup(
     packages=find_packages(include=["wheelstep_cli", "wheelstep_cli.*"]) + ["wheelstep_cli.profiles"],
     package_dir={"wheelstep_cli.profiles": "profiles"},
-    package_data={"wheelstep_cli.profiles": ["*.yaml"]},
+    package_data={"wheelstep_cli.profiles": ["*.yaml"], "wheelstep_cli.config": ["*.json"]},
 )

@@ -20,7 +20,7 @@ from pydantic_core import PydanticCustomError
 
 from wheelstep_cli.config.fields import STRICT, Real, length, quantity
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
-from wheelstep_cli.config.schema import InvalidInput, Issue, validate_file
+from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, validate_file
 from wheelstep_cli.errors import DesignError
 
 
@@ -209,6 +209,16 @@ class Printer:
         return config
 
 
+def _check_slicer(settings: dict[str, Any], technology: str, doc: LocatedYaml) -> None:
+    """Refuse (InvalidInput, each at its line) what PrusaSlicer would not take of the section."""
+    from wheelstep_cli.config.slicer_options import slicer_problems
+
+    issues = [Issue(doc.where(("slicer", key)), dotted(("slicer", key)), why)
+              for key, why in slicer_problems(settings, technology)]
+    if issues:
+        raise InvalidInput(issues)
+
+
 def _band(section: BandSection) -> Band:
     values = section.model_dump()
     fit = values.pop("fit")
@@ -231,6 +241,7 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
             raise InvalidInput([Issue(err.where, "", err.limit)]) from None
     profile = validate_file(PrinterProfile, doc)
     section, material = profile.printer, profile.material
+    _check_slicer(profile.slicer, getattr(section.technology, "value", section.technology), doc)
     raw = Path(path).read_bytes()
     return Printer(name=name, description=profile.description or name, technology=section.technology,
                    bed=tuple(section.bed), max_height=section.max_height, margin=section.margin,
