@@ -1,6 +1,8 @@
 """Golden figures: the key outputs of every preset and a few designs, kept in tests/golden/.
 
-Each case runs one command of the real CLI in a fresh folder and records its exit code,
+Each case runs one command of the real CLI in a fresh folder (in a child process whose numpy
+kernels are capped at one SIMD level, :data:`SIMD_CAP`, so that the hashes do not depend on the
+machine's CPU) and records its exit code,
 the SHA-256 and size of every file it wrote, the SHA-256 of what it printed on stdout
 (for the report commands) and the numeric figures of every JSON file it wrote (flattened
 to ``file:key.path`` -> value). The golden test compares a new run with the stored one:
@@ -20,6 +22,7 @@ import io
 import json
 import math
 import os
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -82,8 +85,40 @@ def _sha(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
 
 
+#: numpy's widest SIMD kernels the cases run with. numpy picks its kernels by the CPU at run time,
+#: and its AVX-512 ones (sin, cos, arctan2, ...) round some results differently in the last
+#: bit, which moves mesh vertices by an ulp: the records are made and checked capped at the
+#: AVX2 level (x86-64-v3) so their hashes hold on every machine that has it.
+SIMD_CAP = "X86_V3"
+
+
+def _capped_env() -> dict[str, str]:
+    """This process's environment with numpy's run-time kernels above :data:`SIMD_CAP` off."""
+    from numpy._core._multiarray_umath import __cpu_dispatch__, __cpu_features__
+
+    env = dict(os.environ)
+    if SIMD_CAP in __cpu_dispatch__:
+        above = __cpu_dispatch__[__cpu_dispatch__.index(SIMD_CAP) + 1:]
+        wider = [f for f in above if __cpu_features__.get(f)]
+        if wider:
+            env["NPY_DISABLE_CPU_FEATURES"] = " ".join(wider)
+    return env
+
+
 def run_case(name: str) -> dict:
-    """Run one case in a fresh temporary folder and return its record."""
+    """Run one case in a fresh temporary folder, in a child process with numpy capped at
+    :data:`SIMD_CAP`, and return its record."""
+    root = str(Path(__file__).resolve().parents[2])
+    env = {**_capped_env(), "PYTHONPATH": os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")]))}
+    done = subprocess.run([sys.executable, "-m", "tests.helpers.golden", "--record", name], env=env,
+                          cwd=root, capture_output=True, text=True, check=False, timeout=1800)
+    if done.returncode != 0:
+        raise RuntimeError(f"golden case {name} could not run: {done.stderr[-2000:]}")
+    return json.loads(done.stdout)
+
+
+def _record(name: str) -> dict:
+    """Run one case in a fresh temporary folder (in this process) and return its record."""
     from wheelstep_cli.cli import run
 
     args = [a.replace("{examples}", str(EXAMPLES)).replace("{golden}", str(GOLDEN_DIR)) for a in CASES[name]]
@@ -145,6 +180,9 @@ def differences(stored: dict, new: dict, rel: float = 1e-9) -> list[str]:
 
 
 def main(argv: list[str]) -> int:
+    if argv[:1] == ["--record"]:
+        print(json.dumps(_record(argv[1])))
+        return 0
     names = [a for a in argv if not a.startswith("--")] or list(CASES)
     if "--update" not in argv:
         print("usage: python -m tests.helpers.golden --update [CASE ...]")
