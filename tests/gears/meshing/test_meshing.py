@@ -429,3 +429,23 @@ def test_the_default_sampling_gives_every_tooth_of_a_crank_law_pinion_sixteen_po
     poses_per_tooth = np.diff(edges) / law.theta_period * samples
     assert poses_per_tooth.min() >= 16.0
     assert samples == 1536 or poses_per_tooth.min() < 17.5    # not more than the least needs
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(1, 64).flatmap(lambda bins: st.tuples(
+    st.just(bins),
+    st.lists(st.tuples(st.integers(0, bins - 1), st.integers(1, bins), st.floats(-1e3, 1e3)),
+             min_size=1, max_size=30))))
+def test_a_radial_bands_bins_see_every_range_that_holds_them(case):
+    """The bands' folding of bin ranges (two power-of-two blocks a range) gives each bin the
+    min and max of exactly the values whose ranges hold it, as visiting every bin would."""
+    from wheelstep_cli.gears.meshing.outlines import _over_ranges
+
+    bins, ranges = case
+    first, count, values = (np.array(column) for column in zip(*ranges))
+    for op, empty in ((np.minimum, np.inf), (np.maximum, -np.inf)):
+        want = np.full(bins, empty)
+        for f, c, v in ranges:
+            for j in range(c):
+                want[(f + j) % bins] = op(want[(f + j) % bins], v)
+        assert np.array_equal(_over_ranges(op, values.astype(float), first, count, bins, empty), want)

@@ -261,13 +261,35 @@ def radial_band(outline: SortedOutline, half_width: float, bins: int) -> RadialB
     grow = half_width + 1e-6
     b0 = np.floor(np.mod(start - grow, 2.0 * np.pi) / width).astype(np.intp)
     count = np.minimum(np.floor((sweep + 2.0 * grow) / width).astype(np.intp) + 2, bins)
-    owner, k = expand(np.zeros(len(points), dtype=np.intp), count, np.arange(int(count.max())))
-    cell = (b0[owner] + k) % bins
-    rmin = np.full(bins, np.inf)
-    rmax = np.full(bins, -np.inf)
-    np.minimum.at(rmin, cell, lo[owner])
-    np.maximum.at(rmax, cell, hi[owner])
-    return RadialBand(rmin, rmax)
+    return RadialBand(_over_ranges(np.minimum, lo, b0, count, bins, np.inf),
+                      _over_ranges(np.maximum, hi, b0, count, bins, -np.inf))
+
+
+def _over_ranges(op: np.ufunc, values: np.ndarray, first: np.ndarray, count: np.ndarray,
+                 bins: int, empty: float) -> np.ndarray:
+    """Per bin of a circle of ``bins``, ``op`` (np.minimum or np.maximum) of the ``values``
+    whose bin ranges ``first`` .. ``first + count - 1`` (mod bins, 1 <= count <= bins) hold
+    it; ``empty`` where none does.
+
+    Each range is the union of two power-of-two blocks (its first and its last 2^L bins,
+    2^L <= count < 2^(L+1)): the values are folded into per-level block tables, two entries
+    per range, and each level then into the halves below it. The same values meet in each
+    bin as when every bin of every range is visited, so min and max come out the same.
+    """
+    first = np.mod(first, bins)
+    level = np.floor(np.log2(count)).astype(np.intp)
+    # an exact power of two: log2 rounding cannot give a block longer than the range
+    level -= (np.left_shift(1, level) > count).astype(np.intp)
+    top = int(level.max(initial=0))
+    span = 2 * bins          # ranges end before first + bins <= 2 bins: no wrap inside a table
+    tables = np.full((top + 1, span), empty)
+    for at in (first, first + count - np.left_shift(1, level)):
+        op.at(tables, (level, at), values)
+    for lvl in range(top, 0, -1):
+        half = 1 << (lvl - 1)
+        op(tables[lvl - 1], tables[lvl], out=tables[lvl - 1])
+        op(tables[lvl - 1, half:], tables[lvl, :span - half], out=tables[lvl - 1, half:])
+    return op(tables[0, :bins], tables[0, bins:])
 
 
 def band_at(body: np.ndarray, band: RadialBand):
