@@ -49,3 +49,18 @@ def test_headers_blank_lines_semicolons_and_trailing_separators_are_read(tmp_pat
 def test_too_few_rows_is_one_line(tmp_path):
     with pytest.raises(DesignError, match="needs at least 8 numeric rows"):
         read_law_csv(_write(tmp_path, ROWS[:5]))
+
+
+@pytest.mark.parametrize("change, why", [
+    # a row repeated: the driving angle stands still
+    (lambda rows: rows[:20] + [rows[19]] + rows[20:],
+     "line 22: the driving angle 47.5 deg does not increase past 47.5 deg (line 21); both angles "
+     "increase strictly over one period"),
+    # the last row left out: 177.5 deg is no 360/k
+    (lambda rows: rows[:-1], "the driving angle spans 177.5 deg from line 2 to line 73; it must span "
+                             "360/k deg (k whole: closed gears)"),
+])
+def test_rows_that_are_no_period_are_refused_naming_the_lines(cli, tmp_path, change, why):
+    path = _write(tmp_path, change(list(ROWS)))
+    found = error_line(cli("gears", "--law-csv", path, "--dry-run", "--out", tmp_path / "out"))
+    assert found.startswith(f"wheelstep: error: --law-csv = {path}: {why}"), found

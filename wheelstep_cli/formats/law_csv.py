@@ -43,7 +43,7 @@ def read_law_csv(path, param: str = "law_csv"):
         text = data.decode("utf-8-sig").replace("\x1a", "")   # a spreadsheet's BOM, an old end-of-file mark
     except UnicodeDecodeError:
         raise DesignError(param, str(path), "is not UTF-8 text") from None
-    rows = []
+    rows, lines = [], []
     for number, line in enumerate(text.splitlines(), start=1):
         cells = [c.strip() for c in line.replace(";", ",").split(",")]
         while cells and not cells[-1]:
@@ -59,6 +59,26 @@ def read_law_csv(path, param: str = "law_csv"):
                                                 "of two plain numbers (headers and notes go before the rows)")
         if row is not None:
             rows.append(row)
+            lines.append(number)
     require(len(rows) >= 8, param, str(path), "needs at least 8 numeric rows 'driving_deg, driven_deg'")
     data = np.array(rows)
+    _require_period(data, lines, param, str(path))
     return law_from_samples(data[:, 0], data[:, 1], param)
+
+
+def _require_period(data: np.ndarray, lines: list[int], param: str, path: str) -> None:
+    """Refuse rows (deg) that do not run over one period of closed gears, naming the line:
+    both angles increasing row by row, each spanning 360/k deg from the first row to the last."""
+    for column, name in ((0, "driving"), (1, "driven")):
+        step = np.diff(data[:, column])
+        if np.any(step <= 0):
+            at = int(np.argmax(step <= 0)) + 1
+            raise DesignError(param, path, f"line {lines[at]}: the {name} angle {data[at, column]:g} deg "
+                                           f"does not increase past {data[at - 1, column]:g} deg (line "
+                                           f"{lines[at - 1]}); both angles increase strictly over one period")
+        span = float(data[-1, column] - data[0, column])
+        count = 360.0 / span
+        if abs(count - round(count)) >= 1e-6 or round(count) < 1:
+            raise DesignError(param, path, f"the {name} angle spans {span:g} deg from line {lines[0]} to "
+                                           f"line {lines[-1]}; it must span 360/k deg (k whole: closed "
+                                           "gears), the last row repeating the first one period on")
