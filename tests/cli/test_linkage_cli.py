@@ -29,6 +29,10 @@ def test_cli_chebyshev_scaled(cli):
     data = json.loads(res.stdout)
     pts = {round(r["crank_deg"]): (r["x_mm"], r["y_mm"]) for r in data["path"]}
     assert np.allclose([pts[90], pts[180], pts[270]], [[4, 4], [2, 4], [0, 4]], atol=1e-9)   # unit 50 x 0.02
+    # the preset's description states its own numbers: the report says they are scaled
+    assert data["scale"] == 0.02 and data["description"].endswith("; every length x 0.02 (--scale)")
+    plain = json.loads(cli("linkage", "--preset", "chebyshev", "--step", "90", "--json").stdout)
+    assert plain["scale"] == 1.0 and "--scale" not in plain["description"]
 
 
 def test_cli_impossible_linkage_one_line_exit_2(cli, tmp_path):

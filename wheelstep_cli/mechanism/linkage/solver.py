@@ -111,7 +111,9 @@ class Linkage:
             else:
                 s = Attached(s.name, s.p, s.q, s.length * factor, s.angle)
             out.append(s)
-        return Linkage(self.name, self.description, tuple(out), self.foot, self.ground, self.rpm, self.links)
+        # the description states the preset's own numbers: say they are scaled
+        described = f"{self.description}; every length x {factor:g} (--scale)"
+        return Linkage(self.name, described, tuple(out), self.foot, self.ground, self.rpm, self.links)
 
 
 @dataclass(frozen=True)

@@ -142,7 +142,8 @@ def linkage_report(study: LinkageStudy) -> dict:
     """Leg, branches, loop residual, stride, lift, duty factor, speeds and the sampled path."""
     g, sol = study.gait, study.solution
     return {
-        "preset": study.leg.name, "description": study.leg.description, "rpm": study.rpm,
+        "preset": study.leg.name, "description": study.leg.description, "scale": study.request.scale,
+        "rpm": study.rpm,
         "samples": study.request.samples,
         "branches": sol.branches, "loop_residual_mm": sol.residual,
         "stride_mm": g.stride, "lift_mm": g.lift, "duty_factor": g.duty_factor,
