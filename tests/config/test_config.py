@@ -107,6 +107,26 @@ def test_profile_with_a_wrong_typed_value_is_one_line_naming_the_key(cli, tmp_pa
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("command, text, key, expect", [
+    # a rule of the mechanism the profile gives: said at its line, by its key, not as a flag
+    ("gears", "mechanism:\n  a: 60\n  b: 110\n  c: 360\ngears:\n  z: 48\n", "c: 360",
+     "mechanism.c = 360: must be > 4b - a = 380 mm"),
+    ("shoe", "mechanism:\n  a: 60\n  b: -5\n", "b: -5", "mechanism.b = -5: must be >= 0 mm"),
+    ("pitch", "mechanism:\n  a: 60\n  b: 110\n  c: 360\n", "c: 360", "mechanism.c = 360: must be >"),
+])
+def test_a_rule_a_profiles_value_breaks_is_said_at_its_line(cli, tmp_path, command, text, key, expect):
+    design = write(tmp_path / "mech.yaml", text)
+    out = ["--out", tmp_path / "out"] if command != "pitch" else []
+    line = error_line(cli(command, "--profile", design, *out))
+    assert line.startswith(f"wheelstep: error: {design}:{line_of(design, key)}: {expect}"), line
+    assert not (tmp_path / "out").exists()
+    # the same value given on the command line is named by its flag
+    flag = "--" + key.split(":")[0]
+    value = key.split(": ")[1]
+    assert error_line(cli(command, "--profile", design, flag, value, *out)).startswith(
+        f"wheelstep: error: {flag} = {value}: ")
+
+
 def test_profile_and_batch_share_the_rules(tmp_path):
     """The same profile value is refused by --profile and by a batch entry, in the same words."""
     from wheelstep_cli.batch import load_batch

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any, Optional
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, Field, PrivateAttr
 
 from wheelstep_cli.config.fields import STRICT, Number
 from wheelstep_cli.config.schema import section_model
@@ -35,6 +35,13 @@ class DesignProfile(BaseModel):
     mechanism: Optional[MechanismSection] = None
     gears: Optional[section_model(GearPairSpec)] = None
     shoe: Optional[section_model(ShoeSpec)] = None
+
+    #: (section, key) -> ``file:line`` of each value the file gives (set when it is read)
+    _where: dict = PrivateAttr(default_factory=dict)
+
+    def where(self, section: str, key: str) -> str | None:
+        """``file:line`` of ``section.key`` in the profile's file (None: not given there)."""
+        return self._where.get((section, key))
 
     def values(self, section: str) -> dict[str, Any]:
         """The values a section gives (``mechanism``, ``gears``, ``shoe``), without the unset."""

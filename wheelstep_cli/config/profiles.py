@@ -140,6 +140,8 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
         # the profile's law CSV beside the profile, wherever the command is run from
         gears = gears.model_copy(update={"law_csv": beside(Path(file).parent, gears.law_csv)})
         profile = profile.model_copy(update={"gears": gears})
+    profile._where = {(section, key): doc.where((section, key)) for section in ("mechanism", "gears", "shoe")
+                      for key in profile.values(section)}
     return profile
 
 

@@ -101,8 +101,10 @@ def gear_pair_spec(profile, **cli) -> GearPairSpec:
     Raises InvalidInput (every problem of the profile, with ``file:line``) or DesignError
     (a value that breaks a rule, named by its parameter).
     """
-    spec = _named_for(cli, build, GearPairSpec, spec_values(GearPairSpec, "gears", _profile(profile), cli))
-    _named_for(cli, spec.mechanism)
+    loaded = _profile(profile)
+    spec = _named_for(cli, build, GearPairSpec, spec_values(GearPairSpec, "gears", loaded, cli),
+                      profile=(loaded, "gears"))
+    _named_for(cli, spec.mechanism, profile=(loaded, "gears"))
     return spec
 
 
@@ -136,24 +138,53 @@ def paper_table_spec(profile, **cli) -> GearPairSpec:
                          {**cli, "teeth": "paper", "bore": 0.0})
     # the profile's values were checked when it was read, the command line's are numbers
     center = paper_design_distance(values.get("center_distance"), values.get("install_distance"))
-    return _named_for(cli, build, GearPairSpec, {**values, "center_distance": center,
-                                                 "install_distance": center})
+    spec = _named_for(cli, build, GearPairSpec, {**values, "center_distance": center,
+                                                 "install_distance": center}, profile=(loaded, "gears"))
+    _named_for(cli, spec.mechanism, profile=(loaded, "gears"))
+    return spec
 
 
 def shoe_spec(profile, **cli) -> ShoeSpec:
     """Resolve a ShoeSpec: command line over profile (``shoe:``, ``mechanism:``) over defaults."""
-    spec = _named_for(cli, build, ShoeSpec, spec_values(ShoeSpec, "shoe", _profile(profile), cli))
-    _named_for(cli, spec.design)
+    loaded = _profile(profile)
+    spec = _named_for(cli, build, ShoeSpec, spec_values(ShoeSpec, "shoe", loaded, cli), profile=(loaded, "shoe"))
+    _named_for(cli, spec.design, profile=(loaded, "shoe"))
     return spec
 
 
-def _named_for(cli: dict[str, Any], step, *args):
+def _named_for(cli: dict[str, Any], step, *args, profile: tuple | None = None):
     """``step(*args)``; a rule it breaks is named by a parameter the user gave, where the rule
-    can be stated for one (the mechanism is sized here, so an impossible one is caught now)."""
+    can be stated for one (the mechanism is sized here, so an impossible one is caught now):
+    on the command line, else in the design profile (``profile`` = (the loaded profile or
+    None, the part's section)), at the value's ``file:line``."""
     try:
         return step(*args)
     except InvalidInput:
         raise
     except DesignError as err:
-        raise err.for_given(k for k, v in cli.items() if v is not None) from None
+        given = [k for k, v in cli.items() if v is not None]
+        named = err.for_given(given)
+        if named.param.replace("-", "_") not in given and profile is not None and profile[0] is not None:
+            located = _in_profile(named.for_given(_profile_keys(*profile)), *profile)
+            if located is not None:
+                raise located from None
+        raise named from None
+
+
+def _profile_keys(loaded, section: str) -> list[str]:
+    """The keys a profile gives its part, the part's section first, then its mechanism."""
+    return [*loaded.values(section), *loaded.values("mechanism")]
+
+
+def _in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
+    """``err`` said at the profile line that gives its parameter (None: the profile does not)."""
+    from wheelstep_cli.config.names import in_file_words
+    from wheelstep_cli.config.schema import Issue, show
+
+    key = err.param.replace("-", "_")
+    for part in (section, "mechanism"):
+        where = loaded.where(part, key)
+        if where is not None:
+            return InvalidInput([Issue(where, f"{part}.{key}", f"= {show(err.value)}: {in_file_words(err.limit)}")])
+    return None
 
