@@ -20,7 +20,18 @@ def _printer(tmp_path, replaced: str, by: str):
 
 
 @pytest.mark.parametrize("replaced, by, needle, expect", [
-    ("  perimeters: 3\n", "  perimeters: many\n", "perimeters", "slicer.perimeters = 'many': must be a number"),
+    ("  perimeters: 3\n", "  perimeters: many\n", "perimeters", "slicer.perimeters = 'many': must be a whole number"),
+    # ranges and kinds as PrusaSlicer reads them (it would drop the fraction, refuse the rest)
+    ("  perimeters: 3\n", "  perimeters: 2.5\n", "perimeters", "slicer.perimeters = 2.5: must be a whole number"),
+    ("  perimeters: 3\n", "  perimeters: -1\n", "perimeters", "slicer.perimeters = -1: must be >= 0"),
+    ("  fill_density: 30%\n", "  fill_density: 150%\n", "150%",
+     "slicer.fill_density = '150%': must be at most 100% (or a fraction up to 1)"),
+    ("  fill_density: 30%\n", "  fill_density: 30\n", "fill_density: 30",
+     "slicer.fill_density = 30: must be at most 100% (or a fraction up to 1)"),
+    ("  layer_height: 0.2\n", "  layer_height: 5\n", "layer_height: 5",
+     "slicer.layer_height = 5: must be at most the nozzle diameter (0.4 mm, nozzle_diameter)"),
+    ("  first_layer_height: 0.2\n", "  first_layer_height: 75%\n", "75%",
+     "slicer.first_layer_height = '75%': must be a number"),
     ("  perimeters: 3\n", "  perimters: 3\n", "perimters",
      "slicer.perimters: not a PrusaSlicer option of FDM printers; did you mean perimeters?"),
     ("  fill_pattern: gyroid\n", "  fill_pattern: zigzag\n", "zigzag",
@@ -42,12 +53,33 @@ def test_a_slicer_setting_prusaslicer_would_not_take_is_refused_at_its_line(cli,
     assert not (tmp_path / "out").exists()
 
 
-def test_every_preset_and_every_kind_of_value_the_catalogue_knows_passes():
+def test_every_kind_of_value_prusaslicer_reads_passes():
     assert slicer_problems({"perimeters": 3, "fill_density": "15%", "infill_overlap": 0.2,
                             "fill_pattern": "gyroid", "wipe": True, "thin_walls": 0,
-                            "nozzle_diameter": "0.4,0.6", "start_gcode": "G28"}, "fdm") == []
-    assert slicer_problems({"exposure_time": 2.5, "supports_enable": 0, "display_orientation": "portrait"},
-                           "resin") == []
+                            "nozzle_diameter": "0.4, 0.6", "temperature": "215,220", "wipe_tower": "1,0",
+                            "z_offset": "-1e-3", "start_gcode": "G28", "filament_retract_length": "1",
+                            "inherits": "Original Prusa i3 MK3", "extrusion_width": "105%"}, "fdm") == []
+    assert slicer_problems({"fill_density": 0.3}, "fdm") == []          # a fraction: 30 %
+    assert slicer_problems({"exposure_time": 2.5, "supports_enable": 0, "display_orientation": "portrait",
+                            "material_colour": "#29B2B2"}, "resin") == []
+    # what a resin printer has no use for is no PrusaSlicer option of it, not the printer section's
+    assert slicer_problems({"skirts": 1}, "resin") == [("skirts", "not a PrusaSlicer option of resin (SLA) "
+                                                                  "printers")]
+
+
+def test_a_slicer_problem_is_named_with_the_files_other_problems(cli, tmp_path):
+    printer = _printer(tmp_path, "  perimeters: 3\n", "  perimeters: many\n")
+    printer.write_text(printer.read_text().replace("max_height: 250", "max_height: -1", 1))
+    lines = cli("gears", "--printer", printer, "--out", tmp_path / "out").stderr.strip().splitlines()
+    assert any("printer.max_height = -1" in line for line in lines), lines
+    assert any("slicer.perimeters = 'many'" in line for line in lines), lines
+
+
+def test_a_nozzle_per_extruder_is_read_as_the_first_extruders(cli, tmp_path):
+    printer = _printer(tmp_path, "  nozzle_diameter: 0.4\n", "  nozzle_diameter: 0.4, 0.6\n")
+    result = cli("gears", "--printer", printer, "--format", "3mf", "--out", tmp_path / "out")
+    assert result.exit_code == 0, result.stderr
+    assert list((tmp_path / "out").glob("*.3mf"))
 
 
 def test_the_shipped_catalogue_is_what_the_installed_prusaslicer_says():

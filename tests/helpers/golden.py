@@ -1,8 +1,9 @@
 """Golden figures: the key outputs of every preset and a few designs, kept in tests/golden/.
 
 Each case runs one command of the real CLI in a fresh folder (in a child process whose numpy
-kernels are capped at one SIMD level, :data:`SIMD_CAP`, so that the hashes do not depend on the
-machine's CPU) and records its exit code,
+kernels are capped at one SIMD level, :data:`SIMD_CAP`, so that numpy's choice of kernels by
+CPU does not move the hashes; the other libraries' own CPU paths are not capped) and records
+its exit code,
 the SHA-256 and size of every file it wrote, the SHA-256 of what it printed on stdout
 (for the report commands) and the numeric figures of every JSON file it wrote (flattened
 to ``file:key.path`` -> value). The golden test compares a new run with the stored one:
@@ -93,10 +94,14 @@ SIMD_CAP = "X86_V3"
 
 
 def _capped_env() -> dict[str, str]:
-    """This process's environment with numpy's run-time kernels above :data:`SIMD_CAP` off."""
-    from numpy._core._multiarray_umath import __cpu_dispatch__, __cpu_features__
-
+    """This process's environment with numpy's run-time kernels above :data:`SIMD_CAP` off
+    (numpy 2.4 names its x86 levels so; another numpy runs uncapped, as constraints.txt does
+    not install one)."""
     env = dict(os.environ)
+    try:
+        from numpy._core._multiarray_umath import __cpu_dispatch__, __cpu_features__
+    except ImportError:
+        return env
     if SIMD_CAP in __cpu_dispatch__:
         above = __cpu_dispatch__[__cpu_dispatch__.index(SIMD_CAP) + 1:]
         wider = [f for f in above if __cpu_features__.get(f)]
@@ -110,11 +115,13 @@ def run_case(name: str) -> dict:
     :data:`SIMD_CAP`, and return its record."""
     root = str(Path(__file__).resolve().parents[2])
     env = {**_capped_env(), "PYTHONPATH": os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")]))}
-    done = subprocess.run([sys.executable, "-m", "tests.helpers.golden", "--record", name], env=env,
-                          cwd=root, capture_output=True, text=True, check=False, timeout=1800)
-    if done.returncode != 0:
-        raise RuntimeError(f"golden case {name} could not run: {done.stderr[-2000:]}")
-    return json.loads(done.stdout)
+    with tempfile.TemporaryDirectory() as folder:
+        record = Path(folder) / "record.json"
+        done = subprocess.run([sys.executable, "-m", "tests.helpers.golden", "--record", name, str(record)],
+                              env=env, cwd=root, capture_output=True, text=True, check=False, timeout=1800)
+        if done.returncode != 0:
+            raise RuntimeError(f"golden case {name} could not run: {done.stderr[-2000:]}")
+        return json.loads(record.read_text())
 
 
 def _record(name: str) -> dict:
@@ -181,7 +188,7 @@ def differences(stored: dict, new: dict, rel: float = 1e-9) -> list[str]:
 
 def main(argv: list[str]) -> int:
     if argv[:1] == ["--record"]:
-        print(json.dumps(_record(argv[1])))
+        Path(argv[2]).write_text(json.dumps(_record(argv[1])))
         return 0
     names = [a for a in argv if not a.startswith("--")] or list(CASES)
     if "--update" not in argv:

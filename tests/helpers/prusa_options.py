@@ -34,6 +34,8 @@ def _help(technology: str) -> dict[str, tuple[str | None, str]]:
                           check=True).stdout
     options: dict[str, tuple[str | None, str]] = {}
     key = None
+    # the configuration's options follow the actions and the command line's own options
+    text = text[text.index("Print options are processed"):]
     for line in text.splitlines():
         found = _OPTION.match(line)
         if found:
@@ -58,8 +60,9 @@ def _defaults(technology: str) -> dict[str, str]:
 
 
 def _kind(default: str, arg: str | None, body: str):
-    """The kind of value a key takes: ``["enum", choices...]``, "bool", "percent", "number"
-    or "text" (anything; PrusaSlicer reads it as it is)."""
+    """The kind of value a key takes as its help states it: ``["enum", choices...]``, "bool",
+    "percent", "number" (told apart further by :func:`_refined`) or "text" (anything;
+    PrusaSlicer reads it as it is)."""
     closing = _CLOSING.search(body)
     inside = closing.group(1).strip() if closing else ""
     words = [w.strip() for w in inside.split(",")]
@@ -76,6 +79,64 @@ def _kind(default: str, arg: str | None, body: str):
     return "text"
 
 
+_OUT_OF_RANGE = re.compile(r"Value out of range: (\w+)|Invalid value for --([\w-]+)")
+
+
+def _as_saved(technology: str, keys: list[str], value: str) -> dict[str, str | None]:
+    """What ``prusa-slicer --load`` of ``keys`` all set to ``value`` saves for each, None for a
+    key whose range refuses the value (the slicer names one such key a run; it is left out and
+    the rest loaded again). It rounds a whole-number option's 2.5 to 2 and drops the % of an
+    option that takes no percentage, without a word."""
+    keys, refused = list(keys), {}
+    with tempfile.TemporaryDirectory() as folder:
+        given, saved = Path(folder) / "given.ini", Path(folder) / "saved.ini"
+        while True:
+            given.write_text("".join(f"{key} = {value}\n" for key in keys), encoding="utf-8")
+            done = subprocess.run(["prusa-slicer", "--printer-technology", technology.upper(), "--load",
+                                   str(given), "--save", str(saved)], capture_output=True, text=True)
+            if done.returncode == 0:
+                break
+            bad = _OUT_OF_RANGE.search(done.stdout + done.stderr)
+            key = None if bad is None else (bad.group(1) or bad.group(2).replace("-", "_"))
+            if key not in keys:
+                raise RuntimeError(f"prusa-slicer refused the probe: {(done.stdout + done.stderr)[-500:]}")
+            keys.remove(key)
+            refused[key] = None
+        lines = saved.read_text(encoding="utf-8").splitlines()
+    found = dict(line.split(" = ", 1) for line in lines if " = " in line and not line.startswith("#"))
+    return {**refused, **{key: found.get(key, "") for key in keys}}
+
+
+def _refined(technology: str, kinds: dict) -> dict:
+    """``kinds`` with each number told apart as the slicer reads it: "integer" (a whole
+    number), "percent" (a number or a percentage) or "number", each as ``[kind, least]`` when
+    the slicer's range refuses -1 (``least`` 0: no negative values), and a percentage
+    refused past 100 % as ``["percent", 0, 100]``."""
+    numbers = [key for key, kind in kinds.items() if kind in ("number", "percent")]
+    halves = _as_saved(technology, numbers, "2.5")
+    small = _as_saved(technology, [k for k in numbers if halves[k] is None], "0.5")
+    negative = _as_saved(technology, numbers, "-1")
+    for key in numbers:
+        half = halves[key] if halves[key] is not None else small.get(key)
+        # a percentage only where the help says so: --save keeps '75%' of first_layer_height,
+        # which slicing then reads as 75 mm
+        kind = "percent" if kinds[key] == "percent" else "integer" if half in ("2", "0") else "number"
+        kinds[key] = [kind] if negative[key] is not None else [kind, 0]
+    over = _as_saved(technology, [k for k in numbers if kinds[k][0] == "percent"], "101%")
+    for key, saved in over.items():
+        if saved is None:
+            kinds[key] = ["percent", 0, 100]
+    return {key: kind[0] if isinstance(kind, list) and len(kind) == 1 else kind for key, kind in kinds.items()}
+
+
+#: The bookkeeping keys of PrusaSlicer's presets (which preset, inherited from which, for
+#: which printer), read and kept by --load but listed by neither --save nor the help.
+PRESET_KEYS = ("inherits", "print_settings_id", "filament_settings_id", "printer_settings_id",
+               "sla_print_settings_id", "sla_material_settings_id", "compatible_printers",
+               "compatible_printers_condition", "compatible_prints", "compatible_prints_condition",
+               "physical_printer_settings_id", "printer_vendor", "printer_variant")
+
+
 def catalogue() -> dict:
     """The catalogue as the installed PrusaSlicer states it (see the module's docstring)."""
     version = subprocess.run(["prusa-slicer", "--help"], capture_output=True, text=True,
@@ -83,9 +144,13 @@ def catalogue() -> dict:
     release = next(line.split(" ")[0] for line in version if line.startswith("PrusaSlicer-"))
     out: dict = {"source": f"{release}: --save (every key, its default) and --help-fff/--help-sla"}
     for technology in ("fff", "sla"):
-        described = _help(technology)
-        out[technology] = {key: _kind(default, *described.get(key, (None, "")))
-                           for key, default in sorted(_defaults(technology).items())}
+        described, defaults = _help(technology), _defaults(technology)
+        # --save leaves out options without a value (a filament's retraction overrides), the
+        # help the presets' bookkeeping keys: each is one PrusaSlicer reads
+        keys = sorted(set(defaults) | set(described))
+        kinds = _refined(technology, {key: _kind(defaults.get(key, ""), *described.get(key, (None, "")))
+                                      for key in keys})
+        out[technology] = {**kinds, **{key: "text" for key in PRESET_KEYS if key not in kinds}}
     return out
 
 

@@ -43,7 +43,7 @@ def estimated_mass(part, printer) -> float:
         return volume / 1000.0 * printer.density * _fraction(settings.get("fill_density"), 1.0)
     height = float(part.bounds[1, 2] - part.bounds[0, 2])
     area = volume / height
-    width = _number(settings.get("nozzle_diameter"), 0.4) * LINE_WIDTH_FACTOR
+    width = printer.nozzle * LINE_WIDTH_FACTOR
     layer = _number(settings.get("layer_height"), 0.2)
     layers = _number(settings.get("top_solid_layers"), 4) + _number(settings.get("bottom_solid_layers"), 4)
     shell = min(volume, part.perimeter * _number(settings.get("perimeters"), 2) * width * height

@@ -186,11 +186,17 @@ class Printer:
         return value
 
     @property
+    def nozzle(self) -> float:
+        """The nozzle diameter (mm) of the first extruder (PrusaSlicer's ``nozzle_diameter``
+        lists one per extruder, comma-separated), 0.4 when the profile gives none."""
+        return float(str(self.slicer.get("nozzle_diameter", 0.4)).split(",")[0])
+
+    @property
     def edge_margin(self) -> float:
         """Least distance (mm) from a part to a bed edge: the margin, or more when the brim
         and the skirt (its distance plus its loops, each a first-layer line of twice the
         nozzle, PrusaSlicer's default width) need it, plus one line to spare."""
-        line = 2.0 * float(self.slicer.get("nozzle_diameter", 0.4))
+        line = 2.0 * self.nozzle
         skirt = self.skirt_distance + self.skirts * line if self.skirts else 0.0
         return max(self.margin, self.brim_width + skirt + line)
 
@@ -209,14 +215,22 @@ class Printer:
         return config
 
 
-def _check_slicer(settings: dict[str, Any], technology: str, doc: LocatedYaml) -> None:
-    """Refuse (InvalidInput, each at its line) what PrusaSlicer would not take of the section."""
+def _slicer_issues(doc: LocatedYaml, known: list[Issue] = ()) -> list[Issue]:
+    """What PrusaSlicer would not take of the file's ``slicer:`` section, each at its line: its
+    single values, for the file's technology (fdm when it names none it can be), but those at
+    a line ``known`` already has an issue at."""
     from wheelstep_cli.config.slicer_options import slicer_problems
 
-    issues = [Issue(doc.where(("slicer", key)), dotted(("slicer", key)), why)
-              for key, why in slicer_problems(settings, technology)]
-    if issues:
-        raise InvalidInput(issues)
+    data = doc.data if isinstance(doc.data, dict) else {}
+    settings, printer = data.get("slicer"), data.get("printer")
+    technology = printer.get("technology") if isinstance(printer, dict) else None
+    if not isinstance(settings, dict):
+        return []
+    taken = {issue.where for issue in known}
+    single = {k: v for k, v in settings.items() if isinstance(k, str) and not isinstance(v, (dict, list))}
+    found = [Issue(doc.where(("slicer", key)), dotted(("slicer", key)), why)
+             for key, why in slicer_problems(single, "resin" if technology == "resin" else "fdm")]
+    return [issue for issue in found if issue.where not in taken]
 
 
 def _band(section: BandSection) -> Band:
@@ -239,9 +253,14 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
             doc = read_located_yaml(path, label)
         except YamlSyntaxError as err:
             raise InvalidInput([Issue(err.where, "", err.limit)]) from None
-    profile = validate_file(PrinterProfile, doc)
+    try:
+        profile = validate_file(PrinterProfile, doc)
+    except InvalidInput as err:
+        # the slicer section's problems with the rest, so one run names every one
+        raise InvalidInput([*err.issues, *_slicer_issues(doc, err.issues)]) from None
+    if issues := _slicer_issues(doc):
+        raise InvalidInput(issues)
     section, material = profile.printer, profile.material
-    _check_slicer(profile.slicer, getattr(section.technology, "value", section.technology), doc)
     raw = Path(path).read_bytes()
     return Printer(name=name, description=profile.description or name, technology=section.technology,
                    bed=tuple(section.bed), max_height=section.max_height, margin=section.margin,

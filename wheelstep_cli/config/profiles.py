@@ -10,6 +10,7 @@ reported at once with its ``file:line``.
 from __future__ import annotations
 
 import importlib.resources
+import os
 from pathlib import Path
 from typing import Any
 
@@ -110,11 +111,13 @@ def profile_names(printer: bool) -> list[str]:
 
 def beside(folder: Path, given: str | None) -> str | None:
     """A file a YAML file names (``given``, a path), looked up beside that file (in
-    ``folder``) first, as a batch file's profiles are; as given (from the working folder) when
-    it is absolute or not there."""
+    ``folder``) first, as a batch file's profiles are, and then given as a path from the working
+    folder; as given (from the working folder) when it is absolute or not there."""
     if given is None or Path(given).is_absolute() or not (folder / given).is_file():
         return given
-    return str(folder / given)
+    # as a path from the working folder (as the user would name it there): no folder of the
+    # user's, such as a temporary one, ends up in the reports when the YAML file lies below it
+    return os.path.relpath(folder / given)
 
 
 def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):

@@ -4,8 +4,10 @@ The section is copied into every plate's slicer configuration (3MF ``Slic3r_PE.c
 ``--load`` .ini). PrusaSlicer drops a key it does not know without a word and refuses a
 plate whose value it cannot read, so both are refused here, at the profile's line, before
 anything is built. The catalogue (``prusa_options.json``: per technology, every key
-PrusaSlicer saves and the kind of value it takes) was read off PrusaSlicer itself (see
-``tests/helpers/prusa_options.py``).
+PrusaSlicer reads and the kind of value it takes: ``["enum", choices...]``, "bool", "text",
+or "integer" / "number" / "percent" (a number or a percentage), the latter three as
+``[kind, least]`` or ``[kind, least, most %]`` where the slicer's range says so) was read off
+PrusaSlicer itself (see ``tests/helpers/prusa_options.py``).
 """
 
 from __future__ import annotations
@@ -24,8 +26,10 @@ FROM_PRINTER = {"bed_shape": "printer.bed", "max_print_height": "printer.max_hei
                 "skirts": "printer.skirts", "skirt_distance": "printer.skirt_distance",
                 "brim_width": "printer.brim_width", "printer_technology": "printer.technology"}
 
-_NUMBERS = re.compile(r"^-?\d+(\.\d+)?(,-?\d+(\.\d+)?)*$")
-_PERCENTS = re.compile(r"^-?\d+(\.\d+)?%?(,-?\d+(\.\d+)?%?)*$")
+#: One plain number as PrusaSlicer reads it (a sign, digits, a fraction, an exponent).
+_NUMBER = r"-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+#: A value per extruder, comma-separated (spaces allowed after a comma).
+_LIST = re.compile(rf"^\s*{_NUMBER}%?(\s*,\s*{_NUMBER}%?)*\s*$")
 
 
 @functools.lru_cache(maxsize=None)
@@ -36,24 +40,60 @@ def catalogue() -> dict:
     return json.loads(text)
 
 
-def _number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
+def _numbers(value: Any) -> list[str] | None:
+    """The values (text) of a number or a comma-separated list of them; None for anything else."""
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, (int, float)):
+        return [repr(value)]
+    if isinstance(value, str) and _LIST.match(value):
+        return [v.strip() for v in value.split(",")]
+    return None
 
 
 def _limit(kind, value: Any) -> str | None:
-    """What ``value`` must be for an option of ``kind``; None when it is such a value."""
-    if isinstance(kind, list):
-        return None if value in kind[1:] else "must be one of: " + ", ".join(kind[1:])
-    if kind == "bool":
-        ok = isinstance(value, bool) or value in (0, 1)
+    """What ``value`` must be for an option of ``kind`` (see the module docstring); None when it
+    is such a value. A number option takes one value per extruder, comma-separated."""
+    name, *bounds = kind if isinstance(kind, list) else [kind]
+    if name == "enum":
+        return None if value in bounds else "must be one of: " + ", ".join(bounds)
+    if name == "text":
+        return None
+    values = _numbers(value)
+    if name == "bool":
+        ok = isinstance(value, bool) or (values is not None and all(v in ("0", "1") for v in values))
         return None if ok else "must be true or false (or 1 / 0)"
-    if kind == "number":
-        ok = _number(value) or (isinstance(value, str) and _NUMBERS.match(value) is not None)
-        return None if ok else "must be a number"
-    if kind == "percent":
-        ok = _number(value) or (isinstance(value, str) and _PERCENTS.match(value) is not None)
-        return None if ok else "must be a number or a percentage such as 15%"
+    percent = name == "percent"
+    if values is None or (not percent and any(v.endswith("%") for v in values)):
+        return {"integer": "must be a whole number", "percent": "must be a number or a percentage "
+                "such as 15%"}.get(name, "must be a number")
+    numbers = [float(v.rstrip("%")) for v in values]
+    if name == "integer" and any(n != int(n) for n in numbers):
+        return "must be a whole number (PrusaSlicer would drop the fraction)"
+    if bounds and any(n < bounds[0] for n in numbers):
+        return f"must be >= {bounds[0]:g}"
+    if len(bounds) > 1:
+        # a percentage option read as a fraction when it has no % (0.3 is 30 %)
+        shares = [n / 100.0 if v.endswith("%") else n for v, n in zip(values, numbers)]
+        if any(share > bounds[1] / 100.0 for share in shares):
+            return f"must be at most {bounds[1]:g}% (or a fraction up to {bounds[1] / 100.0:g})"
     return None
+
+
+def _cross_rules(settings: dict[str, Any], technology: str) -> list[tuple[str, str]]:
+    """What PrusaSlicer refuses of values together: FDM layers thicker than the nozzle."""
+    if technology != "fdm":
+        return []
+    nozzle = _numbers(settings.get("nozzle_diameter", 0.4))
+    if nozzle is None:
+        return []
+    problems = []
+    for key in ("layer_height", "first_layer_height"):
+        layer = _numbers(settings.get(key))
+        if layer is not None and float(layer[0]) > float(nozzle[0]):
+            problems.append((key, f"= {show(settings[key])}: must be at most the nozzle diameter "
+                                  f"({nozzle[0]} mm, nozzle_diameter); PrusaSlicer refuses a thicker layer"))
+    return problems
 
 
 def slicer_problems(settings: dict[str, Any], technology: str) -> list[tuple[str, str]]:
@@ -65,7 +105,7 @@ def slicer_problems(settings: dict[str, Any], technology: str) -> list[tuple[str
     known = catalogue()[flavour]
     problems = []
     for key, value in settings.items():
-        if key in FROM_PRINTER:
+        if key in FROM_PRINTER and key in known:
             problems.append((key, f"is set by {FROM_PRINTER[key]} of this profile; give it there"))
         elif key not in known:
             near = difflib.get_close_matches(key, known, n=1)
@@ -74,4 +114,6 @@ def slicer_problems(settings: dict[str, Any], technology: str) -> list[tuple[str
             problems.append((key, f"not a PrusaSlicer option of {what} printers{hint}"))
         elif (limit := _limit(known[key], value)) is not None:
             problems.append((key, f"= {show(value)}: {limit}"))
+    if not problems:
+        problems = _cross_rules(settings, technology)
     return problems

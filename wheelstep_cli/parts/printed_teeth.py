@@ -32,7 +32,7 @@ def two_lines(printer) -> float | None:
     lines (resin)."""
     if printer is None or printer.technology != "fdm":
         return None
-    return 2.0 * float(printer.slicer.get("nozzle_diameter", 0.4))
+    return 2.0 * printer.nozzle
 
 
 def thin_teeth(outline: np.ndarray, module: float, width: float, corners: int) -> str | None:
