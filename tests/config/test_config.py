@@ -113,6 +113,10 @@ def test_profile_with_a_wrong_typed_value_is_one_line_naming_the_key(cli, tmp_pa
      "mechanism.c = 360: must be > 4b - a = 380 mm"),
     ("shoe", "mechanism:\n  a: 60\n  b: -5\n", "b: -5", "mechanism.b = -5: must be >= 0 mm"),
     ("pitch", "mechanism:\n  a: 60\n  b: 110\n  c: 360\n", "c: 360", "mechanism.c = 360: must be >"),
+    # rules met while the pair is built: too tall for the printer, undercut teeth
+    ("gears", "gears:\n  thickness: 300\n", "thickness: 300",
+     "gears.thickness = 300: makes part 'pinion' 300.0 mm tall"),
+    ("gears", "gears:\n  z: 12\n", "z: 12", "gears.z = 12: the rack undercuts the pinion"),
 ])
 def test_a_rule_a_profiles_value_breaks_is_said_at_its_line(cli, tmp_path, command, text, key, expect):
     design = write(tmp_path / "mech.yaml", text)

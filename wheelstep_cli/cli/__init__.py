@@ -267,6 +267,28 @@ def _both_ways(params, argv: list[str]) -> str | None:
     return None
 
 
+def _in_design_profile(err: DesignError, group, argv: list[str]):
+    """``err`` (of a value the command line did not give) said at the line of the ``--profile``
+    that gives it (InvalidInput), None when no profile was given or it does not give it."""
+    from wheelstep_cli.config.profiles import load_design_profile
+    from wheelstep_cli.config.resolve import in_profile
+
+    name = next((arg for arg in argv if arg in group.commands), None)
+    params = {p.name: p for p in group.commands[name].params} if name is not None else {}
+    if "profile" not in params:
+        return None
+    opts = [*params["profile"].opts, *params["profile"].secondary_opts]
+    given = [b for a, b in zip(argv, argv[1:]) if a in opts]
+    given += [a.split("=", 1)[1] for a in argv if a.split("=", 1)[0] in opts and "=" in a]
+    if not given:
+        return None
+    try:
+        loaded = load_design_profile(given[-1])
+    except DesignError:
+        return None
+    return in_profile(err, loaded, "shoe" if name == "shoe" else "gears")
+
+
 def run(argv: list[str] | None = None) -> int:
     """Run the CLI on ``argv`` and return the exit code (0 ok, 1 failed check, 2 bad input)."""
     args = sys.argv[1:] if argv is None else list(argv)
@@ -293,8 +315,11 @@ def run(argv: list[str] | None = None) -> int:
         return 1
     except DesignError as err:
         options = _command_options(command, args)
-        err = err.for_given(_given(options, args))
-        typer.echo(f"wheelstep: error: {error_text(err, options, args)}", err=True)
+        given = _given(options, args)
+        err = err.for_given(given)
+        located = None if err.param.replace("-", "_") in given else _in_design_profile(err, command, args)
+        for line in located.lines() if located is not None else [error_text(err, options, args)]:
+            typer.echo(f"wheelstep: error: {line}", err=True)
         return 2
     except click_errors.NoArgsIsHelpError as err:
         typer.echo(err.format_message(), err=True)

@@ -165,7 +165,7 @@ def _named_for(cli: dict[str, Any], step, *args, profile: tuple | None = None):
         given = [k for k, v in cli.items() if v is not None]
         named = err.for_given(given)
         if named.param.replace("-", "_") not in given and profile is not None and profile[0] is not None:
-            located = _in_profile(named.for_given(_profile_keys(*profile)), *profile)
+            located = in_profile(named, *profile)
             if located is not None:
                 raise located from None
         raise named from None
@@ -176,11 +176,14 @@ def _profile_keys(loaded, section: str) -> list[str]:
     return [*loaded.values(section), *loaded.values("mechanism")]
 
 
-def _in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
-    """``err`` said at the profile line that gives its parameter (None: the profile does not)."""
+def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
+    """``err`` said at the line of the design profile ``loaded`` that gives its parameter, or
+    one its rule is also stated for, in the part's ``section`` or the mechanism (None: the
+    profile gives none of them)."""
     from wheelstep_cli.config.names import in_file_words
     from wheelstep_cli.config.schema import Issue, show
 
+    err = err.for_given(_profile_keys(loaded, section))
     key = err.param.replace("-", "_")
     for part in (section, "mechanism"):
         where = loaded.where(part, key)
