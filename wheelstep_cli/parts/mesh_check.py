@@ -92,11 +92,16 @@ def _fmt(value, spec: str) -> str:
     return "n/a" if value is None else format(value, spec)
 
 
-def flank_line(side: str, flank: dict) -> str:
-    """One line of a flank side's figures of merit (SPEC §10), ``flank`` from ``to_dict``."""
+def flank_line(side: str, flank: dict, own: float = 0.0) -> str:
+    """One line of a flank side's figures of merit (SPEC §10), ``flank`` from ``to_dict``;
+    ``own``: the law's own output-speed ripple (%), which the bound leaves out: what the teeth
+    add beyond it is said too when the law has one (a law CSV, a blend)."""
+    ripple = flank["hub_speed_ripple_pct"]
+    beyond = (f"; {max(0.0, ripple - own):.2f} % beyond the law's own {own:.2f} %"
+              if ripple is not None and own > 0.01 else "")
     return (f"{side} flank: F'i {_fmt(flank['F_i_total_um'], '.1f')} um, "
             f"f'i {_fmt(flank['f_i_tooth_um'], '.1f')} um, hub speed ripple "
-            f"{_fmt(flank['hub_speed_ripple_pct'], '.2f')} % (3 tooth harmonics), "
+            f"{_fmt(ripple, '.2f')} % (3 tooth harmonics{beyond}), "
             f"largest TE step {_fmt(flank['te_max_step_um'], '.1f')} um")
 
 
@@ -119,7 +124,7 @@ def meshing_lines(summary: dict) -> list[str]:
                  f"({_fmt(summary['backlash_min_arcmin'], '.1f')}' .. "
                  f"{_fmt(summary['backlash_max_arcmin'], '.1f')}' at the wheel)")
     for side in ("drive", "coast"):
-        lines.append(flank_line(side, summary[side]))
+        lines.append(flank_line(side, summary[side], summary.get("law_hub_speed_ripple_pct", 0.0)))
     if "mounting" in summary:
         lines.append(mounting_line(summary["mounting"]))
     lines.append(f"diagnostic: pointwise hub speed ripple {_fmt(summary['diagnostic_pointwise_ripple_pct'], '.2f')} % "

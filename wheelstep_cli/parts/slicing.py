@@ -110,7 +110,8 @@ def slice_lines(record: dict) -> list[str]:
     return [f"sliced ({record['slicer']}): {', '.join(record['gcode_files'])}; as printed the pair {verdict}, "
             f"backlash {_mm(record['backlash_min_mm'])}..{_mm(record['backlash_max_mm'])} mm",
             *(f"  {line}" for line in gcode_lines(record)),
-            *(f"  printed {flank_line(side, record[side])}" for side in ("drive", "coast"))]
+            *(f"  printed {flank_line(side, record[side], record.get('law_hub_speed_ripple_pct', 0.0))}"
+              for side in ("drive", "coast"))]
 
 
 def _mm(value) -> str:

@@ -130,6 +130,11 @@ def test_blend_10_is_checked_against_the_blended_law_and_written(cli, tmp_path):
     assert bound_violations(meshing) == []
     # the blend itself makes most of the hub speed ripple: the law alone has it too
     assert meshing["law_hub_speed_ripple_pct"] > 5.0
+    # each flank's line says what the teeth add beyond it, the figure the bound is on
+    for side in ("drive", "coast"):
+        own, whole = meshing["law_hub_speed_ripple_pct"], meshing[side]["hub_speed_ripple_pct"]
+        assert (f"{side} flank:" in result.stdout and f"{max(0.0, whole - own):.2f} % beyond the law's own "
+                f"{own:.2f} %" in result.stdout), result.stdout
     pin, wheel = tmp_path / "pinion.stl", tmp_path / "wheel.stl"
     same = cli("mesh-check", pin, wheel, "--blend", "10", "--json")
     assert same.exit_code == 0, same.stderr

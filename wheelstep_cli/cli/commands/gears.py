@@ -333,7 +333,8 @@ def _gears_lines(pair, record: dict) -> list[str]:
                  f"{_num(record, 'backlash_min_mm', '.3f')}..{_num(record, 'backlash_max_mm', '.3f')}"
                  f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
                  f"hub speed ripple {record['law_hub_speed_ripple_pct']:.2f} %")
-    lines.extend(f"  {flank_line(side, record[side])}" for side in ("drive", "coast"))
+    own = record.get("law_hub_speed_ripple_pct", 0.0)
+    lines.extend(f"  {flank_line(side, record[side], own)}" for side in ("drive", "coast"))
     if "mounting" in record:
         lines.append(f"  {mounting_line(record['mounting'])}")
     if "tolerance" in record:
