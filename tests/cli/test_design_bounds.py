@@ -127,3 +127,21 @@ def test_a_remedy_that_does_not_pass_when_built_is_not_offered(cli, tmp_path):
     assert "nothing written; no remedy found (--z 52 " in line and "; use --" not in line
     assert "change the mechanism (--a, --b, --c) or the centre distance" in line
     assert not out.exists()
+
+
+def test_an_undercut_pinion_is_offered_only_remedies_that_pass(cli, tmp_path):
+    """z = 12 undercuts the source design's pinion; the least count that clears the undercut
+    (18) still meshes outside the bounds, so what is offered is what a build with it showed
+    within them, and applied, it is written (a new user was told `z >= 20`, which failed)."""
+    out = tmp_path / "out"
+    line = error_line(cli("gears", "--z", "12", "--format", "stl", "--out", out))
+    assert line.startswith("wheelstep: error: --z = 12: the rack undercuts the pinion: "), line
+    assert "pinion z >=" not in line and not out.exists()
+    offered = line.rsplit("; ", 1)[1].split(" or ")
+    assert offered and all(choice.startswith("use --") for choice in offered), line
+    for n, choice in enumerate(offered):
+        written = tmp_path / f"remedy-{n}"
+        result = cli("gears", *with_remedy(["--z", "12"], choice[len("use "):].split()), "--format", "stl",
+                     "--out", written)
+        assert result.exit_code == 0, result.stderr
+        assert bound_violations(json.loads((written / "gears.json").read_text())["meshing"]) == []

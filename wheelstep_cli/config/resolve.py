@@ -183,11 +183,20 @@ def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
     from wheelstep_cli.config.names import in_file_words
     from wheelstep_cli.config.schema import Issue, show
 
+    from wheelstep_cli.errors import format_value
+
+    remedy = getattr(err, "remedy", None) or {}
     err = err.for_given(_profile_keys(loaded, section))
+    limit = err.limit
+    if remedy:
+        # the remedy as the profile's keys (z: 74, backlash: 0.239), not as flags
+        flags = " ".join(f"--{name.replace('_', '-')} {format_value(value)}" for name, value in remedy.items())
+        limit = limit.replace(f"use {flags}", "use " + ", ".join(f"{name}: {format_value(value)}"
+                                                                  for name, value in remedy.items()))
     key = err.param.replace("-", "_")
     for part in (section, "mechanism"):
         where = loaded.where(part, key)
         if where is not None:
-            return InvalidInput([Issue(where, f"{part}.{key}", f"= {show(err.value)}: {in_file_words(err.limit)}")])
+            return InvalidInput([Issue(where, f"{part}.{key}", f"= {show(err.value)}: {in_file_words(limit)}")])
     return None
 

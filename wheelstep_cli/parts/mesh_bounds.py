@@ -154,6 +154,28 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     raise error
 
 
+def verified_undercut(err: DesignError, design, verify: Callable,
+                      bounds: MeshBounds = MeshBounds()) -> DesignError:
+    """The undercut refusal ``err`` of ``design`` (its ``undercut``: the options at which the
+    rack stops undercutting) with those remedies offered only once a build with them is within
+    the bounds, each followed as a bounds refusal's remedy is (the tooth count that clears the
+    undercut can still mesh outside the bounds: z 20 -> use --z 21)."""
+    offered, tried = [], []
+    for option in err.undercut:
+        remedy, why, _ = _verified(design, option, verify, bounds)
+        if remedy:
+            offered.append(remedy)
+        else:
+            tried.extend(why)
+    cause = err.limit.split("; use pinion z")[0]
+    law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
+    advice = (" or ".join(f"use {_as_options(remedy)}" for remedy in offered) if offered
+              else f"no remedy found ({'; '.join(tried)}): change {law} or the centre distance")
+    checked = DesignError(err.param, err.value, f"{cause}; {advice}", dict(err.alternatives))
+    checked.remedy = offered[0] if offered else {}
+    return checked
+
+
 def _broken(record: dict, bounds: MeshBounds) -> list[str]:
     """The bounds ``record`` breaks, interference left out (refused elsewhere)."""
     return [text for text in bound_violations(record, bounds) if "interfere" not in text]

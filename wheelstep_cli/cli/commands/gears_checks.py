@@ -17,7 +17,8 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
     from wheelstep_cli.parts.kinds import remedy_check
-    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds, verified_undercut
     from wheelstep_cli.parts.mesh_check import check_gear_pair
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
     from wheelstep_cli.parts.tolerance_cli import band_pair, fit_design, fitted_pair
@@ -43,7 +44,13 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         require_fit_met(tolerance, **({} if tolerance["fit"].get("from", "--fit") == "--fit" else
                                       {"remedy": PROFILE_FIT_REMEDY}))
     else:
-        pair, tolerance, check = band_pair(spec, printer, bool(band[0]), bed)
+        try:
+            pair, tolerance, check = band_pair(spec, printer, bool(band[0]), bed)
+        except DesignError as err:
+            if not getattr(err, "undercut", None):
+                raise
+            # the undercut's remedies are built and checked before they are offered
+            raise verified_undercut(err, spec, remedy_check(printer, checked_remedy)) from None
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
         record = _meshing_or_refused(show, pair, check, allow_interference)

@@ -56,7 +56,17 @@ def undercut_limit(cutter: RackCutter, module: float) -> float:
 
 def undercut_remedy(cutter: RackCutter, module: float, rho: float, teeth_per_period: int,
                     pinion_periods: int) -> str:
-    """Remedy text: the tooth count and pressure angle at which the rack stops undercutting.
+    """Remedy text of :func:`undercut_options` (see there)."""
+    options = undercut_options(cutter, module, rho, teeth_per_period, pinion_periods)
+    angle = (f"pressure angle >= {options[1]['pressure_angle']:.1f} deg" if len(options) > 1
+             else "no pressure angle up to 35 deg helps")
+    return f"use pinion z >= {options[0]['z']} or {angle}"
+
+
+def undercut_options(cutter: RackCutter, module: float, rho: float, teeth_per_period: int,
+                     pinion_periods: int) -> list[dict]:
+    """The options at which the rack stops undercutting: ``[{"z": least tooth count}]`` and,
+    when a pressure angle up to 35 deg helps, ``{"pressure_angle": least, deg to 0.1}``.
 
     ``rho``: the pitch curve's smallest convex radius of curvature (mm). The count holds
     whether the pitch curves stay (the module shrinks as z grows) or the module stays (the
@@ -70,13 +80,12 @@ def undercut_remedy(cutter: RackCutter, module: float, rho: float, teeth_per_per
     lo, hi = a, np.radians(35.0)
     f = lambda x: (cutter.dedendum - cutter.fillet * (1 - np.sin(x))) / np.sin(x) ** 2 * module - rho
     if f(hi) > 0:
-        angle_text = "no pressure angle up to 35 deg helps"
-    else:
-        for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if f(mid) > 0 else (lo, mid)
-        angle_text = f"pressure angle >= {np.degrees(hi):.1f} deg"
-    return f"use pinion z >= {z_min} or {angle_text}"
+        return [{"z": z_min}]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if f(mid) > 0 else (lo, mid)
+    # to the 0.1 deg the text shows, rounded up so that the angle given clears the limit
+    return [{"z": z_min}, {"pressure_angle": float(np.ceil(np.degrees(hi) * 10.0) / 10.0)}]
 
 
 def top_pointed_teeth(grid: PolarGrid, radii: np.ndarray, pitch_radii: np.ndarray,

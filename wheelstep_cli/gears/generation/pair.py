@@ -14,7 +14,8 @@ import numpy as np
 from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.gears.generation.envelope import PolarGrid, outline_from_radii, polyline_envelope
 from wheelstep_cli.gears.generation.limits import (GearBody, ToppingLimits, min_convex_radius,
-                                                   top_or_refuse, undercut_limit, undercut_remedy)
+                                                   top_or_refuse, undercut_limit, undercut_options,
+                                                   undercut_remedy)
 from wheelstep_cli.gears.generation.outline import blank_radii, simplify_outline
 from wheelstep_cli.gears.generation.pinion import pinion_by_rack, round_tips, topped_outline
 from wheelstep_cli.gears.generation.rack import RackCutter, RackRolling
@@ -157,11 +158,14 @@ def _check_undercut(job: _Job) -> tuple[float, float]:
     limit = undercut_limit(job.cutter, module)
     rho_min = min_convex_radius(job.law, job.curves)
     if rho_min < limit and job.strict:
-        raise DesignError("z", job.pinion_teeth,
-                          f"the rack undercuts the pinion: pitch-curve radius of curvature "
-                          f"{rho_min:.2f} mm < {limit:.2f} mm at module {module:.3f} mm; "
-                          + undercut_remedy(job.cutter, module, rho_min, job.per_period,
-                                            job.law.pinion_periods))
+        error = DesignError("z", job.pinion_teeth,
+                            f"the rack undercuts the pinion: pitch-curve radius of curvature "
+                            f"{rho_min:.2f} mm < {limit:.2f} mm at module {module:.3f} mm; "
+                            + undercut_remedy(job.cutter, module, rho_min, job.per_period,
+                                              job.law.pinion_periods))
+        # the same remedies as options, for a caller that checks them before it offers them
+        error.undercut = undercut_options(job.cutter, module, rho_min, job.per_period, job.law.pinion_periods)
+        raise error
     return limit, rho_min
 
 
