@@ -48,11 +48,11 @@ def bound_violations(record: dict, bounds: MeshBounds = MeshBounds()) -> list[st
     own = record.get("law_hub_speed_ripple_pct", 0.0)
     for side in ("drive", "coast"):
         for key, field_name, unit, name in _FIGURES:
-            value, limit = record[side][key], getattr(bounds, field_name)
+            value, limit, beyond = record[side][key], getattr(bounds, field_name), ""
             if key == "hub_speed_ripple_pct" and value is not None and own > 0.01:
-                value, name = max(0.0, value - own), f"{name} beyond the law's own {own:.2f} %"
+                value, beyond = max(0.0, value - own), f" beyond the law's own {own:.2f} %"
             if value is None or value > limit:
-                shown = "not measured" if value is None else f"{value:.2f} {unit}"
+                shown = "not measured" if value is None else f"{value:.2f} {unit}{beyond}"
                 found.append(f"{side} flank {name} {shown} > {limit:g} {unit}")
     return found
 
