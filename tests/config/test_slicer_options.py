@@ -23,11 +23,15 @@ def _printer(tmp_path, replaced: str, by: str):
     ("  perimeters: 3\n", "  perimeters: many\n", "perimeters", "slicer.perimeters = 'many': must be a whole number"),
     # ranges and kinds as PrusaSlicer reads them (it would drop the fraction, refuse the rest)
     ("  perimeters: 3\n", "  perimeters: 2.5\n", "perimeters", "slicer.perimeters = 2.5: must be a whole number"),
+    ("  perimeters: 3\n", "  perimeters: 1e999\n", "1e999", "slicer.perimeters = '1e999': must be a whole number"),
+    # a fan speed is a whole percentage up to 100 (as PrusaSlicer saves it), not a fraction
+    ("  perimeters: 3\n", "  perimeters: 3\n  max_fan_speed: 101\n", "max_fan_speed",
+     "slicer.max_fan_speed = 101: must be at most 100"),
     ("  perimeters: 3\n", "  perimeters: -1\n", "perimeters", "slicer.perimeters = -1: must be >= 0"),
     ("  fill_density: 30%\n", "  fill_density: 150%\n", "150%",
-     "slicer.fill_density = '150%': must be at most 100% (or a fraction up to 1)"),
+     "slicer.fill_density = '150%': must be at most 100%"),
     ("  fill_density: 30%\n", "  fill_density: 30\n", "fill_density: 30",
-     "slicer.fill_density = 30: must be at most 100% (or a fraction up to 1)"),
+     "slicer.fill_density = 30: must be at most 100% (a number without % is a fraction: 0.3 is 30 %)"),
     ("  layer_height: 0.2\n", "  layer_height: 5\n", "layer_height: 5",
      "slicer.layer_height = 5: must be at most the nozzle diameter (0.4 mm, nozzle_diameter)"),
     ("  first_layer_height: 0.2\n", "  first_layer_height: 75%\n", "75%",
@@ -37,7 +41,7 @@ def _printer(tmp_path, replaced: str, by: str):
     ("  fill_pattern: gyroid\n", "  fill_pattern: zigzag\n", "zigzag",
      "slicer.fill_pattern = 'zigzag': must be one of: rectilinear,"),
     ("  fill_density: 30%\n", "  fill_density: thirty\n", "thirty",
-     "slicer.fill_density = 'thirty': must be a number or a percentage such as 15%"),
+     "slicer.fill_density = 'thirty': must be a percentage such as 15% (or a fraction such as 0.15)"),
     ("  perimeters: 3\n", "  perimeters: 3\n  bed_shape: 0x0,100x0,100x100,0x100\n", "bed_shape",
      "slicer.bed_shape: is set by printer.bed of this profile; give it there"),
     ("  perimeters: 3\n", "  perimeters: 3\n  exposure_time: 2\n", "exposure_time",
@@ -60,6 +64,8 @@ def test_every_kind_of_value_prusaslicer_reads_passes():
                             "z_offset": "-1e-3", "start_gcode": "G28", "filament_retract_length": "1",
                             "inherits": "Original Prusa i3 MK3", "extrusion_width": "105%"}, "fdm") == []
     assert slicer_problems({"fill_density": 0.3}, "fdm") == []          # a fraction: 30 %
+    assert slicer_problems({"max_fan_speed": 100, "min_fan_speed": 35, "raft_first_layer_density": 90,
+                            "wipe": 1.0, "bridge_flow_ratio": 1.5}, "fdm") == []
     assert slicer_problems({"exposure_time": 2.5, "supports_enable": 0, "display_orientation": "portrait",
                             "material_colour": "#29B2B2"}, "resin") == []
     # what a resin printer has no use for is no PrusaSlicer option of it, not the printer section's

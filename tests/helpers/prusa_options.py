@@ -19,6 +19,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+import numpy as np
+
 CATALOGUE = Path(__file__).resolve().parents[2] / "wheelstep_cli" / "config" / "prusa_options.json"
 
 #: An option's first help line: its flag, its argument (N, ABCD or none) and the text after it.
@@ -82,26 +84,32 @@ def _kind(default: str, arg: str | None, body: str):
 _OUT_OF_RANGE = re.compile(r"Value out of range: (\w+)|Invalid value for --([\w-]+)")
 
 
-def _as_saved(technology: str, keys: list[str], value: str) -> dict[str, str | None]:
-    """What ``prusa-slicer --load`` of ``keys`` all set to ``value`` saves for each, None for a
+def _as_saved(technology: str, keys, value: str = "") -> dict[str, str | None]:
+    """What ``prusa-slicer --load`` of ``keys`` all set to ``value`` (or a dict key -> its own
+    value) saves for each, None for a
     key whose range refuses the value (the slicer names one such key a run; it is left out and
     the rest loaded again). It rounds a whole-number option's 2.5 to 2 and drops the % of an
     option that takes no percentage, without a word."""
-    keys, refused = list(keys), {}
+    values = dict(keys) if isinstance(keys, dict) else dict.fromkeys(keys, value)
+    keys, refused = list(values), {}
     with tempfile.TemporaryDirectory() as folder:
         given, saved = Path(folder) / "given.ini", Path(folder) / "saved.ini"
         while True:
-            given.write_text("".join(f"{key} = {value}\n" for key in keys), encoding="utf-8")
+            given.write_text("".join(f"{key} = {values[key]}\n" for key in keys), encoding="utf-8")
             done = subprocess.run(["prusa-slicer", "--printer-technology", technology.upper(), "--load",
                                    str(given), "--save", str(saved)], capture_output=True, text=True)
             if done.returncode == 0:
                 break
             bad = _OUT_OF_RANGE.search(done.stdout + done.stderr)
             key = None if bad is None else (bad.group(1) or bad.group(2).replace("-", "_"))
+            if key is None and len(keys) == 1:
+                key = keys[0]       # a rule of the value with the defaults (100 % of a fill pattern)
             if key not in keys:
                 raise RuntimeError(f"prusa-slicer refused the probe: {(done.stdout + done.stderr)[-500:]}")
             keys.remove(key)
             refused[key] = None
+            if not keys:
+                return refused
         lines = saved.read_text(encoding="utf-8").splitlines()
     found = dict(line.split(" = ", 1) for line in lines if " = " in line and not line.startswith("#"))
     return {**refused, **{key: found.get(key, "") for key in keys}}
@@ -109,9 +117,10 @@ def _as_saved(technology: str, keys: list[str], value: str) -> dict[str, str | N
 
 def _refined(technology: str, kinds: dict) -> dict:
     """``kinds`` with each number told apart as the slicer reads it: "integer" (a whole
-    number), "percent" (a number or a percentage) or "number", each as ``[kind, least]`` when
-    the slicer's range refuses -1 (``least`` 0: no negative values), and a percentage
-    refused past 100 % as ``["percent", 0, 100]``."""
+    number, 2.5 read as 2), "share" (a percentage, or a plain number read as a fraction:
+    fill_density 0.3 is 30 %), "percent" (a number, or a percentage of another setting where
+    the help says so) or "number"; each as ``[kind, least]`` when the slicer's range refuses -1
+    (``least`` 0) and ``[kind, least, 100]`` when it refuses 101 (101 % for a share)."""
     numbers = [key for key, kind in kinds.items() if kind in ("number", "percent")]
     halves = _as_saved(technology, numbers, "2.5")
     small = _as_saved(technology, [k for k in numbers if halves[k] is None], "0.5")
@@ -120,13 +129,35 @@ def _refined(technology: str, kinds: dict) -> dict:
         half = halves[key] if halves[key] is not None else small.get(key)
         # a percentage only where the help says so: --save keeps '75%' of first_layer_height,
         # which slicing then reads as 75 mm
-        kind = "percent" if kinds[key] == "percent" else "integer" if half in ("2", "0") else "number"
+        if half in ("2", "0"):
+            kind = "integer"
+        elif kinds[key] == "percent":
+            kind = "share" if (half or "").endswith("%") else "percent"
+        else:
+            kind = "number"
         kinds[key] = [kind] if negative[key] is not None else [kind, 0]
-    over = _as_saved(technology, [k for k in numbers if kinds[k][0] == "percent"], "101%")
-    for key, saved in over.items():
-        if saved is None:
-            kinds[key] = ["percent", 0, 100]
+    for key, most in _greatest(technology, {k: kinds[k][0] for k in numbers}).items():
+        kinds[key] = [kinds[key][0], kinds[key][1] if len(kinds[key]) > 1 else None, most]
+    # (a least of None: the range refuses no negative value, only too large a one)
     return {key: kind[0] if isinstance(kind, list) and len(kind) == 1 else kind for key, kind in kinds.items()}
+
+
+def _greatest(technology: str, kinds: dict[str, str]) -> dict[str, float]:
+    """The greatest value the slicer's range takes of each number option that refuses 101
+    (101 % for a share), found by bisection: a whole number for an integer option, to
+    0.001 else; a share's as a percentage."""
+    unit = {key: "%" if kind == "share" else "" for key, kind in kinds.items()}
+    over = _as_saved(technology, {key: f"101{unit[key]}" for key in kinds})
+    lo = {key: 0.0 for key, saved in over.items() if saved is None}
+    hi = {key: 101.0 for key in lo}
+    for _ in range(20):
+        for key in lo:
+            # one key a run: a refusal of a rule of several values names none of them
+            mid = (lo[key] + hi[key]) / 2.0
+            saved = _as_saved(technology, {key: f"{mid:.6f}{unit[key]}"})
+            (lo if saved[key] is not None else hi)[key] = mid
+    return {key: float(np.floor(lo[key] + 1e-6)) if kinds[key] == "integer" else round(lo[key], 3)
+            for key in lo}
 
 
 #: The bookkeeping keys of PrusaSlicer's presets (which preset, inherited from which, for

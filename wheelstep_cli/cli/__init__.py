@@ -278,8 +278,11 @@ def _in_design_profile(err: DesignError, group, argv: list[str]):
     if "profile" not in params:
         return None
     opts = [*params["profile"].opts, *params["profile"].secondary_opts]
-    given = [b for a, b in zip(argv, argv[1:]) if a in opts]
-    given += [a.split("=", 1)[1] for a in argv if a.split("=", 1)[0] in opts and "=" in a]
+    # the command's own words: after its name, before a "--" (what follows is an argument)
+    words = argv[argv.index(name) + 1:]
+    words = words[:words.index("--")] if "--" in words else words
+    given = [b for a, b in zip(words, words[1:]) if a in opts]
+    given += [a.split("=", 1)[1] for a in words if a.split("=", 1)[0] in opts and "=" in a]
     if not given:
         return None
     try:

@@ -10,7 +10,6 @@ reported at once with its ``file:line``.
 from __future__ import annotations
 
 import importlib.resources
-import os
 from pathlib import Path
 from typing import Any
 
@@ -115,9 +114,13 @@ def beside(folder: Path, given: str | None) -> str | None:
     folder; as given (from the working folder) when it is absolute or not there."""
     if given is None or Path(given).is_absolute() or not (folder / given).is_file():
         return given
-    # as a path from the working folder (as the user would name it there): no folder of the
-    # user's, such as a temporary one, ends up in the reports when the YAML file lies below it
-    return os.path.relpath(folder / given)
+    # as a path from the working folder when it lies below it (as the user would name it
+    # there): no folder of the user's, such as a temporary one, ends up in the reports
+    found = folder / given
+    try:
+        return str(found.resolve().relative_to(Path.cwd().resolve()))
+    except ValueError:
+        return str(found)
 
 
 def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):

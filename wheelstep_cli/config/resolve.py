@@ -172,8 +172,11 @@ def _named_for(cli: dict[str, Any], step, *args, profile: tuple | None = None):
 
 
 def _profile_keys(loaded, section: str) -> list[str]:
-    """The keys a profile gives its part, the part's section first, then its mechanism."""
-    return [*loaded.values(section), *loaded.values("mechanism")]
+    """The keys a profile gives its part, the part's section first, then its mechanism (but
+    what sets the crank law when the part follows a law CSV instead)."""
+    part = loaded.values(section)
+    mechanism = [k for k in loaded.values("mechanism") if not (part.get("law_csv") and k in CRANK_LAW)]
+    return [*part, *mechanism]
 
 
 def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
@@ -185,18 +188,27 @@ def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
 
     from wheelstep_cli.errors import format_value
 
-    remedy = getattr(err, "remedy", None) or {}
-    err = err.for_given(_profile_keys(loaded, section))
+    remedies = getattr(err, "remedies", None) or [r for r in [getattr(err, "remedy", None)] if r]
+    # the rule's own parameter when the profile gives it, else the first key it gives (its part's
+    # section first) that the rule is stated for
+    own, keys = err.param.replace("-", "_"), _profile_keys(loaded, section)
+    named = {own, *(name.replace("-", "_") for name in err.alternatives)}
+    key = own if own in keys else next((k for k in keys if k in named), None)
+    if key is None:
+        return None
+    err = err.for_given([key])
     limit = err.limit
-    if remedy:
-        # the remedy as the profile's keys (z: 74, backlash: 0.239), not as flags
+    for remedy in remedies:
+        # a remedy as the profile's keys (z: 74, backlash: 0.239), not as flags
         flags = " ".join(f"--{name.replace('_', '-')} {format_value(value)}" for name, value in remedy.items())
         limit = limit.replace(f"use {flags}", "use " + ", ".join(f"{name}: {format_value(value)}"
                                                                   for name, value in remedy.items()))
-    key = err.param.replace("-", "_")
     for part in (section, "mechanism"):
-        where = loaded.where(part, key)
-        if where is not None:
-            return InvalidInput([Issue(where, f"{part}.{key}", f"= {show(err.value)}: {in_file_words(limit)}")])
+        given = loaded.values(part)
+        # only where the profile's value is the one the rule met (a command line's --r-min
+        # replaces the profile's c, and a table's distance is derived from the profile's)
+        if key in given and given[key] == err.value:
+            return InvalidInput([Issue(loaded.where(part, key), f"{part}.{key}",
+                                       f"= {show(err.value)}: {in_file_words(limit)}")])
     return None
 

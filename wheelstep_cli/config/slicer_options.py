@@ -5,8 +5,9 @@ The section is copied into every plate's slicer configuration (3MF ``Slic3r_PE.c
 plate whose value it cannot read, so both are refused here, at the profile's line, before
 anything is built. The catalogue (``prusa_options.json``: per technology, every key
 PrusaSlicer reads and the kind of value it takes: ``["enum", choices...]``, "bool", "text",
-or "integer" / "number" / "percent" (a number or a percentage), the latter three as
-``[kind, least]`` or ``[kind, least, most %]`` where the slicer's range says so) was read off
+or "integer" / "number" / "percent" (a number or a percentage of another setting) / "share"
+(a percentage, or a fraction: 0.3 is 30 %), the latter four as ``[kind, least]`` or
+``[kind, least or None, most]`` where the slicer's range says so) was read off
 PrusaSlicer itself (see ``tests/helpers/prusa_options.py``).
 """
 
@@ -16,6 +17,7 @@ import difflib
 import functools
 import importlib.resources
 import json
+import math
 import re
 from typing import Any
 
@@ -60,23 +62,27 @@ def _limit(kind, value: Any) -> str | None:
     if name == "text":
         return None
     values = _numbers(value)
+    numbers = None if values is None else [float(v.rstrip("%")) for v in values]
     if name == "bool":
-        ok = isinstance(value, bool) or (values is not None and all(v in ("0", "1") for v in values))
+        ok = isinstance(value, bool) or (numbers is not None and all(n in (0.0, 1.0) for n in numbers))
         return None if ok else "must be true or false (or 1 / 0)"
-    percent = name == "percent"
-    if values is None or (not percent and any(v.endswith("%") for v in values)):
-        return {"integer": "must be a whole number", "percent": "must be a number or a percentage "
-                "such as 15%"}.get(name, "must be a number")
-    numbers = [float(v.rstrip("%")) for v in values]
-    if name == "integer" and any(n != int(n) for n in numbers):
-        return "must be a whole number (PrusaSlicer would drop the fraction)"
-    if bounds and any(n < bounds[0] for n in numbers):
-        return f"must be >= {bounds[0]:g}"
-    if len(bounds) > 1:
-        # a percentage option read as a fraction when it has no % (0.3 is 30 %)
-        shares = [n / 100.0 if v.endswith("%") else n for v, n in zip(values, numbers)]
-        if any(share > bounds[1] / 100.0 for share in shares):
-            return f"must be at most {bounds[1]:g}% (or a fraction up to {bounds[1] / 100.0:g})"
+    shares = name in ("share", "percent")
+    if (numbers is None or not all(math.isfinite(n) for n in numbers)
+            or (not shares and any(v.endswith("%") for v in values))):
+        return {"integer": "must be a whole number", "share": "must be a percentage such as 15% (or a "
+                "fraction such as 0.15)", "percent": "must be a number or a percentage such as 15%"
+                }.get(name, "must be a number")
+    if name == "integer" and not all(re.fullmatch(r"-?\d+", v) for v in values):
+        return "must be a whole number (PrusaSlicer would read only its leading digits)"
+    # a share's plain number is a fraction (0.3 is 30 %); its bounds are percentages
+    scaled = [n if v.endswith("%") or name != "share" else 100.0 * n for v, n in zip(values, numbers)]
+    least, most = (bounds + [None, None])[:2]
+    unit = "%" if name == "share" else ""
+    if least is not None and any(n < least for n in scaled):
+        return f"must be >= {least:g}{unit}"
+    if most is not None and any(n > most for n in scaled):
+        fraction = " (a number without % is a fraction: 0.3 is 30 %)" if name == "share" else ""
+        return f"must be at most {most:g}{unit}{fraction}"
     return None
 
 
@@ -84,13 +90,14 @@ def _cross_rules(settings: dict[str, Any], technology: str) -> list[tuple[str, s
     """What PrusaSlicer refuses of values together: FDM layers thicker than the nozzle."""
     if technology != "fdm":
         return []
-    nozzle = _numbers(settings.get("nozzle_diameter", 0.4))
-    if nozzle is None:
+    plain = lambda value: [v for v in _numbers(value) or [] if not v.endswith("%")]  # noqa: E731
+    nozzle = plain(settings.get("nozzle_diameter", 0.4))
+    if not nozzle:
         return []
     problems = []
     for key in ("layer_height", "first_layer_height"):
-        layer = _numbers(settings.get(key))
-        if layer is not None and float(layer[0]) > float(nozzle[0]):
+        layer = plain(settings.get(key))
+        if layer and float(layer[0]) > float(nozzle[0]):
             problems.append((key, f"= {show(settings[key])}: must be at most the nozzle diameter "
                                   f"({nozzle[0]} mm, nozzle_diameter); PrusaSlicer refuses a thicker layer"))
     return problems
@@ -99,8 +106,8 @@ def _cross_rules(settings: dict[str, Any], technology: str) -> list[tuple[str, s
 def slicer_problems(settings: dict[str, Any], technology: str) -> list[tuple[str, str]]:
     """(key, problem) of every setting of a ``slicer:`` section PrusaSlicer would not take for
     a printer of ``technology`` (fdm, resin), in the section's order: an unknown key (with the
-    nearest known one), a key the printer section sets, a value of the wrong kind (as
-    ``= value: what it must be``)."""
+    nearest known one), a key the printer section sets, a value of the wrong kind or out of the
+    slicer's range, a layer thicker than the nozzle (as ``= value: what it must be``)."""
     flavour = "fff" if technology == "fdm" else "sla"
     known = catalogue()[flavour]
     problems = []
@@ -114,6 +121,5 @@ def slicer_problems(settings: dict[str, Any], technology: str) -> list[tuple[str
             problems.append((key, f"not a PrusaSlicer option of {what} printers{hint}"))
         elif (limit := _limit(known[key], value)) is not None:
             problems.append((key, f"= {show(value)}: {limit}"))
-    if not problems:
-        problems = _cross_rules(settings, technology)
-    return problems
+    reported = {key for key, _ in problems}
+    return problems + [found for found in _cross_rules(settings, technology) if found[0] not in reported]

@@ -168,11 +168,15 @@ def verified_undercut(err: DesignError, design, verify: Callable,
         else:
             tried.extend(why)
     cause = err.limit.split("; use pinion z")[0]
+    unchecked = err.limit[len(cause):]
     law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
-    advice = (" or ".join(f"use {_as_options(remedy)}" for remedy in offered) if offered
-              else f"no remedy found ({'; '.join(tried)}): change {law} or the centre distance")
-    checked = DesignError(err.param, err.value, f"{cause}; {advice}", dict(err.alternatives))
+    advice = "; " + (" or ".join(f"use {_as_options(remedy)}" for remedy in offered) if offered
+                     else f"no remedy found ({'; '.join(tried)}): change {law} or the centre distance")
+    # the inputs sharing the blame state the rule with the checked remedies too
+    alternatives = {name: (value, text.replace(unchecked, advice)) for name, (value, text) in err.alternatives.items()}
+    checked = DesignError(err.param, err.value, cause + advice, alternatives)
     checked.remedy = offered[0] if offered else {}
+    checked.remedies = offered
     return checked
 
 

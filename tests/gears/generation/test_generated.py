@@ -242,7 +242,7 @@ def test_settings_are_values_changed_with_replace():
 
 
 def test_a_profiles_law_csv_is_read_beside_the_profile(cli, tmp_path, monkeypatch):
-    # the profile names its CSV by a bare file name; the command runs from another folder
+    # the profile names its CSV by a bare file name; the command runs from the folder above
     folder = tmp_path / "designs"
     folder.mkdir()
     phi = np.linspace(0.0, 360.0, 361)
@@ -253,12 +253,10 @@ def test_a_profiles_law_csv_is_read_beside_the_profile(cli, tmp_path, monkeypatc
     (folder / "smooth.yaml").write_text(
         f"gears:\n  law_csv: law.csv\n  z: 28\n  center_distance: {distance:.6f}\n"
         f"  install_distance: {distance:.6f}\n  bore: 4\n")
-    elsewhere = tmp_path / "run"
-    elsewhere.mkdir()
-    monkeypatch.chdir(elsewhere)
-    result = cli("gears", "--profile", folder / "smooth.yaml", "--format", "stl", "--out", "out")
+    monkeypatch.chdir(tmp_path)
+    result = cli("gears", "--profile", "designs/smooth.yaml", "--format", "stl", "--out", "out")
     assert result.exit_code == 0, result.stderr
-    report = json.loads((elsewhere / "out" / "gears.json").read_text())
-    # named from the working folder, as the user would name it there
-    assert report["parameters"]["law_csv"] == "../designs/law.csv"
+    report = json.loads((tmp_path / "out" / "gears.json").read_text())
+    # named from the working folder, as the user would name it there (no folder above it)
+    assert report["parameters"]["law_csv"] == "designs/law.csv"
     assert report["generated"]["pinion_teeth"] == 28
