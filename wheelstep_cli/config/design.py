@@ -38,6 +38,14 @@ class DesignProfile(BaseModel):
 
     #: (section, key) -> ``file:line`` of each value the file gives (set when it is read)
     _where: dict = PrivateAttr(default_factory=dict)
+    #: one of the presets shipped with wheelstep (not a file of the user's to edit)
+    _shipped: bool = PrivateAttr(default=False)
+
+    @property
+    def shipped(self) -> bool:
+        """Whether the profile is a preset shipped with wheelstep: its values are overridden
+        on the command line, not edited in its file."""
+        return self._shipped
 
     def where(self, section: str, key: str) -> str | None:
         """``file:line`` of ``section.key`` in the profile's file (None: not given there)."""

@@ -148,6 +148,7 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
         profile = profile.model_copy(update={"gears": gears})
     profile._where = {(section, key): doc.where((section, key)) for section in ("mechanism", "gears", "shoe")
                       for key in profile.values(section)}
+    profile._shipped = Path(file).resolve().parent == shipped_profiles().resolve()
     return profile
 
 

@@ -182,7 +182,10 @@ def _profile_keys(loaded, section: str) -> list[str]:
 def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
     """``err`` said at the line of the design profile ``loaded`` that gives its parameter, or
     one its rule is also stated for, in the part's ``section`` or the mechanism (None: the
-    profile gives none of them)."""
+    profile gives none of them, or it is a shipped preset, whose values the command line
+    overrides: the error names the flag)."""
+    if loaded.shipped:
+        return None
     from wheelstep_cli.config.names import in_file_words
     from wheelstep_cli.config.schema import Issue, show
 
