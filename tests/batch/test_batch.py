@@ -252,6 +252,10 @@ parts:
     # taller than the printer prints: refused before anything is built, at its line
     (VALID_ENTRY + "    overrides:\n      thickness: 300\n", "thickness: 300",
      "overrides.thickness = 300: makes part 'pinion' 300.0 mm tall, more than the 250 mm printer"),
+    # a strut socket wider than the shoe: refused at the plan, as the value given (not the 100.2
+    # the printer's hole compensation would draw)
+    (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      strut_diameter: 100\n", "strut_diameter",
+     "parts[0].overrides.strut_diameter = 100: must be <= 16.00 mm (socket wider than the body"),
     # a shoe stands on its side: its width is its height on the bed
     (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      width: 300\n", "width: 300",
      "overrides.width = 300: makes part 'shoe' 300.0 mm tall, more than the 250 mm printer"),

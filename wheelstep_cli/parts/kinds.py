@@ -211,6 +211,18 @@ def remedy_check(printer, wrap: Callable | None = None) -> Callable:
     return verify
 
 
+def _socket_fits(spec) -> None:
+    """The shoe's socket check, for a mechanism that can be sized (one that cannot is the
+    mechanism check's problem, said once)."""
+    from wheelstep_cli.parts.shoe import socket_fits
+
+    try:
+        spec.design()
+    except DesignError:
+        return
+    socket_fits(spec)
+
+
 def _gear_pair_clearance(spec, extra: float) -> dict:
     from wheelstep_cli.parts.gear_laws import design_backlash
 
@@ -240,6 +252,6 @@ KINDS: dict[str, PartKind] = {
     KindName.shoe.value: PartKind(
         name=KindName.shoe.value, module="wheelstep_cli.parts.shoe", spec_class="ShoeSpec",
         build="build_shoe", report="shoe_report", section="shoe", parts=lambda shoe: list(shoe.parts),
-        hole_fields=("strut_diameter",), checks=(lambda spec: spec.design(),),
+        hole_fields=("strut_diameter",), checks=(lambda spec: spec.design(), _socket_fits),
         with_parts=lambda shoe, parts, checks: replace(shoe, parts=parts, checks=checks)),
 }

@@ -104,13 +104,25 @@ def shoe_solid(spec: ShoeSpec, outline: np.ndarray, top: float) -> Part:
                                spec.socket_depth + CUT_OVERSHOOT, expected)
 
 
-def build_shoe(spec: ShoeSpec) -> Shoe:
-    """Size the mechanism, build and check the shoe; raises DesignError for impossible designs."""
+def _sole(spec: ShoeSpec):
+    """(mechanism, contact angles rad, sole profile, sole in the part frame, top y) in mm."""
     design = spec.design()
     phi = contact_angles(PROFILE_POINTS)
     profile = sole_profile(design, phi)
     sole_part = np.column_stack([profile[:, 0], design.c - profile[:, 1]])
-    top = float(sole_part[[0, -1], 1].max() + spec.rim)
+    return design, phi, profile, sole_part, float(sole_part[[0, -1], 1].max() + spec.rim)
+
+
+def socket_fits(spec: ShoeSpec) -> None:
+    """The socket check of :func:`build_shoe` alone, before any solid is made (DesignError
+    when the strut socket does not fit the body): a batch plan refuses such an entry up front."""
+    _, _, _, sole_part, top = _sole(spec)
+    check_socket(spec, sole_part, top)
+
+
+def build_shoe(spec: ShoeSpec) -> Shoe:
+    """Size the mechanism, build and check the shoe; raises DesignError for impossible designs."""
+    design, phi, profile, sole_part, top = _sole(spec)
     floor = check_socket(spec, sole_part, top)
     outline = check_outline(side_outline(sole_part, top), "shoe")
     part = shoe_solid(spec, outline, top)
