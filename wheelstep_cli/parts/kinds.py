@@ -214,7 +214,7 @@ def remedy_check(printer, wrap: Callable | None = None) -> Callable:
 def _socket_fits(spec) -> None:
     """The shoe's socket check, for a mechanism that can be sized (one that cannot is the
     mechanism check's problem, said once)."""
-    from wheelstep_cli.parts.shoe import socket_fits
+    from wheelstep_cli.parts.shoe_socket import socket_fits
 
     try:
         spec.design()

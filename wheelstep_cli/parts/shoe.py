@@ -16,8 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from wheelstep_cli.config.specs import ShoeSpec
-from wheelstep_cli.errors import DesignError, require, rounded_down, rounded_up
-from wheelstep_cli.geometry.planar import check_outline, polyline_box_distance, signed_area
+from wheelstep_cli.errors import require
+from wheelstep_cli.geometry.planar import check_outline, signed_area
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
 from wheelstep_cli.geometry.solids import bore_segments, circle, extrude_with_socket
 from wheelstep_cli.formats.dxf import polyline_dxf_bytes
@@ -25,12 +25,9 @@ from wheelstep_cli.formats.jsonio import csv_bytes, json_bytes
 from wheelstep_cli.formats.stl import stl_bytes
 from wheelstep_cli.parts.plate_layout import bed_plates, design_metadata, plate_files, require_on_bed
 from wheelstep_cli.mechanism.crank import CrankMechanism
-from wheelstep_cli.mechanism.sole import contact_angles, sole_curvature_radius, sole_profile
+from wheelstep_cli.mechanism.sole import sole_curvature_radius
+from wheelstep_cli.parts.shoe_socket import check_socket, sole_and_top
 
-#: Hub angles sampled along the sole (JSON, CSV, DXF and the mesh all use these).
-PROFILE_POINTS = 401
-#: Least plastic around and under the strut socket, mm.
-MIN_WALL = 2.0
 #: The socket cutter sticks out of the top face by this much, so no skin is left, mm.
 CUT_OVERSHOOT = 1.0
 FORMATS = ("stl", "3mf", "both")
@@ -63,37 +60,6 @@ def side_outline(sole_part: np.ndarray, top: float) -> np.ndarray:
     return np.vstack([sole_part, corners])
 
 
-def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
-    """Check the socket fits in the body; return the wall between it and the sole (mm)."""
-    d = spec.strut_diameter
-    length = sole_part[-1, 0] - sole_part[0, 0]
-    limit = min(spec.width, length) - 2.0 * MIN_WALL
-    if d > limit:
-        across = "width" if spec.width <= length else f"sole length {length:.1f} mm"
-        why = f"(socket wider than the body: {across} less {MIN_WALL:g} mm wall each side)"
-        # the width is the other side of the rule when it is the narrower; the mechanism
-        # draws the sole, so a user who gave its sizes rather than the diameter is named
-        alternatives = {"width": (spec.width, f"must be >= {rounded_up(d + 2.0 * MIN_WALL)} mm {why}")
-                        } if spec.width <= length else {}
-        raise DesignError("strut_diameter", d, f"must be <= {rounded_down(limit)} mm {why}", alternatives
-                          ).tied_to({"a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min})
-    floor = polyline_box_distance(sole_part, (-d / 2.0, top - spec.socket_depth, d / 2.0, top))
-    if floor < MIN_WALL:
-        # deepest socket that keeps the wall (the wall shrinks as the socket deepens): bisection
-        lo, hi = 0.0, spec.socket_depth
-        for _ in range(40):
-            mid = 0.5 * (lo + hi)
-            wall = polyline_box_distance(sole_part, (-d / 2.0, top - mid, d / 2.0, top))
-            lo, hi = (mid, hi) if wall >= MIN_WALL else (lo, mid)
-        # the body's height comes from the rim and the sole the mechanism draws: a user who
-        # gave those rather than the depth is told which of theirs leaves the default too deep
-        raise DesignError("socket_depth", spec.socket_depth,
-                          f"must be <= {rounded_down(lo)} mm (socket deeper than the body: keep "
-                          f"{MIN_WALL:g} mm of plastic between it and the sole)"
-                          ).tied_to({"rim": spec.rim, "a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min})
-    return floor
-
-
 def shoe_solid(spec: ShoeSpec, outline: np.ndarray, top: float) -> Part:
     """Extrude the checked side outline by the width and cut the strut socket from the top face."""
     segments = bore_segments(spec.strut_diameter)
@@ -104,25 +70,9 @@ def shoe_solid(spec: ShoeSpec, outline: np.ndarray, top: float) -> Part:
                                spec.socket_depth + CUT_OVERSHOOT, expected)
 
 
-def _sole(spec: ShoeSpec):
-    """(mechanism, contact angles rad, sole profile, sole in the part frame, top y) in mm."""
-    design = spec.design()
-    phi = contact_angles(PROFILE_POINTS)
-    profile = sole_profile(design, phi)
-    sole_part = np.column_stack([profile[:, 0], design.c - profile[:, 1]])
-    return design, phi, profile, sole_part, float(sole_part[[0, -1], 1].max() + spec.rim)
-
-
-def socket_fits(spec: ShoeSpec) -> None:
-    """The socket check of :func:`build_shoe` alone, before any solid is made (DesignError
-    when the strut socket does not fit the body): a batch plan refuses such an entry up front."""
-    _, _, _, sole_part, top = _sole(spec)
-    check_socket(spec, sole_part, top)
-
-
 def build_shoe(spec: ShoeSpec) -> Shoe:
     """Size the mechanism, build and check the shoe; raises DesignError for impossible designs."""
-    design, phi, profile, sole_part, top = _sole(spec)
+    design, phi, profile, sole_part, top = sole_and_top(spec)
     floor = check_socket(spec, sole_part, top)
     outline = check_outline(side_outline(sole_part, top), "shoe")
     part = shoe_solid(spec, outline, top)
