@@ -139,6 +139,9 @@ def test_an_undercut_pinion_is_offered_only_remedies_that_pass(cli, tmp_path):
     assert "pinion z >=" not in line and not out.exists()
     offered = line.rsplit("; ", 1)[1].split(" or ")
     assert offered and all(choice.startswith("use --") for choice in offered), line
+    # under a fit the design is refused before the fit, with the same checked remedies
+    fitted = error_line(cli("gears", "--z", "12", "--fit", "auto", "--format", "stl", "--out", out))
+    assert fitted == line, fitted
     for n, choice in enumerate(offered):
         written = tmp_path / f"remedy-{n}"
         result = cli("gears", *with_remedy(["--z", "12"], choice[len("use "):].split()), "--format", "stl",

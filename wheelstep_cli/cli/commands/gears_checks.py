@@ -17,8 +17,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
     from wheelstep_cli.parts.kinds import remedy_check
-    from wheelstep_cli.errors import DesignError
-    from wheelstep_cli.parts.mesh_bounds import require_within_bounds, verified_undercut
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
     from wheelstep_cli.parts.mesh_check import check_gear_pair
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
     from wheelstep_cli.parts.tolerance_cli import band_pair, fit_design, fitted_pair
@@ -30,7 +29,8 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         # the design is checked, bounded and refused as without a fit before the search
         # spends a dozen meshing checks on it; the fit's inset is print compensation, judged
         # on the band (the written pair's own figures are the inset outlines')
-        chosen, design = fit_design(spec, printer)
+        chosen, design = _undercut_checked(lambda: fit_design(spec, printer), spec,
+                                           remedy_check(printer, checked_remedy))
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
         design_record = _meshing_or_refused(show, design, design_check, allow_interference)
         require_within_bounds(design, design_record,
@@ -44,18 +44,27 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         require_fit_met(tolerance, **({} if tolerance["fit"].get("from", "--fit") == "--fit" else
                                       {"remedy": PROFILE_FIT_REMEDY}))
     else:
-        try:
-            pair, tolerance, check = band_pair(spec, printer, bool(band[0]), bed)
-        except DesignError as err:
-            if not getattr(err, "undercut", None):
-                raise
-            # the undercut's remedies are built and checked before they are offered
-            raise verified_undercut(err, spec, remedy_check(printer, checked_remedy)) from None
+        pair, tolerance, check = _undercut_checked(lambda: band_pair(spec, printer, bool(band[0]), bed), spec,
+                                                   remedy_check(printer, checked_remedy))
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
         record = _meshing_or_refused(show, pair, check, allow_interference)
         require_within_bounds(pair, record, verify=remedy_check(printer, checked_remedy))
     return pair, record, tolerance, check
+
+
+def _undercut_checked(build, spec, verify):
+    """``build()``; an undercut refusal's remedies are built and checked (``verify``) before
+    they are offered, as a bounds refusal's are."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.mesh_bounds import verified_undercut
+
+    try:
+        return build()
+    except DesignError as err:
+        if not getattr(err, "undercut", None):
+            raise
+        raise verified_undercut(err, spec, verify) from None
 
 
 def _meshing_or_refused(show: Output, pair, check, allow_interference: bool) -> dict:
