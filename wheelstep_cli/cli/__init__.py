@@ -274,15 +274,11 @@ def _in_design_profile(err: DesignError, group, argv: list[str]):
     from wheelstep_cli.config.resolve import in_profile
 
     name = next((arg for arg in argv if arg in group.commands), None)
-    params = {p.name: p for p in group.commands[name].params} if name is not None else {}
-    if "profile" not in params:
+    if name is None:
         return None
-    opts = [*params["profile"].opts, *params["profile"].secondary_opts]
-    # the command's own words: after its name, before a "--" (what follows is an argument)
-    words = argv[argv.index(name) + 1:]
-    words = words[:words.index("--")] if "--" in words else words
-    given = [b for a, b in zip(words, words[1:]) if a in opts]
-    given += [a.split("=", 1)[1] for a in words if a.split("=", 1)[0] in opts and "=" in a]
+    # the command's own options, as the parser reads them (nothing after "--")
+    given = [value for param, _, value in _option_values(group.commands[name].params, argv[argv.index(name) + 1:])
+             if param.name == "profile"]
     if not given:
         return None
     try:
