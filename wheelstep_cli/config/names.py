@@ -14,6 +14,20 @@ def flag_name(param: str) -> str:
     return "--" + param.replace("_", "-")
 
 
+def as_flags(options: dict) -> str:
+    """Options (name -> value) as a command line gives them: ``--z 74 --backlash 0.239``."""
+    from wheelstep_cli.errors import format_value
+
+    return " ".join(f"{flag_name(name)} {format_value(value)}" for name, value in options.items())
+
+
+def as_keys(options: dict) -> str:
+    """Options (name -> value) as a file gives them: ``z: 74, backlash: 0.239``."""
+    from wheelstep_cli.errors import format_value
+
+    return ", ".join(f"{name}: {format_value(value)}" for name, value in options.items())
+
+
 def yaml_message(err) -> str:
     """A DesignError as a file names it: ``install_distance = 140: must be ...`` (a switch as
     YAML writes it, true or false)."""

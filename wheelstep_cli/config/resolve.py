@@ -186,10 +186,8 @@ def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
     overrides: the error names the flag)."""
     if loaded.shipped:
         return None
-    from wheelstep_cli.config.names import in_file_words
+    from wheelstep_cli.config.names import as_flags, as_keys, in_file_words
     from wheelstep_cli.config.schema import Issue, show
-
-    from wheelstep_cli.errors import format_value
 
     remedies = getattr(err, "remedies", None) or [r for r in [getattr(err, "remedy", None)] if r]
     # the rule's own parameter when the profile gives it, else the first key it gives (its part's
@@ -203,9 +201,7 @@ def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
     limit = err.limit
     for remedy in remedies:
         # a remedy as the profile's keys (z: 74, backlash: 0.239), not as flags
-        flags = " ".join(f"--{name.replace('_', '-')} {format_value(value)}" for name, value in remedy.items())
-        limit = limit.replace(f"use {flags}", "use " + ", ".join(f"{name}: {format_value(value)}"
-                                                                  for name, value in remedy.items()))
+        limit = limit.replace(f"use {as_flags(remedy)}", f"use {as_keys(remedy)}")
     for part in (section, "mechanism"):
         given = loaded.values(part)
         # only where the profile's value is the one the rule met (a command line's --r-min

@@ -13,8 +13,9 @@ from typing import Callable
 
 import numpy as np
 
+from wheelstep_cli.config.names import as_flags, as_keys
 from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH
-from wheelstep_cli.errors import DesignError, format_value
+from wheelstep_cli.errors import DesignError
 
 
 @dataclass(frozen=True)
@@ -135,7 +136,7 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     # a CSV law replaces the crank mechanism (whose options are then refused)
     law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
     if remedy:
-        advice = f"use {_as_options(remedy)}"
+        advice = f"use {as_flags(remedy)}"
     elif tried:
         advice = f"no remedy found ({'; '.join(tried)}): change {law} or the centre distance"
     else:
@@ -170,7 +171,7 @@ def verified_undercut(err: DesignError, design, verify: Callable,
     cause = err.limit.split("; use pinion z")[0]
     unchecked = err.limit[len(cause):]
     law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
-    advice = "; " + (" or ".join(f"use {_as_options(remedy)}" for remedy in offered) if offered
+    advice = "; " + (" or ".join(f"use {as_flags(remedy)}" for remedy in offered) if offered
                      else f"no remedy found ({'; '.join(tried)}): change {law} or the centre distance")
     # the inputs sharing the blame state the rule with the checked remedies too
     alternatives = {name: (value, text.replace(unchecked, advice)) for name, (value, text) in err.alternatives.items()}
@@ -183,10 +184,6 @@ def verified_undercut(err: DesignError, design, verify: Callable,
 def _broken(record: dict, bounds: MeshBounds) -> list[str]:
     """The bounds ``record`` breaks, interference left out (refused elsewhere)."""
     return [text for text in bound_violations(record, bounds) if "interfere" not in text]
-
-
-def _as_options(remedy: dict) -> str:
-    return " ".join(f"--{name.replace('_', '-')} {format_value(value)}" for name, value in remedy.items())
 
 
 def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
@@ -215,14 +212,14 @@ def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
             pair, record = verify(trial)
         except DesignError as err:
             why = err.limit.split("; nothing written")[0]
-            tried.append(f"{_as_options(candidate)} is refused: {err.param.replace('_', '-')} {why}")
+            tried.append(f"{as_flags(candidate)} is refused: {err.param.replace('_', '-')} {why}")
             failed.append(candidate)
             break
         broken = bound_violations(record, bounds)
         if not broken:
             return candidate, tried, failed
         failed.append(candidate)
-        tried.append(f"{_as_options(candidate)} still gives {broken[0]}"
+        tried.append(f"{as_flags(candidate)} still gives {broken[0]}"
                      + (f" and {len(broken) - 1} more" if len(broken) > 1 else ""))
         following = _remedy_of(pair, trial, record, bounds) if pair.generated is not None else {}
         if not following or {**candidate, **following} == candidate:
@@ -285,15 +282,11 @@ def remedy_in_yaml(err) -> str:
 
     message = yaml_message(err)   # its flags already said as keys (in_file_words)
     for tried in getattr(err, "tried", None) or []:
-        message = message.replace(in_file_words(_as_options(tried)), f"overrides {{{_as_keys(tried)}}}")
+        message = message.replace(in_file_words(as_flags(tried)), f"overrides {{{as_keys(tried)}}}")
     remedy = getattr(err, "remedy", None)
     if not remedy:
         return message
-    return message.replace(in_file_words(f"use {_as_options(remedy)}"), f"use overrides {{{_as_keys(remedy)}}}")
-
-
-def _as_keys(remedy: dict) -> str:
-    return ", ".join(f"{name}: {format_value(value)}" for name, value in remedy.items())
+    return message.replace(in_file_words(f"use {as_flags(remedy)}"), f"use overrides {{{as_keys(remedy)}}}")
 
 
 def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds) -> dict:
