@@ -34,9 +34,7 @@ def rotate(points: np.ndarray, angle) -> np.ndarray:
 
     ``angle`` is a scalar or broadcasts against ``points[..., 0]``.
     """
-    c, s = np.cos(angle), np.sin(angle)
-    x, y = points[..., 0], points[..., 1]
-    return np.stack([c * x - s * y, s * x + c * y], axis=-1)
+    return turn(points, np.cos(angle), np.sin(angle))
 
 
 def turn(points: np.ndarray, cos: np.ndarray, sin: np.ndarray) -> np.ndarray:
