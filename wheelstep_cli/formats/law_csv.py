@@ -67,18 +67,19 @@ def read_law_csv(path, param: str = "law_csv"):
 
 
 def _require_period(data: np.ndarray, lines: list[int], param: str, path: str) -> None:
-    """Refuse rows (deg) that do not run over one period of closed gears, naming the line:
-    both angles increasing row by row, each spanning 360/k deg from the first row to the last."""
-    for column, name in ((0, "driving"), (1, "driven")):
-        step = np.diff(data[:, column])
-        if np.any(step <= 0):
-            at = int(np.argmax(step <= 0)) + 1
-            raise DesignError(param, path, f"line {lines[at]}: the {name} angle {data[at, column]:g} deg "
-                                           f"does not increase past {data[at - 1, column]:g} deg (line "
-                                           f"{lines[at - 1]}); both angles increase strictly over one period")
-        span = float(data[-1, column] - data[0, column])
-        count = 360.0 / span
-        if abs(count - round(count)) >= 1e-6 or round(count) < 1:
-            raise DesignError(param, path, f"the {name} angle spans {span:g} deg from line {lines[0]} to "
-                                           f"line {lines[-1]}; it must span 360/k deg (k whole: closed "
-                                           "gears), the last row repeating the first one period on")
+    """Refuse rows (deg) that do not run over one period of closed gears (see
+    :func:`~wheelstep_cli.gears.laws.period_fault`), naming the lines."""
+    from wheelstep_cli.gears.laws import period_fault
+
+    fault = period_fault(data[:, 0], data[:, 1])
+    if fault is None:
+        return
+    name, at, span = fault
+    column = data[:, 0 if name == "driving" else 1]
+    if at is not None:
+        raise DesignError(param, path, f"line {lines[at]}: the {name} angle {column[at]:g} deg does not "
+                                       f"increase past {column[at - 1]:g} deg (line {lines[at - 1]}); both "
+                                       "angles increase strictly over one period")
+    raise DesignError(param, path, f"the {name} angle spans {span:g} deg from line {lines[0]} to line "
+                                   f"{lines[-1]}; it must span 360/k deg (k whole: closed gears), the last "
+                                   "row repeating the first one period on")

@@ -209,6 +209,23 @@ def blended_law(law, half_width: float):
     return TabulatedLaw(phi, theta, smooth, (), law.hub_speed_factor, law.corners, half_width)
 
 
+def period_fault(theta_deg, phi_deg) -> tuple[str, int | None, float] | None:
+    """The first way samples (deg) fail to run over one period of closed gears: (which angle,
+    "driving" or "driven"; the index of the first sample that does not increase past the one
+    before it, or None when instead its span, deg, is no 360/k), None when they run over one."""
+    columns = (("driving", np.asarray(theta_deg, dtype=float)), ("driven", np.asarray(phi_deg, dtype=float)))
+    for name, column in columns:
+        still = np.diff(column) <= 0
+        if np.any(still):
+            return name, int(np.argmax(still)) + 1, 0.0
+    for name, column in columns:
+        span = float(column[-1] - column[0])
+        count = 360.0 / span
+        if abs(count - round(count)) >= 1e-6 or round(count) < 1:
+            return name, None, span
+    return None
+
+
 def law_from_samples(theta_deg, phi_deg, param: str = "law_csv") -> TabulatedLaw:
     """A law from samples of the driven angle against the driving angle over one period (deg).
 
@@ -220,13 +237,13 @@ def law_from_samples(theta_deg, phi_deg, param: str = "law_csv") -> TabulatedLaw
     phi = np.radians(np.asarray(phi_deg, dtype=float))
     require(theta.ndim == 1 and len(theta) >= 8 and len(theta) == len(phi), param, len(theta),
             "needs at least 8 rows of driving angle, driven angle (deg)")
-    require(bool(np.all(np.diff(theta) > 0)) and bool(np.all(np.diff(phi) > 0)), param, "rows",
-            "both angles must increase strictly over the period")
+    fault = period_fault(theta_deg, phi_deg)
+    if fault is not None:
+        name, at, span = fault
+        raise (DesignError(param, "rows", "both angles must increase strictly over the period") if at is not None
+               else DesignError(param, f"{span:g} deg",
+                                f"the {name} angle must span 360/k deg over one period (closed gears)"))
     theta_period, phi_period = theta[-1] - theta[0], phi[-1] - phi[0]
-    for name, span in (("driving", theta_period), ("driven", phi_period)):
-        count = 2.0 * np.pi / span
-        require(abs(count - round(count)) < 1e-6 and round(count) >= 1, param, f"{np.degrees(span):g} deg",
-                f"the {name} angle must span 360/k deg over one period (closed gears)")
     slope = phi_period / theta_period
     t = (theta - theta[0]) / theta_period * 2.0 * np.pi
     rest = phi - phi[0] - slope * (theta - theta[0])
