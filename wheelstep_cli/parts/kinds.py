@@ -211,15 +211,10 @@ def remedy_check(printer, wrap: Callable | None = None) -> Callable:
     return verify
 
 
-def _socket_fits(spec) -> None:
-    """The shoe's socket check, for a mechanism that can be sized (one that cannot is the
-    mechanism check's problem, said once)."""
+def _shoe_fits(spec) -> None:
+    """The shoe's mechanism sized and its strut socket fitted in the body, before any solid."""
     from wheelstep_cli.parts.shoe_socket import socket_fits
 
-    try:
-        spec.design()
-    except DesignError:
-        return
     socket_fits(spec)
 
 
@@ -252,6 +247,6 @@ KINDS: dict[str, PartKind] = {
     KindName.shoe.value: PartKind(
         name=KindName.shoe.value, module="wheelstep_cli.parts.shoe", spec_class="ShoeSpec",
         build="build_shoe", report="shoe_report", section="shoe", parts=lambda shoe: list(shoe.parts),
-        hole_fields=("strut_diameter",), checks=(lambda spec: spec.design(), _socket_fits),
+        hole_fields=("strut_diameter",), checks=(_shoe_fits,),
         with_parts=lambda shoe, parts, checks: replace(shoe, parts=parts, checks=checks)),
 }

@@ -57,7 +57,8 @@ def sole_and_top(spec: ShoeSpec):
 
 
 def socket_fits(spec: ShoeSpec) -> None:
-    """The socket check of :func:`~wheelstep_cli.parts.shoe.build_shoe` alone, before any solid is made (DesignError
-    when the strut socket does not fit the body): a batch plan refuses such an entry up front."""
+    """The mechanism's and the socket's checks of :func:`~wheelstep_cli.parts.shoe.build_shoe`
+    alone, before any solid is made (DesignError when the mechanism cannot be sized or the
+    strut socket does not fit the body): a batch plan refuses such an entry up front."""
     _, _, _, sole_part, top = sole_and_top(spec)
     check_socket(spec, sole_part, top)
