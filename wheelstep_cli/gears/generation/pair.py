@@ -24,6 +24,7 @@ from wheelstep_cli.gears.generation.wheel import (Carving, backlash_split, carve
                                                   head_on_relief, level_space_ridges, notch_weight)
 from wheelstep_cli.gears.pitch_curves import PitchCurves, pitch_curves
 from wheelstep_cli.gears.transmission import TransmissionLaw
+from wheelstep_cli.geometry.planar import segmentize_ring
 
 
 @dataclass(frozen=True)
@@ -189,6 +190,11 @@ def _require_no_gaps(radii: np.ndarray, pinion_teeth: int) -> None:
             "the generated outline has gaps (pitch curve too tight for the cutter)")
 
 
+#: Longest segment (mm) of the pinion's cut outline when its ray map is taken: the map's
+#: linear-in-angle interpolation of a segment then stays well within a micron of the line.
+RAY_MAP_SEGMENT = 0.05
+
+
 def _cut_pinion(job: _Job, corner: str) -> _GearCut:
     """The pinion cut by the rack, topped, tips rounded: the outline as written (and carving)."""
     law, curves, s = job.law, job.curves, job.settings
@@ -201,8 +207,11 @@ def _cut_pinion(job: _Job, corner: str) -> _GearCut:
                           job.per_period * s.poses_per_tooth, 4 * s.poses_per_tooth, law.theta_period,
                           law.pinion_periods, s.tilt, s.pivot)
     exact = pinion_by_rack(rolling, job.cutter, job.module)
-    # its ray map (farthest crossing: the tips, also of teeth leaning over a neighbour's space)
-    cut = polyline_envelope(grid, np.vstack([exact, exact[:1]])[None], nearest=False)
+    # its ray map (farthest crossing: the tips, also of teeth leaning over a neighbour's space),
+    # taken on short segments: the map interpolates a segment's radius linearly in angle, and
+    # the outline's flanks are long straight segments (the rack's flanks are)
+    dense = segmentize_ring(exact, RAY_MAP_SEGMENT)
+    cut = polyline_envelope(grid, np.vstack([dense, dense[:1]])[None], nearest=False)
     cut_radii = np.minimum(blank, cut)
     _require_no_gaps(cut_radii, job.pinion_teeth)
     radii, topping, land = top_or_refuse(GearBody("pinion", grid, curves.pinion, blank), cut_radii,

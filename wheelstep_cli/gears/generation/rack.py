@@ -91,12 +91,14 @@ class Frames:
 
 
 def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
-                 flank_points: int = 60) -> np.ndarray:
+                 flank_points: int = 2) -> np.ndarray:
     """Cutter polyline (K, 2) in rack coordinates (x along the pitch line, y outward, mm).
 
     ``teeth`` cutter teeth centred at x = (j - (teeth-1)/2) p; each cuts one space
     of the gear, reaching y = -dedendum m with tip fillets; between teeth the
-    polyline runs at a height the gear blank never reaches.
+    polyline runs at a height the gear blank never reaches. A flank is a straight line:
+    ``flank_points`` points along it (2, its ends, is the same line; points between them
+    only add work to the polygon booleans that cut the pinion).
     """
     a = cutter.pressure_angle
     tan_a, cos_a, sin_a = np.tan(a), np.cos(a), np.sin(a)
@@ -118,8 +120,9 @@ def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
     yc = -h_f + rho
     xc = half + (yc * sin_a - rho) / cos_a                 # right fillet centre
     require(xc >= 0.0, "fillet", cutter.fillet, "too large: the cutter tip has no flat land")
-    # right half of one cutter tooth, from the tip centre out to the top
-    tip = np.column_stack([np.linspace(0.0, xc, 4, endpoint=False), np.full(4, -h_f)])
+    # right half of one cutter tooth, from the tip centre out to the top (the flat land from
+    # the tip centre to the fillet is a straight line too: its ends are its points)
+    tip = np.array([[0.0, -h_f]])
     arc_t = np.linspace(-np.pi / 2.0, -a, 10)
     fillet = np.column_stack([xc + rho * np.cos(arc_t), yc + rho * np.sin(arc_t)])
     y = np.linspace(yc - rho * sin_a, top, flank_points)[1:]
@@ -133,7 +136,7 @@ def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
 
 
 def rack_tooth_polygons(cutter: RackCutter, module: float, pitch: float, teeth: int = 5,
-                        flank_points: int = 40) -> tuple[np.ndarray, np.ndarray]:
+                        flank_points: int = 2) -> tuple[np.ndarray, np.ndarray]:
     """Closed cutter teeth in rack coordinates, shape (teeth, K, 2), and their centres x (mm).
 
     Each tooth runs from its left top over the tip to its right top and closes far
