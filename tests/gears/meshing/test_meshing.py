@@ -276,6 +276,26 @@ def test_first_pass_within_reach_and_chunking_change_nothing(case, spur_pair, pa
 
 
 @pytest.mark.parametrize("case", ["spur", "paper"])
+@pytest.mark.parametrize("margin", [0.3, 1.5])
+def test_pilot_narrowed_reach_changes_nothing(case, margin, spur_pair, paper_pair):
+    """The first pass sized by a pilot's gaps gives bit for bit what it gives without the
+    pilot, also when the margin is too small for most poses (they go to the second pass)."""
+    from wheelstep_cli.gears.meshing.check import _pilot_reach, mesh_window
+    from wheelstep_cli.gears.meshing.search import prepare
+
+    pinion, wheel, args = _case(case, spur_pair, paper_pair)
+    base = MeshingSettings(samples=48, pilot=8, pilot_margin=margin)
+    piloted = check_meshing(pinion, wheel, *args, base)
+    plain = check_meshing(pinion, wheel, *args, replace(base, pilot=0))
+    _reports_equal(piloted, plain)
+    if case == "spur":   # the pilot did narrow the reach
+        law, distance = args
+        theta = law.theta_period * np.arange(48) / 48
+        pair = prepare(pinion, wheel, distance, mesh_window(pinion, wheel, distance, base), base)
+        assert _pilot_reach(pair, theta, law.carrier_angle(theta), base) < base.reach
+
+
+@pytest.mark.parametrize("case", ["spur", "paper"])
 def test_threads_change_nothing(case, spur_pair, paper_pair):
     """Poses checked on several threads give bit for bit what one thread gives."""
     pinion, wheel, args = _case(case, spur_pair, paper_pair)

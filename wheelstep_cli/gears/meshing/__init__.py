@@ -23,9 +23,10 @@ between the two axes) take part.
 
 Search (speed and memory only, the result is the same): pairs are found by sorting,
 never in dense vertex x edge tables, and produced in bounded chunks. A first pass
-looks only for contacts within ``MeshingSettings.reach`` rad and skips vertices and
-edges whose radial band cannot meet the other outline that close; a pose not settled
-within the reach is searched again over all pairs.
+looks only for contacts within ``MeshingSettings.reach`` rad (narrowed to a margin over
+the gaps a pilot of a few poses found) and skips vertices and edges whose radial band
+cannot meet the other outline that close; a pose not settled within the reach is
+searched again over all pairs.
 
 If the outlines overlap at the law's angle (a vertex of one lies inside the other),
 the pose **interferes**; it is measured by the overlapping area (mm^2) and the

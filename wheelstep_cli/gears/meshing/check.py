@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import functools
 import threading
+from dataclasses import replace
 from typing import Callable
 
 import numpy as np
@@ -163,13 +164,18 @@ def _search(make_pair: Callable[[], Pair], theta: np.ndarray, phi_law: np.ndarra
                          np.zeros(samples), np.zeros(samples))
     # batches are independent and numpy / shapely release the GIL in their loops: threads
     # share the work between cores; each batch fills its own slice, so the result is the same.
-    # Each thread prepares its own outlines (a prepared polygon is not thread-safe).
-    own = threading.local()
+    # Each thread uses its own prepared outlines (a prepared polygon is not thread-safe); the
+    # pilot's are handed on to the first thread that needs them.
+    spare = [make_pair()]
+    narrowed = replace(settings, reach=_pilot_reach(spare[0], theta, phi_law, settings))
+    lock, own = threading.Lock(), threading.local()
 
     def run(sl):
         if not hasattr(own, "pair"):
-            own.pair = make_pair()
-        return batch_contacts(own.pair, theta[sl], phi_law[sl], settings)
+            with lock:
+                own.pair = spare.pop() if spare else None
+            own.pair = own.pair or make_pair()
+        return batch_contacts(own.pair, theta[sl], phi_law[sl], narrowed)
 
     for sl, part in zip(slices, thread_map(run, slices, settings.threads)):
         for name in ("back", "fwd", "interference", "area", "depth"):
@@ -177,6 +183,26 @@ def _search(make_pair: Callable[[], Pair], theta: np.ndarray, phi_law: np.ndarra
         if progress is not None:
             progress(sl.stop, samples)
     return found
+
+
+def _pilot_reach(pair: Pair, theta: np.ndarray, phi_law: np.ndarray, settings: MeshingSettings) -> float:
+    """The first pass's reach (rad) for the poses ``theta``, ``phi_law`` (rad): ``settings.pilot``
+    of them, spread evenly, are searched with ``settings.reach``; the reach is then
+    ``settings.pilot_margin`` times their largest gap, at most ``settings.reach``.
+
+    A first pass that looks farther than the contacts lie only finds more pairs to reject,
+    and one that looks less far hands its poses to the second pass: both give the same
+    contacts (search only), so the reach is sized to the pair's own gaps.
+    """
+    if settings.pilot <= 0 or not np.isfinite(settings.reach):
+        return settings.reach
+    index = np.unique(np.linspace(0, len(theta), settings.pilot, endpoint=False).astype(np.intp))
+    found = batch_contacts(pair, theta[index], phi_law[index], settings)
+    gaps = np.concatenate([found.back, found.fwd])
+    gaps = gaps[np.isfinite(gaps) & (gaps > 0.0)]
+    if len(gaps) == 0:
+        return settings.reach
+    return float(min(settings.reach, settings.pilot_margin * gaps.max()))
 
 
 def _periodic_derivative(theta: np.ndarray, values: np.ndarray, rise: float, period: float):

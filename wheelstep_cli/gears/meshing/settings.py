@@ -71,6 +71,15 @@ class MeshingSettings:
     with none that close are searched again without the limit. Search only: speed, not
     results (inf: one plain pass)."""
 
+    pilot: int = 16
+    """Poses (count, spread evenly over the period) searched first with ``reach``; the
+    first pass of every pose then looks only ``pilot_margin`` times as far as the largest
+    gap they found (at most ``reach``). 0: no pilot. Search only: speed, not results."""
+
+    pilot_margin: float = 1.5
+    """How far past the pilot's largest gap the first pass looks (ratio); a pose whose
+    contact lies farther is searched again. Search only: speed, not results."""
+
     band_bins: int = 2048
     """Body-angle bins (count) of the radial bands that skip vertices and edges far from the
     other outline in the first pass. Search only: speed, not results."""
