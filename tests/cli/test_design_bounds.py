@@ -148,3 +148,31 @@ def test_an_undercut_pinion_is_offered_only_remedies_that_pass(cli, tmp_path):
                      "--out", written)
         assert result.exit_code == 0, result.stderr
         assert bound_violations(json.loads((written / "gears.json").read_text())["meshing"]) == []
+
+
+def test_no_backlash_is_refused_as_input_with_a_backlash_that_is_written(cli, tmp_path):
+    """--backlash 0: rigid teeth with no play touch on both flanks and interfere by the
+    outlines' micrometres. Refused as bad input (exit 2, nothing written) naming --backlash,
+    with the least backlash a build found within the bounds; applied, the pair is written."""
+    out = tmp_path / "out"
+    result = cli("gears", "--backlash", "0", "--format", "stl", "--out", out)
+    line = error_line(result)
+    assert result.exit_code == 2 and not out.exists()
+    assert line.startswith("wheelstep: error: --backlash = 0: the teeth interfere at "), line
+    assert line.endswith("(--allow-interference writes them anyway)"), line
+    remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()
+    assert remedy[0] == "--backlash" and 0 < float(remedy[1]) < 0.239
+    written = cli("gears", *with_remedy(["--backlash", "0"], remedy), "--format", "stl", "--out", out)
+    assert written.exit_code == 0, written.stderr
+    assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
+
+
+def test_no_backlash_in_a_profile_is_blamed_there_and_the_flags_of_the_command_stay_flags(cli, tmp_path):
+    """The same refusal for a design profile's `backlash: 0` names the file's line and says
+    the remedy as the profile's key, while --allow-interference (a flag of the command, no
+    key of a design profile) stays a flag."""
+    profile = tmp_path / "mine.yaml"
+    profile.write_text("gears:\n  z: 48\n  backlash: 0\n")
+    line = error_line(cli("gears", "--profile", profile, "--format", "stl", "--out", tmp_path / "out"))
+    assert line.startswith(f"wheelstep: error: {profile}:3: gears.backlash = 0: the teeth interfere"), line
+    assert "; use backlash: 0." in line and line.endswith("(--allow-interference writes them anyway)"), line

@@ -116,6 +116,10 @@ def test_profile_with_a_wrong_typed_value_is_one_line_naming_the_key(cli, tmp_pa
     # rules met while the pair is built: too tall for the printer, undercut teeth
     ("gears", "gears:\n  thickness: 300\n", "thickness: 300",
      "gears.thickness = 300: makes part 'pinion' 300.0 mm tall"),
+    # ... and the command's own flags in its words stay flags (a design profile has no printer key)
+    ("gears", "gears:\n  thickness: 300\n", "thickness: 300",
+     "gears.thickness = 300: makes part 'pinion' 300.0 mm tall, more than the 250 mm printer "
+     "'fdm-0.4-pla' prints (the default printer; --printer chooses another, --format stl writes no plate)"),
     ("gears", "gears:\n  z: 12\n", "z: 12", "gears.z = 12: the rack undercuts the pinion"),
 ])
 def test_a_rule_a_profiles_value_breaks_is_said_at_its_line(cli, tmp_path, command, text, key, expect):

@@ -37,11 +37,13 @@ def yaml_message(err) -> str:
     return f"{err.param} = {value}: {in_file_words(err.limit)}"
 
 
-def in_file_words(text: str) -> str:
+def in_file_words(text: str, batch: bool = True) -> str:
     """``text`` with the flags of a part's parameters named as a file's keys (``needs
     --bore-shape d-flat`` -> ``needs bore_shape d-flat``): a rule's words serve both the
-    command line and a file. Other flags (a command's own, such as ``--force``) stay."""
-    keys = _file_keys()
+    command line and a file. Other flags (a command's own, such as ``--force``) stay, and
+    for a design profile (``batch`` False) also those only a batch entry has as keys
+    (``--printer``, ``--allow-interference``: a profile gives the parts, the command the rest)."""
+    keys = _file_keys() if batch else _file_keys() - _BATCH_ONLY
 
     def key(match: re.Match) -> str:
         name = match.group(1).replace("-", "_")
@@ -60,4 +62,8 @@ def _file_keys() -> frozenset[str]:
     """The keys a batch entry gives a part's parameters by (its overrides, its printer)."""
     from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
 
-    return frozenset({*GearPairSpec.model_fields, *ShoeSpec.model_fields, "printer", "allow_interference"})
+    return frozenset({*GearPairSpec.model_fields, *ShoeSpec.model_fields, *_BATCH_ONLY})
+
+
+#: Keys of a batch entry that a design profile does not have.
+_BATCH_ONLY = frozenset({"printer", "allow_interference"})

@@ -208,6 +208,6 @@ def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
         # replaces the profile's c, and a table's distance is derived from the profile's)
         if key in given and given[key] == err.value:
             return InvalidInput([Issue(loaded.where(part, key), f"{part}.{key}",
-                                       f"= {show(err.value)}: {in_file_words(limit)}")])
+                                       f"= {show(err.value)}: {in_file_words(limit, batch=False)}")])
     return None
 

@@ -275,6 +275,38 @@ def require_mounted_where_rolling(pair, failure: str) -> None:
     raise error.tied_to({"center_distance": design.center_distance, "module": design.module})
 
 
+def require_play_that_clears(pair, record: dict, failure: str, verify: Callable,
+                             bounds: MeshBounds = MeshBounds()) -> None:
+    """Refuse (DesignError on the backlash, with a checked remedy) a generated pair whose teeth
+    interfere (``failure``, from its meshing ``record``) at a backlash the user set below the
+    design's own: rigid teeth need play beyond the micrometres the generated outlines are
+    exact to. The remedy is the least backlash in 0.01 mm steps past the interference depth
+    (it takes play off both gears) whose build ``verify(design)`` (pair, record) finds within
+    the bounds, else the design's own backlash. Nothing when the backlash was not set or was
+    not below the design's own, or when neither remedy builds within the bounds."""
+    from wheelstep_cli.parts.gear_laws import design_backlash
+
+    if pair.generated is None:
+        return
+    design = pair.printing.design if pair.printing is not None else pair.spec
+    if design.backlash is None:
+        return
+    own = design_backlash(design.model_copy(update={"backlash": None}))
+    if design.backlash >= own:
+        return
+    needed = design.backlash + 2.0 * float(record["max_penetration_mm"])
+    least = max(float(np.ceil(100.0 * needed - 1e-9)) / 100.0, round(design.backlash + 0.01, 2))
+    for candidate in dict.fromkeys([round(min(least, own), 3), round(own, 3)]):
+        remedy, _, _ = _verified(design, {"backlash": candidate}, verify, bounds)
+        if remedy:
+            error = DesignError("backlash", design.backlash,
+                                f"{failure}: rigid teeth need play beyond the micrometres the generated "
+                                f"outlines are exact to; nothing written; use {as_flags(remedy)} "
+                                "(--allow-interference writes them anyway)")
+            error.remedy = remedy
+            raise error
+
+
 def remedy_in_yaml(err) -> str:
     """A bounds refusal (:func:`require_within_bounds`) as a batch file states it: the
     remedy as the entry's override keys (``z: 90, backlash: 0.239``), not as flags."""

@@ -32,9 +32,9 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         chosen, design = _undercut_checked(lambda: fit_design(spec, printer), spec,
                                            remedy_check(printer, checked_remedy))
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
-        design_record = _meshing_or_refused(show, design, design_check, allow_interference)
-        require_within_bounds(design, design_record,
-                              verify=remedy_check(design.printing.printer, checked_remedy))
+        design_verify = remedy_check(design.printing.printer, checked_remedy)
+        design_record = _meshing_or_refused(show, design, design_check, allow_interference, design_verify)
+        require_within_bounds(design, design_record, verify=design_verify)
         require_printable_teeth(design)
         pair, tolerance, check = with_progress(not show.quiet, f"fitting to the band of {chosen.name}",
                                                fitted_pair, spec, chosen, band[1], design, design_check)
@@ -48,8 +48,9 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
                                                    remedy_check(printer, checked_remedy))
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
-        record = _meshing_or_refused(show, pair, check, allow_interference)
-        require_within_bounds(pair, record, verify=remedy_check(printer, checked_remedy))
+        verify = remedy_check(printer, checked_remedy)
+        record = _meshing_or_refused(show, pair, check, allow_interference, verify)
+        require_within_bounds(pair, record, verify=verify)
     return pair, record, tolerance, check
 
 
@@ -67,12 +68,13 @@ def _undercut_checked(build, spec, verify):
         raise verified_undercut(err, spec, verify) from None
 
 
-def _meshing_or_refused(show: Output, pair, check, allow_interference: bool) -> dict:
+def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, verify=None) -> dict:
     """The meshing record of ``check`` (of ``pair``), refused (exit 1, nothing written) when
-    the teeth interfere and that is not allowed."""
+    the teeth interfere and that is not allowed; as bad input (exit 2, with a remedy checked
+    by ``verify`` when given) when the mounted distance or a backlash set too small is the cause."""
     import typer
 
-    from wheelstep_cli.parts.mesh_bounds import require_mounted_where_rolling
+    from wheelstep_cli.parts.mesh_bounds import require_mounted_where_rolling, require_play_that_clears
     from wheelstep_cli.parts.mesh_check import meshing_record
 
     record = meshing_record(check)
@@ -83,6 +85,8 @@ def _meshing_or_refused(show: Output, pair, check, allow_interference: bool) -> 
         # mounted off the rolling distance the user's distance is the cause: refused as bad
         # input (exit 2) like a pair mounted farther off, whose figures break the bounds
         require_mounted_where_rolling(pair, interfere)
+        if verify is not None:
+            require_play_that_clears(pair, record, interfere, verify)
         show.error(f"wheelstep: refused: {interfere}; nothing written (--allow-interference "
                    "writes them anyway)")
         raise typer.Exit(1)
