@@ -194,3 +194,22 @@ def test_a_printer_chamfer_too_small_to_replace_its_foot_is_refused_at_its_line(
     assert error_line(result).startswith(f"wheelstep: error: {printer}:{line_no}: printer.chamfer = 0.3: "
                                          "must be 0 or >= 0.4 mm")
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("text, z", [("48", 48), ("48.0", 48), ("48.", 48)])
+def test_a_whole_number_written_with_a_point_is_that_number_as_on_the_command_line(tmp_path, text, z):
+    """YAML reads `z: 48.0` as a float; like `--z 48.0` it is the whole number 48 (it was
+    refused as "gears.z = 48: must be a whole number")."""
+    from wheelstep_cli.config.resolve import gear_pair_spec
+
+    spec = gear_pair_spec(str(write(tmp_path / "p.yaml", f"gears:\n  z: {text}\n  turns: 2.0\n")))
+    assert spec.z == z and type(spec.z) is int and spec.turns == 2 and type(spec.turns) is int
+
+
+@pytest.mark.parametrize("text", ["48.5", "'48'", "true", ".inf"])
+def test_what_is_no_whole_number_stays_refused_at_its_line(cli, tmp_path, text):
+    profile = write(tmp_path / "p.yaml", f"gears:\n  z: {text}\n")
+    line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
+    assert line.startswith(f"wheelstep: error: {profile}:2: gears.z = ") and line.endswith(
+        ": must be a whole number"), line
+    assert not (tmp_path / "out").exists()

@@ -2,7 +2,7 @@
 
 A number is an int or a float (not a bool, not text) and finite. ``Number`` keeps the
 value as given (an int stays an int, so reports repeat the user's figures), ``Real``
-stores a float. Units and limit texts ride in ``json_schema_extra`` and are used by
+stores a float, ``Whole`` a whole number (``48`` or ``48.0``, as the command line takes it). Units and limit texts ride in ``json_schema_extra`` and are used by
 :mod:`wheelstep_cli.config.schema` to word an error.
 """
 
@@ -12,7 +12,7 @@ import math
 import numbers
 from typing import Annotated, Any
 
-from pydantic import ConfigDict, Field, WrapValidator
+from pydantic import BeforeValidator, ConfigDict, Field, WrapValidator
 from pydantic_core import PydanticCustomError
 
 #: Configuration of every model: unknown keys refused, values frozen, enums stored as values.
@@ -40,6 +40,18 @@ def _float(value, handler):
 
 Number = Annotated[float, WrapValidator(_keep)]
 Real = Annotated[float, WrapValidator(_float)]
+
+
+def _whole(value):
+    # a float with no fraction is the whole number it writes (YAML reads 48.0 as a float);
+    # anything else goes on to the strict int check (text, 48.5 and bools are refused there)
+    if isinstance(value, float) and value.is_integer():
+        return int(value)
+    return value
+
+
+#: A whole number (a field of it also states ``strict=True``, so text is not read as one).
+Whole = Annotated[int, BeforeValidator(_whole)]
 
 
 def quantity(default: Any = ..., unit: str = "", limit: str | None = None, **bounds) -> Any:

@@ -18,7 +18,7 @@ from typing import Annotated, Any, Optional
 from pydantic import AfterValidator, BaseModel, Field, ValidationInfo, field_validator
 from pydantic_core import PydanticCustomError
 
-from wheelstep_cli.config.fields import STRICT, Real, length, quantity
+from wheelstep_cli.config.fields import STRICT, Real, Whole, length, quantity
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
 from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, validate_file
 from wheelstep_cli.errors import DesignError
@@ -49,7 +49,7 @@ class PrinterSection(BaseModel):
         "limit": "must be [X, Y] in mm, each > 0 and <= 2000"})
     max_height: Real = length(..., gt=0, le=2000)
     margin: Real = length(5.0, ge=0, le=50)
-    skirts: int = Field(1, strict=True, ge=0, le=20)
+    skirts: Whole = Field(1, strict=True, ge=0, le=20)
     skirt_distance: Real = length(6.0, ge=0, le=50)
     brim_width: Real = length(0.0, ge=0, le=50)
     hole_compensation: Real = length(0.0, ge=-1, le=1)

@@ -14,7 +14,7 @@ from typing import Optional
 import numpy as np
 from pydantic import BaseModel, Field, model_validator
 
-from wheelstep_cli.config.fields import STRICT, Number, Real, length, quantity
+from wheelstep_cli.config.fields import STRICT, Number, Real, Whole, length, quantity
 from wheelstep_cli.errors import DesignError, require
 
 #: Mechanism parameters (the ``mechanism:`` section of a design profile).
@@ -94,9 +94,9 @@ class GearPairSpec(BaseModel):
     a: Number = length(60.0, le=MAX_LENGTH)
     b: Number = length(100.0, le=MAX_LENGTH)
     c: Number = length(360.0, le=MAX_LENGTH)
-    z: int = quantity(48, limit=f"must be {MIN_TEETH}..{MAX_TEETH} (pinion teeth)", strict=True,
+    z: Whole = quantity(48, limit=f"must be {MIN_TEETH}..{MAX_TEETH} (pinion teeth)", strict=True,
                       ge=MIN_TEETH, le=MAX_TEETH)
-    turns: int = Field(2, strict=True)
+    turns: Whole = Field(2, strict=True)
     # generated teeth: the distance the pitch curves roll at (None: the installed distance, or
     # the one a --module fits); paper teeth: the sectors' design distance L_p (None: the
     # installed less the source's 0.5 mm opening, 143.5)

@@ -17,7 +17,7 @@ from typing import Any, Literal, Optional
 
 from pydantic import BaseModel, Field, ValidationError
 
-from wheelstep_cli.config.fields import STRICT, Number
+from wheelstep_cli.config.fields import STRICT, Number, Whole
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
 from wheelstep_cli.config.schema import (InvalidInput, Issue, dotted, file_issues, section_model, show,
                                          validate_file)
@@ -59,8 +59,8 @@ class RandomAxes(BaseModel):
     """``samples`` seeded draws of every bounded parameter."""
 
     model_config = STRICT
-    seed: int = Field(strict=True, ge=0)
-    samples: int = Field(strict=True, ge=1, le=MAX_POINTS,
+    seed: Whole = Field(strict=True, ge=0)
+    samples: Whole = Field(strict=True, ge=1, le=MAX_POINTS,
                          json_schema_extra={"limit": f"must be 1..{MAX_POINTS}"})
     bounds: dict[str, Bounds] = Field(min_length=1, json_schema_extra={
         "limit": "must map at least one parameter to {low, high}"})
