@@ -198,8 +198,8 @@ def test_a_printer_chamfer_too_small_to_replace_its_foot_is_refused_at_its_line(
 
 @pytest.mark.parametrize("text, z", [("48", 48), ("48.0", 48), ("48.", 48)])
 def test_a_whole_number_written_with_a_point_is_that_number_as_on_the_command_line(tmp_path, text, z):
-    """YAML reads `z: 48.0` as a float; like `--z 48.0` it is the whole number 48 (it was
-    refused as "gears.z = 48: must be a whole number")."""
+    """YAML reads `z: 48.0` as a float; like `--z 48.0` it is the whole number 48, stored
+    as an int (a profile and the command line take the same values)."""
     from wheelstep_cli.config.resolve import gear_pair_spec
 
     spec = gear_pair_spec(str(write(tmp_path / "p.yaml", f"gears:\n  z: {text}\n  turns: 2.0\n")))

@@ -2,7 +2,8 @@
 
 A number is an int or a float (not a bool, not text) and finite. ``Number`` keeps the
 value as given (an int stays an int, so reports repeat the user's figures), ``Real``
-stores a float, ``Whole`` a whole number (``48`` or ``48.0``, as the command line takes it). Units and limit texts ride in ``json_schema_extra`` and are used by
+stores a float, ``Whole`` a whole number (``48`` or ``48.0``, as the command line
+takes it). Units and limit texts ride in ``json_schema_extra`` and are used by
 :mod:`wheelstep_cli.config.schema` to word an error.
 """
 

@@ -214,7 +214,12 @@ def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
             why = err.limit.split("; nothing written")[0]
             tried.append(f"{as_flags(candidate)} is refused: {err.param.replace('_', '-')} {why}")
             failed.append(candidate)
-            break
+            # a refusal with a remedy of its own (teeth too thin: fewer teeth) is followed too
+            following = getattr(err, "remedy", None) or {}
+            if not following or {**candidate, **following} == candidate:
+                break
+            candidate = {**candidate, **following}
+            continue
         broken = bound_violations(record, bounds)
         if not broken:
             return candidate, tried, failed
@@ -279,11 +284,11 @@ def require_play_that_clears(pair, record: dict, failure: str, verify: Callable,
                              bounds: MeshBounds = MeshBounds()) -> None:
     """Refuse (DesignError on the backlash, with a checked remedy) a generated pair whose teeth
     interfere (``failure``, from its meshing ``record``) at a backlash the user set below the
-    design's own: rigid teeth need play beyond the micrometres the generated outlines are
-    exact to. The remedy is the least backlash in 0.01 mm steps past the interference depth
-    (it takes play off both gears) whose build ``verify(design)`` (pair, record) finds within
-    the bounds, else the design's own backlash. Nothing when the backlash was not set or was
-    not below the design's own, or when neither remedy builds within the bounds."""
+    design's own. Tried in turn, each built by ``verify(design)`` (pair, record) and followed
+    as a bounds refusal's remedy is: the backlash rounded up to 0.01 mm past twice the
+    interference depth (it takes play off both gears), at least 0.01 mm more than given;
+    then the design's own backlash. Nothing when the backlash was not set or was not below
+    the design's own, or when no try builds within the bounds."""
     from wheelstep_cli.parts.gear_laws import design_backlash
 
     if pair.generated is None:
@@ -294,14 +299,15 @@ def require_play_that_clears(pair, record: dict, failure: str, verify: Callable,
     own = design_backlash(design.model_copy(update={"backlash": None}))
     if design.backlash >= own:
         return
-    needed = design.backlash + 2.0 * float(record["max_penetration_mm"])
+    depth = float(record["max_penetration_mm"])
+    needed = design.backlash + 2.0 * depth
     least = max(float(np.ceil(100.0 * needed - 1e-9)) / 100.0, round(design.backlash + 0.01, 2))
     for candidate in dict.fromkeys([round(min(least, own), 3), round(own, 3)]):
         remedy, _, _ = _verified(design, {"backlash": candidate}, verify, bounds)
         if remedy:
             error = DesignError("backlash", design.backlash,
-                                f"{failure}: rigid teeth need play beyond the micrometres the generated "
-                                f"outlines are exact to; nothing written; use {as_flags(remedy)} "
+                                f"{failure}, up to {1000.0 * depth:.1f} um deep: the backlash leaves "
+                                f"rigid teeth no play; nothing written; use {as_flags(remedy)} "
                                 "(--allow-interference writes them anyway)")
             error.remedy = remedy
             raise error
@@ -328,13 +334,16 @@ def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds)
     from wheelstep_cli.parts.gear_laws import design_backlash
 
     law = pair.generated.law
-    extra = pair.spec.backlash_mm - design_backlash(design)   # a printer's tooth clearance
-    if "z" in remedy:
-        default = design_backlash(design.model_copy(update={"z": remedy["z"], "backlash": None}))
-        return {"backlash": round(min(design.backlash_mm, default), 3)}
-    backlash = backlash_remedy(law, record, pair.spec.backlash_mm, bounds) - extra
-    if backlash >= 0.02:
-        return {"backlash": round(backlash, 3)}
-    z = design.z + 2 * law.pinion_periods
+    # a backlash the design sets is printed with the printer's tooth clearance added on top;
+    # the default backlash follows the tooth count, the clearance taken out of it
+    clearance = float(pair.printing.printer.tooth_clearance) if pair.printing is not None else 0.0
+    if "z" not in remedy:
+        backlash = backlash_remedy(law, record, pair.spec.backlash_mm, bounds) - clearance
+        if backlash >= 0.02:
+            return {"backlash": round(backlash, 3)}
+    z = remedy.get("z", design.z + 2 * law.pinion_periods)
+    teeth = {} if "z" in remedy else {"z": z}
+    if design.backlash is None:
+        return teeth
     default = design_backlash(design.model_copy(update={"z": z, "backlash": None}))
-    return {"z": z, "backlash": round(min(design.backlash_mm, default), 3)}
+    return {**teeth, "backlash": round(min(design.backlash_mm, default), 3)}

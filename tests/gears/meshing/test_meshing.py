@@ -277,22 +277,50 @@ def test_first_pass_within_reach_and_chunking_change_nothing(case, spur_pair, pa
 
 @pytest.mark.parametrize("case", ["spur", "paper"])
 @pytest.mark.parametrize("margin", [0.3, 1.5])
-def test_pilot_narrowed_reach_changes_nothing(case, margin, spur_pair, paper_pair):
+def test_pilot_narrowed_reach_changes_nothing(case, margin, spur_pair, paper_pair, monkeypatch):
     """The first pass sized by a pilot's gaps gives bit for bit what it gives without the
     pilot, also when the margin is too small for most poses (they go to the second pass)."""
     from wheelstep_cli.gears.meshing.check import _pilot_reach, mesh_window
     from wheelstep_cli.gears.meshing.search import prepare
 
+    import wheelstep_cli.gears.meshing.check as check
+
     pinion, wheel, args = _case(case, spur_pair, paper_pair)
     base = MeshingSettings(samples=48, pilot=8, pilot_margin=margin)
+    reaches = []
+    searched = check.batch_contacts
+
+    def spy(pair, theta, phi, settings):
+        reaches.append(settings.reach)
+        return searched(pair, theta, phi, settings)
+
+    monkeypatch.setattr(check, "batch_contacts", spy)
     piloted = check_meshing(pinion, wheel, *args, base)
+    monkeypatch.undo()
     plain = check_meshing(pinion, wheel, *args, replace(base, pilot=0))
     _reports_equal(piloted, plain)
-    if case == "spur":   # the pilot did narrow the reach
+    if case == "spur":   # the pilot did narrow the reach the poses were searched with
         law, distance = args
         theta = law.theta_period * np.arange(48) / 48
         pair = prepare(pinion, wheel, distance, mesh_window(pinion, wheel, distance, base), base)
-        assert _pilot_reach(pair, theta, law.carrier_angle(theta), base) < base.reach
+        narrowed = _pilot_reach(pair, theta, law.carrier_angle(theta), base)
+        assert base.reach / 16 <= narrowed < base.reach
+        assert reaches[0] == base.reach and set(reaches[1:]) == {narrowed}
+
+
+def test_pilot_reach_keeps_a_floor_for_teeth_with_no_play():
+    """Teeth with next to no play (gaps of microradians) keep the first pass at a sixteenth of
+    the reach, not at the gaps: its angle bins are twice the reach wide."""
+    from wheelstep_cli.gears.meshing.check import _pilot_reach, mesh_window
+    from wheelstep_cli.gears.meshing.search import prepare
+
+    pinion = involute_gear(Z1, M, 1e-5, space_at_zero=False)
+    wheel = involute_gear(Z2, M, 1e-5, space_at_zero=True)
+    law, distance = spur_transmission(Z1, Z2), M * (Z1 + Z2) / 2.0
+    base = MeshingSettings(samples=48, pilot=8)
+    theta = law.theta_period * np.arange(48) / 48
+    pair = prepare(pinion, wheel, distance, mesh_window(pinion, wheel, distance, base), base)
+    assert _pilot_reach(pair, theta, law.carrier_angle(theta), base) == base.reach / 16
 
 
 @pytest.mark.parametrize("case", ["spur", "paper"])

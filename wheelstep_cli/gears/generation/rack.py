@@ -117,6 +117,7 @@ def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
                           "pressure angle or more teeth (--z)", alternatives={
                               "backlash": (cutter.backlash, f"{why}; must be below {max(most, 0.0):.3f} mm"),
                               "pressure_angle": (np.degrees(a), f"{why}; use a smaller pressure angle")})
+    require(flank_points >= 2, "flank_points", flank_points, "must be >= 2 (the flank's ends)")
     yc = -h_f + rho
     xc = half + (yc * sin_a - rho) / cos_a                 # right fillet centre
     require(xc >= 0.0, "fillet", cutter.fillet, "too large: the cutter tip has no flat land")

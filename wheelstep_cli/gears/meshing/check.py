@@ -174,7 +174,8 @@ def _search(make_pair: Callable[[], Pair], theta: np.ndarray, phi_law: np.ndarra
         if not hasattr(own, "pair"):
             with lock:
                 own.pair = spare.pop() if spare else None
-            own.pair = own.pair or make_pair()
+            if own.pair is None:
+                own.pair = make_pair()
         return batch_contacts(own.pair, theta[sl], phi_law[sl], narrowed)
 
     for sl, part in zip(slices, thread_map(run, slices, settings.threads)):
@@ -188,11 +189,14 @@ def _search(make_pair: Callable[[], Pair], theta: np.ndarray, phi_law: np.ndarra
 def _pilot_reach(pair: Pair, theta: np.ndarray, phi_law: np.ndarray, settings: MeshingSettings) -> float:
     """The first pass's reach (rad) for the poses ``theta``, ``phi_law`` (rad): ``settings.pilot``
     of them, spread evenly, are searched with ``settings.reach``; the reach is then
-    ``settings.pilot_margin`` times their largest gap, at most ``settings.reach``.
+    ``settings.pilot_margin`` times their largest gap, within ``settings.reach`` / 16 ..
+    ``settings.reach``.
 
     A first pass that looks farther than the contacts lie only finds more pairs to reject,
     and one that looks less far hands its poses to the second pass: both give the same
-    contacts (search only), so the reach is sized to the pair's own gaps.
+    contacts (search only), so the reach is sized to the pair's own gaps. Not below a
+    sixteenth: the pass's angle bins are twice the reach wide, and teeth with next to no
+    play (gaps of microradians) would have it sort into millions of them.
     """
     if settings.pilot <= 0 or not np.isfinite(settings.reach):
         return settings.reach
@@ -202,7 +206,7 @@ def _pilot_reach(pair: Pair, theta: np.ndarray, phi_law: np.ndarray, settings: M
     gaps = gaps[np.isfinite(gaps) & (gaps > 0.0)]
     if len(gaps) == 0:
         return settings.reach
-    return float(min(settings.reach, settings.pilot_margin * gaps.max()))
+    return float(min(settings.reach, max(settings.reach / 16.0, settings.pilot_margin * gaps.max())))
 
 
 def _periodic_derivative(theta: np.ndarray, values: np.ndarray, rise: float, period: float):
