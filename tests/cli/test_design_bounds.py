@@ -73,6 +73,23 @@ def test_teeth_too_thin_for_the_printer_are_refused_with_a_remedy_that_prints(cl
     assert resin.exit_code == 0, resin.stderr
 
 
+def test_thin_teeth_far_from_printable_are_offered_the_largest_count_that_prints(cli, tmp_path):
+    """The source design at z 94 on a 0.4 mm nozzle is 17 periods of teeth above what prints:
+    the remedy is found beyond the first counts below (it said `use fewer teeth`), it is the
+    largest that prints (one period more is refused) and, applied, it is written."""
+    out = tmp_path / "out"
+    design = ["--z", "94", "--thickness", "2", "--printer", "fdm-0.4-pla", "--format", "stl"]
+    line = error_line(cli("gears", *design, "--out", out))
+    assert line.startswith("wheelstep: error: --z = 94: the teeth are too thin for printer"), line
+    remedy = line.rsplit("; use ", 1)[1].split()[:2]
+    assert remedy[0] == "--z" and int(remedy[1]) < 94 - 2 * 6, line
+    result = cli("gears", *with_remedy(design, remedy), "--out", out)
+    assert result.exit_code == 0, result.stderr
+    assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
+    above = with_remedy(design, ["--z", str(int(remedy[1]) + 2)])
+    assert "the teeth are too thin" in error_line(cli("gears", *above, "--out", tmp_path / "above"))
+
+
 def test_thin_teeth_under_a_fit_are_refused_with_a_tooth_count_that_keeps_its_tips_after_the_inset(cli, tmp_path):
     """A fit's inset thins every tooth: the desk demo fitted to the FDM PLA band loses its tips,
     and the tooth count the refusal offers is one whose pinion keeps them after that inset,

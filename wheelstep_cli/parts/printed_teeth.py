@@ -23,7 +23,7 @@ MAX_LOSS = 0.2
 #: Teeth on each side of each handover corner (SPEC §3) that may lose more: they are
 #: topped to the generator's land floor by design (the pitch curve's corner narrows them).
 CORNER_TEETH = 2
-#: Fewer-teeth counts tried (in steps of the law's periods) for the remedy.
+#: Fewer-teeth counts tried (1, 2, 4 ... law periods below) before the remedy's halving.
 TRIES = 6
 
 
@@ -82,27 +82,51 @@ def require_printable_teeth(pair, printer=None) -> None:
 def fewer_teeth(pair, design, printer, width: float) -> int | None:
     """The largest tooth count below the design's (in whole law periods) whose pinion, drawn
     for ``printer`` and inset by ``pair``'s fit inset, keeps its tips under two lines
-    ``width`` mm wide; None if none of :data:`TRIES` does. (The wheel, carved by that
-    pinion, gets the larger module too.) A candidate's own fit may need a few um more or
-    less inset than ``pair``'s: the count is the one that inset leaves printable."""
+    ``width`` mm wide; None if none is found. (The wheel, carved by that pinion, gets the
+    larger module too.) Counts 1, 2, 4 ... periods below are tried (:data:`TRIES` of them)
+    until one prints, then the largest printing count between it and the last that did not
+    is found by halving (fewer teeth print wider tips). A candidate's own fit may need a
+    few um more or less inset than ``pair``'s: the count is the one that inset leaves
+    printable."""
+    periods = pair.generated.law.pinion_periods
+    inset = float(getattr(pair, "inset", 0.0))
+    printing, thin = None, design.z
+    for step in (1 << k for k in range(TRIES)):
+        z = design.z - step * periods
+        if z < 6:
+            break
+        if _prints(design, z, printer, width, inset, periods):
+            printing = z
+            break
+        thin = z
+    if printing is None:
+        return None
+    while thin - printing > periods:
+        middle = printing + (thin - printing) // (2 * periods) * periods
+        if _prints(design, middle, printer, width, inset, periods):
+            printing = middle
+        else:
+            thin = middle
+    return printing
+
+
+def _prints(design, z: int, printer, width: float, inset: float, periods: int) -> bool:
+    """Whether the pinion of ``design`` with ``z`` teeth, drawn for ``printer`` and inset by
+    ``inset`` mm, keeps its tips under two lines ``width`` mm wide (False when it cannot be
+    cut at all)."""
     from wheelstep_cli.geometry.planar import offset_outline
     from wheelstep_cli.parts.gear_pair import generation_settings
     from wheelstep_cli.parts.kinds import KINDS, printed_spec
 
-    law = pair.generated.law
-    inset = float(getattr(pair, "inset", 0.0))
-    for step in range(1, TRIES + 1):
-        z = design.z - step * law.pinion_periods
-        if z < 6:
-            return None
-        printed = printed_spec(KINDS["gear-pair"], design.model_copy(update={"z": z}), printer)
+    printed = printed_spec(KINDS["gear-pair"], design.model_copy(update={"z": z}), printer)
+    try:
         outline, module = _pinion(printed)
-        if inset:
-            # a fit thins every tooth by its inset: the remedy must keep the tips after it
-            outline = offset_outline(outline, -inset, "pinion", thin=generation_settings(printed).wheel_tolerance)
-        if thin_teeth(outline, module, width, law.pinion_periods) is None:
-            return z
-    return None
+    except DesignError:
+        return False
+    if inset:
+        # a fit thins every tooth by its inset: the remedy must keep the tips after it
+        outline = offset_outline(outline, -inset, "pinion", thin=generation_settings(printed).wheel_tolerance)
+    return thin_teeth(outline, module, width, periods) is None
 
 
 def _pinion(spec) -> tuple[np.ndarray, float]:
