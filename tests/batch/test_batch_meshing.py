@@ -115,3 +115,21 @@ def test_an_entry_mounted_so_close_that_it_interferes_names_its_distance_and_the
     assert "center_distance = 72.4: with it, install-distance = 72.125 fails: the teeth interfere at " \
         in result.stderr
     assert "use overrides {install_distance: 72.4} (for more play, more backlash)" in result.stderr
+
+
+def test_an_undercut_entry_is_offered_only_a_remedy_a_build_for_its_printer_passed(cli, tmp_path):
+    """z 12 undercuts the source design's pinion. The counts that clear the undercut mesh
+    outside the bounds or print too thin on the entry's 0.4 mm nozzle, so the entry is
+    offered what a build for its printer passed, as override keys; applied, it is built."""
+    entry = ("parts:\n  - name: small\n    kind: gear-pair\n    printer: fdm-0.4-pla\n"
+             "    overrides:\n      z: 12\n      thickness: 2\n")
+    batch = write(tmp_path / "b.yaml", entry)
+    result = cli("batch", batch, "--out", tmp_path / "out", "--jobs", "1")
+    assert result.exit_code == 1
+    found = re.search(r"small \(.*:6\): z = 12: the rack undercuts the pinion: .*; use overrides \{(.*)\}$",
+                      result.stderr.strip(), re.M)
+    assert found and "pinion z >=" not in result.stderr, result.stderr
+    remedy = dict(pair.split(": ") for pair in found.group(1).split(", "))
+    fixed = entry.replace("      z: 12\n", "".join(f"      {k}: {v}\n" for k, v in remedy.items()))
+    applied = cli("batch", write(tmp_path / "fixed.yaml", fixed), "--out", tmp_path / "fixed", "--jobs", "1")
+    assert applied.exit_code == 0, applied.stderr

@@ -8,9 +8,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from wheelstep_cli.batch.plan import Entry
-from wheelstep_cli.config.names import yaml_message
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.kinds import KINDS, for_printer
+from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml
 from wheelstep_cli.parts.tolerance import design_printer
 from wheelstep_cli.parts.tolerance_cli import design_pair
 
@@ -60,8 +60,9 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
         # ``tolerance`` too (the print sheet and the plates say the parts are fitted)
         fit = _printer_fit(entry) if kind.mating_check is not None else None
         printer = entry.printer if fit is None else design_printer(entry.printer)
-        built = (for_printer(kind, kind.build_part(entry.printed), printer, entry.spec) if fit is None
-                 else design_pair(entry.spec, entry.printer))
+        built = _undercut_checked(entry, printer, lambda: (
+            for_printer(kind, kind.build_part(entry.printed), printer, entry.spec) if fit is None
+            else design_pair(entry.spec, entry.printer)))
         mating = kind.mating_check(built) if kind.mating_check is not None else None
         result = EntryResult(entry.index, _parts(kind, built), _report(kind, built, mating), mating=mating)
         refused = _refused(entry, built, result) or _out_of_bounds(entry, built, result, printer)
@@ -74,9 +75,23 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
             result.report["tolerance"] = band
         return EntryResult(entry.index, result.parts, result.report, mating=mating, band=band)
     except DesignError as err:
-        return EntryResult(entry.index, error=yaml_message(err), param=err.param)
+        return EntryResult(entry.index, error=remedy_in_yaml(err), param=err.param)
     except Exception as err:  # an unexpected failure must not stop the other entries
         return EntryResult(entry.index, error=f"internal error: {type(err).__name__}: {err}")
+
+
+def _undercut_checked(entry: Entry, printer, build):
+    """``build()``; a gear pair's undercut refusal offers only the remedies a build for
+    ``printer`` found within the bounds (as ``wheelstep gears`` offers them)."""
+    from wheelstep_cli.parts.kinds import remedy_check
+    from wheelstep_cli.parts.mesh_bounds import verified_undercut
+
+    try:
+        return build()
+    except DesignError as err:
+        if not getattr(err, "undercut", None):
+            raise
+        raise verified_undercut(err, entry.spec, remedy_check(printer)) from None
 
 
 def _parts(kind, built) -> list[BuiltPart]:
@@ -104,7 +119,6 @@ def _fitted(entry: Entry, kind, design, fit: str) -> EntryResult:
     without the printer's tooth clearance, checked and within the bounds) inset until the
     band keeps the fit's margin; refused (naming ``fit``) when no inset does."""
     from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
-    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml
     from wheelstep_cli.parts.mesh_check import meshing_record
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
     from wheelstep_cli.parts.tolerance_cli import fitted_pair
@@ -139,7 +153,7 @@ def _refused(entry: Entry, built, result: EntryResult) -> EntryResult | None:
     """The entry refused (no parts) when its gear teeth interfere, unless it allows it: named
     for its installed distance when the pair is mounted off its rolling distance (with the
     remedy), else for its teeth."""
-    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml, require_mounted_where_rolling
+    from wheelstep_cli.parts.mesh_bounds import require_mounted_where_rolling
 
     mating = result.mating
     if mating is None or not mating["interference"] or entry.allow_interference:
@@ -166,7 +180,7 @@ def _out_of_bounds(entry: Entry, built, result: EntryResult, printer) -> EntryRe
     if result.mating is None or result.mating["interference"]:
         return None
     from wheelstep_cli.parts.kinds import remedy_check
-    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml, require_within_bounds
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     try:

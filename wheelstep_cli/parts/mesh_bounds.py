@@ -104,7 +104,7 @@ def teeth_remedy(record: dict, z: int, periods: int, bounds: MeshBounds = MeshBo
 
 
 #: Remedies tried (each a build and a meshing check) before a refusal offers one.
-REMEDY_TRIES = 2
+REMEDY_TRIES = 3
 
 
 def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
@@ -314,17 +314,18 @@ def require_play_that_clears(pair, record: dict, failure: str, verify: Callable,
 
 
 def remedy_in_yaml(err) -> str:
-    """A bounds refusal (:func:`require_within_bounds`) as a batch file states it: the
-    remedy as the entry's override keys (``z: 90, backlash: 0.239``), not as flags."""
+    """A refusal with checked remedies (:func:`require_within_bounds`, :func:`verified_undercut`)
+    as a batch file states it: each remedy as the entry's override keys (``z: 90, backlash:
+    0.239``), not as flags; any other refusal as :func:`yaml_message` words it."""
     from wheelstep_cli.config.names import in_file_words, yaml_message
 
     message = yaml_message(err)   # its flags already said as keys (in_file_words)
     for tried in getattr(err, "tried", None) or []:
         message = message.replace(in_file_words(as_flags(tried)), f"overrides {{{as_keys(tried)}}}")
-    remedy = getattr(err, "remedy", None)
-    if not remedy:
-        return message
-    return message.replace(in_file_words(f"use {as_flags(remedy)}"), f"use overrides {{{as_keys(remedy)}}}")
+    # every remedy offered (an undercut may offer more than one), else the one
+    for remedy in getattr(err, "remedies", None) or [r for r in [getattr(err, "remedy", None)] if r]:
+        message = message.replace(in_file_words(f"use {as_flags(remedy)}"), f"use overrides {{{as_keys(remedy)}}}")
+    return message
 
 
 def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds) -> dict:
