@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from tests.helpers.clicheck import error_line
+from tests.helpers.clicheck import error_line, with_remedy
 from tests.helpers.meshcheck import assert_printable_stl
 
 
@@ -93,3 +93,20 @@ def test_hub_with_the_printers_chamfer_is_one_shell_and_mesh_check_cuts_the_teet
         assert figures.pop("backlash_min_mm") == pytest.approx(expected.pop("backlash_min_mm"), abs=1e-3)
         assert figures == pytest.approx(expected, abs=0.2)
         expected = _figures(report["meshing"])
+
+
+@pytest.mark.parametrize("misfit, limit", [
+    (["--profile", "desk-demo", "--hub-d", "15", "--set-screw", "M3", "--bore-shape", "keyway"],
+     "--hub-d"),                                                                  # too narrow
+    (["--thickness", "2", "--hub-d", "30", "--hub-length", "1", "--set-screw", "M5"], "--hub-length"),  # too short
+])
+def test_a_set_screw_that_does_not_fit_names_the_hub_size_that_fits_as_printed(cli, tmp_path, misfit, limit):
+    """The hub a set screw needs is said rounded up, so that, applied as printed, it fits (a
+    hub diameter rounded down was refused again), and a nut too tall for a short hub names the
+    hub's length, not its diameter."""
+    design = ["--format", "stl", *misfit]
+    line = error_line(cli("gears", *design, "--out", tmp_path / "out"))
+    assert "does not fit the hub: " in line and f"needs {limit} >= " in line, line
+    least = line.split(f"needs {limit} >= ")[1].split(" mm")[0]
+    result = cli("gears", *with_remedy(design, [limit, least]), "--out", tmp_path / "fits")
+    assert result.exit_code == 0, result.stderr

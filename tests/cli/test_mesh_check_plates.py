@@ -172,19 +172,22 @@ def test_two_plates_each_holding_a_pair_are_both_checked(desk_pair, cli, tmp_pat
     assert len(json.loads(twice.stdout)["pairs"]) == 1
 
 
-def test_a_band_that_jams_is_warned_of_on_stderr(desk_pair, cli):
+@pytest.mark.parametrize("printer", [None, "fdm-0.4-petg"])
+def test_a_band_that_jams_is_warned_of_on_stderr(desk_pair, cli, printer):
     """The desk pair drawn without clearance jams over the FDM band: the report says JAMS among
-    its lines, and a warning on stderr names the cases (it was easy to miss at exit 0)."""
+    its lines, and a warning on stderr names the cases (it was easy to miss at exit 0). The
+    command it suggests fits to the same printer's band (it named none: the default's)."""
+    given = ["--printer", printer] if printer else []
     result = cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile", "desk-demo",
-                 "--tolerance", "--samples", "384", "--json")
+                 "--tolerance", *given, "--samples", "384", "--json")
     assert result.exit_code == 0, result.stderr
     band = json.loads(result.stdout)["tolerance"]
     jammed = [case["case"] for case in band["cases"] if case["jams"]]
     assert band["jams"] and jammed
     assert result.stderr.strip().splitlines()[-1] == (
-        f"WARNING: over the band of fdm-0.4-pla the pair jams in {len(jammed)} of 4 cases "
-        f"({'; '.join(jammed)}): printed there it may not turn; `wheelstep gears --fit auto` draws the "
-        "teeth to clear the band")
+        f"WARNING: over the band of {printer or 'fdm-0.4-pla'} the pair jams in {len(jammed)} of 4 cases "
+        f"({'; '.join(jammed)}): printed there it may not turn; `wheelstep gears"
+        f"{' --printer ' + printer if printer else ''} --fit auto` draws the teeth to clear the band")
     # a jammed case predicts no backlash at all (its figure is an estimate where teeth cannot go)
     from wheelstep_cli.parts.gcode_check import least_backlash_range
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError, rounded_down
+from wheelstep_cli.errors import DesignError, rounded_down, rounded_up
 from wheelstep_cli.geometry.hole_walls import MIN_HOLE_WALL, corner_clear_of, require_hub_fits, require_wall
 from wheelstep_cli.geometry.mesh_checks import Part, tooth_zone_middle
 from wheelstep_cli.geometry.staircase import staircase_mesh
@@ -129,9 +129,13 @@ def _set_screw(body, volume: float, hole, hub: tuple[float, float], thickness: f
     r_hub, axis_z = hub[0] / 2.0, thickness + hub[1] / 2.0
     nut_in = reach + MIN_HOLE_WALL
     nut_out = nut_in + height
-    if nut_out > r_hub - MIN_HOLE_WALL or flats / np.sqrt(3.0) > hub[1] / 2.0 + thickness - 1.0:
+    # the limits rounded up: applied as printed, they fit
+    if nut_out > r_hub - MIN_HOLE_WALL:
         raise DesignError("set_screw", name, f"does not fit the hub: needs --hub-d >= "
-                          f"{2 * (nut_out + MIN_HOLE_WALL):.2f} mm")
+                          f"{rounded_up(2 * (nut_out + MIN_HOLE_WALL))} mm")
+    if flats / np.sqrt(3.0) > hub[1] / 2.0 + thickness - 1.0:
+        raise DesignError("set_screw", name, "does not fit the hub: its nut needs --hub-length >= "
+                          f"{rounded_up(2.0 * (flats / np.sqrt(3.0) - thickness + 1.0))} mm")
     # the hole: the teardrop in the (y, z) plane extruded along +x, then turned to direction
     rod = m3d.Manifold.extrude(m3d.CrossSection([np.ascontiguousarray(drop)]), r_hub + 1.0)
     rod = rod.rotate((0.0, 90.0, 0.0)).rotate((90.0, 0.0, 0.0))

@@ -221,6 +221,12 @@ def _shoe_fits(spec) -> None:
     socket_fits(spec)
 
 
+def _cutter(spec) -> None:
+    """The rack cutter of generated teeth (its cross-field rule: a dedendum above the addendum)."""
+    if getattr(spec.teeth, "value", spec.teeth) == "generated":
+        spec.cutter()
+
+
 def _gear_pair_clearance(spec, extra: float) -> dict:
     from wheelstep_cli.parts.gear_laws import design_backlash
 
@@ -246,7 +252,7 @@ KINDS: dict[str, PartKind] = {
         parts=lambda pair: [pair.pinion, pair.wheel], hole_fields=("bore", "key_width"),
         clearance=_gear_pair_clearance, mating_check=_gear_pair_meshing, chamfer_field="chamfer",
         with_parts=lambda pair, parts, checks: replace(pair, pinion=parts[0], wheel=parts[1], checks=checks),
-        checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _sectors)),
+        checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _cutter, _sectors)),
     KindName.shoe.value: PartKind(
         name=KindName.shoe.value, module="wheelstep_cli.parts.shoe", spec_class="ShoeSpec",
         build="build_shoe", report="shoe_report", section="shoe", parts=lambda shoe: list(shoe.parts),

@@ -194,7 +194,7 @@ def gears(
     source = "--fit" if fit else f"the band of printer {chosen.name}" if fit_name else None
     _make_gears(spec, chosen, show, out, fmt.value, allow_interference, dry_run, force,
                 checked_extras(plot, gif, dxf, svg, step),
-                (tolerance or fit_name is not None, fit_name, source), slice_)
+                (tolerance or fit_name is not None, fit_name, source), slice_, printer)
 
 
 def _value(choice):
@@ -225,10 +225,10 @@ def _require_slicer(slice_: bool, fmt: str, printer) -> None:
 
 def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interference: bool,
                 dry_run: bool, force: bool, extras: GearExtras = GearExtras(),
-                band: tuple = (False, None), slice_: bool = False) -> None:
+                band: tuple = (False, None), slice_: bool = False, printer_given: str | None = None) -> None:
     """Build, check, write (unless refused or a dry run) and report the pair of ``spec``;
     ``band`` = (check over the printer's band, the fit or None[, where the fit comes from]);
-    ``slice_``: slice the plates and check the G-code."""
+    ``slice_``: slice the plates and check the G-code; ``printer_given``: --printer as given."""
     import typer
 
     from wheelstep_cli.cli.commands.gears_checks import checked_pair, collisions_first, require_height_first
@@ -260,7 +260,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
               "written": [] if dry_run else [str(p) for p in written]}
     show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
     _warn_interference(show, record)
-    warn_band_jams(show, record.get("tolerance"))
+    warn_band_jams(show, record.get("tolerance"), printer_given)
     show.files(written, dry_run, joined=True)
     if sliced is not None and not sliced["meshes"]:
         raise typer.Exit(1)

@@ -138,7 +138,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     files = written_pair_files(check, report)
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report(summary, lambda: pair_lines(summary, installed_distance(spec)))
-    warn_band_jams(show, summary.get("tolerance"))
+    warn_band_jams(show, summary.get("tolerance"), band[1])
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
 

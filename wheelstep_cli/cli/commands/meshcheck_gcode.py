@@ -38,7 +38,7 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report(summary, lambda: pair_lines(summary, summary["distance_mm"])[:1]
                 + gcode_lines(summary) + _rest(summary, tolerance_lines))
-    warn_band_jams(show, summary.get("tolerance"))
+    warn_band_jams(show, summary.get("tolerance"), band[1])
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
 

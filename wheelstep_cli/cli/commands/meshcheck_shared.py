@@ -3,6 +3,8 @@ options, the printer whose band --tolerance checks, and the text report of a che
 
 from __future__ import annotations
 
+import shlex
+
 
 def design_spec(design: dict):
     """The design the meshes were drawn for, from the design options (mm, deg at the edge)."""
@@ -74,13 +76,15 @@ def _band_lines(summary: dict) -> list[str]:
     return tolerance_lines(summary["tolerance"])
 
 
-def warn_band_jams(show, band: dict | None) -> None:
+def warn_band_jams(show, band: dict | None, printer: str | None = None) -> None:
     """A warning line on stderr (``show``: cli.output.Output) when a checked band (SPEC §11)
     jams in some case: the report says JAMS among its lines, and a person at the printer
-    should not miss it."""
+    should not miss it. ``printer``: the --printer as given (None: the default printer), so
+    that the command the line suggests fits to the same band."""
     if not band or not band.get("jams"):
         return
     jammed = [case["case"] for case in band["cases"] if case["jams"]]
+    option = f" --printer {shlex.quote(str(printer))}" if printer else ""
     show.warning(f"WARNING: over the band of {band['printer']} the pair jams in {len(jammed)} of "
                  f"{len(band['cases'])} cases ({'; '.join(jammed)}): printed there it may not turn; "
-                 "`wheelstep gears --fit auto` draws the teeth to clear the band")
+                 f"`wheelstep gears{option} --fit auto` draws the teeth to clear the band")

@@ -14,6 +14,7 @@ from typing import Callable
 import numpy as np
 
 from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.gears.cutter_limits import ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG
 from wheelstep_cli.gears.generation.outline import outward_sign
 
 
@@ -36,15 +37,19 @@ class RackCutter:
     clearance: float = 0.25
 
     def __post_init__(self) -> None:
-        require(np.radians(5.0) <= self.pressure_angle <= np.radians(35.0), "pressure-angle",
-                float(np.degrees(self.pressure_angle)), "must be 5..35 deg")
-        require(0.3 <= self.addendum <= 2.0, "addendum", self.addendum, "must be 0.3..2 x module")
-        require(self.addendum < self.dedendum <= 2.5, "dedendum", self.dedendum,
-                f"must be > addendum ({self.addendum:g}) and <= 2.5 x module (tip clearance)")
-        require(0.0 <= self.fillet <= 0.45, "fillet", self.fillet, "must be 0..0.45 x module")
+        (a_lo, a_hi), (h_lo, h_hi) = PRESSURE_ANGLE_DEG, ADDENDUM
+        require(np.radians(a_lo) <= self.pressure_angle <= np.radians(a_hi), "pressure_angle",
+                float(np.degrees(self.pressure_angle)), f"must be {a_lo:g}..{a_hi:g} deg")
+        require(h_lo <= self.addendum <= h_hi, "addendum", self.addendum,
+                f"must be {h_lo:g}..{h_hi:g} x module")
+        require(self.addendum < self.dedendum <= DEDENDUM_MAX, "dedendum", self.dedendum,
+                f"must be > addendum ({self.addendum:g}) and <= {DEDENDUM_MAX:g} x module (tip clearance)")
+        require(FILLET[0] <= self.fillet <= FILLET[1], "fillet", self.fillet,
+                f"must be {FILLET[0]:g}..{FILLET[1]:g} x module")
         require(np.isfinite(self.backlash) and self.backlash >= 0, "backlash", self.backlash,
                 "must be >= 0 mm")
-        require(0.0 <= self.clearance <= 1.0, "clearance", self.clearance, "must be 0..1 x module")
+        require(CLEARANCE[0] <= self.clearance <= CLEARANCE[1], "clearance", self.clearance,
+                f"must be {CLEARANCE[0]:g}..{CLEARANCE[1]:g} x module")
 
 
 @dataclass(frozen=True)
