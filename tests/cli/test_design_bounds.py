@@ -196,3 +196,19 @@ def test_no_backlash_in_a_profile_is_blamed_there_and_the_flags_of_the_command_s
     line = error_line(cli("gears", "--profile", profile, "--format", "stl", "--out", tmp_path / "out"))
     assert line.startswith(f"wheelstep: error: {profile}:3: gears.backlash = 0: the teeth interfere"), line
     assert "; use backlash: 0." in line and line.endswith("(--allow-interference writes them anyway)"), line
+
+
+def test_a_backlash_too_large_for_a_printer_with_tooth_clearance_is_offered_less(cli, tmp_path):
+    """The desk demonstrator at z 40 with 0.1 mm backlash on an FDM printer (its 0.15 mm tooth
+    clearance added) ripples over the bound on the coast flank: the remedy is less designed
+    backlash (the printer's clearance gives the teeth their play), and applied it is written.
+    (It offered more teeth, too thin for the nozzle, and then the design itself.)"""
+    design = ["--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--z", "40", "--backlash", "0.1",
+              "--format", "stl"]
+    line = error_line(cli("gears", *design, "--out", tmp_path / "out"))
+    assert line.startswith("wheelstep: error: --backlash = 0.1: the pair would mesh outside the bounds"), line
+    remedy = remedy_options(line)
+    assert remedy[0] == "--backlash" and 0.0 <= float(remedy[1]) < 0.1 and len(remedy) == 2, line
+    result = cli("gears", *with_remedy(design, remedy), "--out", tmp_path / "out")
+    assert result.exit_code == 0, result.stderr
+    assert bound_violations(json.loads((tmp_path / "out" / "gears.json").read_text())["meshing"]) == []

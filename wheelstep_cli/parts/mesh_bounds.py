@@ -207,12 +207,16 @@ def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
     the failed remedies)."""
     tried, candidate, failed = [], dict(remedy), []
     for _ in range(REMEDY_TRIES):
+        if all(getattr(design, name) == value for name, value in candidate.items()):
+            break      # led back to the design as it is: no remedy this way
         trial = design.model_copy(update=candidate)
         try:
             pair, record = verify(trial)
         except DesignError as err:
             why = err.limit.split("; nothing written")[0]
-            tried.append(f"{as_flags(candidate)} is refused: {err.param.replace('_', '-')} {why}")
+            # the rule's own option, when the remedy does not set it (a thin tooth is the count's)
+            rule = "" if err.param in candidate else f"--{err.param.replace('_', '-')} = {err.value}: "
+            tried.append(f"{as_flags(candidate)} is refused: {rule}{why}")
             failed.append(candidate)
             # a refusal with a remedy of its own (teeth too thin: fewer teeth) is followed too
             following = getattr(err, "remedy", None) or {}
@@ -340,7 +344,8 @@ def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds)
     clearance = float(pair.printing.printer.tooth_clearance) if pair.printing is not None else 0.0
     if "z" not in remedy:
         backlash = backlash_remedy(law, record, pair.spec.backlash_mm, bounds) - clearance
-        if backlash >= 0.02:
+        # teeth need some play: the printer's clearance gives it, else the design's own
+        if backlash >= (0.0 if clearance > 0 else 0.02):
             return {"backlash": round(backlash, 3)}
     z = remedy.get("z", design.z + 2 * law.pinion_periods)
     teeth = {} if "z" in remedy else {"z": z}
