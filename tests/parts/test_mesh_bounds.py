@@ -119,4 +119,4 @@ def test_a_remedy_the_pipeline_refuses_is_not_offered():
 
     error, _ = _refusal(verify)
     assert error.remedy == {}
-    assert "no remedy found (--z 40 is refused: thickness makes it too tall)" in error.limit
+    assert "no remedy found (--z 40 is refused: --thickness = 5: makes it too tall)" in error.limit
