@@ -212,3 +212,18 @@ def test_a_backlash_too_large_for_a_printer_with_tooth_clearance_is_offered_less
     result = cli("gears", *with_remedy(design, remedy), "--out", tmp_path / "out")
     assert result.exit_code == 0, result.stderr
     assert bound_violations(json.loads((tmp_path / "out" / "gears.json").read_text())["meshing"]) == []
+
+
+@pytest.mark.parametrize("given, named", [
+    (["--pressure-angle", "30"], "--pressure-angle"),                  # the fillet left at its default
+    (["--pressure-angle", "30", "--fillet", "0.2"], "--fillet"),
+])
+def test_a_cutter_tip_with_no_land_names_the_option_given_and_a_limit_that_applied_cuts(cli, tmp_path, given, named):
+    """The rack's tip fillets meet when the flanks lean far: the refusal names the option the
+    user gave with the largest value that keeps a land (it blamed --fillet, not given, with
+    no limit); applied, the teeth are cut."""
+    line = error_line(cli("gears", *given, "--format", "stl", "--out", tmp_path / "out"))
+    assert line.startswith(f"wheelstep: error: {named} = ") and "no flat land" in line, line
+    most = line.split("must be <= ")[1].split(" ")[0]
+    result = cli("gears", *with_remedy(given, [named, most]), "--format", "stl", "--dry-run")
+    assert "no flat land" not in result.stderr, result.stderr

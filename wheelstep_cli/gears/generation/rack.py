@@ -125,7 +125,8 @@ def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
     require(flank_points >= 2, "flank_points", flank_points, "must be >= 2 (the flank's ends)")
     yc = -h_f + rho
     xc = half + (yc * sin_a - rho) / cos_a                 # right fillet centre
-    require(xc >= 0.0, "fillet", cutter.fillet, "too large: the cutter tip has no flat land")
+    if xc < 0.0:
+        raise _no_tip_land(cutter, module, pitch)
     # right half of one cutter tooth, from the tip centre out to the top (the flat land from
     # the tip centre to the fillet is a straight line too: its ends are its points)
     tip = np.array([[0.0, -h_f]])
@@ -139,6 +140,45 @@ def rack_profile(cutter: RackCutter, module: float, pitch: float, teeth: int,
     rack = (tooth[None, :, :] + np.column_stack([shifts, np.zeros(teeth)])[:, None, :])
     rack = rack[:, :-1].reshape(-1, 2)
     return np.vstack([rack, tooth[-1:] + [shifts[-1], 0.0]])
+
+
+def _fillet_centre_x(cutter: RackCutter, module: float, pitch: float, angle: float, fillet: float) -> float:
+    """x (mm) of the rack tooth's right tip-fillet centre at pressure angle ``angle`` (rad) with
+    a fillet of ``fillet`` mm: the tip keeps a flat land while it is >= 0."""
+    cos_a, sin_a = np.cos(angle), np.sin(angle)
+    half = pitch / 4.0 + cutter.backlash / (4.0 * cos_a)
+    return half + ((fillet - cutter.dedendum * module) * sin_a - fillet) / cos_a
+
+
+def _no_tip_land(cutter: RackCutter, module: float, pitch: float) -> DesignError:
+    """The refusal of a cutter whose tip fillets leave its tip no flat land: the largest fillet
+    (x module) at its pressure angle, and the largest pressure angle (deg) at its fillet,
+    both rounded to what, applied, keeps a land."""
+    a, rho = cutter.pressure_angle, cutter.fillet * module
+    # the centre's x is linear in the fillet: solved for it
+    most_fillet = (_fillet_centre_x(cutter, module, pitch, a, 0.0)
+                   / (1.0 - np.sin(a)) * np.cos(a)) / module
+    lo, hi = np.radians(PRESSURE_ANGLE_DEG[0]), a
+    if _fillet_centre_x(cutter, module, pitch, lo, rho) < 0.0:
+        most_angle = None
+    else:
+        for _ in range(50):       # the land narrows as the flanks lean more
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if _fillet_centre_x(cutter, module, pitch, mid, rho) >= 0.0 else (lo, mid)
+        most_angle = np.floor(10.0 * np.degrees(lo)) / 10.0
+    why = "leaves the cutter tip no flat land"
+    angle_text = (f"{why} with fillet {cutter.fillet:g} x module; must be <= {most_angle:g} deg"
+                  if most_angle is not None else f"{why}; use a smaller dedendum")
+    if most_fillet < 0.0:
+        # no fillet helps: the flanks lean too far for the tooth's depth
+        return DesignError("pressure_angle", float(np.degrees(a)), f"{why} even without a fillet; use a "
+                           "smaller pressure angle or dedendum", alternatives={"dedendum": (
+                               cutter.dedendum, f"{why} at pressure angle {np.degrees(a):g} deg even "
+                               "without a fillet; use a smaller dedendum or pressure angle")})
+    return DesignError("fillet", cutter.fillet,
+                       f"{why}; must be <= {np.floor(1000.0 * most_fillet) / 1000.0:g} x module at "
+                       f"pressure angle {np.degrees(a):g} deg",
+                       alternatives={"pressure_angle": (float(np.degrees(a)), angle_text)})
 
 
 def rack_tooth_polygons(cutter: RackCutter, module: float, pitch: float, teeth: int = 5,
