@@ -237,6 +237,18 @@ def test_a_pair_taller_than_the_printer_is_refused_before_any_tooth_is_cut(cli, 
     assert not (tmp_path / "tall").exists()
 
 
+def test_a_pair_too_large_for_the_default_printers_bed_says_so_and_how_to_write_it(cli, tmp_path):
+    """--module 3 draws a 296 mm wheel: with no --printer it is refused for the default
+    printer's bed, saying that it is the default printer and that --format stl writes no
+    plate; applied, the pair is written."""
+    line = error_line(cli("gears", "--module", "3", "--out", tmp_path / "big"))
+    assert line.startswith("wheelstep: error: --module = 3: with it, printer = ") and "does not fit the bed" in line
+    assert line.endswith("(the default printer; --printer chooses another, --format stl writes no plate)"), line
+    assert not (tmp_path / "big").exists()
+    written = cli("gears", "--module", "3", "--format", "stl", "--out", tmp_path / "big")
+    assert written.exit_code == 0, written.stderr
+
+
 def test_a_pair_exactly_as_tall_as_the_printer_prints_is_not_refused_early(cli, tmp_path):
     """The early height check sees the thickness as the meshes hold it (float32), as the
     plate's check does: a millionth of a millimetre over the printer's height rounds to it."""

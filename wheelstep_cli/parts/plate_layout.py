@@ -45,7 +45,7 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float,
         require_height(part.name, size[2], printer, height_param, height, footprint)
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
-            raise DesignError("printer", printer.name, problem).tied_to(footprint or {})
+            raise _beyond(DesignError("printer", printer.name, problem), printer).tied_to(footprint or {})
 
 
 def gear_pair_height(spec) -> float:
@@ -59,9 +59,16 @@ def require_height(name: str, tall: float, printer: Printer, height_param: str, 
     """Refuse (DesignError on ``height_param`` = ``height``) a part ``name`` ``tall`` mm tall
     when ``printer`` prints less; a build can check this before it spends time on the part."""
     if tall > printer.max_height:
-        raise DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall, more than "
-                          f"the {printer.max_height:g} mm printer '{printer.name}' prints"
-                          ).tied_to(footprint or {})
+        raise _beyond(DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall, more "
+                                  f"than the {printer.max_height:g} mm printer '{printer.name}' prints"),
+                      printer).tied_to(footprint or {})
+
+
+def _beyond(error: DesignError, printer: Printer) -> DesignError:
+    """``error`` marked as a part larger than ``printer`` prints (its ``beyond_printer``: the
+    printer's name), for a command that chose the printer itself to say so."""
+    error.beyond_printer = printer.name
+    return error
 
 
 def pack_units(units: list[list[tuple[float, float]]], printer: Printer

@@ -29,8 +29,9 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         # the design is checked, bounded and refused as without a fit before the search
         # spends a dozen meshing checks on it; the fit's inset is print compensation, judged
         # on the band (the written pair's own figures are the inset outlines')
-        chosen, design = _undercut_checked(lambda: fit_design(spec, printer), spec,
-                                           remedy_check(printer, checked_remedy))
+        chosen, design = _on_the_bed(lambda: _undercut_checked(lambda: fit_design(spec, printer), spec,
+                                                               remedy_check(printer, checked_remedy)),
+                                     spec, printer, True)
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
         design_verify = remedy_check(design.printing.printer, checked_remedy)
         design_record = _meshing_or_refused(show, design, design_check, allow_interference, design_verify)
@@ -44,8 +45,9 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         require_fit_met(tolerance, **({} if tolerance["fit"].get("from", "--fit") == "--fit" else
                                       {"remedy": PROFILE_FIT_REMEDY}))
     else:
-        pair, tolerance, check = _undercut_checked(lambda: band_pair(spec, printer, bool(band[0]), bed), spec,
-                                                   remedy_check(printer, checked_remedy))
+        pair, tolerance, check = _on_the_bed(lambda: _undercut_checked(
+            lambda: band_pair(spec, printer, bool(band[0]), bed), spec, remedy_check(printer, checked_remedy)),
+            spec, printer, False)
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
         verify = remedy_check(printer, checked_remedy)
@@ -107,18 +109,26 @@ def require_height_first(spec, printer, fmt: str, fit: bool):
     target = printer or (load_printer() if fmt in ("3mf", "both") or fit else None)
     if target is None:
         return None
+    return _on_the_bed(lambda: require_height("pinion", gear_pair_height(spec), target, "thickness",
+                                              spec.thickness, footprint(spec)) or target, spec, printer, fit)
+
+
+def _on_the_bed(build, spec, printer, fit: bool):
+    """``build()``; when the user named no printer, a part too tall for the default printer or
+    too large for its bed is refused saying which printer that is and how to choose another
+    (or, without a fit, to write no plate)."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.gear_pair import footprint
+
     try:
-        require_height("pinion", gear_pair_height(spec), target, "thickness", spec.thickness,
-                       footprint(spec))
+        return build()
     except DesignError as err:
-        if printer is not None:
+        if printer is not None or not getattr(err, "beyond_printer", None):
             raise
-        # the user named no printer: say which one this is and how to choose another
         limit = (f"{err.limit} (the default printer; --printer chooses another"
                  + ("" if fit else ", --format stl writes no plate") + ")")
-        # stated again for the footprint, so a hub length the user gave carries the note too
+        # stated again for the footprint, so a size the user gave carries the note too
         raise err._with_extras(DesignError(err.param, err.value, limit).tied_to(footprint(spec))) from None
-    return target
 
 
 def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
