@@ -263,3 +263,15 @@ def test_the_pose_count_a_design_needs_is_the_one_run_and_printed(cli, tmp_path)
     checked = cli("mesh-check", *sorted(out.glob("gears-*.3mf")))
     assert f", {need} poses over 360 deg of pinion" in checked.stdout.splitlines()[0]
     assert "interference: YES at " in checked.stdout and f" of {need} poses" in checked.stdout
+
+
+def test_a_pair_drawn_for_other_pinion_turns_is_told_which(cli, tmp_path):
+    """A --turns 4 pair checked as the default design (n = 2): its pinion counts 1 tooth along
+    that law's pitch curve; the refusal says the two count as one pair's at n = 4 and to give
+    -n 4 (it said to give the pinion of a gear pair); applied, the check passes."""
+    out = tmp_path / "t4"
+    assert cli("gears", "--turns", "4", "--z", "24", "--format", "stl", "--out", out, "-q").exit_code == 0
+    meshes = [out / "pinion.stl", out / "wheel.stl"]
+    line = error_line(cli("mesh-check", *meshes))
+    assert line.endswith("but the two count as one pair's at 4: give -n 4"), line
+    assert cli("mesh-check", *meshes, "-n", "4", "--samples", "768").exit_code == 0

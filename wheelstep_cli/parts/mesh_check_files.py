@@ -57,9 +57,34 @@ def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
     radii = tuple(radius_by_area(o) for o in outlines)
     require_a_pair(radii, installed_distance(check.spec), check.wheel)
     require_pinion_first(radii, law, check.pinion)
-    teeth = require_gear_teeth(outlines, law, (check.pinion, check.wheel))
+    teeth = _teeth_under_the_law(outlines, law, check)
     require_poses_per_tooth(check.samples, teeth, law)
     return outlines
+
+
+def _teeth_under_the_law(outlines: tuple[np.ndarray, np.ndarray], law, check: WrittenPairCheck) -> int:
+    """:func:`require_gear_teeth`; when the teeth do not count right under the design's law but
+    do under the crank law of the other pinion turns (2 or 4), the refusal says to give those."""
+    from wheelstep_cli.errors import DesignError
+
+    names = (check.pinion, check.wheel)
+    try:
+        return require_gear_teeth(outlines, law, names)
+    except DesignError as err:
+        spec = check.spec
+        if spec.law_csv is not None:
+            raise
+        turns = 6 - int(spec.turns)
+        try:
+            require_gear_teeth(outlines, design_law(spec.model_copy(update={"turns": turns})), names)
+        except DesignError:
+            raise err from None
+        from wheelstep_cli.gears.meshing.check import pair_teeth
+
+        counted = pair_teeth(*outlines, law)[0 if err.param == "pinion" else 1]
+        raise DesignError(err.param, err.value, f"has {_teeth(counted)} along its pitch curve at "
+                          f"{spec.turns} pinion turns per carrier turn, but the two count as one pair's "
+                          f"at {turns}: give -n {turns}") from None
 
 
 def require_a_pair(radii: tuple[float, float], distance: float, wheel: str) -> None:
