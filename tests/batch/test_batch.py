@@ -266,7 +266,10 @@ parts:
      "parts[0].overrides.b = 60: must be < (a + c)/4 = 52.5 mm"),
     (VALID_ENTRY.replace("kind: gear-pair", "kind: gears"), "kind", "unknown kind; allowed: gear-pair, shoe"),
     (VALID_ENTRY.replace("printer: fdm-0.4-pla", "printer: fdm-0.6-abs"), "printer",
-     "not found; known profiles:"),
+     "not found; known printer profiles: fdm-0.4-petg, fdm-0.4-pla, resin-0.05-standard"),
+    # a design not found lists the designs, not the printers too
+    (VALID_ENTRY.replace("design: desk-demo", "design: desk-demos"), "design",
+     "= 'desk-demos': not found; known design profiles: bntu-2024, desk-demo"),
     (VALID_ENTRY.replace("printer: fdm-0.4-pla", "printer: desk-demo"), "printer",
      "is a design profile, not a printer profile; printer profiles: fdm-0.4-petg, fdm-0.4-pla"),
     (VALID_ENTRY.replace("design: desk-demo", "design: fdm-0.4-pla"), "design", "is not a design profile"),

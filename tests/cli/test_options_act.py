@@ -156,11 +156,13 @@ def test_dry_run_or_force_with_a_stairs_sweep_is_refused_as_the_plot_is(cli, fla
 def test_a_yaml_number_yaml_1_1_would_misread_is_text(cli, tmp_path, text):
     """YAML 1.1 reads 4_8 as 48, 1:30 as 90 (base 60), 060 as 48 (octal: a thickness of 010
     printed 8 mm), 0x30 and 0b110000 as 48; read as text, a number field refuses it with the
-    file's other problems, and a text field keeps it."""
+    file's other problems, saying how to write the number (0o60, YAML 1.2's octal, is text to
+    YAML 1.1 too), and a text field keeps it."""
     profile = tmp_path / "p.yaml"
     profile.write_text(f"gears:\n  z: {text}\n  thickness: -1\n")
     lines = cli("gears", "--profile", profile, "--out", tmp_path / "out").stderr.splitlines()
-    assert lines[0] == f"wheelstep: error: {profile}:2: gears.z = '{text}': must be a whole number", lines
+    how = "" if text == "0o60" else " written as plain decimal digits (no leading zero, underscore, base prefix or colon)"
+    assert lines[0] == f"wheelstep: error: {profile}:2: gears.z = '{text}': must be a whole number{how}", lines
     assert lines[1].startswith(f"wheelstep: error: {profile}:3: gears.thickness = -1"), lines
     assert not (tmp_path / "out").exists()
 

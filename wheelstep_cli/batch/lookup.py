@@ -45,12 +45,14 @@ class Profiles:
         self.printers: dict[str, Printer | None] = {}
         self.designs: dict[str, tuple | None] = {}   # name -> (DesignProfile, file, sha256)
 
-    def find(self, name: str) -> Path:
+    def find(self, name: str, printer: bool | None = None) -> Path:
+        """The file of profile ``name``; ``printer`` (True: a printer's, False: a design's)
+        says which kind a refusal lists as known."""
         given = Path(name)
         nearby = self.folder / given
         if given.suffix in (".yaml", ".yml") and not given.is_absolute() and nearby.is_file():
             return nearby
-        return find_profile(name)
+        return find_profile(name, printer)
 
     def _lookup(self, doc: LocatedYaml, path: tuple, name: str, cache: dict, issues: list[Issue],
                 load: Callable):
@@ -59,7 +61,7 @@ class Profiles:
         if name not in cache:
             cache[name] = None
             try:
-                file = self.find(name)
+                file = self.find(name, printer=cache is self.printers)
                 cache[name] = (load(name, file, read_located_yaml(file, file_label(file))), file)
             except InvalidInput as err:
                 issues.extend(err.issues)

@@ -140,6 +140,15 @@ def _misread_number(node) -> bool:
     return node.tag == NUMBER_TAGS[0] and not _PLAIN_INTEGER.match(node.value)
 
 
+def reads_otherwise(text: str) -> bool:
+    """Whether YAML 1.1 reads the plain scalar ``text`` as a number other than its digits say
+    (see :data:`_PLAIN_INTEGER`): such a value is kept as the text it is written as."""
+    import yaml
+
+    node = yaml.ScalarNode(yaml.resolver.Resolver().resolve(yaml.ScalarNode, text, (True, False)), text)
+    return _misread_number(node)
+
+
 def _one_line(err: Exception) -> str:
     """PyYAML's message folded to one line."""
     return " ".join(str(err).split())

@@ -185,7 +185,18 @@ def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) ->
         return Issue(doc.where(loc), dotted(loc), yaml_message(cause))
     if _TYPES.get(kind) == "must be a mapping of keys":
         return Issue(doc.where(loc), dotted(loc), _TYPES[kind])
-    return Issue(doc.where(loc), dotted(loc), f"= {show(error['input'])}: {limit_text(model, error)}")
+    return Issue(doc.where(loc), dotted(loc),
+                 f"= {show(error['input'])}: {limit_text(model, error)}{_as_digits(error['input'])}")
+
+
+def _as_digits(value) -> str:
+    """A note for text YAML 1.1 would read as a number other than its digits say (``010`` as
+    octal 8, ``4_8`` as 48, ``1:30`` as 90, ``0x30``), which the reader keeps as text: how to
+    write the number instead. Empty for anything else."""
+    from wheelstep_cli.config.located_yaml import reads_otherwise
+
+    return (" written as plain decimal digits (no leading zero, underscore, base prefix or colon)"
+            if isinstance(value, str) and reads_otherwise(value) else "")
 
 
 def located_issues(model: type[BaseModel], doc: LocatedYaml, path: tuple,
