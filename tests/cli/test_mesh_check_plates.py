@@ -275,3 +275,16 @@ def test_a_pair_drawn_for_other_pinion_turns_is_told_which(cli, tmp_path):
     line = error_line(cli("mesh-check", *meshes))
     assert line.endswith("but the two count as one pair's at 4: give -n 4"), line
     assert cli("mesh-check", *meshes, "-n", "4", "--samples", "768").exit_code == 0
+
+
+@pytest.mark.parametrize("distance, cause", [
+    ("75", "the teeth lose contact (mounted too far apart?)"),
+    ("71.9", "the teeth interfere"),
+])
+def test_out_of_phase_says_what_the_check_found(desk_pair, cli, distance, cause):
+    """A pair mounted far off its distance is out of phase for what the check found, not for a
+    list of guesses (it said 'assembled a tooth off, or interfering' where contact was lost)."""
+    result = cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile", "desk-demo",
+                 "--distance", distance, "--samples", "384")
+    assert result.exit_code == 1
+    assert f"phase: OUT OF PHASE (the pair does not follow its law: {cause})" in result.stdout, result.stdout

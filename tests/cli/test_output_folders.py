@@ -40,7 +40,7 @@ def test_a_rerun_keeps_another_commands_files_and_files_changed_since(cli, tmp_p
     assert (out / "notes.txt").read_text() == "mine"
     assert "not written by this command" in error_line(cli("shoe", "--format", "3mf", "--out", out))
     (out / "shoe.stl").write_bytes(b"edited too")
-    assert "shoe.stl: exists and was changed since this command wrote it" in error_line(
+    assert "shoe.stl there exists and was changed since this command wrote it" in error_line(
         cli("shoe", "--format", "stl", "--out", out))
     assert (out / "shoe.stl").read_bytes() == b"edited too"
 
@@ -50,7 +50,8 @@ def test_a_users_file_of_the_same_name_is_refused_and_nothing_is_written(cli, tm
     out.mkdir()
     (out / "shoe.stl").write_text("my own shoe")
     line = error_line(cli("shoe", "--out", out))
-    assert line == (f"wheelstep: error: --out = {out / 'shoe.stl'}: exists and was not written by this "
+    # the folder as given, with the file in it
+    assert line == (f"wheelstep: error: --out = {out}: shoe.stl there exists and was not written by this "
                     "command: it is kept; move it away or give --force to overwrite it")
     assert listing(out) == {"shoe.stl": b"my own shoe"}
     assert cli("shoe", "--out", out, "--force", "-q").exit_code == 0
@@ -64,7 +65,7 @@ def test_batch_keeps_a_file_a_forged_manifest_lists(cli, tmp_path):
     out.mkdir()
     (out / "notes.txt").write_text("x\n")
     (out / "manifest.json").write_text('{"outputs":{"notes.txt":"x"}}\n')
-    assert "fm/manifest.json: exists and was not written by this command" in error_line(
+    assert "fm: manifest.json there exists and was not written by this command" in error_line(
         cli("batch", batch, "--out", out, "--jobs", "1"))
     assert listing(out) == {"notes.txt": b"x\n", "manifest.json": b'{"outputs":{"notes.txt":"x"}}\n'}
     assert cli("batch", batch, "--out", out, "--jobs", "1", "--force", "-q").exit_code == 0
@@ -100,7 +101,7 @@ def test_batch_refuses_a_file_changed_since_at_a_certain_name_before_it_builds(c
     before = listing(out)
     monkeypatch.setattr(run, "build_entry", _no_build)
     line = error_line(cli("batch", batch, "--out", out, "--jobs", "1"))
-    assert line.endswith(f"{out / name}: exists and was changed since this command wrote it: it is kept; "
+    assert line.endswith(f"{out}: {name} there exists and was changed since this command wrote it: it is kept; "
                          "move it away or give --force to overwrite it"), line
     assert listing(out) == before
 
@@ -111,7 +112,7 @@ def test_batch_dry_run_refuses_what_the_run_would_refuse(cli, tmp_path):
     out.mkdir()
     (out / "plate-1.png").write_text("my picture")
     line = error_line(cli("batch", batch, "--out", out, "--jobs", "1", "--dry-run", "-q"))
-    assert "plate-1.png: exists and was not written by this command" in line
+    assert "plate-1.png there exists and was not written by this command" in line
     assert listing(out) == {"plate-1.png": b"my picture"}
 
 
@@ -148,7 +149,7 @@ def test_gears_refuses_a_users_file_of_a_certain_name_before_it_builds(cli, tmp_
     (out / mine).write_bytes(b"the user's file")
     monkeypatch.setattr(gears_checks, "checked_pair", _no_build)
     line = error_line(cli("gears", "--profile", "desk-demo", *args, "--out", out))
-    assert line.startswith(f"wheelstep: error: --out = {out / mine}: exists and was not written"), line
+    assert line.startswith(f"wheelstep: error: --out = {out}: {mine} there exists and was not written"), line
     assert listing(out) == {mine: b"the user's file"}
     (tmp_path / "afile").write_bytes(b"")
     line = error_line(cli("gears", "--profile", "desk-demo", *args, "--out", tmp_path / "afile"))

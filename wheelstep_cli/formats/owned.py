@@ -63,8 +63,10 @@ def check_collisions(folder: Path, files: Mapping[Path, bytes], record: Mapping[
             continue
         if record.get(name) != sha256_of(path):
             why = "changed since this command wrote it" if name in record else "not written by this command"
-            raise DesignError(param, str(path), f"exists and was {why}: it is kept; move it away or "
-                              "give --force to overwrite it")
+            # the folder as the user gave it, with the file in it; a file the user named, itself
+            value, which = (str(folder), f"{name} there ") if param == "out" else (str(path), "")
+            raise DesignError(param, value, f"{which}exists and was {why}: it is kept; move it away "
+                              "or give --force to overwrite it")
 
 
 def stale_files(folder: Path, files: Mapping[Path, bytes], record: Mapping[str, str]) -> list[Path]:

@@ -105,6 +105,14 @@ def flank_line(side: str, flank: dict, own: float = 0.0) -> str:
             f"largest TE step {_fmt(flank['te_max_step_um'], '.1f')} um")
 
 
+def _out_of_phase_cause(summary: dict) -> str:
+    """Why a pair is out of phase, from what its summary found."""
+    causes = [cause for found, cause in ((summary["interference"], "the teeth interfere"),
+                                         (summary["contact_lost"], "the teeth lose contact (mounted too far apart?)"))
+              if found]
+    return "; ".join(causes) or "it runs about a tooth pitch off the law (assembled a tooth off?)"
+
+
 def meshing_lines(summary: dict) -> list[str]:
     """Human-readable lines of a meshing summary (``MeshingReport.to_dict()``)."""
     lines = []
@@ -117,8 +125,7 @@ def meshing_lines(summary: dict) -> list[str]:
     if summary["contact_lost"]:
         lines.append("contact: LOST at some poses (teeth out of mesh in the drive direction)")
     lines.append("phase: in phase with the law" if summary["in_phase"] else
-                 "phase: OUT OF PHASE (the pair does not follow its law: assembled a tooth off, "
-                 "or interfering)")
+                 f"phase: OUT OF PHASE (the pair does not follow its law: {_out_of_phase_cause(summary)})")
     lines.append(f"backlash: {_fmt(summary['backlash_min_mm'], '.3f')} .. "
                  f"{_fmt(summary['backlash_max_mm'], '.3f')} mm on the wheel pitch curve "
                  f"({_fmt(summary['backlash_min_arcmin'], '.1f')}' .. "
