@@ -213,3 +213,13 @@ def test_what_is_no_whole_number_stays_refused_at_its_line(cli, tmp_path, text):
     assert line.startswith(f"wheelstep: error: {profile}:2: gears.z = ") and line.endswith(
         ": must be a whole number"), line
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("text, expect", [
+    ("  bore_shape: 0x10\n", "gears.bore_shape = '0x10': must be one of: round, d-flat, keyway, hex"),
+    ("  dedendum: -1\n", "gears.dedendum = -1: must be above the addendum and <= 2.5 x module"),
+])
+def test_a_choice_is_not_told_to_be_digits_and_a_dedendum_states_both_ends(cli, tmp_path, text, expect):
+    profile = write(tmp_path / "p.yaml", "gears:\n" + text)
+    line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
+    assert line == f"wheelstep: error: {profile}:2: {expect}", line

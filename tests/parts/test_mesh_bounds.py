@@ -120,3 +120,63 @@ def test_a_remedy_the_pipeline_refuses_is_not_offered():
     error, _ = _refusal(verify)
     assert error.remedy == {}
     assert "no remedy found (--z 40 is refused: --thickness = 5: makes it too tall)" in error.limit
+
+
+def test_a_remedy_already_tried_is_not_built_again():
+    """F'i over its bound at 40 (its remedy 48) and thin teeth at 48 (their remedy 40): the
+    tries go 40 -> 48 and do not build 40 again."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+
+    builds = []
+
+    def verify(design):
+        builds.append(design.z)
+        if design.z == 48:
+            error = DesignError("z", 48, "the teeth are too thin; nothing written; use --z 40")
+            error.remedy = {"z": 40}
+            raise error
+        pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
+                               spec=design, opening=0.0)
+        return pair, record(drive=flank(total=18.0, tooth=6.0))
+
+    error, _ = _refusal(verify)
+    assert builds == [40, 48] and error.remedy == {}, builds
+
+
+def test_a_batch_remedy_said_as_keys_leaves_longer_numbers_alone():
+    """A tried z 24 is said as the entry's keys without touching z 240 elsewhere in the line."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml
+
+    error = DesignError("z", 20, "no remedy found (--z 24 still gives F'i 20 um; the limit is --z 240)")
+    error.tried = [{"z": 24}]
+    said = remedy_in_yaml(error)
+    assert "overrides {z: 24} still gives" in said and "z 240" in said, said
+
+
+@pytest.mark.parametrize("z, periods, prints, uncut_below, expect", [
+    (94, 2, (32, 60), 32, 60),        # 17 periods above what prints: doubling, then halving
+    (140, 2, (32, 60), 32, 60),       # more than 32 periods above
+    (94, 2, (32, 60), 40, 60),        # the doubling steps past the printing counts into undercut ones
+    (20, 1, (6, 12), 6, 12),          # down to the least count
+    (94, 2, (200, 300), 18, None),    # nothing below prints
+    (50, 2, (6, 10), 30, None),       # the printing counts undercut
+])
+def test_fewer_teeth_finds_the_largest_count_that_prints(monkeypatch, z, periods, prints, uncut_below, expect):
+    """The search over counts below the design's (stood in for by a stub of the pinion's state):
+    the largest count that prints, past counts too thin above it and undercut ones below."""
+    from types import SimpleNamespace
+
+    import wheelstep_cli.parts.printed_teeth as printed_teeth
+
+    def state(design, count, printer, width, inset, per):
+        assert (z - count) % periods == 0 and count >= 6
+        if count < uncut_below or count < prints[0]:
+            return "uncut"
+        return "prints" if count <= prints[1] else "thin"
+
+    monkeypatch.setattr(printed_teeth, "_printing", state)
+    pair = SimpleNamespace(generated=SimpleNamespace(law=SimpleNamespace(pinion_periods=periods)), inset=0.0)
+    assert printed_teeth.fewer_teeth(pair, SimpleNamespace(z=z), None, 0.8) == expect

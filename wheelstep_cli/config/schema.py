@@ -185,8 +185,10 @@ def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) ->
         return Issue(doc.where(loc), dotted(loc), yaml_message(cause))
     if _TYPES.get(kind) == "must be a mapping of keys":
         return Issue(doc.where(loc), dotted(loc), _TYPES[kind])
-    return Issue(doc.where(loc), dotted(loc),
-                 f"= {show(error['input'])}: {limit_text(model, error)}{_as_digits(error['input'])}")
+    limit = limit_text(model, error)
+    # a number field's refusal of text says how to write the number (not a choice field's)
+    note = _as_digits(error["input"]) if limit in ("must be a number", "must be a whole number") else ""
+    return Issue(doc.where(loc), dotted(loc), f"= {show(error['input'])}: {limit}{note}")
 
 
 def _as_digits(value) -> str:

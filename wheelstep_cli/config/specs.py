@@ -133,7 +133,8 @@ class GearPairSpec(BaseModel):
     pressure_angle: Number = quantity(20.0, unit="deg", limit=_range(PRESSURE_ANGLE_DEG, "deg"),
                                       ge=PRESSURE_ANGLE_DEG[0], le=PRESSURE_ANGLE_DEG[1])
     addendum: Number = quantity(1.0, limit=_range(ADDENDUM, "x module"), ge=ADDENDUM[0], le=ADDENDUM[1])
-    dedendum: Number = quantity(1.25, limit=f"must be <= {DEDENDUM_MAX:g} x module", gt=0, le=DEDENDUM_MAX)
+    dedendum: Number = quantity(1.25, limit=f"must be above the addendum and <= {DEDENDUM_MAX:g} x module",
+                                gt=0, le=DEDENDUM_MAX)
     fillet: Number = quantity(0.25, limit=_range(FILLET, "x module"), ge=FILLET[0], le=FILLET[1])  # tip radius
     # the wheel's spaces below the pinion's tips
     clearance: Number = quantity(0.25, limit=_range(CLEARANCE, "x module"), ge=CLEARANCE[0], le=CLEARANCE[1])

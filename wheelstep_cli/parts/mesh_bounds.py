@@ -161,9 +161,10 @@ def verified_undercut(err: DesignError, design, verify: Callable,
     rack stops undercutting) with those remedies offered only once a build with them is within
     the bounds, each followed as a bounds refusal's remedy is (the tooth count that clears the
     undercut can still mesh outside the bounds: z 20 -> use --z 21)."""
-    offered, tried = [], []
+    offered, tried, failed = [], [], []
     for option in err.undercut:
-        remedy, why, _ = _verified(design, option, verify, bounds)
+        remedy, why, candidates = _verified(design, option, verify, bounds)
+        failed.extend(candidates)
         if remedy:
             offered.append(remedy)
         else:
@@ -178,6 +179,7 @@ def verified_undercut(err: DesignError, design, verify: Callable,
     checked = DesignError(err.param, err.value, cause + advice, alternatives)
     checked.remedy = offered[0] if offered else {}
     checked.remedies = offered
+    checked.tried = failed    # the remedies built and found wanting, for a batch file's keys
     return checked
 
 
@@ -204,25 +206,25 @@ def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
 def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
               ) -> tuple[dict, list[str], list[dict]]:
     """(the first remedy whose build is within the bounds, or {}; what each failed try gave;
-    the failed remedies)."""
+    the failed remedies). Each try follows from the last one's figures (or from its refusal's
+    own remedy); a try that leads back to the design as it is, or to a remedy already tried,
+    or beyond the tooth limit ends the search."""
     tried, candidate, failed = [], dict(remedy), []
     for _ in range(REMEDY_TRIES):
-        if all(getattr(design, name) == value for name, value in candidate.items()):
-            break      # led back to the design as it is: no remedy this way
+        if (all(getattr(design, name) == value for name, value in candidate.items())
+                or candidate in failed or candidate.get("z", 0) > MAX_TEETH):
+            break
         trial = design.model_copy(update=candidate)
         try:
             pair, record = verify(trial)
         except DesignError as err:
             why = err.limit.split("; nothing written")[0]
             # the rule's own option, when the remedy does not set it (a thin tooth is the count's)
-            rule = "" if err.param in candidate else f"--{err.param.replace('_', '-')} = {err.value}: "
+            rule = "" if err.param in candidate else f"--{err.param.replace('_', '-')} = {err.shown_value}: "
             tried.append(f"{as_flags(candidate)} is refused: {rule}{why}")
             failed.append(candidate)
             # a refusal with a remedy of its own (teeth too thin: fewer teeth) is followed too
-            following = getattr(err, "remedy", None) or {}
-            if not following or {**candidate, **following} == candidate:
-                break
-            candidate = {**candidate, **following}
+            candidate = {**candidate, **(getattr(err, "remedy", None) or {})}
             continue
         broken = bound_violations(record, bounds)
         if not broken:
@@ -231,8 +233,6 @@ def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
         tried.append(f"{as_flags(candidate)} still gives {broken[0]}"
                      + (f" and {len(broken) - 1} more" if len(broken) > 1 else ""))
         following = _remedy_of(pair, trial, record, bounds) if pair.generated is not None else {}
-        if not following or {**candidate, **following} == candidate:
-            break
         candidate = {**candidate, **following}
     return {}, tried, failed
 
@@ -325,11 +325,20 @@ def remedy_in_yaml(err) -> str:
 
     message = yaml_message(err)   # its flags already said as keys (in_file_words)
     for tried in getattr(err, "tried", None) or []:
-        message = message.replace(in_file_words(as_flags(tried)), f"overrides {{{as_keys(tried)}}}")
+        message = _whole_words(message, in_file_words(as_flags(tried)), f"overrides {{{as_keys(tried)}}}")
     # every remedy offered (an undercut may offer more than one), else the one
     for remedy in getattr(err, "remedies", None) or [r for r in [getattr(err, "remedy", None)] if r]:
-        message = message.replace(in_file_words(f"use {as_flags(remedy)}"), f"use overrides {{{as_keys(remedy)}}}")
+        message = _whole_words(message, in_file_words(f"use {as_flags(remedy)}"),
+                               f"use overrides {{{as_keys(remedy)}}}")
     return message
+
+
+def _whole_words(text: str, old: str, new: str) -> str:
+    """``text`` with ``old`` replaced by ``new`` where it is not part of a longer number or word
+    (a try of z 24 leaves z 240 alone)."""
+    import re
+
+    return re.sub(rf"(?<![\w.]){re.escape(old)}(?![\w.])", lambda _: new, text)
 
 
 def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds) -> dict:
@@ -344,8 +353,9 @@ def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds)
     clearance = float(pair.printing.printer.tooth_clearance) if pair.printing is not None else 0.0
     if "z" not in remedy:
         backlash = backlash_remedy(law, record, pair.spec.backlash_mm, bounds) - clearance
-        # teeth need some play: the printer's clearance gives it, else the design's own
-        if backlash >= (0.0 if clearance > 0 else 0.02):
+        # teeth need some play: the printer's clearance gives it, else the design's own; a
+        # backlash no smaller than the design's is no remedy (the ripple is not the play's)
+        if (0.0 if clearance > 0 else 0.02) <= round(backlash, 3) < design_backlash(design):
             return {"backlash": round(backlash, 3)}
     z = remedy.get("z", design.z + 2 * law.pinion_periods)
     teeth = {} if "z" in remedy else {"z": z}

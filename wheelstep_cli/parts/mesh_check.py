@@ -110,7 +110,11 @@ def _out_of_phase_cause(summary: dict) -> str:
     causes = [cause for found, cause in ((summary["interference"], "the teeth interfere"),
                                          (summary["contact_lost"], "the teeth lose contact (mounted too far apart?)"))
               if found]
-    return "; ".join(causes) or "it runs about a tooth pitch off the law (assembled a tooth off?)"
+    if causes:
+        return "; ".join(causes)
+    if summary["drive"]["F_i_total_um"] is None:
+        return "its transmission error could not be measured"
+    return "it runs about a tooth pitch off the law (assembled a tooth off?)"
 
 
 def meshing_lines(summary: dict) -> list[str]:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from wheelstep_cli.config.specs import MIN_TEETH
 from wheelstep_cli.errors import DesignError
 
 #: Height (mm) the typical (median) tooth may lose: the rounding of a tip land's two
@@ -23,8 +24,6 @@ MAX_LOSS = 0.2
 #: Teeth on each side of each handover corner (SPEC §3) that may lose more: they are
 #: topped to the generator's land floor by design (the pitch curve's corner narrows them).
 CORNER_TEETH = 2
-#: Fewer-teeth counts tried (1, 2, 4 ... law periods below) before the remedy's halving.
-TRIES = 6
 
 
 def two_lines(printer) -> float | None:
@@ -82,38 +81,49 @@ def require_printable_teeth(pair, printer=None) -> None:
 def fewer_teeth(pair, design, printer, width: float) -> int | None:
     """The largest tooth count below the design's (in whole law periods) whose pinion, drawn
     for ``printer`` and inset by ``pair``'s fit inset, keeps its tips under two lines
-    ``width`` mm wide; None if none is found. (The wheel, carved by that pinion, gets the
-    larger module too.) Counts 1, 2, 4 ... periods below are tried (:data:`TRIES` of them)
-    until one prints, then the largest printing count between it and the last that did not
-    is found by halving (fewer teeth print wider tips). A candidate's own fit may need a
-    few um more or less inset than ``pair``'s: the count is the one that inset leaves
-    printable."""
+    ``width`` mm wide; None if none does. (The wheel, carved by that pinion, gets the larger
+    module too.) Counts 1, 2, 4 ... periods below are tried, down to the least count, until
+    one prints or cannot be cut (it undercuts); then the counts between are halved: fewer
+    teeth print wider tips, and below the printing ones the pinion undercuts. A candidate's
+    own fit may need a few um more or less inset than ``pair``'s: the count is the one that
+    inset leaves printable."""
     periods = pair.generated.law.pinion_periods
     inset = float(getattr(pair, "inset", 0.0))
-    printing, thin = None, design.z
-    for step in (1 << k for k in range(TRIES)):
-        z = design.z - step * periods
-        if z < 6:
-            break
-        if _prints(design, z, printer, width, inset, periods):
+    state = lambda z: _printing(design, z, printer, width, inset, periods)  # noqa: E731
+    least = design.z - (design.z - MIN_TEETH) // periods * periods
+    thin, uncut, printing, step = design.z, least - periods, None, 1
+    while printing is None and thin > least:
+        z = max(design.z - step * periods, least)
+        found = state(z)
+        if found == "prints":
             printing = z
+        elif found == "thin":
+            thin = z
+        else:
+            uncut = z
             break
-        thin = z
+        step *= 2
+    while printing is None and thin - uncut > periods:
+        # the printing counts, if any, lie between the undercut ones and the thin ones
+        middle = uncut + (thin - uncut) // (2 * periods) * periods
+        found = state(middle)
+        printing, thin, uncut = ((middle, thin, uncut) if found == "prints" else
+                                 (None, middle, uncut) if found == "thin" else (None, thin, middle))
     if printing is None:
         return None
     while thin - printing > periods:
         middle = printing + (thin - printing) // (2 * periods) * periods
-        if _prints(design, middle, printer, width, inset, periods):
+        if state(middle) == "prints":
             printing = middle
         else:
             thin = middle
     return printing
 
 
-def _prints(design, z: int, printer, width: float, inset: float, periods: int) -> bool:
+def _printing(design, z: int, printer, width: float, inset: float, periods: int) -> str:
     """Whether the pinion of ``design`` with ``z`` teeth, drawn for ``printer`` and inset by
-    ``inset`` mm, keeps its tips under two lines ``width`` mm wide (False when it cannot be
-    cut at all)."""
+    ``inset`` mm, keeps its tips under two lines ``width`` mm wide: "prints", "thin", or
+    "uncut" when it cannot be cut at all (it undercuts)."""
     from wheelstep_cli.geometry.planar import offset_outline
     from wheelstep_cli.parts.gear_pair import generation_settings
     from wheelstep_cli.parts.kinds import KINDS, printed_spec
@@ -122,11 +132,11 @@ def _prints(design, z: int, printer, width: float, inset: float, periods: int) -
     try:
         outline, module = _pinion(printed)
     except DesignError:
-        return False
+        return "uncut"
     if inset:
         # a fit thins every tooth by its inset: the remedy must keep the tips after it
         outline = offset_outline(outline, -inset, "pinion", thin=generation_settings(printed).wheel_tolerance)
-    return thin_teeth(outline, module, width, periods) is None
+    return "prints" if thin_teeth(outline, module, width, periods) is None else "thin"
 
 
 def _pinion(spec) -> tuple[np.ndarray, float]:

@@ -104,8 +104,6 @@ def require_height_first(spec, printer, fmt: str, fit: bool):
     from wheelstep_cli.parts.gear_pair import footprint
     from wheelstep_cli.parts.plate_layout import gear_pair_height, require_height
 
-    from wheelstep_cli.errors import DesignError
-
     target = printer or (load_printer() if fmt in ("3mf", "both") or fit else None)
     if target is None:
         return None

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from wheelstep_cli.errors import DesignError
+from wheelstep_cli.gears.cutter_limits import PRESSURE_ANGLE_DEG
 from wheelstep_cli.gears.generation.envelope import PolarGrid, polyline_envelope
 from wheelstep_cli.gears.generation.rack import RackCutter
 from wheelstep_cli.gears.pitch_curves import PitchCurves
@@ -59,14 +60,14 @@ def undercut_remedy(cutter: RackCutter, module: float, rho: float, teeth_per_per
     """Remedy text of :func:`undercut_options` (see there)."""
     options = undercut_options(cutter, module, rho, teeth_per_period, pinion_periods)
     angle = (f"pressure angle >= {options[1]['pressure_angle']:.1f} deg" if len(options) > 1
-             else "no pressure angle up to 35 deg helps")
+             else f"no pressure angle up to {PRESSURE_ANGLE_DEG[1]:g} deg helps")
     return f"use pinion z >= {options[0]['z']} or {angle}"
 
 
 def undercut_options(cutter: RackCutter, module: float, rho: float, teeth_per_period: int,
                      pinion_periods: int) -> list[dict]:
     """The options at which the rack stops undercutting: ``[{"z": least tooth count}]`` and,
-    when a pressure angle up to 35 deg helps, ``{"pressure_angle": least, deg to 0.1}``.
+    when a pressure angle up to the cutter's greatest helps, ``{"pressure_angle": least, deg to 0.1}``.
 
     ``rho``: the pitch curve's smallest convex radius of curvature (mm). The count holds
     whether the pitch curves stay (the module shrinks as z grows) or the module stays (the
@@ -77,7 +78,7 @@ def undercut_options(cutter: RackCutter, module: float, rho: float, teeth_per_pe
     per_m = (cutter.dedendum - cutter.fillet * (1.0 - np.sin(a))) / np.sin(a) ** 2
     module_max = rho / per_m
     z_min = pinion_periods * int(np.ceil(teeth_per_period * module / module_max))
-    lo, hi = a, np.radians(35.0)
+    lo, hi = a, np.radians(PRESSURE_ANGLE_DEG[1])
     f = lambda x: (cutter.dedendum - cutter.fillet * (1 - np.sin(x))) / np.sin(x) ** 2 * module - rho
     if f(hi) > 0:
         return [{"z": z_min}]

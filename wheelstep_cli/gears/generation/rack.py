@@ -167,8 +167,11 @@ def _no_tip_land(cutter: RackCutter, module: float, pitch: float) -> DesignError
             lo, hi = (mid, hi) if _fillet_centre_x(cutter, module, pitch, mid, rho) >= 0.0 else (lo, mid)
         most_angle = np.floor(10.0 * np.degrees(lo)) / 10.0
     why = "leaves the cutter tip no flat land"
+    most = np.floor(1000.0 * most_fillet) / 1000.0
     angle_text = (f"{why} with fillet {cutter.fillet:g} x module; must be <= {most_angle:g} deg"
-                  if most_angle is not None else f"{why}; use a smaller dedendum")
+                  if most_angle is not None else
+                  f"{why} with fillet {cutter.fillet:g} x module at any pressure angle; use a fillet "
+                  f"<= {most:g} x module")
     if most_fillet < 0.0:
         # no fillet helps: the flanks lean too far for the tooth's depth
         return DesignError("pressure_angle", float(np.degrees(a)), f"{why} even without a fillet; use a "
@@ -176,8 +179,7 @@ def _no_tip_land(cutter: RackCutter, module: float, pitch: float) -> DesignError
                                cutter.dedendum, f"{why} at pressure angle {np.degrees(a):g} deg even "
                                "without a fillet; use a smaller dedendum or pressure angle")})
     return DesignError("fillet", cutter.fillet,
-                       f"{why}; must be <= {np.floor(1000.0 * most_fillet) / 1000.0:g} x module at "
-                       f"pressure angle {np.degrees(a):g} deg",
+                       f"{why}; must be <= {most:g} x module at pressure angle {np.degrees(a):g} deg",
                        alternatives={"pressure_angle": (float(np.degrees(a)), angle_text)})
 
 
