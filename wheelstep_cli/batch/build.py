@@ -10,7 +10,8 @@ import numpy as np
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.kinds import KINDS, for_printer
-from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml
+from wheelstep_cli.parts.mesh_bounds import (remedy_check, remedy_in_yaml, require_mounted_where_rolling,
+                                              require_within_bounds, verified_undercut)
 from wheelstep_cli.parts.tolerance import design_printer
 from wheelstep_cli.parts.tolerance_cli import design_pair
 
@@ -83,9 +84,6 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
 def _undercut_checked(entry: Entry, printer, build):
     """``build()``; a gear pair's undercut refusal offers only the remedies a build for
     ``printer`` found within the bounds (as ``wheelstep gears`` offers them)."""
-    from wheelstep_cli.parts.kinds import remedy_check
-    from wheelstep_cli.parts.mesh_bounds import verified_undercut
-
     try:
         return build()
     except DesignError as err:
@@ -153,8 +151,6 @@ def _refused(entry: Entry, built, result: EntryResult) -> EntryResult | None:
     """The entry refused (no parts) when its gear teeth interfere, unless it allows it: named
     for its installed distance when the pair is mounted off its rolling distance (with the
     remedy), else for its teeth."""
-    from wheelstep_cli.parts.mesh_bounds import require_mounted_where_rolling
-
     mating = result.mating
     if mating is None or not mating["interference"] or entry.allow_interference:
         return None
@@ -179,8 +175,6 @@ def _out_of_bounds(entry: Entry, built, result: EntryResult, printer) -> EntryRe
     it (with a fit, without its tooth clearance), for the remedies' builds."""
     if result.mating is None or result.mating["interference"]:
         return None
-    from wheelstep_cli.parts.kinds import remedy_check
-    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     try:

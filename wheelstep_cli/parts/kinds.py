@@ -198,22 +198,6 @@ def _gear_pair_meshing(pair) -> dict:
     return meshing_record(check_gear_pair(pair))
 
 
-def remedy_check(printer, wrap: Callable | None = None) -> Callable:
-    """``verify(design)`` -> (pair, meshing record) for a bounds refusal's remedy
-    (parts.mesh_bounds.require_within_bounds): the gear pair of ``design`` built for
-    ``printer`` as batch and ``gears`` build it, its teeth wide enough for the printer's
-    nozzle (DesignError, with its own remedy, when not), checked as written;
-    ``wrap(check, pair)`` runs the check (a progress bar) when given."""
-    from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
-    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
-
-    def verify(design):
-        trial = build_for_printer("gear-pair", design, printer)
-        require_printable_teeth(trial)
-        return trial, meshing_record(check_gear_pair(trial) if wrap is None else wrap(check_gear_pair, trial))
-    return verify
-
-
 def _shoe_fits(spec) -> None:
     """The shoe's mechanism sized and its strut socket fitted in the body, before any solid."""
     from wheelstep_cli.parts.shoe_socket import socket_fits

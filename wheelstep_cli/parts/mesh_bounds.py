@@ -107,6 +107,23 @@ def teeth_remedy(record: dict, z: int, periods: int, bounds: MeshBounds = MeshBo
 REMEDY_TRIES = 3
 
 
+def remedy_check(printer, wrap: Callable | None = None) -> Callable:
+    """``verify(design)`` -> (pair, meshing record) for a bounds refusal's remedy
+    (:func:`require_within_bounds`): the gear pair of ``design`` built for
+    ``printer`` as batch and ``gears`` build it, its teeth wide enough for the printer's
+    nozzle (DesignError, with its own remedy, when not), checked as written;
+    ``wrap(check, pair)`` runs the check (a progress bar) when given."""
+    from wheelstep_cli.parts.kinds import build_for_printer
+    from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
+
+    def verify(design):
+        trial = build_for_printer("gear-pair", design, printer)
+        require_printable_teeth(trial)
+        return trial, meshing_record(check_gear_pair(trial) if wrap is None else wrap(check_gear_pair, trial))
+    return verify
+
+
 def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
                           verify: Callable | None = None) -> None:
     """Refuse (DesignError naming the option to change) a generated pair whose meshing record

@@ -16,8 +16,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
     the gears are built, before any meshing check."""
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
-    from wheelstep_cli.parts.kinds import remedy_check
-    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+    from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds
     from wheelstep_cli.parts.mesh_check import check_gear_pair
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
     from wheelstep_cli.parts.tolerance_cli import band_pair, fit_design, fitted_pair
