@@ -11,7 +11,7 @@ from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.kinds import KINDS, for_printer
 from wheelstep_cli.parts.mesh_bounds import (remedy_check, remedy_in_yaml, require_mounted_where_rolling,
-                                              require_within_bounds, verified_undercut)
+                                              require_within_bounds, undercut_checked)
 from wheelstep_cli.parts.tolerance import design_printer
 from wheelstep_cli.parts.tolerance_cli import design_pair
 
@@ -61,9 +61,10 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
         # ``tolerance`` too (the print sheet and the plates say the parts are fitted)
         fit = _printer_fit(entry) if kind.mating_check is not None else None
         printer = entry.printer if fit is None else design_printer(entry.printer)
-        built = _undercut_checked(entry, printer, lambda: (
+        # an undercut entry is offered the remedies a build for its printer passed
+        built = undercut_checked(lambda: (
             for_printer(kind, kind.build_part(entry.printed), printer, entry.spec) if fit is None
-            else design_pair(entry.spec, entry.printer)))
+            else design_pair(entry.spec, entry.printer)), entry.spec, remedy_check(printer))
         mating = kind.mating_check(built) if kind.mating_check is not None else None
         result = EntryResult(entry.index, _parts(kind, built), _report(kind, built, mating), mating=mating)
         refused = _refused(entry, built, result) or _out_of_bounds(entry, built, result, printer)
@@ -79,17 +80,6 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
         return EntryResult(entry.index, error=remedy_in_yaml(err), param=err.param)
     except Exception as err:  # an unexpected failure must not stop the other entries
         return EntryResult(entry.index, error=f"internal error: {type(err).__name__}: {err}")
-
-
-def _undercut_checked(entry: Entry, printer, build):
-    """``build()``; a gear pair's undercut refusal offers only the remedies a build for
-    ``printer`` found within the bounds (as ``wheelstep gears`` offers them)."""
-    try:
-        return build()
-    except DesignError as err:
-        if not getattr(err, "undercut", None):
-            raise
-        raise verified_undercut(err, entry.spec, remedy_check(printer)) from None
 
 
 def _parts(kind, built) -> list[BuiltPart]:

@@ -172,6 +172,17 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     raise error
 
 
+def undercut_checked(build: Callable, design, verify: Callable):
+    """``build()``; an undercut refusal (a DesignError with ``undercut`` options) is raised as
+    :func:`verified_undercut` says it: with the remedies ``verify`` built within the bounds."""
+    try:
+        return build()
+    except DesignError as err:
+        if not getattr(err, "undercut", None):
+            raise
+        raise verified_undercut(err, design, verify) from None
+
+
 def verified_undercut(err: DesignError, design, verify: Callable,
                       bounds: MeshBounds = MeshBounds()) -> DesignError:
     """The undercut refusal ``err`` of ``design`` (its ``undercut``: the options at which the

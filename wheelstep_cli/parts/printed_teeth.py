@@ -91,33 +91,26 @@ def fewer_teeth(pair, design, printer, width: float) -> int | None:
     inset = float(getattr(pair, "inset", 0.0))
     state = lambda z: _printing(design, z, printer, width, inset, periods)  # noqa: E731
     least = design.z - (design.z - MIN_TEETH) // periods * periods
-    thin, uncut, printing, step = design.z, least - periods, None, 1
-    while printing is None and thin > least:
+    # the largest count known not to be too thin (and whether it prints; below the least, a
+    # count none), and the least known to be too thin (the design's)
+    below, prints, thin, step = least - periods, False, design.z, 1
+    while thin > least:
         z = max(design.z - step * periods, least)
         found = state(z)
-        if found == "prints":
-            printing = z
-        elif found == "thin":
-            thin = z
-        else:
-            uncut = z
+        if found != "thin":
+            below, prints = z, found == "prints"
             break
-        step *= 2
-    while printing is None and thin - uncut > periods:
-        # the printing counts, if any, lie between the undercut ones and the thin ones
-        middle = uncut + (thin - uncut) // (2 * periods) * periods
+        thin, step = z, 2 * step
+    # halved between them: the largest count that is not too thin prints, or none does
+    # (the ones below the printing counts undercut)
+    while thin - below > periods:
+        middle = below + (thin - below) // (2 * periods) * periods
         found = state(middle)
-        printing, thin, uncut = ((middle, thin, uncut) if found == "prints" else
-                                 (None, middle, uncut) if found == "thin" else (None, thin, middle))
-    if printing is None:
-        return None
-    while thin - printing > periods:
-        middle = printing + (thin - printing) // (2 * periods) * periods
-        if state(middle) == "prints":
-            printing = middle
-        else:
+        if found == "thin":
             thin = middle
-    return printing
+        else:
+            below, prints = middle, found == "prints"
+    return below if prints else None
 
 
 def _printing(design, z: int, printer, width: float, inset: float, periods: int) -> str:

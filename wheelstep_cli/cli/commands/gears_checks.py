@@ -16,7 +16,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
     the gears are built, before any meshing check."""
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
-    from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds
+    from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
     from wheelstep_cli.parts.mesh_check import check_gear_pair
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
     from wheelstep_cli.parts.tolerance_cli import band_pair, fit_design, fitted_pair
@@ -28,8 +28,8 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         # the design is checked, bounded and refused as without a fit before the search
         # spends a dozen meshing checks on it; the fit's inset is print compensation, judged
         # on the band (the written pair's own figures are the inset outlines')
-        chosen, design = _on_the_bed(lambda: _undercut_checked(lambda: fit_design(spec, printer), spec,
-                                                               remedy_check(printer, checked_remedy)),
+        chosen, design = _on_the_bed(lambda: undercut_checked(lambda: fit_design(spec, printer), spec,
+                                                              remedy_check(printer, checked_remedy)),
                                      spec, printer, True)
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
         design_verify = remedy_check(design.printing.printer, checked_remedy)
@@ -44,29 +44,14 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         require_fit_met(tolerance, **({} if tolerance["fit"].get("from", "--fit") == "--fit" else
                                       {"remedy": PROFILE_FIT_REMEDY}))
     else:
-        pair, tolerance, check = _on_the_bed(lambda: _undercut_checked(
-            lambda: band_pair(spec, printer, bool(band[0]), bed), spec, remedy_check(printer, checked_remedy)),
-            spec, printer, False)
+        verify = remedy_check(printer, checked_remedy)
+        pair, tolerance, check = _on_the_bed(lambda: undercut_checked(
+            lambda: band_pair(spec, printer, bool(band[0]), bed), spec, verify), spec, printer, False)
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
-        verify = remedy_check(printer, checked_remedy)
         record = _meshing_or_refused(show, pair, check, allow_interference, verify)
         require_within_bounds(pair, record, verify=verify)
     return pair, record, tolerance, check
-
-
-def _undercut_checked(build, spec, verify):
-    """``build()``; an undercut refusal's remedies are built and checked (``verify``) before
-    they are offered, as a bounds refusal's are."""
-    from wheelstep_cli.errors import DesignError
-    from wheelstep_cli.parts.mesh_bounds import verified_undercut
-
-    try:
-        return build()
-    except DesignError as err:
-        if not getattr(err, "undercut", None):
-            raise
-        raise verified_undercut(err, spec, verify) from None
 
 
 def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, verify=None) -> dict:
