@@ -16,7 +16,8 @@ from pydantic import BaseModel, Field, model_validator
 
 from wheelstep_cli.config.fields import STRICT, Number, Real, Whole, length, quantity
 from wheelstep_cli.errors import DesignError, require
-from wheelstep_cli.gears.cutter_limits import ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG
+from wheelstep_cli.gears.cutter_limits import (ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG,
+                                               range_text)
 
 #: Mechanism parameters (the ``mechanism:`` section of a design profile).
 MECHANISM_KEYS = ("a", "b", "c", "r_min")
@@ -44,11 +45,6 @@ MIN_MODULE = 0.1
 #: Least gear thickness (mm): a few layers of any printer; far below it the extrusion is flat
 #: and no solid.
 MIN_THICKNESS = 0.5
-
-
-def _range(bounds: tuple[float, float], unit: str) -> str:
-    """An error's limit text for a field between ``bounds`` (``must be 0..0.45 x module``)."""
-    return f"must be {bounds[0]:g}..{bounds[1]:g} {unit}"
 
 
 def paper_design_distance(center: float | None, install: float | None) -> float:
@@ -130,14 +126,14 @@ class GearPairSpec(BaseModel):
     hub_length: Optional[Number] = length(None, gt=0, le=MAX_LENGTH)  # None: 8 mm with a hub
     teeth: Teeth = Teeth.generated.value
     # generated teeth: the rack cutter's tooth form (the dedendum must also exceed the addendum)
-    pressure_angle: Number = quantity(20.0, unit="deg", limit=_range(PRESSURE_ANGLE_DEG, "deg"),
+    pressure_angle: Number = quantity(20.0, unit="deg", limit=range_text(PRESSURE_ANGLE_DEG, "deg"),
                                       ge=PRESSURE_ANGLE_DEG[0], le=PRESSURE_ANGLE_DEG[1])
-    addendum: Number = quantity(1.0, limit=_range(ADDENDUM, "x module"), ge=ADDENDUM[0], le=ADDENDUM[1])
+    addendum: Number = quantity(1.0, limit=range_text(ADDENDUM, "x module"), ge=ADDENDUM[0], le=ADDENDUM[1])
     dedendum: Number = quantity(1.25, limit=f"must be above the addendum and <= {DEDENDUM_MAX:g} x module",
                                 gt=0, le=DEDENDUM_MAX)
-    fillet: Number = quantity(0.25, limit=_range(FILLET, "x module"), ge=FILLET[0], le=FILLET[1])  # tip radius
+    fillet: Number = quantity(0.25, limit=range_text(FILLET, "x module"), ge=FILLET[0], le=FILLET[1])  # tip radius
     # the wheel's spaces below the pinion's tips
-    clearance: Number = quantity(0.25, limit=_range(CLEARANCE, "x module"), ge=CLEARANCE[0], le=CLEARANCE[1])
+    clearance: Number = quantity(0.25, limit=range_text(CLEARANCE, "x module"), ge=CLEARANCE[0], le=CLEARANCE[1])
     blend: Number = quantity(0.0, unit="deg", limit="must be 0..20 deg", ge=0, le=20)
     corner: Corner = Corner.space.value
     tilt: Number = quantity(0.6, limit="must be 0..1.5", ge=0, le=1.5)

@@ -17,3 +17,8 @@ DEDENDUM_MAX = 2.5
 FILLET = (0.0, 0.45)
 #: Tip clearance of the wheel's spaces below the pinion's tips, x module (least, greatest).
 CLEARANCE = (0.0, 1.0)
+
+
+def range_text(bounds: tuple[float, float], unit: str) -> str:
+    """A refusal's limit for a value between ``bounds`` (``must be 0..0.45 x module``)."""
+    return f"must be {bounds[0]:g}..{bounds[1]:g} {unit}"

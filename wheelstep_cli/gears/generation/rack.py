@@ -14,7 +14,8 @@ from typing import Callable
 import numpy as np
 
 from wheelstep_cli.errors import DesignError, require
-from wheelstep_cli.gears.cutter_limits import ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG
+from wheelstep_cli.gears.cutter_limits import (ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG,
+                                               range_text)
 from wheelstep_cli.gears.generation.outline import outward_sign
 
 
@@ -39,17 +40,15 @@ class RackCutter:
     def __post_init__(self) -> None:
         (a_lo, a_hi), (h_lo, h_hi) = PRESSURE_ANGLE_DEG, ADDENDUM
         require(np.radians(a_lo) <= self.pressure_angle <= np.radians(a_hi), "pressure_angle",
-                float(np.degrees(self.pressure_angle)), f"must be {a_lo:g}..{a_hi:g} deg")
-        require(h_lo <= self.addendum <= h_hi, "addendum", self.addendum,
-                f"must be {h_lo:g}..{h_hi:g} x module")
+                float(np.degrees(self.pressure_angle)), range_text(PRESSURE_ANGLE_DEG, "deg"))
+        require(h_lo <= self.addendum <= h_hi, "addendum", self.addendum, range_text(ADDENDUM, "x module"))
         require(self.addendum < self.dedendum <= DEDENDUM_MAX, "dedendum", self.dedendum,
                 f"must be > addendum ({self.addendum:g}) and <= {DEDENDUM_MAX:g} x module (tip clearance)")
-        require(FILLET[0] <= self.fillet <= FILLET[1], "fillet", self.fillet,
-                f"must be {FILLET[0]:g}..{FILLET[1]:g} x module")
+        require(FILLET[0] <= self.fillet <= FILLET[1], "fillet", self.fillet, range_text(FILLET, "x module"))
         require(np.isfinite(self.backlash) and self.backlash >= 0, "backlash", self.backlash,
                 "must be >= 0 mm")
         require(CLEARANCE[0] <= self.clearance <= CLEARANCE[1], "clearance", self.clearance,
-                f"must be {CLEARANCE[0]:g}..{CLEARANCE[1]:g} x module")
+                range_text(CLEARANCE, "x module"))
 
 
 @dataclass(frozen=True)
