@@ -148,6 +148,36 @@ def test_rows_are_written_in_point_order(tmp_path, monkeypatch):
         assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes(), name
 
 
+def test_a_ctrl_c_while_merging_keeps_every_row_as_the_sweeps(tmp_path, monkeypatch):
+    """A SIGINT while the merged results replace the old ones is held until they are recorded
+    and the merged parts removed; the merge run again on the way out (as the sweep does at
+    Ctrl-C) keeps every row, and the results stay the sweep's own for a rerun."""
+    from wheelstep_cli.batch import sweep_store
+    from wheelstep_cli.batch.sweep_store import ResultStore, owned_results, schema
+
+    monkeypatch.setattr(sweep_store, "FLUSH_ROWS", 2)     # several part files to remove
+    store = ResultStore(tmp_path, schema({"rim": "float"}), earlier=False)
+    for i in range(5):
+        store.add({"key": f"k{i}", "index": i, "command": "shoe", "p_rim": float(i),
+                   "outcome": "ok", "versions": "v", "seconds": 0.0})
+    real_replace = os.replace
+
+    def replace_then_interrupt(src, dst):
+        real_replace(src, dst)
+        if Path(dst).name == "results.parquet":
+            signal.raise_signal(signal.SIGINT)
+
+    monkeypatch.setattr(sweep_store.os, "replace", replace_then_interrupt)
+    with pytest.raises(KeyboardInterrupt):
+        store.consolidate()
+    monkeypatch.setattr(sweep_store.os, "replace", real_replace)
+    assert owned_results(tmp_path, force=False)           # recorded before the interrupt
+    assert not (tmp_path / ".sweep-parts").exists()
+    store.consolidate()
+    assert sorted(rows(tmp_path)) == [f"k{i}" for i in range(5)]
+    assert owned_results(tmp_path, force=False)
+
+
 def test_outputs_are_owned(cli, tmp_path):
     """A user's file named like an output is refused before any work (nothing written, the
     file kept); --force overwrites it; a rerun into the sweep's own folder is not refused."""

@@ -14,7 +14,10 @@ from __future__ import annotations
 
 import json
 import os
+import signal
+import threading
 import time
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterable
 
@@ -152,15 +155,39 @@ class ResultStore:
         staged_pq, staged_csv = self.out / f".{RESULTS}.tmp", self.out / f".{CSV}.tmp"
         pq.write_table(table, staged_pq)
         pcsv.write_csv(table, staged_csv)
-        os.replace(staged_pq, self.out / RESULTS)
-        os.replace(staged_csv, self.out / CSV)
-        record_outputs(self.out, (RESULTS, CSV))
-        for file in files:
-            if file.parent == self.parts:     # merged now
-                file.unlink()
-        if self.parts.is_dir() and not any(self.parts.iterdir()):
-            self.parts.rmdir()
+        # a Ctrl-C between replacing the results and recording them (or removing the merged
+        # parts) would leave results a rerun does not take as the sweep's: it waits until after
+        with interrupts_deferred():
+            os.replace(staged_pq, self.out / RESULTS)
+            os.replace(staged_csv, self.out / CSV)
+            record_outputs(self.out, (RESULTS, CSV))
+            # the results are the sweep's own now: a later consolidate merges with them
+            self.earlier = True
+            for file in files:
+                if file.parent == self.parts:     # merged now
+                    file.unlink()
+            if self.parts.is_dir() and not any(self.parts.iterdir()):
+                self.parts.rmdir()
         return self.out / RESULTS
+
+
+@contextmanager
+def interrupts_deferred():
+    """Hold a SIGINT (Ctrl-C) that arrives inside the block and raise it as
+    KeyboardInterrupt when the block ends (the main thread only: elsewhere as is)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if caught and callable(previous):         # Python's own handler raises KeyboardInterrupt
+        previous(signal.SIGINT, None)
+    elif caught and previous == signal.SIG_DFL:
+        signal.raise_signal(signal.SIGINT)
 
 
 def of_points(table, points: dict[str, int]):
