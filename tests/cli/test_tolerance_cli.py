@@ -15,6 +15,8 @@ def test_a_printer_without_a_band_is_refused_by_tolerance_and_fit(cli, tmp_path)
         result = cli("gears", "--printer", str(printer), *option, "--out", tmp_path / "out")
         line = error_line(result)
         assert "has no dimensional band: add a `band:` section" in line
+        # the printer as the user wrote it, folder and all
+        assert line.startswith(f"wheelstep: error: --printer = {printer}: ")
         assert not (tmp_path / "out").exists()
 
 

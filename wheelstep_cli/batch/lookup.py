@@ -29,7 +29,7 @@ def _load_printer(name: str, file: Path, located: LocatedYaml) -> Printer:
     if not is_printer_profile(located.data):
         raise DesignError("printer", name, "is a design profile, not a printer profile; "
                           "printer profiles: " + ", ".join(profile_names(printer=True)))
-    return printer_from_profile(profile_label(name), file, file_label(file), located)
+    return printer_from_profile(profile_label(name), file, file_label(file), located, given=name)
 
 
 def _load_design(name: str, file: Path, located: LocatedYaml):

@@ -167,6 +167,8 @@ class Printer:
     file_name: str
     sha256: str
     band: Optional[Band] = None
+    #: the name or path as the user gave it, for messages (``name`` is what outputs record)
+    given: str = ""
     chamfer: float = 0.0       # 45 deg edge chamfer of the gears' tooth faces (--chamfer default)
 
     def geometry(self) -> dict[str, float]:
@@ -243,10 +245,12 @@ def is_printer_profile(data: Any) -> bool:
     return isinstance(data, dict) and "printer" in data
 
 
-def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | None = None) -> Printer:
+def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | None = None,
+                         given: str = "") -> Printer:
     """Read and check a printer profile; every problem is reported with ``label:line``.
 
-    ``doc`` is the profile already parsed (as :func:`read_located_yaml` gives it), if it was.
+    ``doc`` is the profile already parsed (as :func:`read_located_yaml` gives it), if it was;
+    ``given``: the name or path as the user wrote it (messages; default ``name``).
     """
     if doc is None:
         try:
@@ -271,7 +275,7 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
                    elephant_foot_inset=section.elephant_foot_inset, material=material.name,
                    density=material.density, slicer=dict(profile.slicer), chamfer=section.chamfer,
                    file_name=Path(path).name, sha256=hashlib.sha256(raw).hexdigest(),
-                   band=None if profile.band is None else _band(profile.band))
+                   band=None if profile.band is None else _band(profile.band), given=given or name)
 
 
 #: The printer a command uses when none is named.

@@ -200,7 +200,7 @@ def load_printer_profile(name_or_path: str):
                           "design profile goes in --profile); printer profiles: "
                           + ", ".join(profile_names(printer=True)))
     name = Path(name_or_path).name if Path(name_or_path).suffix in (".yaml", ".yml") else name_or_path
-    return printer_from_profile(name, file, label, doc)
+    return printer_from_profile(name, file, label, doc, given=name_or_path)
 
 
 def load_printer(name: str = DEFAULT_PRINTER):

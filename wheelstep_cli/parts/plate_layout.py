@@ -45,7 +45,7 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float,
         require_height(part.name, size[2], printer, height_param, height, footprint)
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
-            raise _beyond(DesignError("printer", printer.name, problem), printer).tied_to(footprint or {})
+            raise _beyond(DesignError("printer", printer.given or printer.name, problem), printer).tied_to(footprint or {})
 
 
 def gear_pair_height(spec) -> float:

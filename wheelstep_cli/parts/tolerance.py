@@ -86,7 +86,7 @@ def require_band(printer, option: str = "printer"):
     """The printer's band; DesignError telling the user to add one when it has none (a
     printer without a band is never taken as perfect)."""
     if printer.band is None:
-        raise DesignError(option, printer.name, "has no dimensional band: add a `band:` "
+        raise DesignError(option, printer.given or printer.name, "has no dimensional band: add a `band:` "
                                                 "section (outline, hole_shrink, center_distance, mm) "
                                                 "to its profile")
     return printer.band
