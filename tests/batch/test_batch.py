@@ -355,6 +355,17 @@ def test_a_rule_tied_to_an_override_at_fault_is_not_reported_again(cli, tmp_path
     assert [line.split("parts[0].overrides.", 1)[1] for line in lines] == expect
 
 
+def test_a_turns_at_fault_is_not_followed_by_its_sectors_rule(cli, tmp_path):
+    """turns: 3 is named once; the sectors rule of z (z*n/4 whole) is not said of a turns
+    that has no law."""
+    batch = write(tmp_path / "bad.yaml", VALID_ENTRY + "    overrides: {turns: 3}\n")
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    assert result.stderr.strip().splitlines() == [
+        f"wheelstep: error: {batch}:{line_of(batch, 'turns')}: parts[0].overrides.turns = 3: must be 2 "
+        "(balanced pinion) or 4 (one pinion turn per shoe)"]
+
+
 @pytest.mark.parametrize("file, text, replaced, expect", [
     ("wobbly.yaml", "printer:\n  technology: fdm\n  bed: [200, 200]\n  tooth_clearance: -0.1\n"
      "material:\n  density: 1.2\n", "fdm-0.4-pla",

@@ -226,6 +226,10 @@ def _gear_pair_clearance(spec, extra: float) -> dict:
 def _sectors(spec) -> None:
     from wheelstep_cli.gears.sectors import sectors_per_quarter
 
+    try:
+        spec.law()
+    except DesignError:
+        return      # no law to cut sectors of: the law's own check names what is wrong (turns)
     sectors_per_quarter(spec.z, spec.turns)
 
 
