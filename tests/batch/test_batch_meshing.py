@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import re
+from pathlib import Path
 
 from tests.helpers.files import SMALL_BATCH, line_of, write
 
@@ -131,5 +132,24 @@ def test_an_undercut_entry_is_offered_only_a_remedy_a_build_for_its_printer_pass
     assert found and "pinion z >=" not in result.stderr, result.stderr
     remedy = dict(pair.split(": ") for pair in found.group(1).split(", "))
     fixed = entry.replace("      z: 12\n", "".join(f"      {k}: {v}\n" for k, v in remedy.items()))
+    applied = cli("batch", write(tmp_path / "fixed.yaml", fixed), "--out", tmp_path / "fixed", "--jobs", "1")
+    assert applied.exit_code == 0, applied.stderr
+
+
+def test_no_backlash_on_a_printer_without_clearance_gets_the_play_remedy_that_builds(cli, tmp_path):
+    """backlash: 0 drawn for a printer that adds no tooth clearance: rigid teeth with no play
+    interfere by micrometres. The entry is refused at its backlash line with the backlash a
+    build for that printer found to mesh, as an override key; applied, it is built."""
+    printer = write(tmp_path / "exact.yaml", (Path(__file__).resolve().parents[2] / "profiles"
+                                              / "fdm-0.4-pla.yaml").read_text().replace(
+        "tooth_clearance: 0.15", "tooth_clearance: 0"))
+    entry = f"parts:\n  - name: rigid\n    kind: gear-pair\n    printer: {printer}\n    overrides:\n      backlash: 0\n"
+    batch = write(tmp_path / "b.yaml", entry)
+    result = cli("batch", batch, "--out", tmp_path / "out", "--jobs", "1")
+    assert result.exit_code == 1
+    found = re.search(r"rigid \(.*:6\): backlash = 0: the teeth interfere at .* rigid teeth no play; "
+                      r".*use overrides \{backlash: ([0-9.]+)\}", result.stderr)
+    assert found, result.stderr
+    fixed = entry.replace("backlash: 0\n", f"backlash: {found.group(1)}\n")
     applied = cli("batch", write(tmp_path / "fixed.yaml", fixed), "--out", tmp_path / "fixed", "--jobs", "1")
     assert applied.exit_code == 0, applied.stderr

@@ -11,7 +11,8 @@ from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.kinds import KINDS, for_printer
 from wheelstep_cli.parts.mesh_bounds import (remedy_check, remedy_in_yaml, require_mounted_where_rolling,
-                                              require_within_bounds, undercut_checked)
+                                              require_play_that_clears, require_within_bounds,
+                                              undercut_checked)
 from wheelstep_cli.parts.tolerance import design_printer
 from wheelstep_cli.parts.tolerance_cli import design_pair
 
@@ -67,7 +68,7 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
             else design_pair(entry.spec, entry.printer)), entry.spec, remedy_check(printer))
         mating = kind.mating_check(built) if kind.mating_check is not None else None
         result = EntryResult(entry.index, _parts(kind, built), _report(kind, built, mating), mating=mating)
-        refused = _refused(entry, built, result) or _out_of_bounds(entry, built, result, printer)
+        refused = _refused(entry, built, result, printer) or _out_of_bounds(entry, built, result, printer)
         if refused is not None:
             return refused
         if fit is not None:
@@ -137,10 +138,11 @@ def _checks(check) -> dict[str, bool]:
             "volume_matches_outline": check.volume_error < 1e-3}
 
 
-def _refused(entry: Entry, built, result: EntryResult) -> EntryResult | None:
+def _refused(entry: Entry, built, result: EntryResult, printer) -> EntryResult | None:
     """The entry refused (no parts) when its gear teeth interfere, unless it allows it: named
-    for its installed distance when the pair is mounted off its rolling distance (with the
-    remedy), else for its teeth."""
+    for its installed distance when the pair is mounted off its rolling distance, or for a
+    backlash set too small for any play (each with its remedy, built for ``printer``), else
+    for its teeth."""
     mating = result.mating
     if mating is None or not mating["interference"] or entry.allow_interference:
         return None
@@ -148,8 +150,9 @@ def _refused(entry: Entry, built, result: EntryResult) -> EntryResult | None:
                  f"at {mating['distance_mm']:g} mm (max overlap {mating['max_overlap_area_mm2']:.3f} mm2)")
     try:
         require_mounted_where_rolling(built, interfere)
+        require_play_that_clears(built, mating, interfere, remedy_check(printer))
     except DesignError as err:
-        err = err.for_given(entry.overrides)     # the override that moved the distance
+        err = err.for_given(entry.overrides)     # the override that moved the distance or the play
         return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
                            param=err.param, mating=mating)
     printed = entry.printed
