@@ -227,3 +227,22 @@ def test_a_cutter_tip_with_no_land_names_the_option_given_and_a_limit_that_appli
     most = line.split("must be <= ")[1].split(" ")[0]
     result = cli("gears", *with_remedy(given, [named, most]), "--format", "stl", "--dry-run")
     assert result.exit_code == 0, result.stderr
+
+
+def test_more_teeth_on_a_given_module_keep_the_size_asked_for_and_the_bed(cli, tmp_path):
+    """--module 4 --z 24 meshes outside the bounds. More teeth on module 4 would outgrow the
+    bed (the module sizes the pair with the count), so the remedy makes the teeth finer in
+    step: the same centre distance; applied, the pair is written, on the default printer's bed."""
+    result = cli("gears", "--z", "24", "--module", "4", "--out", tmp_path / "out")
+    line = error_line(result)
+    assert result.exit_code == 2 and line.startswith("wheelstep: error: --z = 24: the pair would mesh "
+                                                     "outside the bounds"), line
+    remedy = line.rsplit("; use ", 1)[1].split()
+    options = dict(zip(remedy[::2], map(float, remedy[1::2])))
+    assert options["--z"] > 24 and options["--module"] == pytest.approx(4 * 24 / options["--z"], abs=1e-3)
+    out = tmp_path / "fixed"
+    written = cli("gears", *with_remedy(["--z", "24", "--module", "4"], remedy), "--out", out)
+    assert written.exit_code == 0, written.stderr
+    report = json.loads((out / "gears.json").read_text())
+    assert bound_violations(report["meshing"]) == []
+    assert (out / "gears-1.3mf").exists()

@@ -104,7 +104,7 @@ def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what
     assert ("no remedy found (--z 40 still gives drive flank F'i 18.00 um > 15 um; --z 48 still "
             "gives drive flank F'i 18.00 um > 15 um; --z 58 still gives drive flank F'i 18.00 um "
             "> 15 um): change the mechanism") in error.limit
-    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml
+    from wheelstep_cli.config.names import remedy_in_yaml
 
     # a batch file states the tries as its override keys
     assert "no remedy found (overrides {z: 40} still gives" in remedy_in_yaml(error)
@@ -148,7 +148,7 @@ def test_a_remedy_already_tried_is_not_built_again():
 def test_a_batch_remedy_said_as_keys_leaves_longer_numbers_alone():
     """A tried z 24 is said as the entry's keys without touching z 240 elsewhere in the line."""
     from wheelstep_cli.errors import DesignError
-    from wheelstep_cli.parts.mesh_bounds import remedy_in_yaml
+    from wheelstep_cli.config.names import remedy_in_yaml
 
     error = DesignError("z", 20, "no remedy found (--z 24 still gives F'i 20 um; the limit is --z 240)")
     error.tried = [{"z": 24}]
@@ -180,3 +180,18 @@ def test_fewer_teeth_finds_the_largest_count_that_prints(monkeypatch, z, periods
     monkeypatch.setattr(printed_teeth, "_printing", state)
     pair = SimpleNamespace(generated=SimpleNamespace(law=SimpleNamespace(pinion_periods=periods)), inset=0.0)
     assert printed_teeth.fewer_teeth(pair, SimpleNamespace(z=z), None, 0.8) == expect
+
+
+def test_a_remedy_the_plates_bed_cannot_hold_is_refused_before_its_meshing_check():
+    """A remedy's build laid out on a printer's bed must fit it: z 48 on module 4 (a centre
+    distance of about 290 mm) is refused naming the bed; without a bed to fit it is checked."""
+    from wheelstep_cli.config.profiles import load_printer
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.mesh_bounds import remedy_check
+
+    printer = load_printer("fdm-0.4-pla")
+    design = GearPairSpec(z=48, module=4.0)
+    with pytest.raises(DesignError, match="does not fit the bed of printer 'fdm-0.4-pla'"):
+        remedy_check(printer, bed=printer)(design)
+    pair, record = remedy_check(printer)(design)
+    assert record["samples"] >= 1536 and pair.wheel.bounds[1][0] - pair.wheel.bounds[0][0] > 246

@@ -8,9 +8,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from wheelstep_cli.batch.plan import Entry
+from wheelstep_cli.config.names import remedy_in_yaml
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.kinds import KINDS, for_printer
-from wheelstep_cli.parts.mesh_bounds import (remedy_check, remedy_in_yaml, require_mounted_where_rolling,
+from wheelstep_cli.parts.mesh_bounds import (remedy_check, require_mounted_where_rolling,
                                               require_play_that_clears, require_within_bounds,
                                               undercut_checked)
 from wheelstep_cli.parts.tolerance import design_printer
@@ -65,7 +66,7 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
         # an undercut entry is offered the remedies a build for its printer passed
         built = undercut_checked(lambda: (
             for_printer(kind, kind.build_part(entry.printed), printer, entry.spec) if fit is None
-            else design_pair(entry.spec, entry.printer)), entry.spec, remedy_check(printer))
+            else design_pair(entry.spec, entry.printer)), entry.spec, remedy_check(printer, bed=printer))
         mating = kind.mating_check(built) if kind.mating_check is not None else None
         result = EntryResult(entry.index, _parts(kind, built), _report(kind, built, mating), mating=mating)
         refused = _refused(entry, built, result, printer) or _out_of_bounds(entry, built, result, printer)
@@ -150,7 +151,7 @@ def _refused(entry: Entry, built, result: EntryResult, printer) -> EntryResult |
                  f"at {mating['distance_mm']:g} mm (max overlap {mating['max_overlap_area_mm2']:.3f} mm2)")
     try:
         require_mounted_where_rolling(built, interfere)
-        require_play_that_clears(built, mating, interfere, remedy_check(printer))
+        require_play_that_clears(built, mating, interfere, remedy_check(printer, bed=printer))
     except DesignError as err:
         err = err.for_given(entry.overrides)     # the override that moved the distance or the play
         return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
@@ -171,7 +172,7 @@ def _out_of_bounds(entry: Entry, built, result: EntryResult, printer) -> EntryRe
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     try:
-        require_within_bounds(built, result.mating, verify=remedy_check(printer))
+        require_within_bounds(built, result.mating, verify=remedy_check(printer, bed=printer))
         require_printable_teeth(built, printer)
     except DesignError as err:
         return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),

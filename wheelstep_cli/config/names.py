@@ -67,3 +67,23 @@ def _file_keys() -> frozenset[str]:
 
 #: Keys of a batch entry that a design profile does not have.
 _BATCH_ONLY = frozenset({"printer", "allow_interference"})
+
+
+def remedy_in_yaml(err) -> str:
+    """A refusal with checked remedies (``require_within_bounds`` and ``verified_undercut`` of
+    parts.mesh_bounds) as a batch file states it: each remedy as the entry's override keys (``z: 90, backlash:
+    0.239``), not as flags; any other refusal as :func:`yaml_message` words it."""
+    message = yaml_message(err)   # its flags already said as keys (in_file_words)
+    for tried in getattr(err, "tried", None) or []:
+        message = _whole_words(message, in_file_words(as_flags(tried)), f"overrides {{{as_keys(tried)}}}")
+    # every remedy offered (an undercut may offer more than one), else the one
+    for remedy in getattr(err, "remedies", None) or [r for r in [getattr(err, "remedy", None)] if r]:
+        message = _whole_words(message, in_file_words(f"use {as_flags(remedy)}"),
+                               f"use overrides {{{as_keys(remedy)}}}")
+    return message
+
+
+def _whole_words(text: str, old: str, new: str) -> str:
+    """``text`` with ``old`` replaced by ``new`` where it is not part of a longer number or word
+    (a try of z 24 leaves z 240 alone)."""
+    return re.sub(rf"(?<![\w.]){re.escape(old)}(?![\w.])", lambda _: new, text)

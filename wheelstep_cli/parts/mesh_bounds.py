@@ -13,7 +13,7 @@ from typing import Callable
 
 import numpy as np
 
-from wheelstep_cli.config.names import as_flags, as_keys
+from wheelstep_cli.config.names import as_flags
 from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH
 from wheelstep_cli.errors import DesignError
 
@@ -107,18 +107,24 @@ def teeth_remedy(record: dict, z: int, periods: int, bounds: MeshBounds = MeshBo
 REMEDY_TRIES = 3
 
 
-def remedy_check(printer, wrap: Callable | None = None) -> Callable:
+def remedy_check(printer, wrap: Callable | None = None, bed=None) -> Callable:
     """``verify(design)`` -> (pair, meshing record) for a bounds refusal's remedy
     (:func:`require_within_bounds`): the gear pair of ``design`` built for
     ``printer`` as batch and ``gears`` build it, its teeth wide enough for the printer's
-    nozzle (DesignError, with its own remedy, when not), checked as written;
+    nozzle and, when the pair is laid out on the ``bed`` of a printer, both gears on that
+    bed (DesignError, with its own remedy if any, when not), checked as written;
     ``wrap(check, pair)`` runs the check (a progress bar) when given."""
+    from wheelstep_cli.parts.gear_pair import footprint
     from wheelstep_cli.parts.kinds import build_for_printer
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
+    from wheelstep_cli.parts.plate_layout import require_on_bed
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     def verify(design):
         trial = build_for_printer("gear-pair", design, printer)
+        if bed is not None:     # a remedy the plate cannot hold is no remedy
+            require_on_bed([trial.pinion, trial.wheel], bed, "thickness", trial.spec.thickness,
+                           footprint(trial.spec))
         require_printable_teeth(trial)
         return trial, meshing_record(check_gear_pair(trial) if wrap is None else wrap(check_gear_pair, trial))
     return verify
@@ -155,10 +161,10 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     if remedy:
         advice = f"use {as_flags(remedy)}"
     elif tried:
-        advice = f"no remedy found ({'; '.join(tried)}): change {law} or the centre distance"
+        advice = f"no remedy found ({'; '.join(tried)}): change {law} or {_size_option(design)}"
     else:
-        advice = (f"no tooth count up to {MAX_TEETH} brings it within them: change {law} or the "
-                  "centre distance")
+        advice = (f"no tooth count up to {MAX_TEETH} brings it within them: change {law} or "
+                  f"{_size_option(design)}")
     error = DesignError(param, value,
                         f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
                         f"written; {advice}")
@@ -201,7 +207,7 @@ def verified_undercut(err: DesignError, design, verify: Callable,
     unchecked = err.limit[len(cause):]
     law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
     advice = "; " + (" or ".join(f"use {as_flags(remedy)}" for remedy in offered) if offered
-                     else f"no remedy found ({'; '.join(tried)}): change {law} or the centre distance")
+                     else f"no remedy found ({'; '.join(tried)}): change {law} or {_size_option(design)}")
     # the inputs sharing the blame state the rule with the checked remedies too
     alternatives = {name: (value, text.replace(unchecked, advice)) for name, (value, text) in err.alternatives.items()}
     checked = DesignError(err.param, err.value, cause + advice, alternatives)
@@ -209,6 +215,12 @@ def verified_undercut(err: DesignError, design, verify: Callable,
     checked.remedies = offered
     checked.tried = failed    # the remedies built and found wanting, for a batch file's keys
     return checked
+
+
+def _size_option(design) -> str:
+    """What sizes the pair: the module when the user gave one (the centre distance is then
+    solved for it and cannot be given with it), else the centre distance."""
+    return "the centre distance" if design.module is None else "--module"
 
 
 def _broken(record: dict, bounds: MeshBounds) -> list[str]:
@@ -228,7 +240,13 @@ def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
             remedy["z"] = min(MAX_TEETH, teeth_remedy(record, design.z, periods, bounds, squared=True))
     if any("ripple" in text for text in broken):
         remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
-    return _within_the_tooth_limit(design, remedy)
+    remedy = _within_the_tooth_limit(design, remedy)
+    if "z" in remedy and design.module is not None:
+        # a module the user gave sizes the pair with the count (the centre distance is solved
+        # for it): more teeth on the same module outgrow the pair asked for, so the remedy keeps
+        # that size and makes the teeth finer in step
+        remedy["module"] = round(float(design.module) * design.z / remedy["z"], 3)
+    return remedy
 
 
 def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
@@ -343,30 +361,6 @@ def require_play_that_clears(pair, record: dict, failure: str, verify: Callable,
                                 "(--allow-interference writes them anyway)")
             error.remedy = remedy
             raise error
-
-
-def remedy_in_yaml(err) -> str:
-    """A refusal with checked remedies (:func:`require_within_bounds`, :func:`verified_undercut`)
-    as a batch file states it: each remedy as the entry's override keys (``z: 90, backlash:
-    0.239``), not as flags; any other refusal as :func:`yaml_message` words it."""
-    from wheelstep_cli.config.names import in_file_words, yaml_message
-
-    message = yaml_message(err)   # its flags already said as keys (in_file_words)
-    for tried in getattr(err, "tried", None) or []:
-        message = _whole_words(message, in_file_words(as_flags(tried)), f"overrides {{{as_keys(tried)}}}")
-    # every remedy offered (an undercut may offer more than one), else the one
-    for remedy in getattr(err, "remedies", None) or [r for r in [getattr(err, "remedy", None)] if r]:
-        message = _whole_words(message, in_file_words(f"use {as_flags(remedy)}"),
-                               f"use overrides {{{as_keys(remedy)}}}")
-    return message
-
-
-def _whole_words(text: str, old: str, new: str) -> str:
-    """``text`` with ``old`` replaced by ``new`` where it is not part of a longer number or word
-    (a try of z 24 leaves z 240 alone)."""
-    import re
-
-    return re.sub(rf"(?<![\w.]){re.escape(old)}(?![\w.])", lambda _: new, text)
 
 
 def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds) -> dict:

@@ -29,10 +29,10 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         # spends a dozen meshing checks on it; the fit's inset is print compensation, judged
         # on the band (the written pair's own figures are the inset outlines')
         chosen, design = _on_the_bed(lambda: undercut_checked(lambda: fit_design(spec, printer), spec,
-                                                              remedy_check(printer, checked_remedy)),
+                                                              remedy_check(printer, checked_remedy, bed)),
                                      spec, printer, True)
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
-        design_verify = remedy_check(design.printing.printer, checked_remedy)
+        design_verify = remedy_check(design.printing.printer, checked_remedy, bed)
         design_record = _meshing_or_refused(show, design, design_check, allow_interference, design_verify)
         require_within_bounds(design, design_record, verify=design_verify)
         require_printable_teeth(design)
@@ -44,7 +44,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         require_fit_met(tolerance, **({} if tolerance["fit"].get("from", "--fit") == "--fit" else
                                       {"remedy": PROFILE_FIT_REMEDY}))
     else:
-        verify = remedy_check(printer, checked_remedy)
+        verify = remedy_check(printer, checked_remedy, bed)
         pair, tolerance, check = _on_the_bed(lambda: undercut_checked(
             lambda: band_pair(spec, printer, bool(band[0]), bed), spec, verify), spec, printer, False)
         if check is None:
