@@ -34,6 +34,9 @@ def _printer(tmp_path, replaced: str, by: str):
      "slicer.fill_density = 30: must be at most 100% (a number without % is a fraction: 0.3 is 30 %)"),
     ("  layer_height: 0.2\n", "  layer_height: 5\n", "layer_height: 5",
      "slicer.layer_height = 5: must be at most the nozzle diameter (0.4 mm, nozzle_diameter)"),
+    # a nozzle of 0 lays down nothing: named itself, not the layers it is thinner than
+    ("  nozzle_diameter: 0.4\n", "  nozzle_diameter: 0\n", "nozzle_diameter",
+     "slicer.nozzle_diameter = 0: must be > 0 mm"),
     ("  first_layer_height: 0.2\n", "  first_layer_height: 75%\n", "75%",
      "slicer.first_layer_height = '75%': must be a number"),
     ("  perimeters: 3\n", "  perimters: 3\n", "perimters",

@@ -94,6 +94,8 @@ def _cross_rules(settings: dict[str, Any], technology: str) -> list[tuple[str, s
     nozzle = plain(settings.get("nozzle_diameter", 0.4))
     if not nozzle:
         return []
+    if float(nozzle[0]) <= 0.0:      # the slicer's range starts at 0, which lays down nothing
+        return [("nozzle_diameter", f"= {show(settings['nozzle_diameter'])}: must be > 0 mm")]
     problems = []
     for key in ("layer_height", "first_layer_height"):
         layer = plain(settings.get(key))
