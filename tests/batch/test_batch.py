@@ -347,6 +347,9 @@ def test_an_entrys_law_csv_is_found_beside_the_batch_file(tmp_path, monkeypatch)
     # b's rule ties c: checked again without c, the design's c must not be blamed on b
     ("      c: -5\n      b: 100\n", ["c = -5: must be > 0 mm"]),
     ("      b: -5\n      c: 100\n", ["b = -5: must be >= 0 mm"]),
+    # a field rule (width) and a mechanism rule (a) at fault together: both, in file order
+    ("      width: -3\n      a: -5\n", ["width = -3: must be > 0 mm", "a = -5: must be > 0 mm"]),
+    ("      a: -5\n      width: -3\n", ["a = -5: must be > 0 mm", "width = -3: must be > 0 mm"]),
 ])
 def test_a_rule_tied_to_an_override_at_fault_is_not_reported_again(cli, tmp_path, overrides, expect):
     batch = write(tmp_path / "bad.yaml", VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n"

@@ -134,6 +134,7 @@ def _clean(doc: LocatedYaml, path: tuple, model, bad: set) -> dict:
 def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issue]) -> Entry | None:
     """Check one entry of ``parts`` (with the defaults); returns an Entry or None (issues appended)."""
     doc, path, before = check.doc, ("parts", index), len(issues)
+    first = before
 
     def given(key):  # the entry's value, else the default's, and where it was written
         own = getattr(entry, key)
@@ -159,19 +160,32 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
         # an entry's law CSV beside the batch file first, as its profiles are
         overrides["law_csv"] = beside(check.profiles.folder, overrides["law_csv"])
     override_where: dict[str, str] = {}
+    faulty: set[str] = set()
     if kind is not None:
-        override_where = _check_overrides(doc, path, kind, overrides, issues)
+        counted = len(issues)
+        override_where, faulty = _check_overrides(doc, path, kind, overrides, issues)
+        before += len(issues) - counted
     allow = _allow_interference(doc, path, kind, entry, issues)
     flawed = any(loc[:2] == path for loc in check.bad)
     if len(issues) > before or flawed or kind is None or printer is None or design is None:
         return None
-    spec, printed, problems = _every_problem(kind, design[0], overrides, printer)
+    # the overrides a field rule refused are left out, so the rules of the others (the
+    # mechanism's, the kind's) are found in the same run
+    kept = {key: value for key, value in overrides.items() if key not in faulty}
+    spec, printed, problems = _every_problem(kind, design[0], kept, printer)
     for err in problems:
-        issues.append(_problem(doc, path, err, override_where, design_name, overrides))
-    if problems:
+        issues.append(_problem(doc, path, err, override_where, design_name, kept))
+    if problems or faulty:
+        issues[first:] = sorted(issues[first:], key=_line)     # the entry's problems in file order
         return None
     return Entry(index, name, kind.name, design_name, quantity, printer, overrides, spec, printed,
                  doc.where(path), override_where, allow)
+
+
+def _line(issue: Issue) -> int:
+    """The line of an issue's ``file:line`` (0 when it names none)."""
+    line = issue.where.rsplit(":", 1)[-1]
+    return int(line) if line.isdigit() else 0
 
 
 def _allow_interference(doc, path, kind: PartKind | None, entry: BatchEntry, issues: list[Issue]) -> bool:
@@ -208,15 +222,20 @@ def _name(check: _Check, path: tuple, index: int, entry: BatchEntry, kind_name, 
     return name
 
 
-def _check_overrides(doc, path, kind: PartKind, overrides: dict, issues: list[Issue]) -> dict[str, str]:
-    """Check the overrides against the kind's spec; returns the line of each of its keys."""
+def _check_overrides(doc, path, kind: PartKind, overrides: dict, issues: list[Issue]
+                     ) -> tuple[dict[str, str], set[str]]:
+    """Check the overrides against the kind's spec fields; returns the line of each of its
+    keys and the keys found at fault (one issue each, appended)."""
     at = path + ("overrides",)
     model = section_model(kind.spec_type())
+    faulty: set[str] = set()
     try:
         model.model_validate(overrides)
     except ValidationError as err:
-        issues.extend(issue for _, issue in located_issues(model, doc, at, err))
-    return {key: doc.where(at + (key,)) for key in overrides if key in model.model_fields}
+        for loc, issue in located_issues(model, doc, at, err):
+            issues.append(issue)
+            faulty.add(loc[len(at)] if len(loc) > len(at) else None)
+    return {key: doc.where(at + (key,)) for key in overrides if key in model.model_fields}, faulty
 
 
 def _every_problem(kind: PartKind, design, overrides: dict, printer: Printer):
