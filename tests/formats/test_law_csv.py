@@ -64,3 +64,31 @@ def test_rows_that_are_no_period_are_refused_naming_the_lines(cli, tmp_path, cha
     path = _write(tmp_path, change(list(ROWS)))
     found = error_line(cli("gears", "--law-csv", path, "--dry-run", "--out", tmp_path / "out"))
     assert found.startswith(f"wheelstep: error: --law-csv = {path}: {why}"), found
+
+
+def _seventh(decimals: int, last_driving: float | None = None) -> list[str]:
+    """A law over 360/7 deg of the driving angle (k = 7) written to ``decimals`` decimals."""
+    period = 360.0 / 7.0
+    driving = np.linspace(0.0, period, 37)
+    driven = 3.5 * driving + 2.0 * np.sin(2.0 * np.pi * driving / period)
+    if last_driving is not None:
+        driving[-1] = last_driving
+    return [f"{a:.{decimals}f},{b:.{decimals}f}" for a, b in zip(driving, driven)]
+
+
+def test_a_period_rounded_to_the_decimals_written_is_one_period(tmp_path):
+    """360/7 deg written to 2 decimals spans 51.43 deg: within the decimals written it is one
+    period, so the law is read with the exact period and matches the finely written one."""
+    coarse = read_law_csv(_write(tmp_path, _seventh(2)))
+    fine = read_law_csv(_write(tmp_path, _seventh(9)))
+    assert coarse.theta_period == pytest.approx(2.0 * np.pi / 7.0, abs=1e-15)
+    assert coarse.phi_period == pytest.approx(np.pi, abs=1e-15)
+    theta = np.linspace(0.0, 2.0 * np.pi / 7.0, 11)
+    # within the rounding: 0.005 deg of driven angle, and 0.005 deg of driving at a ratio of 3.5
+    rounding = np.radians(0.005 + 3.5 * 0.005)
+    assert np.max(np.abs(coarse.carrier_angle(theta) - fine.carrier_angle(theta))) < rounding
+
+
+def test_a_span_off_by_more_than_its_decimals_is_still_refused(tmp_path):
+    with pytest.raises(DesignError, match="the driving angle spans 51.45 deg from line 2 to line 38"):
+        read_law_csv(_write(tmp_path, _seventh(2, last_driving=51.45)))

@@ -43,7 +43,7 @@ def read_law_csv(path, param: str = "law_csv"):
         text = data.decode("utf-8-sig").replace("\x1a", "")   # a spreadsheet's BOM, an old end-of-file mark
     except UnicodeDecodeError:
         raise DesignError(param, str(path), "is not UTF-8 text") from None
-    rows, lines = [], []
+    rows, lines, written = [], [], []
     for number, line in enumerate(text.splitlines(), start=1):
         cells = [c.strip() for c in line.replace(";", ",").split(",")]
         while cells and not cells[-1]:
@@ -60,10 +60,35 @@ def read_law_csv(path, param: str = "law_csv"):
         if row is not None:
             rows.append(row)
             lines.append(number)
+            written.append(cells)
     require(len(rows) >= 8, param, str(path), "needs at least 8 numeric rows 'driving_deg, driven_deg'")
     data = np.array(rows)
+    _period_as_written(data, written[0], written[-1])
     _require_period(data, lines, param, str(path))
     return law_from_samples(data[:, 0], data[:, 1], param)
+
+
+def _period_as_written(data: np.ndarray, first: list[str], last: list[str]) -> None:
+    """Set each column's last row (deg) to exactly one period (360/k deg, k whole) past its
+    first where the span the rows give is that period to the decimals they are written with
+    (360/7 written to 2 decimals spans 51.43 deg): the period of closed gears is exact, a
+    rounded span is not. A span farther off is left for :func:`_require_period` to refuse."""
+    for column in range(2):
+        span = float(data[-1, column] - data[0, column])
+        if span <= 0.0:
+            continue
+        k = max(1, round(360.0 / span))
+        # half a unit of the last written decimal of each end
+        slack = 0.5 * (_written_step(first[column]) + _written_step(last[column]))
+        if abs(span - 360.0 / k) <= slack:
+            data[-1, column] = data[0, column] + 360.0 / k
+
+
+def _written_step(cell: str) -> float:
+    """The unit of the last decimal a plain number is written to (deg): '51.43' -> 0.01."""
+    from decimal import Decimal
+
+    return 10.0 ** int(Decimal(cell).as_tuple().exponent)
 
 
 def _require_period(data: np.ndarray, lines: list[int], param: str, path: str) -> None:
