@@ -19,6 +19,7 @@ import pytest
 
 from tests.helpers.clicheck import error_line
 from tests.helpers.files import SMALL_BATCH, write
+from wheelstep_cli.cli.commands.sweep import _BEST_FILES
 
 # cheap shoes (desk-demo, narrow); socket_depth 60 is deeper than the body: a refused point
 SHOES = """\
@@ -536,6 +537,7 @@ def test_keep_best_writes_the_best_designs(cli, tmp_path):
         record = json.loads((folder / ".wheelstep-shoe.json").read_text())
         stls = list(folder.glob("*.stl"))
         assert stls and all(p.name in json.dumps(record) for p in stls)   # the shoe command's files
+        assert set(_BEST_FILES["shoe"]) <= set(record["files"])     # those checked before the run
     assert not (tmp_path / "out" / "best-3").exists()
     assert ok[0]["p_rim"] == 10.0        # the smallest body is the best of both objectives
     # a rerun keeping fewer removes the earlier run's files beyond them; a user's file stays
@@ -555,6 +557,24 @@ def test_keep_best_writes_the_best_designs(cli, tmp_path):
     assert [p.name for p in (tmp_path / "out" / "best-2").iterdir()] == ["notes.txt"]
     assert cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "-q").exit_code == 0
     assert not (tmp_path / "out" / "best-1").exists()
+
+
+def test_a_users_file_where_a_best_design_goes_is_refused_before_the_run(cli, tmp_path):
+    """--keep best:2 with a user's shoe.json in OUT/best-2: refused before any design is
+    computed (it was found once the whole sweep was done), dry run or not; --force overwrites."""
+    sweep = write(tmp_path / "shoes.yaml", SHOES + "objectives: [volume_mm3, mass_g]\n")
+    mine = tmp_path / "out" / "best-2" / "shoe.json"
+    mine.parent.mkdir(parents=True)
+    mine.write_text("mine")
+    for extra in ([], ["--dry-run"]):
+        result = cli("sweep", sweep, "--out", tmp_path / "out", "--keep", "best:2", *extra)
+        assert error_line(result) == (f"wheelstep: error: --out = {mine.parent}: shoe.json there exists and "
+                                      "was not written by this command: it is kept; move it away or give "
+                                      "--force to overwrite it")
+        assert result.exit_code == 2 and not (tmp_path / "out" / "results.parquet").exists()
+    assert mine.read_text() == "mine"
+    dry = cli("sweep", sweep, "--out", tmp_path / "out", "--keep", "best:2", "--dry-run", "--force")
+    assert dry.exit_code == 0, dry.stderr
 
 
 def test_batch_on_the_scheduler(cli, tmp_path, cluster):

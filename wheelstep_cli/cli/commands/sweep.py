@@ -60,6 +60,7 @@ def sweep(
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
     earlier = owned_results(out, force)     # a user's file among the outputs: refused here
+    _best_collisions_first(out, plan.command, best, show, force)
     _require_ranking(best, plan, show)      # (after it: a refused run prints its one line only)
     if dry_run:
         _dry_run(plan, file, out, show, (earlier, best))
@@ -136,6 +137,21 @@ def _require_ranking(best: int, plan, show: Output) -> None:
                           + why)
     show.warning(f"wheelstep: warning: pareto.png plots {' against '.join(plan.objectives)}, and {why}: "
                  "it will show no design (results.csv holds the volumes)")
+
+
+#: The files every best design of a command writes, whatever the design (its plates' names
+#: depend on how many the design needs).
+_BEST_FILES = {"gears": ("pinion.stl", "wheel.stl", "gears.json"),
+               "shoe": ("shoe.stl", "shoe.json", "shoe-profile.csv")}
+
+
+def _best_collisions_first(out: Path, command: str, count: int, show: Output, force: bool) -> None:
+    """Before any design is computed, refuse a user's file in a best-K folder where each best
+    design's files go (the folders are filled once the whole sweep is done)."""
+    for rank in range(1, count + 1):
+        folder = out / f"best-{rank}"
+        show.write_owned(folder, command, {folder / name: b"" for name in _BEST_FILES[command]},
+                         True, force, check_only=True)
 
 
 def _keep_count(keep: str | None) -> int:
