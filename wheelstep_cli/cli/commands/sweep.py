@@ -40,7 +40,6 @@ def sweep(
     if some designs were refused (outside the bounds, like `gears` refuses them) or failed
     (their rows say why), 2 if the input is invalid."""
     from wheelstep_cli.batch.sweep_run import dask_client, run_sweep
-    from wheelstep_cli.batch.sweep_store import owned_results
     from wheelstep_cli.config.schema import InvalidInput
     from wheelstep_cli.config.sweep_file import load_sweep
     from wheelstep_cli.errors import DesignError
@@ -59,8 +58,7 @@ def sweep(
         for line in err.lines():
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
-    earlier = owned_results(out, force)     # a user's file among the outputs: refused here
-    _best_collisions_first(out, plan.command, best, show, force)
+    earlier = _owned_outputs(out, plan.command, best, show, force)
     _require_ranking(best, plan, show)      # (after it: a refused run prints its one line only)
     if dry_run:
         _dry_run(plan, file, out, show, (earlier, best))
@@ -145,13 +143,18 @@ _BEST_FILES = {"gears": ("pinion.stl", "wheel.stl", "gears.json"),
                "shoe": ("shoe.stl", "shoe.json", "shoe-profile.csv")}
 
 
-def _best_collisions_first(out: Path, command: str, count: int, show: Output, force: bool) -> None:
-    """Before any design is computed, refuse a user's file in a best-K folder where each best
-    design's files go (the folders are filled once the whole sweep is done)."""
+def _owned_outputs(out: Path, command: str, count: int, show: Output, force: bool) -> bool:
+    """Before any design is computed, refuse a user's file among the outputs: the results and,
+    with --keep best:``count``, where each best design's files go (those folders are filled
+    once the whole sweep is done). True when ``out``'s results are the sweep's own."""
+    from wheelstep_cli.batch.sweep_store import owned_results
+
+    earlier = owned_results(out, force)
     for rank in range(1, count + 1):
         folder = out / f"best-{rank}"
         show.write_owned(folder, command, {folder / name: b"" for name in _BEST_FILES[command]},
                          True, force, check_only=True)
+    return earlier
 
 
 def _keep_count(keep: str | None) -> int:
