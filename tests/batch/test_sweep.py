@@ -609,3 +609,17 @@ def test_killing_a_worker_mid_sweep_still_completes(tmp_path, cluster):
     assert len(found) == 2 * 13
     assert {r["outcome"] for r in found.values()} == {"ok", "refused"}
     assert all(r["p_socket_depth"] == 60.0 for r in found.values() if r["outcome"] == "refused")
+
+
+def test_a_point_outside_the_bounds_says_its_remedy_as_a_try_in_the_files_keys():
+    """A sweep builds no remedy per refused point: the row says what the figures point to as
+    a try, in the sweep file's keys, not as a checked `use`."""
+    from wheelstep_cli.batch import sweep_point
+
+    point = sweep_point.resolve_point(0, "gears", None, None, None, {"z": 24, "thickness": 3}, False, "t")
+    row = sweep_point.evaluate(point)
+    assert row["outcome"] == "refused", row
+    assert row["reason"].startswith("z = 24: the pair would mesh outside the bounds"), row["reason"]
+    remedy = row["reason"].split("; try ", 1)[1]
+    assert remedy.startswith("z: ") and remedy.endswith(" (from the figures; not built)"), remedy
+    assert "use " not in row["reason"] and "--" not in row["reason"]

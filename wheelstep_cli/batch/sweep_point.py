@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from wheelstep_cli.config.names import yaml_message
+from wheelstep_cli.config.names import as_flags, as_keys, in_file_words, yaml_message
 from wheelstep_cli.errors import DesignError
 
 #: Figures of a row (float, None when not computed), in column order.
@@ -179,5 +179,8 @@ def _bounds_refusal(pair, record: dict) -> dict:
     try:
         require_within_bounds(pair, record)
     except DesignError as err:
-        return {"outcome": "refused", "reason": yaml_message(err)}
+        reason, remedy = yaml_message(err), getattr(err, "remedy", None) or {}
+        # the remedy as the sweep file's keys (its grid and fixed values)
+        return {"outcome": "refused", "reason": reason.replace(in_file_words(f"try {as_flags(remedy)}"),
+                                                               f"try {as_keys(remedy)}")}
     return {}

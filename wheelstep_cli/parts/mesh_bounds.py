@@ -137,8 +137,9 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     for F'i and f'i, less backlash (--backlash) for the ripple a flank's play costs.
     ``verify(design)`` (pair, meshing record) builds and checks a design as the caller
     writes it: when given, a remedy is offered only once a build with it is within the
-    bounds (up to REMEDY_TRIES remedies, each from the last try's figures); otherwise the
-    line says what was tried. Interference is refused elsewhere."""
+    bounds (up to REMEDY_TRIES remedies, each from the last try's figures), or the line says
+    what was tried; without it (a sweep's rows) the remedy the figures point to is said as a
+    try, not built. Interference is refused elsewhere."""
     from wheelstep_cli.parts.gear_laws import design_backlash
 
     broken = _broken(record, bounds)
@@ -158,7 +159,10 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
     # a CSV law replaces the crank mechanism (whose options are then refused)
     law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
-    if remedy:
+    if remedy and verify is None and "install_distance" not in remedy:
+        # a sweep's row: no build per refused point, so the remedy is what the figures point to
+        advice = f"try {as_flags(remedy)} (from the figures; not built)"
+    elif remedy:
         advice = f"use {as_flags(remedy)}"
     elif tried:
         advice = f"no remedy found ({'; '.join(tried)}): change {law} or {_size_option(design)}"
