@@ -561,7 +561,7 @@ def test_keep_best_writes_the_best_designs(cli, tmp_path):
 
 def test_a_users_file_where_a_best_design_goes_is_refused_before_the_run(cli, tmp_path):
     """--keep best:2 with a user's shoe.json in OUT/best-2: refused before any design is
-    computed (it was found once the whole sweep was done), dry run or not; --force overwrites."""
+    computed, dry run or not (not once the whole sweep is done); --force overwrites."""
     sweep = write(tmp_path / "shoes.yaml", SHOES + "objectives: [volume_mm3, mass_g]\n")
     mine = tmp_path / "out" / "best-2" / "shoe.json"
     mine.parent.mkdir(parents=True)

@@ -27,6 +27,9 @@ def test_writes_printable_meshes_and_report(default_pair):
     # of what this command wrote (SHA-256 per file) lets a later run clean up only its own files
     assert names == [".wheelstep-gears.json", "gears-1.3mf", "gears-2.3mf", "gears.json", "pinion.stl",
                      "wheel.stl"]
+    from wheelstep_cli.cli.commands.sweep import _BEST_FILES
+
+    assert set(_BEST_FILES["gears"]) <= set(names)    # what sweep --keep checks before its run
     report = json.loads((default_pair / "gears.json").read_text())
     for name in ("pinion", "wheel"):
         mesh = assert_printable_stl(default_pair / f"{name}.stl")

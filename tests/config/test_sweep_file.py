@@ -141,15 +141,14 @@ def test_a_value_listed_twice_on_an_axis_is_refused_at_its_line(tmp_path):
 
 
 def test_a_range_whose_values_are_kept_alike_is_refused(tmp_path):
-    """A step finer than the 12 decimals a range's values are kept to made five points of one
-    value: '5 designs computed', one row."""
+    """A step finer than the 12 decimals a range's values are kept to would make five points
+    of one value (five designs said computed, one row)."""
     sweep = write(tmp_path / "s.yaml", "command: shoe\ngrid:\n  rim: {start: 10, stop: 10.0000000000005, "
                                        "step: 0.0000000000001}\n")
     with pytest.raises(InvalidInput) as err:
         load_sweep(sweep)
-    assert err.value.lines() == [f"{sweep}:3: grid.rim: step 1e-13 is too fine: its values are alike to the 12 "
-                                 "decimals they are kept to (one point where several are asked for); give a "
-                                 "coarser step"]
+    assert err.value.lines() == [f"{sweep}:3: grid.rim: step 1e-13 is too fine: its values round alike to 12 "
+                                 "decimals (one point where several are asked for); give a coarser step"]
     plan = load_sweep(write(tmp_path / "t.yaml", "command: shoe\ngrid:\n  rim: {start: 10, stop: 10.000000000005, "
                                                  "step: 0.000000000001}\n"))
     assert len({values["rim"] for _, values in plan.points}) == len(plan.points) == 6

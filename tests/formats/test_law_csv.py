@@ -89,6 +89,11 @@ def test_a_period_rounded_to_the_decimals_written_is_one_period(tmp_path):
     assert np.max(np.abs(coarse.carrier_angle(theta) - fine.carrier_angle(theta))) < rounding
 
 
-def test_a_span_off_by_more_than_its_decimals_is_still_refused(tmp_path):
+@pytest.mark.parametrize("first", [None, "0,0"])
+def test_a_span_off_by_more_than_its_decimals_is_still_refused(tmp_path, first):
+    """51.45 for 360/7 in rows of 2 decimals; also with the first row written as whole
+    numbers (exact, not +- 0.5 deg of slack)."""
+    rows = _seventh(2, last_driving=51.45)
+    rows[0] = first or rows[0]
     with pytest.raises(DesignError, match="the driving angle spans 51.45 deg from line 2 to line 38"):
-        read_law_csv(_write(tmp_path, _seventh(2, last_driving=51.45)))
+        read_law_csv(_write(tmp_path, rows))

@@ -70,8 +70,8 @@ def test_a_module_too_large_names_one_that_works(cli):
     line = error_line(cli("teeth", "--profile", "desk-demo", "--json"))
     found = re.search(r"use --module ([0-9.]+) or less", line)
     # the module nobody gave is said to be the default
-    assert line.startswith("wheelstep: error: --module = 2 (the paper teeth's default; none given): too "
-                           "large for the tooth pitch") and found, line
+    assert line.startswith("wheelstep: error: --module = 2: the paper teeth's default module (none given): "
+                           "too large for the tooth pitch") and found, line
     assert cli("teeth", "--profile", "desk-demo", "--module", found.group(1), "--json").exit_code == 0
     above = f"{float(found.group(1)) + 0.05:.2f}"
     assert cli("teeth", "--profile", "desk-demo", "--module", above, "--backlash", "0.5").exit_code == 2

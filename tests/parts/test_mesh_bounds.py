@@ -60,15 +60,15 @@ def test_default_backlash_of_generated_teeth_keeps_half_the_ripple_bound_for_the
     assert design_backlash(GearPairSpec(teeth="paper")) == 0.5
 
 
-def _refusal(verify):
+def _refusal(verify, **given):
     """The bounds refusal of a pair whose F'i is over its bound (the remedy: more teeth),
-    with ``verify`` standing for the build and check of a remedy."""
+    with ``verify`` standing for the build and check of a remedy; ``given``: more spec values."""
     from types import SimpleNamespace
 
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.mesh_bounds import require_within_bounds
 
-    spec = GearPairSpec(z=32)
+    spec = GearPairSpec(z=32, **given)
     pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(spec)[1]), printing=None,
                            spec=spec, opening=0.0)
     with pytest.raises(DesignError) as err:
@@ -109,6 +109,31 @@ def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what
     # a batch file states the tries as its override keys
     assert "no remedy found (overrides {z: 40} still gives" in remedy_in_yaml(error)
     assert "; overrides {z: 48} still gives" in remedy_in_yaml(error)
+
+
+def test_every_try_on_a_given_module_keeps_the_size_asked_for():
+    """--module 2 --z 32: each try with more teeth scales the module by 32 / z' (module x z
+    stays 64, so the centre distance the module is solved for stays), also a try that follows
+    a refusal's own remedy; a try back at z 32 keeps the module given."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+
+    tries = []
+
+    def verify(design):
+        tries.append((design.z, design.module))
+        if design.z == 40:
+            error = DesignError("z", 40, "teeth too thin; nothing written; use --z 36")
+            error.remedy = {"z": 36}
+            raise error
+        pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
+                               spec=design, opening=0.0)
+        return pair, record(drive=flank(total=18.0, tooth=6.0))
+
+    error, _ = _refusal(verify, module=2)
+    assert tries == [(40, 1.6), (36, round(64 / 36, 3)), (44, round(64 / 44, 3))]
+    assert "--z 40 --module 1.6 is refused" in error.limit
 
 
 def test_a_remedy_the_pipeline_refuses_is_not_offered():
@@ -195,3 +220,13 @@ def test_a_remedy_the_plates_bed_cannot_hold_is_refused_before_its_meshing_check
         remedy_check(printer, bed=printer)(design)
     pair, record = remedy_check(printer)(design)
     assert record["samples"] >= 1536 and pair.wheel.bounds[1][0] - pair.wheel.bounds[0][0] > 246
+
+
+def test_a_scaled_module_stays_a_module_a_spec_takes():
+    from wheelstep_cli.config.specs import MIN_MODULE
+    from wheelstep_cli.parts.mesh_bounds import _sized
+
+    design = GearPairSpec(z=24, module=0.2)
+    assert _sized(design, {"z": 72}) == {"z": 72, "module": MIN_MODULE}       # 0.067 would be refused
+    assert _sized(design, {"z": 24, "module": 0.15, "backlash": 0.1}) == {"z": 24, "backlash": 0.1}
+    assert _sized(GearPairSpec(z=24), {"z": 72}) == {"z": 72}                # no module given: none set

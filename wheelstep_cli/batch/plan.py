@@ -172,9 +172,10 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     # the overrides a field rule refused are left out, so the rules of the others (the
     # mechanism's, the kind's) are found in the same run
     kept = {key: value for key, value in overrides.items() if key not in faulty}
-    spec, printed, problems = _every_problem(kind, design[0], kept, printer)
+    spec, printed, problems = _every_problem(kind, design[0], kept, printer, frozenset(faulty))
+    where = {key: line for key, line in override_where.items() if key in kept}
     for err in problems:
-        issues.append(_problem(doc, path, err, override_where, design_name, kept))
+        issues.append(_problem(doc, path, err, where, design_name, kept))
     if problems or faulty:
         issues[first:] = sorted(issues[first:], key=_line)     # the entry's problems in file order
         return None
@@ -238,12 +239,14 @@ def _check_overrides(doc, path, kind: PartKind, overrides: dict, issues: list[Is
     return {key: doc.where(at + (key,)) for key in overrides if key in model.model_fields}, faulty
 
 
-def _every_problem(kind: PartKind, design, overrides: dict, printer: Printer):
+def _every_problem(kind: PartKind, design, overrides: dict, printer: Printer, dropped: frozenset = frozenset()):
     """:func:`_resolve`, with every override at fault: a rule stops at the first input it
     finds at fault, so the entry is checked again without the overrides found so far (their
     design's values instead) while that finds another override at fault, and the user
-    fixes them in one go."""
+    fixes them in one go. ``dropped``: overrides already left out (found at fault by a field
+    rule), whose stand-in values are not blamed either."""
     spec, printed, problems = _resolve(kind, design, overrides, printer)
+    problems = [err for err in problems if not ({_key(err), *map(_key, err.alternatives)} & dropped)]
     left = dict(overrides)
     found = list(problems)
     while problems and len(found) < len(overrides):
@@ -251,7 +254,7 @@ def _every_problem(kind: PartKind, design, overrides: dict, printer: Printer):
         if not blamed <= set(left):
             break           # a problem of no override's: the others may stem from it
         left = {key: value for key, value in left.items() if key not in blamed}
-        removed = set(overrides) - set(left)
+        removed = dropped | (set(overrides) - set(left))
         # only a rule none of the removed overrides takes part in: the design's values standing
         # in for them must not be blamed on the user's other keys
         problems = [DesignError(given.param, given.value, given.limit)

@@ -173,9 +173,11 @@ class ResultStore:
 
 @contextmanager
 def interrupts_deferred():
-    """Hold a SIGINT (Ctrl-C) that arrives inside the block and raise it as
-    KeyboardInterrupt when the block ends (the main thread only: elsewhere as is)."""
-    if threading.current_thread() is not threading.main_thread():
+    """Hold a SIGINT (Ctrl-C) that arrives inside the block and hand it to the handler it
+    would have gone to when the block ends (Python's: KeyboardInterrupt); in the main thread
+    only, elsewhere the block runs as is."""
+    # a handler set from C (getsignal None) could not be put back: left as it is
+    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is None:
         yield
         return
     caught: list = []

@@ -191,9 +191,9 @@ def _value_issues(doc, fields, at: tuple, key: str, axis, values: list) -> list[
         return [Issue(doc.where(at), dotted(at), "must list at least one value")]
     if isinstance(axis, Range) and len({_point_key(v) for v in values}) < len(values):
         # kept to 12 decimals, values closer than that are one point: a row where several were asked for
-        return [Issue(doc.where(at), dotted(at), f"step {show(axis.step)} is too fine: its values are "
-                                                  "alike to the 12 decimals they are kept to (one point where "
-                                                  "several are asked for); give a coarser step")]
+        return [Issue(doc.where(at), dotted(at), f"step {show(axis.step)} is too fine: its values round "
+                                                  "alike to 12 decimals (one point where several are asked "
+                                                  "for); give a coarser step")]
     first: dict = {}
     for i, value in enumerate(axis if isinstance(axis, list) else []):
         same = _point_key(value)

@@ -63,23 +63,24 @@ def read_law_csv(path, param: str = "law_csv"):
             written.append(cells)
     require(len(rows) >= 8, param, str(path), "needs at least 8 numeric rows 'driving_deg, driven_deg'")
     data = np.array(rows)
-    _period_as_written(data, written[0], written[-1])
+    _period_as_written(data, written)
     _require_period(data, lines, param, str(path))
     return law_from_samples(data[:, 0], data[:, 1], param)
 
 
-def _period_as_written(data: np.ndarray, first: list[str], last: list[str]) -> None:
+def _period_as_written(data: np.ndarray, written: list[list[str]]) -> None:
     """Set each column's last row (deg) to exactly one period (360/k deg, k whole) past its
-    first where the span the rows give is that period to the decimals they are written with
-    (360/7 written to 2 decimals spans 51.43 deg): the period of closed gears is exact, a
-    rounded span is not. A span farther off is left for :func:`_require_period` to refuse."""
+    first where the span the rows give is that period to the decimals the column is written
+    with (360/7 written to 2 decimals spans 51.43 deg): the period of closed gears is exact,
+    a rounded span is not. The column's finest written step sets the slack (a first row
+    written 0 is exact, not 0 +- 0.5). A span farther off is left for :func:`_require_period`
+    to refuse."""
     for column in range(2):
         span = float(data[-1, column] - data[0, column])
         if span <= 0.0:
             continue
         k = max(1, round(360.0 / span))
-        # half a unit of the last written decimal of each end
-        slack = 0.5 * (_written_step(first[column]) + _written_step(last[column]))
+        slack = 0.5 * min(_written_step(cells[column]) for cells in written)
         if abs(span - 360.0 / k) <= slack:
             data[-1, column] = data[0, column] + 360.0 / k
 

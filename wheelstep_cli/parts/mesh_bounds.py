@@ -14,7 +14,7 @@ from typing import Callable
 import numpy as np
 
 from wheelstep_cli.config.names import as_flags
-from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH
+from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH, MIN_MODULE
 from wheelstep_cli.errors import DesignError
 
 
@@ -244,13 +244,21 @@ def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
             remedy["z"] = min(MAX_TEETH, teeth_remedy(record, design.z, periods, bounds, squared=True))
     if any("ripple" in text for text in broken):
         remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
-    remedy = _within_the_tooth_limit(design, remedy)
-    if "z" in remedy and design.module is not None:
-        # a module the user gave sizes the pair with the count (the centre distance is solved
-        # for it): more teeth on the same module outgrow the pair asked for, so the remedy keeps
-        # that size and makes the teeth finer in step
-        remedy["module"] = round(float(design.module) * design.z / remedy["z"], 3)
-    return remedy
+    return _sized(design, _within_the_tooth_limit(design, remedy))
+
+
+def _sized(design, remedy: dict) -> dict:
+    """``remedy`` keeping the size of the pair asked for: a module the user gave sizes the
+    pair with the tooth count (the centre distance is solved for it), so more teeth on the
+    same module would outgrow it; a remedy that changes the count scales the module by
+    z / z' (at least MIN_MODULE), one that keeps it keeps the design's module."""
+    if design.module is None:
+        return remedy
+    z = remedy.get("z", design.z)
+    kept = {name: value for name, value in remedy.items() if name != "module"}
+    if z == design.z:
+        return kept
+    return {**kept, "module": max(MIN_MODULE, round(float(design.module) * design.z / z, 3))}
 
 
 def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
@@ -261,6 +269,7 @@ def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
     or beyond the tooth limit ends the search."""
     tried, candidate, failed = [], dict(remedy), []
     for _ in range(REMEDY_TRIES):
+        candidate = _sized(design, candidate)     # undercut options and followed remedies too
         if (all(getattr(design, name) == value for name, value in candidate.items())
                 or candidate in failed or candidate.get("z", 0) > MAX_TEETH):
             break

@@ -26,10 +26,10 @@ def size_problem(name: str, bounds: np.ndarray, printer: Printer) -> str | None:
     edge = printer.edge_margin
     if fits_bed((size[0], size[1]), printer.bed, edge) is None:
         return (f"part '{name}' ({size[0]:.1f} x {size[1]:.1f} mm) does not fit the bed of printer "
-                f"'{printer.name}' ({printer.bed[0]:g} x {printer.bed[1]:g} mm with {edge:g} mm "
+                f"'{printer.given or printer.name}' ({printer.bed[0]:g} x {printer.bed[1]:g} mm with {edge:g} mm "
                 f"margins: at most {printer.bed[0] - 2 * edge:g} x {printer.bed[1] - 2 * edge:g} mm)")
     if size[2] > printer.max_height:
-        return (f"part '{name}' is {size[2]:.1f} mm tall; printer '{printer.name}' prints at most "
+        return (f"part '{name}' is {size[2]:.1f} mm tall; printer '{printer.given or printer.name}' prints at most "
                 f"{printer.max_height:g} mm")
     return None
 
@@ -45,7 +45,8 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float,
         require_height(part.name, size[2], printer, height_param, height, footprint)
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
-            raise _beyond(DesignError("printer", printer.given or printer.name, problem), printer).tied_to(footprint or {})
+            given = printer.given or printer.name
+            raise _beyond(DesignError("printer", given, problem), printer).tied_to(footprint or {})
 
 
 def gear_pair_height(spec) -> float:
@@ -60,7 +61,7 @@ def require_height(name: str, tall: float, printer: Printer, height_param: str, 
     when ``printer`` prints less; a build can check this before it spends time on the part."""
     if tall > printer.max_height:
         raise _beyond(DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall, more "
-                                  f"than the {printer.max_height:g} mm printer '{printer.name}' prints"),
+                                  f"than the {printer.max_height:g} mm printer '{printer.given or printer.name}' prints"),
                       printer).tied_to(footprint or {})
 
 
