@@ -623,3 +623,19 @@ def test_a_point_outside_the_bounds_says_its_remedy_as_a_try_in_the_files_keys()
     remedy = row["reason"].split("; try ", 1)[1]
     assert remedy.startswith("z: ") and remedy.endswith(" (from the figures; not built)"), remedy
     assert "use " not in row["reason"] and "--" not in row["reason"]
+
+
+def test_a_point_with_teeth_too_thin_for_its_printer_is_refused_as_gears_refuses_it():
+    """desk-demo z 44 on the 0.4 mm FDM printer: `gears` and `batch` refuse its thin teeth
+    (use z 42), so the sweep's row is refused too, not ranked among the designs it keeps."""
+    from wheelstep_cli.batch import sweep_point
+    from wheelstep_cli.config.profiles import load_design_profile, load_printer
+
+    printer = load_printer("fdm-0.4-pla")
+    rows = {z: sweep_point.evaluate(sweep_point.resolve_point(
+        0, "gears", load_design_profile("desk-demo"), printer.name, printer, {"z": z}, False, "t"))
+        for z in (42, 44)}
+    assert rows[42]["outcome"] == "ok", rows[42]["reason"]
+    assert rows[44]["outcome"] == "refused"
+    assert rows[44]["reason"].startswith("z = 44: the teeth are too thin for printer 'fdm-0.4-pla'")
+    assert "use z: 42 (fewer, larger teeth)" in rows[44]["reason"]

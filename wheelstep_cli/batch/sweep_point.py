@@ -172,15 +172,18 @@ def _band_figures(band: dict) -> dict:
 
 
 def _bounds_refusal(pair, record: dict) -> dict:
-    """The refusal `gears` gives a pair meshing outside the SPEC §10 bounds (its figures are
-    kept in the row), or nothing."""
+    """The refusal `gears` gives a pair meshing outside the SPEC §10 bounds, or with teeth too
+    thin for the printer it is drawn for (its figures are kept in the row), or nothing."""
     from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     try:
         require_within_bounds(pair, record)
+        require_printable_teeth(pair)
     except DesignError as err:
         reason, remedy = yaml_message(err), getattr(err, "remedy", None) or {}
         # the remedy as the sweep file's keys (its grid and fixed values)
-        return {"outcome": "refused", "reason": reason.replace(in_file_words(f"try {as_flags(remedy)}"),
-                                                               f"try {as_keys(remedy)}")}
+        for verb in ("try", "use"):
+            reason = reason.replace(in_file_words(f"{verb} {as_flags(remedy)}"), f"{verb} {as_keys(remedy)}")
+        return {"outcome": "refused", "reason": reason}
     return {}
