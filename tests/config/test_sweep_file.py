@@ -152,3 +152,18 @@ def test_a_range_whose_values_are_kept_alike_is_refused(tmp_path):
     plan = load_sweep(write(tmp_path / "t.yaml", "command: shoe\ngrid:\n  rim: {start: 10, stop: 10.000000000005, "
                                                  "step: 0.000000000001}\n"))
     assert len({values["rim"] for _, values in plan.points}) == len(plan.points) == 6
+
+
+def test_random_draws_are_different_points(tmp_path):
+    """Whole-number bounds repeat values: each draw is a new point (three rows for three
+    samples), and more samples than the bounds hold points are refused at their line."""
+    text = "command: shoe\nrandom:\n  seed: 1\n  samples: {n}\n  bounds: {{rim: {{low: 6, high: 10}}}}\n"
+    for n in (3, 5):
+        plan = load_sweep(write(tmp_path / f"s{n}.yaml", text.format(n=n)))
+        rims = [values["rim"] for _, values in plan.points]
+        assert len(set(rims)) == len(rims) == n and set(rims) <= set(range(6, 11)), rims
+    sweep = write(tmp_path / "s.yaml", text.format(n=6))
+    with pytest.raises(InvalidInput) as err:
+        load_sweep(sweep)
+    assert err.value.lines() == [f"{sweep}:4: random.samples = 6: more than the 5 different points "
+                                 "whole-number bounds hold; at most 5"]

@@ -180,6 +180,11 @@ def _check_values(doc: LocatedYaml, spec, command: str, data: dict, grid: dict,
         if b.low > b.high:
             at = ("random", "bounds", key)
             issues.append(Issue(doc.where(at), dotted(at), f"low {show(b.low)} > high {show(b.high)}"))
+    if random is not None and not issues and random.samples > _distinct_draws(random):
+        at = ("random", "samples")
+        issues.append(Issue(doc.where(at), dotted(at), f"= {random.samples}: more than the "
+                            f"{_distinct_draws(random)} different points whole-number bounds hold; "
+                            f"at most {_distinct_draws(random)}"))
 
 
 def _value_issues(doc, fields, at: tuple, key: str, axis, values: list) -> list[Issue]:
@@ -335,10 +340,22 @@ def _points(sweep: SweepFile, grid: dict, random: RandomAxes | None) -> list[tup
     draws: list[dict] = [{}]
     if random is not None:
         rng = np.random.default_rng(random.seed)
-        draws = [{k: _draw(rng, b) for k, b in random.bounds.items()} for _ in range(random.samples)]
+        # each draw a new point: whole-number bounds repeat values (one row where two were asked for)
+        draws, seen = [], set()
+        while len(draws) < random.samples:
+            draw = {k: _draw(rng, b) for k, b in random.bounds.items()}
+            if (same := tuple(_point_key(v) for v in draw.values())) not in seen:
+                seen.add(same)
+                draws.append(draw)
     printers = sweep.printers or [None]
     return [(printer, {**sweep.fixed, **combo, **draw})
             for printer in printers for combo in combos for draw in draws]
+
+
+def _distinct_draws(random: RandomAxes) -> float:
+    """How many different points the random bounds hold (inf with a bound of decimals)."""
+    return math.prod(b.high - b.low + 1 if isinstance(b.low, int) and isinstance(b.high, int) else math.inf
+                     for b in random.bounds.values())
 
 
 def _draw(rng, bounds: Bounds):
