@@ -58,6 +58,17 @@ def test_gears_tolerance_reports_every_case_and_the_loose_corner_has_more_play(c
 
 
 
+def test_a_jam_over_the_band_suggests_the_same_command_with_a_fit(cli, tmp_path):
+    """The desk pair on the FDM band jams: the warning suggests the command as given with
+    --fit auto (a bare `wheelstep gears --fit auto` would draw the full-scale pair instead)."""
+    result = cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--tolerance",
+                 "--format", "stl", "--out", tmp_path / "out")
+    assert result.exit_code == 0, result.stderr
+    warning = result.stderr.strip().splitlines()[-1]
+    assert warning.startswith("WARNING: over the band of fdm-0.4-pla the pair jams in "), warning
+    assert warning.endswith("; the same command with --fit auto draws the teeth to clear the band")
+
+
 def test_fit_auto_insets_the_default_pair_until_the_fdm_band_no_longer_jams(cli, tmp_path):
     """The default pair on the FDM PLA band: drawn as designed (no clearance) its tight case
     jams, much of it at the pitch-curve corners; `--fit auto` draws both outlines smaller

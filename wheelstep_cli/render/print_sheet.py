@@ -84,7 +84,7 @@ def _band(band: dict | None) -> str:
         return "not checked (the printer profile has no band)" if band is not None else "not checked"
     if band["jams"]:
         return (f"**JAMS** on {band['printer']}: see the report's tolerance section "
-                "(`gears --fit auto` insets the teeth until the band clears)")
+                "(`fit: auto` in the printer profile's band section insets the teeth until the band clears)")
     least = band.get("least_backlash_mm")
     return f"clears on {band['printer']}" + (f" (least backlash {least:.3f} mm)" if least is not None else "")
 

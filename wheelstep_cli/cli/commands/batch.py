@@ -128,8 +128,8 @@ def _band_warnings(show: Output, outcome) -> None:
             show.warning(f"WARNING: {band['entry']} jams over the band of {band['printer']}{shown}: "
                          "its report's tolerance section says in which case and how deep; "
                          "`gears --slice` checks the pair as PrusaSlicer prints it, and "
-                         "`gears --fit auto` insets the tooth outlines until the band clears "
-                         "(it says so when none within its limits does)")
+                         "`fit: auto` in the printer profile's band section insets the tooth "
+                         "outlines until the band clears (it says so when none within its limits does)")
 
 
 def _lines(out: Path, plan, outcome) -> list[str]:

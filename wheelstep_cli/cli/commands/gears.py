@@ -260,7 +260,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
               "written": [] if dry_run else [str(p) for p in written]}
     show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
     _warn_interference(show, record)
-    warn_band_jams(show, record.get("tolerance"), printer_given)
+    warn_band_jams(show, record.get("tolerance"), printer_given, rerun=True)
     show.files(written, dry_run, joined=True)
     if sliced is not None and not sliced["meshes"]:
         raise typer.Exit(1)

@@ -76,15 +76,19 @@ def _band_lines(summary: dict) -> list[str]:
     return tolerance_lines(summary["tolerance"])
 
 
-def warn_band_jams(show, band: dict | None, printer: str | None = None) -> None:
+def warn_band_jams(show, band: dict | None, printer: str | None = None, rerun: bool = False) -> None:
     """A warning line on stderr (``show``: cli.output.Output) when a checked band (SPEC §11)
     jams in some case: the report says JAMS among its lines, and a person at the printer
     should not miss it. ``printer``: the --printer as given (None: the default printer), so
-    that the command the line suggests fits to the same band."""
+    that the command the line suggests fits to the same band; ``rerun``: said by the
+    ``gears`` command that drew the pair (the same command fits it), else by a check of
+    files (``gears`` fits it from the design the pair was made with)."""
     if not band or not band.get("jams"):
         return
     jammed = [case["case"] for case in band["cases"] if case["jams"]]
     option = f" --printer {shlex.quote(str(printer))}" if printer else ""
+    fit = ("the same command with --fit auto draws the teeth to clear the band" if rerun else
+           f"`wheelstep gears{option} --fit auto` with the pair's design options draws the teeth "
+           "to clear the band")
     show.warning(f"WARNING: over the band of {band['printer']} the pair jams in {len(jammed)} of "
-                 f"{len(band['cases'])} cases ({'; '.join(jammed)}): printed there it may not turn; "
-                 f"`wheelstep gears{option} --fit auto` draws the teeth to clear the band")
+                 f"{len(band['cases'])} cases ({'; '.join(jammed)}): printed there it may not turn; {fit}")
