@@ -7,7 +7,7 @@ from wheelstep_cli.config.printers import FIT_MARGINS, Band, Fit
 from wheelstep_cli.config.profiles import load_printer_profile
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.fit import _next_inset
-from wheelstep_cli.parts.tolerance import ShiftedLaw, band_cases, jams, require_band
+from wheelstep_cli.parts.tolerance import band_cases, jams, require_band
 
 PRESETS = ["fdm-0.4-pla", "fdm-0.4-petg", "resin-0.05-standard"]
 
@@ -70,21 +70,6 @@ def test_fit_step_by_the_normal_share_the_jam_depth_the_secant_or_the_bracket():
     # a step out of the bracket (0.08 jams, 0.1 keeps far more than the margin) bisects it
     tried = [_try(0.08, None, True, 0.001), _try(0.1, 0.5), _try(0.2, 0.6)]
     assert _next_inset(tried, 0.01, cos_a) == pytest.approx(0.09)
-
-
-def test_shifted_law_moves_the_wheel_angle_pose_by_pose():
-    class Law:
-        theta_period = 1.0
-
-        def carrier_angle(self, theta):
-            return 2.0 * np.asarray(theta)
-
-        def hub_speed_factor(self, phi):
-            return np.ones_like(np.asarray(phi, float))
-
-    law = ShiftedLaw(Law(), np.array([0.0, 0.5]), np.array([0.01, 0.03]))
-    assert law.carrier_angle(np.array([0.25]))[0] == pytest.approx(0.5 + 0.02)
-    assert law.carrier_angle(np.array([1.25]))[0] == pytest.approx(2.5 + 0.02)
 
 
 class _FakeReport:

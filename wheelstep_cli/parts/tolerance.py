@@ -42,27 +42,6 @@ class SectionedPair:
     shift: tuple | None = None   # (theta, wheel angle rad): start poses moved into the play
 
 
-class ShiftedLaw:
-    """``law`` with the wheel's angle moved by ``shift`` rad at the pinion angles ``theta``
-    (rad, one period, periodic in between): the pose the band's cases start from (the
-    contact search runs both ways from it, so it must lie in the play)."""
-
-    def __init__(self, law, theta: np.ndarray, shift: np.ndarray):
-        self.law, self.theta, self.shift = law, np.asarray(theta, float), np.asarray(shift, float)
-        self.theta_period = law.theta_period
-        self.mean = float(np.mean(self.shift))
-
-    def carrier_angle(self, theta):
-        theta = np.asarray(theta, dtype=float)
-        moved = np.interp(theta, self.theta, self.shift, period=float(self.theta_period))
-        return np.asarray(self.law.carrier_angle(theta), dtype=float) + moved
-
-    def hub_speed_factor(self, phi):
-        # the hub reads the wheel's own angle: the start shift is taken out (its mean; the
-        # shift varies by arcminutes, far below the factor's scale)
-        return self.law.hub_speed_factor(np.asarray(phi, dtype=float) - self.mean)
-
-
 def mid_play(sections: SectionedPair, nominal: MeshingReport) -> SectionedPair:
     """``sections`` starting their cases in the middle of the nominal pair's play, pose by
     pose: generated teeth may keep their play on one side, so the law's own pose touches a
@@ -123,9 +102,18 @@ def check_case(sections: SectionedPair, case: BandCase,
     """The meshing check of ``sections`` offset and moved as ``case`` says."""
     pinion = offset_outline(sections.pinion, case.pinion_offset, "pinion", thin=OFFSET_THIN)
     wheel = offset_outline(sections.wheel, case.wheel_offset, "wheel", thin=OFFSET_THIN)
-    law = sections.law if sections.shift is None else ShiftedLaw(sections.law, *sections.shift)
-    return check_meshing(pinion, wheel, law, sections.distance + case.distance_shift,
-                         settings, teeth=sections.teeth)
+    return check_meshing(pinion, wheel, sections.law, sections.distance + case.distance_shift,
+                         settings, teeth=sections.teeth, start_offset=_start_offset(sections))
+
+
+def _start_offset(sections: SectionedPair):
+    """Where each pose's contact search starts (rad of wheel angle from the law's) for
+    ``sections``: its ``shift`` interpolated over the period (None: at the law's angle)."""
+    if sections.shift is None:
+        return None
+    theta, shift = sections.shift
+    period = float(sections.law.theta_period)
+    return lambda at: np.interp(at, theta, shift, period=period)
 
 
 #: Pinion tooth pitches either side of a pitch-curve corner that are the corner's own poses.

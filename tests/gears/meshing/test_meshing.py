@@ -73,6 +73,23 @@ def test_involute_spur_pair_has_constant_te_zero_ripple_and_built_in_backlash(sp
         assert summary[side]["F_i_total_um"] < 1.0 and summary[side]["f_i_tooth_um"] < 1.0
 
 
+def test_where_the_search_starts_within_the_play_changes_no_figure(spur_pair):
+    """The band's cases start each pose in the middle of the play, which varies pose by pose:
+    the contacts are where they are, so the transmission error (from the law) and the law's
+    own hub speed are those of a search from the law's angle."""
+    pinion, wheel = spur_pair
+    law, a = spur_transmission(Z1, Z2), M * (Z1 + Z2) / 2.0
+    settings = MeshingSettings(samples=100)
+    plain = check_meshing(pinion, wheel, law, a, settings)
+    half_play = 0.5 * J / (M * Z2 / 2.0)
+    # up to 0.4 of the half play either way, varying with the pose
+    moved = check_meshing(pinion, wheel, law, a, settings,
+                          start_offset=lambda theta: 0.4 * half_play * np.sin(7.0 * theta))
+    _reports_equal(plain, moved, atol=1e-9)
+    np.testing.assert_allclose(moved.transmission_error, plain.transmission_error, atol=1e-9)
+    np.testing.assert_allclose(moved.hub_speed_law, plain.hub_speed_law, rtol=1e-12)
+
+
 def test_opening_the_centre_distance_adds_the_involute_backlash(spur_pair):
     pinion, wheel = spur_pair
     a = M * (Z1 + Z2) / 2.0

@@ -52,7 +52,8 @@ def mesh_window(pinion: np.ndarray, wheel: np.ndarray, distance: float,
 def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, distance: float,
                   settings: MeshingSettings = MeshingSettings(), start: float = 0.0,
                   progress: Callable[[int, int], None] | None = None,
-                  teeth: int | None = None) -> MeshingReport:
+                  teeth: int | None = None,
+                  start_offset: Callable[[np.ndarray], np.ndarray] | None = None) -> MeshingReport:
     """Run the meshing check (SPEC §10) over one period of ``law``.
 
     ``pinion``, ``wheel``: closed outlines (N, 2) in mm in their own frames (any
@@ -62,7 +63,10 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, d
     :func:`default_pose_count`), from ``start`` (rad). ``progress(done, total)`` is called
     after every batch of poses. ``teeth``: the pinion's tooth count (None: counted on its
     outline), which sets the tooth pitch, the band of the figures of merit and the default
-    pose count.
+    pose count. ``start_offset(theta)``: where each pose's contact search starts, in rad of
+    wheel angle from the law's (None: at the law's angle; it must lie in the play, as the
+    middle of a pair's play does); the contacts, and so the transmission error measured
+    from the law, do not depend on it.
     """
     pinion = np.asarray(pinion, dtype=float)
     wheel = np.asarray(wheel, dtype=float)
@@ -72,12 +76,13 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, d
     samples = default_pose_count(law, teeth) if settings.samples is None else settings.samples
     theta = start + period * np.arange(samples) / samples
     phi_law = np.asarray(law.carrier_angle(theta), dtype=float)
+    phi_start = phi_law if start_offset is None else phi_law + np.asarray(start_offset(theta), dtype=float)
     box = mesh_window(pinion, wheel, distance, settings)
     make_pair = functools.partial(prepare, pinion, wheel, distance, box, settings)
     batch = max(1, min(settings.batch, settings.batch_points // (len(pinion) + len(wheel))))
     slices = [slice(lo, min(lo + batch, samples)) for lo in range(0, samples, batch)]
-    contacts = _search(make_pair, theta, phi_law, slices, settings, progress)
-    return _report(law, theta, phi_law, contacts, float(distance), start, teeth)
+    contacts = _search(make_pair, theta, phi_start, slices, settings, progress)
+    return _report(law, theta, (phi_law, phi_start), contacts, float(distance), start, teeth)
 
 
 def default_pose_count(law: TransmissionLaw, teeth: int) -> int:
@@ -216,17 +221,19 @@ def _periodic_derivative(theta: np.ndarray, values: np.ndarray, rise: float, per
     return np.gradient(ext_v, ext_t)[1:-1]
 
 
-def _report(law: TransmissionLaw, theta: np.ndarray, phi_law: np.ndarray, contacts: PoseContacts,
-            distance: float, start: float, teeth: int) -> MeshingReport:
-    """The report of the poses ``theta`` (rad) from their contacts, the pinion having
+def _report(law: TransmissionLaw, theta: np.ndarray, phis: tuple[np.ndarray, np.ndarray],
+            contacts: PoseContacts, distance: float, start: float, teeth: int) -> MeshingReport:
+    """The report of the poses ``theta`` (rad) from their contacts, found from the wheel
+    angles ``phis`` = (the law's, where each search started; rad), the pinion having
     ``teeth`` teeth."""
+    phi_law, phi_start = phis
     period = float(law.theta_period)
     rise = float(law.carrier_angle(np.array([start + period]))[0]
                  - law.carrier_angle(np.array([start]))[0])
     delta_back = np.where(np.isfinite(contacts.back), contacts.back, np.nan)
     delta_fwd = np.where(np.isfinite(contacts.fwd), contacts.fwd, np.nan)
-    phi_drive = phi_law - delta_back
-    phi_coast = phi_law + delta_fwd
+    phi_drive = phi_start - delta_back
+    phi_coast = phi_start + delta_fwd
     f_drive = np.asarray(law.hub_speed_factor(phi_drive), dtype=float)
     f_law = np.asarray(law.hub_speed_factor(phi_law), dtype=float)
     hub_speed = f_drive * _periodic_derivative(theta, phi_drive, rise, period)
