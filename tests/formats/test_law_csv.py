@@ -97,3 +97,14 @@ def test_a_span_off_by_more_than_its_decimals_is_still_refused(tmp_path, first):
     rows[0] = first or rows[0]
     with pytest.raises(DesignError, match="the driving angle spans 51.45 deg from line 2 to line 38"):
         read_law_csv(_write(tmp_path, rows))
+
+
+def test_a_tooth_count_the_laws_periods_do_not_divide_is_said_of_the_csv_with_counts_that_do(cli, tmp_path):
+    """A law of 7 periods per pinion turn and the default 48 teeth: the line names the CSV
+    the user gave (not a --z they did not) and the nearest counts; one applied is built."""
+    path = _write(tmp_path, _seventh(6))
+    line = error_line(cli("gears", "--law-csv", path, "--dry-run", "--out", tmp_path / "out"))
+    assert line == (f"wheelstep: error: --law-csv = {path}: with it, z = 48 fails: must be a multiple of 7 "
+                    "(law periods per pinion turn) and >= 6; use --z 42 or --z 49")
+    result = cli("gears", "--law-csv", path, "--z", "49", "--dry-run", "--out", tmp_path / "out")
+    assert result.exit_code == 0, result.stderr

@@ -111,10 +111,11 @@ def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what
     assert "; overrides {z: 48} still gives" in remedy_in_yaml(error)
 
 
-def test_every_try_on_a_given_module_keeps_the_size_asked_for():
-    """--module 2 --z 32: each try with more teeth scales the module by 32 / z' (module x z
-    stays 64, so the centre distance the module is solved for stays), also a try that follows
-    a refusal's own remedy; a try back at z 32 keeps the module given."""
+def test_more_teeth_on_a_given_module_that_outgrow_the_printer_keep_the_size_asked_for():
+    """--module 2 --z 32: the first try keeps the module given; refused as larger than the
+    printer, the tries scale the module by 32 / z' from then on (module x z stays 64, so the
+    centre distance the module is solved for stays), also a try that follows a refusal's own
+    remedy."""
     from types import SimpleNamespace
 
     from wheelstep_cli.errors import DesignError
@@ -123,17 +124,21 @@ def test_every_try_on_a_given_module_keeps_the_size_asked_for():
 
     def verify(design):
         tries.append((design.z, design.module))
+        if design.module == 2:
+            error = DesignError("printer", "fdm-0.4-pla", "part 'wheel' does not fit the bed")
+            error.beyond_printer = "fdm-0.4-pla"
+            raise error
         if design.z == 40:
             error = DesignError("z", 40, "teeth too thin; nothing written; use --z 36")
             error.remedy = {"z": 36}
             raise error
         pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
                                spec=design, opening=0.0)
-        return pair, record(drive=flank(total=18.0, tooth=6.0))
+        return pair, record()
 
     error, _ = _refusal(verify, module=2)
-    assert tries == [(40, 1.6), (36, round(64 / 36, 3)), (44, round(64 / 44, 3))]
-    assert "--z 40 --module 1.6 is refused" in error.limit
+    assert tries == [(40, 2), (40, 1.6), (36, round(64 / 36, 3))]
+    assert error.remedy == {"z": 36, "module": round(64 / 36, 3)}
 
 
 def test_a_remedy_the_pipeline_refuses_is_not_offered():

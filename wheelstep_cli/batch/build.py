@@ -10,10 +10,9 @@ import numpy as np
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.names import remedy_in_yaml
 from wheelstep_cli.errors import DesignError
+from wheelstep_cli.parts.interference_refusals import require_mounted_where_rolling, require_play_that_clears
 from wheelstep_cli.parts.kinds import KINDS, for_printer
-from wheelstep_cli.parts.mesh_bounds import (remedy_check, require_mounted_where_rolling,
-                                              require_play_that_clears, require_within_bounds,
-                                              undercut_checked)
+from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
 from wheelstep_cli.parts.tolerance import design_printer
 from wheelstep_cli.parts.tolerance_cli import design_pair
 

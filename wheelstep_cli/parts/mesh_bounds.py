@@ -154,7 +154,7 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     else:
         remedy = _remedy_of(pair, design, record, bounds)
         if verify is not None and remedy:
-            remedy, tried, candidates = _verified(design, remedy, verify, bounds)
+            remedy, tried, candidates = verified_remedy(design, remedy, verify, bounds)
     param = next(iter(remedy), "z")
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
     # a CSV law replaces the crank mechanism (whose options are then refused)
@@ -201,7 +201,7 @@ def verified_undercut(err: DesignError, design, verify: Callable,
     undercut can still mesh outside the bounds: z 20 -> use --z 21)."""
     offered, tried, failed = [], [], []
     for option in err.undercut:
-        remedy, why, candidates = _verified(design, option, verify, bounds)
+        remedy, why, candidates = verified_remedy(design, option, verify, bounds)
         failed.extend(candidates)
         if remedy:
             offered.append(remedy)
@@ -244,14 +244,14 @@ def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
             remedy["z"] = min(MAX_TEETH, teeth_remedy(record, design.z, periods, bounds, squared=True))
     if any("ripple" in text for text in broken):
         remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
-    return _sized(design, _within_the_tooth_limit(design, remedy))
+    return _within_the_tooth_limit(design, remedy)
 
 
 def _sized(design, remedy: dict) -> dict:
     """``remedy`` keeping the size of the pair asked for: a module the user gave sizes the
-    pair with the tooth count (the centre distance is solved for it), so more teeth on the
-    same module would outgrow it; a remedy that changes the count scales the module by
-    z / z' (at least MIN_MODULE), one that keeps it keeps the design's module."""
+    pair with the tooth count (the centre distance is solved for it), so more teeth on that
+    module may outgrow the printer; then a remedy that changes the count scales the module
+    by z / z' (at least MIN_MODULE), one that keeps it keeps the design's module."""
     if design.module is None:
         return remedy
     z = remedy.get("z", design.z)
@@ -261,15 +261,16 @@ def _sized(design, remedy: dict) -> dict:
     return {**kept, "module": max(MIN_MODULE, round(float(design.module) * design.z / z, 3))}
 
 
-def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
+def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds
               ) -> tuple[dict, list[str], list[dict]]:
     """(the first remedy whose build is within the bounds, or {}; what each failed try gave;
     the failed remedies). Each try follows from the last one's figures (or from its refusal's
     own remedy); a try that leads back to the design as it is, or to a remedy already tried,
     or beyond the tooth limit ends the search."""
-    tried, candidate, failed = [], dict(remedy), []
+    tried, candidate, failed, sized = [], dict(remedy), [], False
     for _ in range(REMEDY_TRIES):
-        candidate = _sized(design, candidate)     # undercut options and followed remedies too
+        if sized:       # undercut options and followed remedies too
+            candidate = _sized(design, candidate)
         if (all(getattr(design, name) == value for name, value in candidate.items())
                 or candidate in failed or candidate.get("z", 0) > MAX_TEETH):
             break
@@ -282,6 +283,9 @@ def _verified(design, remedy: dict, verify: Callable, bounds: MeshBounds
             rule = "" if err.param in candidate else f"--{err.param.replace('_', '-')} = {err.shown_value}: "
             tried.append(f"{as_flags(candidate)} is refused: {rule}{why}")
             failed.append(candidate)
+            if getattr(err, "beyond_printer", None) and design.module is not None and not sized:
+                sized = True    # the module given outgrows the printer: the size asked for is kept
+                continue
             # a refusal with a remedy of its own (teeth too thin: fewer teeth) is followed too
             candidate = {**candidate, **(getattr(err, "remedy", None) or {})}
             continue
@@ -326,54 +330,6 @@ def opening_phrase(pair) -> str:
     side = "farther" if pair.opening > 0 else "closer"
     return (f"mounted at {pair.mounted_distance:g} mm, {abs(pair.opening):g} mm {side} than the "
             f"pitch curves roll ({pair.design_distance:g} mm), where they do not follow the law")
-
-
-def require_mounted_where_rolling(pair, failure: str) -> None:
-    """Refuse (DesignError on the installed distance, with the remedy) a generated pair mounted
-    off its rolling distance whose check found ``failure``; nothing for a pair mounted where
-    its pitch curves roll."""
-    if pair.generated is None or abs(pair.opening) <= OPENING_TOLERANCE:
-        return
-    design = pair.printing.design if pair.printing is not None else pair.spec
-    error = DesignError("install_distance", pair.mounted_distance,
-                        f"{failure}; {opening_phrase(pair)}; nothing written; use --install-distance "
-                        f"{pair.design_distance:g} (for more play, more backlash)")
-    error.remedy = {"install_distance": pair.design_distance}
-    # the rolling distance comes from the centre distance or the module: named if given instead
-    raise error.tied_to({"center_distance": design.center_distance, "module": design.module})
-
-
-def require_play_that_clears(pair, record: dict, failure: str, verify: Callable,
-                             bounds: MeshBounds = MeshBounds()) -> None:
-    """Refuse (DesignError on the backlash, with a checked remedy) a generated pair whose teeth
-    interfere (``failure``, from its meshing ``record``) at a backlash the user set below the
-    design's own. Tried in turn, each built by ``verify(design)`` (pair, record) and followed
-    as a bounds refusal's remedy is: the backlash rounded up to 0.01 mm past twice the
-    interference depth (it takes play off both gears), at least 0.01 mm more than given;
-    then the design's own backlash. Nothing when the backlash was not set or was not below
-    the design's own, or when no try builds within the bounds."""
-    from wheelstep_cli.parts.gear_laws import design_backlash
-
-    if pair.generated is None:
-        return
-    design = pair.printing.design if pair.printing is not None else pair.spec
-    if design.backlash is None:
-        return
-    own = design_backlash(design.model_copy(update={"backlash": None}))
-    if design.backlash >= own:
-        return
-    depth = float(record["max_penetration_mm"])
-    needed = design.backlash + 2.0 * depth
-    least = max(float(np.ceil(100.0 * needed - 1e-9)) / 100.0, round(design.backlash + 0.01, 2))
-    for candidate in dict.fromkeys([round(min(least, own), 3), round(own, 3)]):
-        remedy, _, _ = _verified(design, {"backlash": candidate}, verify, bounds)
-        if remedy:
-            error = DesignError("backlash", design.backlash,
-                                f"{failure}, up to {1000.0 * depth:.1f} um deep: the backlash leaves "
-                                f"rigid teeth no play; nothing written; use {as_flags(remedy)} "
-                                "(--allow-interference writes them anyway)")
-            error.remedy = remedy
-            raise error
 
 
 def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds) -> dict:

@@ -60,7 +60,7 @@ def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, ver
     by ``verify`` when given) when the mounted distance or a backlash set too small is the cause."""
     import typer
 
-    from wheelstep_cli.parts.mesh_bounds import require_mounted_where_rolling, require_play_that_clears
+    from wheelstep_cli.parts.interference_refusals import require_mounted_where_rolling, require_play_that_clears
     from wheelstep_cli.parts.mesh_check import meshing_record
 
     record = meshing_record(check)

@@ -136,15 +136,24 @@ def generate_pinion(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter,
     return _cut_pinion(job, corner).outline, job.module
 
 
+def require_whole_periods(law: TransmissionLaw, pinion_teeth: int) -> None:
+    """Refuse (DesignError on z) a pinion tooth count that is not a whole number of teeth in
+    each period of ``law`` (at least 6 in all), naming the nearest counts that are."""
+    periods = law.pinion_periods
+    fits = sorted({max(-(-6 // periods), k) * periods
+                   for k in (pinion_teeth // periods, -(-pinion_teeth // periods))})
+    require(pinion_teeth >= 6 and pinion_teeth % periods == 0, "z", pinion_teeth,
+            f"must be a multiple of {periods} (law periods per pinion turn) and >= 6; use --z "
+            + " or --z ".join(map(str, fits)))
+
+
 def _job(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, corner: str,
          settings: GenerationSettings, strict: bool, center_distance: float) -> _Job:
     """What the stages of one generation share; refuses a corner mode or tooth count that
     cannot be generated."""
     require(corner in CORNER_MODES, "corner", corner, "must be 'space' or 'tooth'")
-    periods = law.pinion_periods
-    require(pinion_teeth >= 6 and pinion_teeth % periods == 0, "z", pinion_teeth,
-            f"must be a multiple of {periods} (law periods per pinion turn) and >= 6")
-    per_period = pinion_teeth // periods
+    require_whole_periods(law, pinion_teeth)
+    per_period = pinion_teeth // law.pinion_periods
     curves = pitch_curves(law, center_distance)
     return _Job(law, curves, cutter, pinion_teeth, per_period, curves.period_arc / per_period,
                 settings, strict)
