@@ -167,3 +167,20 @@ def test_random_draws_are_different_points(tmp_path):
         load_sweep(sweep)
     assert err.value.lines() == [f"{sweep}:4: random.samples = 6: more than the 5 different points "
                                  "whole-number bounds hold; at most 5"]
+
+
+def test_profiles_a_sweep_file_names_by_path_are_found_beside_it(tmp_path, monkeypatch):
+    """printers: [mine.yaml] and design: demo.yaml beside the sweep file, run from another
+    folder: found there (as a batch file's are), recorded as paths from the working folder."""
+    from pathlib import Path
+
+    profiles = Path(__file__).resolve().parents[2] / "profiles"
+    jobs = tmp_path / "jobs"
+    jobs.mkdir()
+    (jobs / "mine.yaml").write_text((profiles / "fdm-0.4-pla.yaml").read_text())
+    (jobs / "demo.yaml").write_text((profiles / "desk-demo.yaml").read_text())
+    sweep = write(jobs / "s.yaml", "command: shoe\ndesign: demo.yaml\nprinters: [mine.yaml]\ngrid:\n  rim: [8, 9]\n")
+    monkeypatch.chdir(tmp_path)             # no mine.yaml here: only the sweep file's folder has one
+    plan = load_sweep(sweep)
+    assert plan.design == "jobs/demo.yaml"
+    assert {printer for printer, _ in plan.points} == {"jobs/mine.yaml"}

@@ -106,7 +106,9 @@ def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
         raise InvalidInput([Issue(err.where, "", err.limit)]) from None
     issues: list[Issue] = []
     sweep = validate_file(SweepFile, doc, (), issues)
-    data = doc.data if isinstance(doc.data, dict) else {}
+    data = _found_beside(Path(path).parent, doc.data if isinstance(doc.data, dict) else {})
+    if sweep is not None:
+        sweep = sweep.model_copy(update={key: data.get(key) for key in ("design", "printers")})
     random = None
     if isinstance(data.get("random"), dict):
         random = validate_file(RandomAxes, doc, ("random",), issues)
@@ -232,6 +234,20 @@ def _check_objectives(doc: LocatedYaml, names, command, printers: bool, issues: 
         elif name == NEEDS_PRINTER and not printers:
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: needs `printers:` (the "
                                 "mass is the volume times the printer's material density)"))
+
+
+def _found_beside(folder: Path, data: dict) -> dict:
+    """``data`` with its design profile and printer profiles given as YAML paths looked up
+    beside the sweep file (in ``folder``) first, as a batch file's are."""
+    from wheelstep_cli.config.profiles import beside
+
+    def found(name):
+        return beside(folder, name) if isinstance(name, str) and name.endswith((".yaml", ".yml")) else name
+
+    out = {**data, "design": found(data.get("design"))}
+    if isinstance(data.get("printers"), list):
+        out["printers"] = [found(name) for name in data["printers"]]
+    return out
 
 
 def _check_printers(doc: LocatedYaml, names, issues: list[Issue]) -> None:
