@@ -143,6 +143,10 @@ def test_printer_compensation_is_in_the_geometry_and_metadata(example):
     sheet = (example / "print-sheet.md").read_text()
     for needle in ("bntu-gears", "demo-shoes", "| 8 |", "plate-1.png", "fill_density", "g/cm3"):
         assert needle in sheet
+    # the gears' face chamfer replaces the elephant-foot inset the shoes get
+    petg = sheet.split("### fdm-0.4-petg", 1)[1].split("###", 1)[0]
+    assert ("gear faces chamfered 0.5 mm at 45 deg, which takes the place of the elephant-foot inset; "
+            "other parts' bed-side edges inset 0.25 mm over the lowest 0.2 mm (elephant foot)") in petg
 
 
 def test_elephant_foot_inset_in_the_written_mesh(example):

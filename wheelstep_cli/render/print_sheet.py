@@ -121,6 +121,21 @@ def _teeth_compensation(printer) -> str:
             "(each pair's report gives the inset; no tooth clearance)")
 
 
+def _bed_side(plan, printer) -> str:
+    """How the bed-side edges of ``printer``'s parts are compensated for the elephant foot:
+    inset, or on a chamfered part (a gear pair) by its 45 deg face chamfer instead."""
+    chamfers = sorted({float(getattr(e.printed, "chamfer_mm", 0.0) or 0.0) for e in plan.entries
+                       if e.printer.name == printer.name})
+    inset = (f"bed-side edges inset {printer.elephant_foot_inset:g} mm over the lowest "
+             f"{printer.elephant_foot_height:g} mm (elephant foot)")
+    chamfered = [c for c in chamfers if c > 0.0]
+    if not chamfered:
+        return inset
+    said = (f"gear faces chamfered {' / '.join(f'{c:g}' for c in chamfered)} mm at 45 deg, which "
+            "takes the place of the elephant-foot inset")
+    return said if 0.0 not in chamfers else f"{said}; other parts' {inset}"
+
+
 def _printers(plan) -> list[str]:
     lines = ["## Printer profiles and recommended slicer settings", ""]
     seen = []
@@ -131,9 +146,8 @@ def _printers(plan) -> list[str]:
         printer = entry.printer
         lines += [f"### {printer.name}", "", printer.description, "",
                   f"Geometry already compensated in the meshes: bores +{printer.hole_compensation:g} mm, "
-                  f"{_teeth_compensation(printer)}, bed-side edges inset "
-                  f"{printer.elephant_foot_inset:g} mm over the lowest {printer.elephant_foot_height:g} mm "
-                  "(elephant foot). Do not compensate again in the slicer.", "",
+                  f"{_teeth_compensation(printer)}, {_bed_side(plan, printer)}. Do not compensate "
+                  "again in the slicer.", "",
                   "| setting | value |", "| --- | --- |"]
         lines += [f"| {key} | {value} |" for key, value in printer.slicer.items()]
         lines.append("")
