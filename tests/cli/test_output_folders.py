@@ -213,6 +213,11 @@ def test_a_dry_run_names_the_files_the_run_would_remove(cli, tmp_path):
     assert f"would remove {out / 'shoe.3mf'} (written by an earlier run)" in said.stdout.splitlines()
     assert (out / "shoe.3mf").exists()
     assert "would remove" not in cli("shoe", "--out", out, "--format", "both", "--dry-run").stdout
+    # the real run says what it removed, as the dry run said it would
+    done = cli("shoe", "--out", out, "--format", "stl")
+    assert f"removed {out / 'shoe.3mf'} (written by an earlier run)" in done.stdout.splitlines()
+    assert not (out / "shoe.3mf").exists()
+    assert cli("shoe", "--out", out, "--format", "both", "-q").exit_code == 0
     two = write(tmp_path / "two.yaml", SHOE + SHOE.split("\n", 1)[1].replace("fdm-0.4-pla", "resin-0.05-standard")
                 .replace("- kind", "- name: resin\n    kind"))
     folder = tmp_path / "batch"

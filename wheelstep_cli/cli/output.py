@@ -24,6 +24,8 @@ class Output:
     verbose: bool = False
     #: Files of an earlier run that a dry run's real run would remove (said by :meth:`files`).
     would_remove: list = field(default_factory=list, compare=False, repr=False)
+    #: Files of an earlier run a run removed (said by :meth:`files`).
+    removed: list = field(default_factory=list, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.quiet and self.verbose:
@@ -107,8 +109,7 @@ class Output:
                              dry_run)
         stale = stale_files(folder, files, record)
         remove_files(stale)
-        for path in stale:
-            self.detail(f"  removed {path} (written by an earlier run)")
+        self.removed.extend(stale)
         return written
 
     def write_named(self, command: str, files: Mapping[Path, bytes], dry_run: bool,
@@ -143,9 +144,9 @@ class Output:
         if not names:
             return
         lines = [f"{verb} " + ", ".join(names)] if joined else [f"{verb} {n}" for n in names]
-        if dry_run:
-            # a dry run says all the real run would do to the folder
-            lines += [f"would remove {p} (written by an earlier run)" for p in self.would_remove]
+        # all the run does (would do) to the folder: the files it removes too
+        lines += [f"{'would remove' if dry_run else 'removed'} {p} (written by an earlier run)"
+                  for p in (self.would_remove if dry_run else self.removed)]
         for text in lines:
             if not self.json:
                 self.line(text)
