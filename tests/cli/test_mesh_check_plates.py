@@ -115,7 +115,8 @@ def test_the_same_mesh_twice_is_refused_before_any_work(desk_pair, cli, tmp_path
 
 def test_two_wheels_or_two_pinions_are_refused_before_any_work(desk_pair, cli, tmp_path):
     """Two different wheels (not a pinion and its wheel) overlap everywhere; their check ran
-    for minutes. Refused from the outlines' sizes against the centre distance, one line."""
+    for minutes. Refused from the outlines' sizes against the centre distance, one line,
+    naming the file whose size is not its part's (the other one's fits)."""
     from wheelstep_cli.formats.mesh_read import read_mesh
     from wheelstep_cli.formats.stl import stl_bytes
 
@@ -125,8 +126,15 @@ def test_two_wheels_or_two_pinions_are_refused_before_any_work(desk_pair, cli, t
         other.write_bytes(stl_bytes(vertices * [1.01, 1.01, 1.0], faces))
         result = cli("mesh-check", desk_pair / f"{part}.stl", other, "--profile", "desk-demo")
         line = error_line(result)
-        assert line.startswith(f"wheelstep: error: wheel = {other}: its radius by area"), line
-        assert "not the centre distance 72.125 mm" in line and "two wheels or two pinions" in line
+        # two wheels: the one given as the pinion is not one; two pinions: the one given as the wheel
+        named = (f"pinion = {desk_pair / 'wheel.stl'}: its radius by area 47.7 mm is not the pinion's"
+                 if part == "wheel" else f"wheel = {other}: its radius by area 24.1 mm is not the wheel's")
+        assert line.startswith(f"wheelstep: error: {named} of a pair at the centre distance 72.125 mm"), line
+        assert "two wheels or two pinions" in line
+    # neither fits a distance far off: said of both, as the sizes that do not add up
+    far = error_line(cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--distance", "100"))
+    assert f"wheel = {desk_pair / 'wheel.stl'}: its radius by area 47.7 mm and the pinion's 23.8 mm add to " \
+           "71.6 mm, not the centre distance 100 mm" in far, far
     apart = cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile",
                   "desk-demo", "--samples", "160", "--distance", "75")
     assert apart.exit_code in (0, 1), apart.stderr       # a real pair a little apart: checked

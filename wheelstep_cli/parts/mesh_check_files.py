@@ -10,7 +10,7 @@ from typing import Callable
 
 import numpy as np
 
-from wheelstep_cli.errors import require
+from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.gears.meshing import MeshingReport
 from wheelstep_cli.parts.gear_pair import (GearPairSpec, design_law, generation_law, installed_distance,
                                           law_record)
@@ -55,7 +55,7 @@ def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
     outlines = (read_outline(check.pinion, "pinion", default_name="pinion"),
                 read_outline(check.wheel, "wheel", default_name="wheel"))
     radii = tuple(radius_by_area(o) for o in outlines)
-    require_a_pair(radii, installed_distance(check.spec), check.wheel)
+    require_a_pair(radii, installed_distance(check.spec), (check.pinion, check.wheel), law)
     require_pinion_first(radii, law, check.pinion)
     teeth = _teeth_under_the_law(outlines, law, check)
     require_poses_per_tooth(check.samples, teeth, law)
@@ -65,8 +65,6 @@ def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
 def _teeth_under_the_law(outlines: tuple[np.ndarray, np.ndarray], law, check: WrittenPairCheck) -> int:
     """:func:`require_gear_teeth`; when the teeth do not count right under the design's law but
     do under the crank law of the other pinion turns (2 or 4), the refusal says to give those."""
-    from wheelstep_cli.errors import DesignError
-
     names = (check.pinion, check.wheel)
     try:
         return require_gear_teeth(outlines, law, names)
@@ -87,18 +85,34 @@ def _teeth_under_the_law(outlines: tuple[np.ndarray, np.ndarray], law, check: Wr
                           f"at {turns}: give -n {turns}") from None
 
 
-def require_a_pair(radii: tuple[float, float], distance: float, wheel: str) -> None:
-    """Refuse (naming the wheel) two outlines that cannot be a pinion and its wheel at
-    ``distance`` mm, e.g. two wheels or two pinions: their ``radii`` by area (mm; the teeth
-    above and below the pitch curve cancel) must add to the distance within SIZE_SLACK.
-    Checked before the poses: two wheels overlap everywhere and their check ran for minutes."""
-    pinion, wheel_r = radii
-    total = pinion + wheel_r
-    require(abs(total - distance) <= SIZE_SLACK * distance, "wheel", wheel,
-            f"its radius by area {wheel_r:.1f} mm and the pinion's {pinion:.1f} mm add to "
-            f"{total:.1f} mm, not the centre distance {distance:g} mm +-{100 * SIZE_SLACK:.0f} %: "
-            "give the pinion and the wheel of one pair (two wheels or two pinions cannot mesh), "
-            "at the distance they were designed for (--distance, or their design's --profile)")
+def require_a_pair(radii: tuple[float, float], distance: float, names: tuple[str, str], law) -> None:
+    """Refuse two outlines that cannot be a pinion and its wheel at ``distance`` mm, e.g. two
+    wheels or two pinions: their ``radii`` by area (mm; the teeth above and below the pitch
+    curve cancel) must add to the distance within SIZE_SLACK. Checked before the poses: two
+    wheels overlap everywhere and their check ran for minutes. When one gear has about the
+    radius ``law``'s mean ratio gives it at that distance, the other (of ``names``, the files
+    as given) is named; else the wheel, for both."""
+    total = sum(radii)
+    if abs(total - distance) <= SIZE_SLACK * distance:
+        return
+    period = float(law.theta_period)
+    ends = np.asarray(law.carrier_angle(np.array([0.0, period])), dtype=float)
+    ratio = abs(float(ends[1] - ends[0])) / period        # mean wheel turn per pinion turn
+    expected = (distance * ratio / (1.0 + ratio), distance / (1.0 + ratio))
+    off = [abs(r - e) / e for r, e in zip(radii, expected)]
+    bad = 0 if off[0] > off[1] else 1
+    fits = off[1 - bad] <= 0.5 * SIZE_SLACK
+    part, other = ("pinion", "wheel") if bad == 0 else ("wheel", "pinion")
+    why = (f"its radius by area {radii[bad]:.1f} mm is not the {part}'s of a pair at the centre "
+           f"distance {distance:g} mm (about {expected[bad]:.1f} mm; the {other}'s "
+           f"{radii[1 - bad]:.1f} mm fits it)" if fits else
+           f"its radius by area {radii[1]:.1f} mm and the pinion's {radii[0]:.1f} mm add to "
+           f"{total:.1f} mm, not the centre distance {distance:g} mm +-{100 * SIZE_SLACK:.0f} %")
+    param = part if fits else "wheel"
+    raise DesignError(param, names[0 if param == "pinion" else 1],
+                      f"{why}: give the pinion and the wheel of one pair (two wheels or two pinions "
+                      "cannot mesh), at the distance they were designed for (--distance, or their "
+                      "design's --profile)")
 
 
 def require_pinion_first(radii: tuple[float, float], law, pinion: str) -> None:
