@@ -246,3 +246,20 @@ def test_more_teeth_on_a_given_module_keep_the_size_asked_for_and_the_bed(cli, t
     report = json.loads((out / "gears.json").read_text())
     assert bound_violations(report["meshing"]) == []
     assert (out / "gears-1.3mf").exists()
+
+
+@pytest.mark.parametrize("given, expect", [
+    # the default backlash follows the tooth count: the remedy leaves it to follow
+    (["--z", "20"], ["--z"]),
+    # a backlash set far above the design's own: the play alone first, no more teeth needed
+    (["--backlash", "2"], ["--backlash"]),
+])
+def test_a_remedy_changes_only_what_it_must(cli, tmp_path, given, expect):
+    result = cli("gears", *given, "--format", "stl", "--out", tmp_path / "out")
+    line = error_line(result)
+    assert result.exit_code == 2 and "the pair would mesh outside the bounds" in line, line
+    remedy = line.rsplit("; use ", 1)[1].split()
+    assert remedy[::2] == expect, line
+    written = cli("gears", *with_remedy(given, remedy), "--format", "stl", "--out", tmp_path / "fixed")
+    assert written.exit_code == 0, written.stderr
+    assert bound_violations(json.loads((tmp_path / "fixed" / "gears.json").read_text())["meshing"]) == []

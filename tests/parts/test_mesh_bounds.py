@@ -70,7 +70,7 @@ def _refusal(verify, **given):
 
     spec = GearPairSpec(z=32, **given)
     pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(spec)[1]), printing=None,
-                           spec=spec, opening=0.0)
+                           spec=spec, as_asked=spec, opening=0.0)
     with pytest.raises(DesignError) as err:
         require_within_bounds(pair, record(drive=flank(total=18.0, tooth=6.0)), verify=verify)
     return err.value, pair
@@ -95,7 +95,7 @@ def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what
     def verify(design):
         builds.append(design.z)
         pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
-                               spec=design, opening=0.0)
+                               spec=design, as_asked=design, opening=0.0)
         return pair, record(drive=flank(total=18.0, tooth=6.0))
 
     error, _ = _refusal(verify)
@@ -133,7 +133,7 @@ def test_more_teeth_on_a_given_module_that_outgrow_the_printer_keep_the_size_ask
             error.remedy = {"z": 36}
             raise error
         pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
-                               spec=design, opening=0.0)
+                               spec=design, as_asked=design, opening=0.0)
         return pair, record()
 
     error, _ = _refusal(verify, module=2)
@@ -168,7 +168,7 @@ def test_a_remedy_already_tried_is_not_built_again():
             error.remedy = {"z": 40}
             raise error
         pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
-                               spec=design, opening=0.0)
+                               spec=design, as_asked=design, opening=0.0)
         return pair, record(drive=flank(total=18.0, tooth=6.0))
 
     error, _ = _refusal(verify)

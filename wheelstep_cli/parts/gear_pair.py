@@ -43,6 +43,15 @@ class GearPair:
     printing: object = None    # parts.kinds.Printing when drawn for a printer (spec: the printed one)
     installed: float | None = None  # mm, generated teeth: parts.gear_laws.installed_distance
     inset: float = 0.0         # mm both tooth outlines are drawn smaller along their normals (a fit)
+    asked: object = None       # the spec before the build filled in a default (generated teeth' backlash)
+
+    @property
+    def as_asked(self) -> GearPairSpec:
+        """The spec as the user gave it: before a printer's compensation and before the build
+        filled in a default (a remedy leaves such a default to follow what it changes)."""
+        if self.printing is not None:
+            return self.printing.design
+        return self.asked if self.asked is not None else self.spec
 
     @property
     def mounted_distance(self) -> float:
@@ -161,6 +170,7 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
             raise err.tied_to({"law_csv": spec.law_csv}) from None
     settings = generation_settings(spec)
     distance = rolling_distance(spec, law)
+    asked = spec
     if spec.backlash is None:
         spec = spec.model_copy(update={"backlash": generated_backlash(spec, law, distance, settings)})
     gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, settings=settings,
@@ -174,7 +184,7 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     crank = spec.law() if spec.law_csv is None else None
     return GearPair(spec, crank, None, p_outline, w_outline, pinion, wheel, checks, gen,
-                    installed=installed_distance(spec, law))
+                    installed=installed_distance(spec, law), asked=asked)
 
 
 def inset_gear_pair(pair: GearPair, inset: float) -> GearPair:

@@ -19,7 +19,7 @@ def require_mounted_where_rolling(pair, failure: str) -> None:
     its pitch curves roll."""
     if pair.generated is None or abs(pair.opening) <= OPENING_TOLERANCE:
         return
-    design = pair.printing.design if pair.printing is not None else pair.spec
+    design = pair.as_asked
     error = DesignError("install_distance", pair.mounted_distance,
                         f"{failure}; {opening_phrase(pair)}; nothing written; use --install-distance "
                         f"{pair.design_distance:g} (for more play, more backlash)")
@@ -41,7 +41,7 @@ def require_play_that_clears(pair, record: dict, failure: str, verify: Callable,
 
     if pair.generated is None:
         return
-    design = pair.printing.design if pair.printing is not None else pair.spec
+    design = pair.as_asked
     if design.backlash is None:
         return
     own = design_backlash(design.model_copy(update={"backlash": None}))

@@ -145,16 +145,17 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     broken = _broken(record, bounds)
     if not broken or pair.generated is None:
         return
-    design = pair.printing.design if pair.printing is not None else pair.spec
+    design = pair.as_asked
     remedy, tried, candidates = {}, [], []
     if abs(pair.opening) > OPENING_TOLERANCE:
         # off the distance they roll at the pitch curves do not roll: mount them there
         broken.append(opening_phrase(pair))
         remedy["install_distance"] = pair.design_distance
     else:
-        remedy = _remedy_of(pair, design, record, bounds)
+        remedy = _play_first(design, _remedy_of(pair, design, record, bounds))
         if verify is not None and remedy:
             remedy, tried, candidates = verified_remedy(design, remedy, verify, bounds)
+        remedy = dict(sorted(remedy.items(), key=lambda option: option[0] != "z"))   # the count first
     param = next(iter(remedy), "z")
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
     # a CSV law replaces the crank mechanism (whose options are then refused)
@@ -245,6 +246,18 @@ def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
     if any("ripple" in text for text in broken):
         remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
     return _within_the_tooth_limit(design, remedy)
+
+
+def _play_first(design, remedy: dict) -> dict:
+    """``remedy``, or when it adds teeth to a design whose backlash the user set above the
+    design's own (whose play costs the figures too), that backlash alone first: the tries
+    that follow add teeth only if it does not do."""
+    from wheelstep_cli.parts.gear_laws import design_backlash
+
+    if "z" not in remedy or design.backlash is None:
+        return remedy
+    own = round(design_backlash(design.model_copy(update={"backlash": None})), 3)
+    return {"backlash": own} if design.backlash > own else remedy
 
 
 def _sized(design, remedy: dict) -> dict:

@@ -65,7 +65,7 @@ def require_printable_teeth(pair, printer=None) -> None:
         if (why := thin_teeth(outline, gen.module, width, corners)) is not None]
     if not found:
         return
-    design = pair.printing.design if pair.printing is not None else pair.spec
+    design = pair.as_asked
     z = fewer_teeth(pair, design, printer, width)
     remedy = (f"use --z {z} (fewer, larger teeth)" if z is not None else
               "use fewer teeth (--z) or a larger --module")
