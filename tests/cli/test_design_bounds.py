@@ -263,3 +263,18 @@ def test_a_remedy_changes_only_what_it_must(cli, tmp_path, given, expect):
     written = cli("gears", *with_remedy(given, remedy), "--format", "stl", "--out", tmp_path / "fixed")
     assert written.exit_code == 0, written.stderr
     assert bound_violations(json.loads((tmp_path / "fixed" / "gears.json").read_text())["meshing"]) == []
+
+
+def test_thin_teeth_on_a_given_module_are_offered_a_larger_module_with_fewer_teeth(cli, tmp_path):
+    """desk-demo at --module 0.9 --z 44 ripples past its bound, and the more teeth that
+    remedy asks for (48) print too thin on the 0.4 mm nozzle; fewer teeth on that module are
+    about as thin, so the thin teeth's remedy scales the module with the count (fewer, larger
+    teeth, the try's size kept); that is offered, and applied, the pair is written."""
+    design = ["--profile", "desk-demo", "--module", "0.9", "--z", "44", "--printer", "fdm-0.4-pla"]
+    line = error_line(cli("gears", *design, "--format", "stl", "--out", tmp_path / "out"))
+    assert line.startswith("wheelstep: error: --z = 44: "), line
+    remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()
+    options = dict(zip(remedy[::2], map(float, remedy[1::2])))
+    assert options["--z"] < 48 and options["--module"] == pytest.approx(0.9 * 48 / options["--z"], abs=1e-3)
+    written = cli("gears", *with_remedy(design, remedy), "--format", "stl", "--out", tmp_path / "fixed")
+    assert written.exit_code == 0, written.stderr

@@ -209,7 +209,7 @@ def test_fewer_teeth_finds_the_largest_count_that_prints(monkeypatch, z, periods
 
     monkeypatch.setattr(printed_teeth, "_printing", state)
     pair = SimpleNamespace(generated=SimpleNamespace(law=SimpleNamespace(pinion_periods=periods)), inset=0.0)
-    assert printed_teeth.fewer_teeth(pair, SimpleNamespace(z=z), None, 0.8) == expect
+    assert printed_teeth.fewer_teeth(pair, SimpleNamespace(z=z, module=None), None, 0.8) == expect
 
 
 def test_a_remedy_the_plates_bed_cannot_hold_is_refused_before_its_meshing_check():

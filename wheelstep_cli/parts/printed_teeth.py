@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from wheelstep_cli.config.names import as_flags
 from wheelstep_cli.config.specs import MIN_TEETH
 from wheelstep_cli.errors import DesignError
 
@@ -67,22 +68,33 @@ def require_printable_teeth(pair, printer=None) -> None:
         return
     design = pair.as_asked
     z = fewer_teeth(pair, design, printer, width)
-    remedy = (f"use --z {z} (fewer, larger teeth)" if z is not None else
+    options = None if z is None else sized_teeth(design, z)
+    remedy = (f"use {as_flags(options)} (fewer, larger teeth)" if options is not None else
               "use fewer teeth (--z) or a larger --module")
     error = DesignError("z", design.z,
                         f"the teeth are too thin for printer '{printer.name}' (tip land under two "
                         f"{width / 2:g} mm extrusion lines; {'; '.join(found)}); nothing written; "
                         f"{remedy}, or a printer with a finer nozzle")
-    if z is not None:
-        error.remedy = {"z": z}
+    if options is not None:
+        error.remedy = options
     raise error
+
+
+def sized_teeth(design, z: int) -> dict:
+    """The options (name -> value) that give ``design`` ``z`` teeth keeping its size: with a
+    module the user gave (which sizes the pair with the count) that module scaled by z0 / z
+    too, so the teeth grow; without one the count alone (the module follows it)."""
+    if design.module is None:
+        return {"z": z}
+    return {"z": z, "module": round(float(design.module) * design.z / z, 3)}
 
 
 def fewer_teeth(pair, design, printer, width: float) -> int | None:
     """The largest tooth count below the design's (in whole law periods) whose pinion, drawn
     for ``printer`` and inset by ``pair``'s fit inset, keeps its tips under two lines
     ``width`` mm wide; None if none does. (The wheel, carved by that pinion, gets the larger
-    module too.) Counts 1, 2, 4 ... periods below are tried, down to the least count, until
+    module too; a module the user gave is scaled with the count, :func:`sized_teeth`: fewer
+    teeth on the same module are about as thin.) Counts 1, 2, 4 ... periods below are tried, down to the least count, until
     one prints or cannot be cut (it undercuts); then the counts between are halved: fewer
     teeth print wider tips, and below the printing ones the pinion undercuts. A candidate's
     own fit may need a few um more or less inset than ``pair``'s: the count is the one that
@@ -121,7 +133,7 @@ def _printing(design, z: int, printer, width: float, inset: float, periods: int)
     from wheelstep_cli.parts.gear_pair import generation_settings
     from wheelstep_cli.parts.kinds import KINDS, printed_spec
 
-    printed = printed_spec(KINDS["gear-pair"], design.model_copy(update={"z": z}), printer)
+    printed = printed_spec(KINDS["gear-pair"], design.model_copy(update=sized_teeth(design, z)), printer)
     try:
         outline, module = _pinion(printed)
     except DesignError:
