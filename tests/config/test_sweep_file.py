@@ -166,7 +166,13 @@ def test_random_draws_are_different_points(tmp_path):
     with pytest.raises(InvalidInput) as err:
         load_sweep(sweep)
     assert err.value.lines() == [f"{sweep}:4: random.samples = 6: more than the 5 different points "
-                                 "whole-number bounds hold; at most 5"]
+                                 "the bounds hold (whole numbers, or decimals to 9 places); at most 5"]
+    # decimal bounds that hold one value (they drew it again and again, for ever)
+    for low, high in (("8.5", "8.5"), ("8", "8.0")):
+        one = write(tmp_path / "one.yaml", text.format(n=2).replace("low: 6, high: 10", f"low: {low}, high: {high}"))
+        with pytest.raises(InvalidInput) as err:
+            load_sweep(one)
+        assert "random.samples = 2: more than the 1 different point the bounds hold" in err.value.lines()[0]
 
 
 def test_profiles_a_sweep_file_names_by_path_are_found_beside_it(tmp_path, monkeypatch):

@@ -184,9 +184,10 @@ def _check_values(doc: LocatedYaml, spec, command: str, data: dict, grid: dict,
             issues.append(Issue(doc.where(at), dotted(at), f"low {show(b.low)} > high {show(b.high)}"))
     if random is not None and not issues and random.samples > _distinct_draws(random):
         at = ("random", "samples")
-        issues.append(Issue(doc.where(at), dotted(at), f"= {random.samples}: more than the "
-                            f"{_distinct_draws(random)} different points whole-number bounds hold; "
-                            f"at most {_distinct_draws(random)}"))
+        held = _distinct_draws(random)
+        issues.append(Issue(doc.where(at), dotted(at), f"= {random.samples}: more than the {held} "
+                            f"different point{'s' if held != 1 else ''} the bounds hold (whole numbers, "
+                            f"or decimals to 9 places); at most {held}"))
 
 
 def _value_issues(doc, fields, at: tuple, key: str, axis, values: list) -> list[Issue]:
@@ -368,10 +369,11 @@ def _points(sweep: SweepFile, grid: dict, random: RandomAxes | None) -> list[tup
             for printer in printers for combo in combos for draw in draws]
 
 
-def _distinct_draws(random: RandomAxes) -> float:
-    """How many different points the random bounds hold (inf with a bound of decimals)."""
-    return math.prod(b.high - b.low + 1 if isinstance(b.low, int) and isinstance(b.high, int) else math.inf
-                     for b in random.bounds.values())
+def _distinct_draws(random: RandomAxes) -> int:
+    """How many different points the random bounds hold: whole numbers, or decimals kept to
+    the 9 decimals a draw is rounded to (low = high: one)."""
+    return math.prod(b.high - b.low + 1 if isinstance(b.low, int) and isinstance(b.high, int)
+                     else math.floor(round((b.high - b.low) * 1e9, 6)) + 1 for b in random.bounds.values())
 
 
 def _draw(rng, bounds: Bounds):
