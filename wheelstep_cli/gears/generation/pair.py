@@ -136,15 +136,22 @@ def generate_pinion(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter,
     return _cut_pinion(job, corner).outline, job.module
 
 
-def require_whole_periods(law: TransmissionLaw, pinion_teeth: int) -> None:
+def require_whole_periods(law: TransmissionLaw, pinion_teeth: int, most: int | None = None) -> None:
     """Refuse (DesignError on z) a pinion tooth count that is not a whole number of teeth in
-    each period of ``law`` (at least 6 in all), naming the nearest counts that are."""
+    each period of ``law`` (at least 6 in all), naming the nearest counts that are (up to
+    ``most`` teeth when given) as its ``remedies``."""
     periods = law.pinion_periods
-    fits = sorted({max(-(-6 // periods), k) * periods
+    if pinion_teeth >= 6 and pinion_teeth % periods == 0:
+        return
+    least, top = -(-6 // periods), (most // periods if most is not None else None)
+    fits = sorted({min(max(least, k), top) if top is not None else max(least, k)
                    for k in (pinion_teeth // periods, -(-pinion_teeth // periods))})
-    require(pinion_teeth >= 6 and pinion_teeth % periods == 0, "z", pinion_teeth,
-            f"must be a multiple of {periods} (law periods per pinion turn) and >= 6; use --z "
-            + " or --z ".join(map(str, fits)))
+    remedies = [{"z": k * periods} for k in fits if top is None or least <= k <= top]
+    error = DesignError("z", pinion_teeth, f"must be a multiple of {periods} (law periods per pinion "
+                        "turn) and >= 6" + ("; " + " or ".join(f"use --z {r['z']}" for r in remedies)
+                                            if remedies else ""))
+    error.remedy, error.remedies = (remedies[0] if remedies else {}), remedies
+    raise error
 
 
 def _job(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, corner: str,
