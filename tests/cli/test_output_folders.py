@@ -232,5 +232,8 @@ def test_a_dry_run_names_the_files_the_run_would_remove(cli, tmp_path):
     gone = ("plate-2.3mf", "plate-2.png", "reports/resin.json", "resin-0.05-standard.ini")
     assert removed == sorted(f"would remove {folder / name} (written by an earlier run)" for name in gone)
     assert listing(folder) == before
-    assert cli("batch", one, "--out", folder, "--jobs", "1", "-q").exit_code == 0
+    done = cli("batch", one, "--out", folder, "--jobs", "1", "--json")
+    assert done.exit_code == 0, done.stderr
     assert not any((folder / name).exists() for name in gone)
+    # the real run says what it removed too (in its report with --json)
+    assert sorted(json.loads(done.stdout)["removed"]) == sorted(str(folder / name) for name in gone)

@@ -94,7 +94,8 @@ def test_gears_for_a_printer_match_the_batch_entry_figures(cli, tmp_path):
                  "--json", "-q")
     assert result.exit_code == 0
     gears = json.loads(result.stdout)
-    assert gears == {**json.loads((tmp_path / "g" / "gears.json").read_text()), "written": gears["written"]}
+    assert gears == {**json.loads((tmp_path / "g" / "gears.json").read_text()), "written": gears["written"],
+                     "removed": []}
     assert gears["printed_parameters"]["backlash"] == pytest.approx(gears["parameters"]["backlash"] + 0.15)
     assert gears["printed_parameters"]["bore"] == pytest.approx(gears["parameters"]["bore"] + 0.2)
     batch = write(tmp_path / "pair.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"

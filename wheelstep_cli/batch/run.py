@@ -20,6 +20,7 @@ class BatchOutcome:
     failed: list[tuple[Entry, str, str]]     # entry, where (file:line), reason
     built: list[Entry]
     results: dict = field(default_factory=dict)   # entry index -> EntryResult
+    removed: list = field(default_factory=list)   # files of an earlier batch this one removed
 
 
 def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
@@ -65,8 +66,9 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
     files = _files(plan, out, plates, rendered, built, results, failed)
     check_folder(out, files, force)
     written = write_files_atomic(files)
-    remove_files(stale_files(out, files, record))
-    return BatchOutcome(written, plates, failed, built, results)
+    stale = stale_files(out, files, record)
+    remove_files(stale)
+    return BatchOutcome(written, plates, failed, built, results, stale)
 
 
 def stale_batch_files(out: Path, paths) -> list[Path]:

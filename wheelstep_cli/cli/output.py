@@ -138,12 +138,11 @@ class Output:
 
     def files(self, paths: Iterable[Path], dry_run: bool, joined: bool = False) -> None:
         """Say which files were written (or would be, with ``dry_run``): one line each, or
-        one ``joined`` line. In table mode on stdout; with --json on stderr for a dry run."""
+        one ``joined`` line, and those of an earlier run removed (would be). In table mode on
+        stdout; with --json on stderr for a dry run (the report lists them otherwise)."""
         verb = "would write" if dry_run else "wrote"
         names = [str(p) for p in paths]
-        if not names:
-            return
-        lines = [f"{verb} " + ", ".join(names)] if joined else [f"{verb} {n}" for n in names]
+        lines = ([f"{verb} " + ", ".join(names)] if joined else [f"{verb} {n}" for n in names]) if names else []
         # all the run does (would do) to the folder: the files it removes too
         lines += [f"{'would remove' if dry_run else 'removed'} {p} (written by an earlier run)"
                   for p in (self.would_remove if dry_run else self.removed)]

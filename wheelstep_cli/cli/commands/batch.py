@@ -52,8 +52,8 @@ def batch(
     show.report(_summary(file, out, plan, outcome, [] if dry_run else written),
                 lambda: _lines(out, plan, outcome))
     _band_warnings(show, outcome)
-    if dry_run:
-        show.files(written, dry_run=True)
+    # a real run's files are said by its summary lines; a dry run's, and what either removes, here
+    show.files(written if dry_run else [], dry_run=dry_run)
     if outcome.failed:
         show.error(f"{_count(len(outcome.failed), 'entry', 'entries')} failed:")
         for entry, where, reason in outcome.failed:
@@ -79,6 +79,7 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, s
         with Progress(not show.quiet, transient=False) as bars:
             if not dry_run:
                 outcome = run_batch(plan, out, workers, bars, force, scheduler, tolerance)
+                show.removed.extend(outcome.removed)
                 return outcome, outcome.written
             with tempfile.TemporaryDirectory(prefix="wheelstep-dry-run-") as scratch:
                 outcome = run_batch(plan, Path(scratch), workers, bars, scheduler=scheduler,
@@ -101,7 +102,7 @@ def _summary(file: Path, out: Path, plan, outcome, written: list[Path]) -> dict:
                     "parts": len(p.items)} for p in outcome.plates],
         "failed": [{"entry": entry.name, "where": where, "reason": reason}
                    for entry, where, reason in outcome.failed],
-        "written": [str(p) for p in written],
+        "written": [str(p) for p in written], "removed": [str(p) for p in outcome.removed],
         **({"tolerance": bands} if (bands := _bands(outcome)) else {}),
     }
 

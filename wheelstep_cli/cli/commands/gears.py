@@ -257,7 +257,8 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     written = show.write_owned(out, "gears", files, dry_run, force)
     written += show.write_named("gears-pictures", pictures, dry_run, force, **named)
     report = {**gear_pair_report(pair, record), **({"slice": sliced} if sliced else {}),
-              "written": [] if dry_run else [str(p) for p in written]}
+              "written": [] if dry_run else [str(p) for p in written],
+              "removed": [str(p) for p in show.removed]}
     show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
     _warn_interference(show, record)
     warn_band_jams(show, record.get("tolerance"), printer_given, rerun=True)

@@ -55,7 +55,8 @@ def shoe(
     written = show.write_owned(out, "shoe", files, dry_run, force)
     report = shoe_report(built)
     listed = [] if dry_run else [str(p) for p in written]
-    show.report({**report, "written": listed}, lambda: _shoe_lines(built, report))
+    show.report({**report, "written": listed, "removed": [str(p) for p in show.removed]},
+                lambda: _shoe_lines(built, report))
     show.files(written, dry_run, joined=True)
 
 

@@ -78,7 +78,7 @@ def sweep(
     show.report({"sweep": str(file), "out": str(out), "points": outcome.total,
                  "skipped": outcome.skipped, "computed": outcome.computed,
                  "failures": outcome.failures, "dropped": outcome.dropped,
-                 "written": [str(p) for p in written]},
+                 "written": [str(p) for p in written], "removed": [str(p) for p in show.removed]},
                 lambda: [f"{outcome.computed} designs computed ({outcome.failures} refused or "
                          f"failed), {outcome.skipped} already in {outcome.results}"
                          + _dropped_text(outcome.dropped, "dropped")])
@@ -229,6 +229,7 @@ def _drop_earlier_best(out: Path, count: int, show: Output, dry_run: bool = Fals
                 show.would_remove.extend(stale)
             else:
                 remove_files(stale)
+                show.removed.extend(stale)
         if dry_run:
             continue
         try:
