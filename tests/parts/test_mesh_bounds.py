@@ -141,6 +141,29 @@ def test_more_teeth_on_a_given_module_that_outgrow_the_printer_keep_the_size_ask
     assert error.remedy == {"z": 36, "module": round(64 / 36, 3)}
 
 
+def test_the_try_a_given_module_outgrows_the_printer_with_is_not_one_of_the_tries():
+    """The sized tries get their REMEDY_TRIES builds after the one refused as too large."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.mesh_bounds import REMEDY_TRIES
+
+    tries = []
+
+    def verify(design):
+        tries.append(design.z)
+        if design.module == 2:
+            error = DesignError("printer", "fdm-0.4-pla", "part 'wheel' does not fit the bed")
+            error.beyond_printer = "fdm-0.4-pla"
+            raise error
+        pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
+                               spec=design, as_asked=design, opening=0.0)
+        return pair, record(drive=flank(total=18.0, tooth=6.0))
+
+    error, _ = _refusal(verify, module=2)
+    assert len(tries) == 1 + REMEDY_TRIES and error.remedy == {}
+
+
 def test_a_remedy_the_pipeline_refuses_is_not_offered():
     from wheelstep_cli.errors import DesignError
 

@@ -155,7 +155,7 @@ def _figures(point: Point) -> dict:
                max_penetration_mm=record["max_penetration_mm"], interference=bool(record["interference"]))
     if "tolerance" in record:
         out.update(_band_figures(record["tolerance"]))
-    return {**out, **_bounds_refusal(built, record)}
+    return {**out, **_bounds_refusal(built, record, point.printer)}
 
 
 def _band_figures(band: dict) -> dict:
@@ -171,15 +171,15 @@ def _band_figures(band: dict) -> dict:
     return out
 
 
-def _bounds_refusal(pair, record: dict) -> dict:
+def _bounds_refusal(pair, record: dict, printer) -> dict:
     """The refusal `gears` gives a pair meshing outside the SPEC §10 bounds, or with teeth too
-    thin for the printer it is drawn for (its figures are kept in the row), or nothing."""
+    thin for the point's ``printer`` (None: none), its figures kept in the row; or nothing."""
     from wheelstep_cli.parts.mesh_bounds import require_within_bounds
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     try:
         require_within_bounds(pair, record)
-        require_printable_teeth(pair)
+        require_printable_teeth(pair, printer)
     except DesignError as err:
         reason, remedy = yaml_message(err), getattr(err, "remedy", None) or {}
         # the remedy as the sweep file's keys (its grid and fixed values)

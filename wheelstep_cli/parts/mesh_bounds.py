@@ -152,9 +152,10 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
         broken.append(opening_phrase(pair))
         remedy["install_distance"] = pair.design_distance
     else:
-        remedy = _play_first(design, _remedy_of(pair, design, record, bounds))
+        remedy = _remedy_of(pair, design, record, bounds)
         if verify is not None and remedy:
-            remedy, tried, candidates = verified_remedy(design, remedy, verify, bounds)
+            # the play alone first only where a build follows it up (a sweep's row keeps the count)
+            remedy, tried, candidates = verified_remedy(design, _play_first(design, remedy), verify, bounds)
         remedy = dict(sorted(remedy.items(), key=lambda option: option[0] != "z"))   # the count first
     param = next(iter(remedy), "z")
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
@@ -275,13 +276,14 @@ def _sized(design, remedy: dict) -> dict:
 
 
 def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds
-              ) -> tuple[dict, list[str], list[dict]]:
+                    ) -> tuple[dict, list[str], list[dict]]:
     """(the first remedy whose build is within the bounds, or {}; what each failed try gave;
     the failed remedies). Each try follows from the last one's figures (or from its refusal's
     own remedy); a try that leads back to the design as it is, or to a remedy already tried,
-    or beyond the tooth limit ends the search."""
+    or beyond the tooth limit ends the search. REMEDY_TRIES tries, besides the one a module
+    the user gave outgrew the printer with (the same remedy then keeps the size asked for)."""
     tried, candidate, failed, sized = [], dict(remedy), [], False
-    for _ in range(REMEDY_TRIES):
+    while len(tried) - sized < REMEDY_TRIES:
         if sized:       # undercut options and followed remedies too
             candidate = _sized(design, candidate)
         if (all(getattr(design, name) == value for name, value in candidate.items())

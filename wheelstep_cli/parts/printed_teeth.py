@@ -81,9 +81,10 @@ def require_printable_teeth(pair, printer=None) -> None:
 
 
 def sized_teeth(design, z: int) -> dict:
-    """The options (name -> value) that give ``design`` ``z`` teeth keeping its size: with a
-    module the user gave (which sizes the pair with the count) that module scaled by z0 / z
-    too, so the teeth grow; without one the count alone (the module follows it)."""
+    """The options (name -> value) that give ``design`` (the pair refused, a remedy's try
+    included) ``z`` teeth keeping that pair's size: with a module the user gave (which sizes
+    the pair with the count) that module scaled by z0 / z too, so the teeth grow; without one
+    the count alone (the module follows it)."""
     if design.module is None:
         return {"z": z}
     return {"z": z, "module": round(float(design.module) * design.z / z, 3)}

@@ -129,7 +129,7 @@ def _bed_side(plan, printer) -> str:
     inset = (f"bed-side edges inset {printer.elephant_foot_inset:g} mm over the lowest "
              f"{printer.elephant_foot_height:g} mm (elephant foot)")
     chamfered = [c for c in chamfers if c > 0.0]
-    if not chamfered:
+    if not chamfered or printer.elephant_foot_inset <= 0.0:
         return inset
     said = (f"gear faces chamfered {' / '.join(f'{c:g}' for c in chamfered)} mm at 45 deg, which "
             "takes the place of the elephant-foot inset")
