@@ -111,3 +111,17 @@ def test_a_tooth_count_the_laws_periods_do_not_divide_is_said_of_the_csv_with_co
     assert top.endswith("; use --z 238"), top
     result = cli("gears", "--law-csv", path, "--z", "49", "--dry-run", "--out", tmp_path / "out")
     assert result.exit_code == 0, result.stderr
+
+
+def test_a_batch_entrys_law_csv_whose_periods_do_not_divide_its_teeth_is_refused_at_its_line(cli, tmp_path):
+    """The same rule for a batch entry: refused before any build (exit 2, nothing written), at
+    the entry's law_csv line, with the counts that fit."""
+    path = _write(tmp_path, _seventh(6))
+    batch = tmp_path / "b.yaml"
+    batch.write_text(f"parts:\n  - name: pair\n    kind: gear-pair\n    printer: fdm-0.4-pla\n"
+                     f"    overrides:\n      law_csv: {path}\n")
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2 and not (tmp_path / "out").exists()
+    assert error_line(result) == (f"wheelstep: error: {batch}:6: parts[0].overrides.law_csv = '{path}': with "
+                                  "it, z = 48 fails: must be a multiple of 7 (law periods per pinion turn) "
+                                  "and >= 6; use z 42 or use z 49")

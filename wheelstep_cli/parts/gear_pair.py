@@ -158,17 +158,11 @@ def generation_settings(spec: GearPairSpec):
 
 def _build_generated(spec: GearPairSpec) -> GearPair:
     """Generated teeth (SPEC §9): pitch curves rolling at the installed distance."""
-    from wheelstep_cli.errors import DesignError
     from wheelstep_cli.gears.generation import generate_pair, simplify_outline
-    from wheelstep_cli.config.specs import MAX_TEETH
-    from wheelstep_cli.gears.generation.pair import require_whole_periods
+    from wheelstep_cli.parts.gear_laws import require_law_periods
 
     _, law = generation_law(spec)
-    if spec.law_csv is not None:
-        try:
-            require_whole_periods(law, spec.z, MAX_TEETH)
-        except DesignError as err:   # the CSV's periods set the rule: said of it when z was not given
-            raise err.tied_to({"law_csv": spec.law_csv}) from None
+    require_law_periods(spec)
     settings = generation_settings(spec)
     distance = rolling_distance(spec, law)
     asked = spec

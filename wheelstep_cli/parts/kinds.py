@@ -223,6 +223,12 @@ def _gear_pair_clearance(spec, extra: float) -> dict:
     return {"backlash": spec.backlash_mm + extra}
 
 
+def _law_periods(spec) -> None:
+    from wheelstep_cli.parts.gear_laws import require_law_periods
+
+    require_law_periods(spec)
+
+
 def _sectors(spec) -> None:
     from wheelstep_cli.gears.sectors import sectors_per_quarter
 
@@ -241,7 +247,7 @@ KINDS: dict[str, PartKind] = {
         parts=lambda pair: [pair.pinion, pair.wheel], hole_fields=("bore", "key_width"),
         clearance=_gear_pair_clearance, mating_check=_gear_pair_meshing, chamfer_field="chamfer",
         with_parts=lambda pair, parts, checks: replace(pair, pinion=parts[0], wheel=parts[1], checks=checks),
-        checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _cutter, _sectors)),
+        checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _cutter, _sectors, _law_periods)),
     KindName.shoe.value: PartKind(
         name=KindName.shoe.value, module="wheelstep_cli.parts.shoe", spec_class="ShoeSpec",
         build="build_shoe", report="shoe_report", section="shoe", parts=lambda shoe: list(shoe.parts),
