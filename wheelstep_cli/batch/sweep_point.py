@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from wheelstep_cli.config.names import as_flags, as_keys, in_file_words, yaml_message
+from wheelstep_cli.config.names import as_keys, remedy_in_yaml, yaml_message
 from wheelstep_cli.errors import DesignError
 
 #: Figures of a row (float, None when not computed), in column order.
@@ -181,9 +181,6 @@ def _bounds_refusal(pair, record: dict, printer) -> dict:
         require_within_bounds(pair, record)
         require_printable_teeth(pair, printer)
     except DesignError as err:
-        reason, remedy = yaml_message(err), getattr(err, "remedy", None) or {}
         # the remedy as the sweep file's keys (its grid and fixed values)
-        for verb in ("try", "use"):
-            reason = reason.replace(in_file_words(f"{verb} {as_flags(remedy)}"), f"{verb} {as_keys(remedy)}")
-        return {"outcome": "refused", "reason": reason}
+        return {"outcome": "refused", "reason": remedy_in_yaml(err, as_keys)}
     return {}

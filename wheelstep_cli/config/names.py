@@ -69,17 +69,18 @@ def _file_keys() -> frozenset[str]:
 _BATCH_ONLY = frozenset({"printer", "allow_interference"})
 
 
-def remedy_in_yaml(err) -> str:
-    """A refusal with checked remedies (``require_within_bounds`` and ``verified_undercut`` of
-    parts.mesh_bounds) as a batch file states it: each remedy as the entry's override keys (``z: 90, backlash:
-    0.239``), not as flags; any other refusal as :func:`yaml_message` words it."""
+def remedy_in_yaml(err, keys=lambda options: f"overrides {{{as_keys(options)}}}") -> str:
+    """A refusal with remedies (``require_within_bounds`` and ``verified_undercut`` of
+    parts.mesh_bounds) as a file states it: each remedy (``use`` or, unbuilt, ``try``) and
+    each failed try as ``keys(options)`` (default a batch entry's ``overrides {z: 90,
+    backlash: 0.239}``), not as flags; any other refusal as :func:`yaml_message` words it."""
     message = yaml_message(err)   # its flags already said as keys (in_file_words)
     for tried in getattr(err, "tried", None) or []:
-        message = _whole_words(message, in_file_words(as_flags(tried)), f"overrides {{{as_keys(tried)}}}")
+        message = _whole_words(message, in_file_words(as_flags(tried)), keys(tried))
     # every remedy offered (an undercut may offer more than one), else the one
     for remedy in getattr(err, "remedies", None) or [r for r in [getattr(err, "remedy", None)] if r]:
-        message = _whole_words(message, in_file_words(f"use {as_flags(remedy)}"),
-                               f"use overrides {{{as_keys(remedy)}}}")
+        for verb in ("use", "try"):
+            message = _whole_words(message, in_file_words(f"{verb} {as_flags(remedy)}"), f"{verb} {keys(remedy)}")
     return message
 
 
