@@ -113,6 +113,13 @@ def footprint(spec: GearPairSpec) -> dict[str, object]:
     return {**spec.sizing(), "hub_length": spec.hub_length}
 
 
+def require_pair_on_bed(pair: GearPair, printer) -> GearPair:
+    """``pair``, refused (DesignError naming the input the user gave that sizes it) when a gear
+    is taller than ``printer`` prints or larger than its bed."""
+    require_on_bed([pair.pinion, pair.wheel], printer, "thickness", pair.spec.thickness, footprint(pair.spec))
+    return pair
+
+
 def check_paper_teeth(partition: SectorPartition, form, spec: GearPairSpec) -> None:
     """The sector-involute teeth's form check (module against tooth pitch), its refusal also
     stated for the backlash and the inputs that size the pair (the tooth thickness and
@@ -360,7 +367,7 @@ def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both", meshing: dict 
     files: dict[Path, bytes] = {}
     parts = [pair.pinion, pair.wheel]
     if chosen is not None or fmt in ("3mf", "both"):
-        require_on_bed(parts, printer, "thickness", pair.spec.thickness, footprint(pair.spec))
+        require_pair_on_bed(pair, printer)
     if fmt in ("stl", "both"):
         for part in parts:
             files[out / f"{part.name}.stl"] = stl_bytes(part.vertices, part.faces, f"wheelstep {part.name}")

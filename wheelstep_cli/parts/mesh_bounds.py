@@ -114,17 +114,15 @@ def remedy_check(printer, wrap: Callable | None = None, bed=None) -> Callable:
     nozzle and, when the pair is laid out on the ``bed`` of a printer, both gears on that
     bed (DesignError, with its own remedy if any, when not), checked as written;
     ``wrap(check, pair)`` runs the check (a progress bar) when given."""
-    from wheelstep_cli.parts.gear_pair import footprint
+    from wheelstep_cli.parts.gear_pair import require_pair_on_bed
     from wheelstep_cli.parts.kinds import build_for_printer
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
-    from wheelstep_cli.parts.plate_layout import require_on_bed
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     def verify(design):
         trial = build_for_printer("gear-pair", design, printer)
         if bed is not None:     # a remedy the plate cannot hold is no remedy
-            require_on_bed([trial.pinion, trial.wheel], bed, "thickness", trial.spec.thickness,
-                           footprint(trial.spec))
+            require_pair_on_bed(trial, bed)
         require_printable_teeth(trial)
         return trial, meshing_record(check_gear_pair(trial) if wrap is None else wrap(check_gear_pair, trial))
     return verify

@@ -57,11 +57,12 @@ def band_pair(spec, printer, check: bool, bed=None):
     as designed), refused (DesignError) at once when a gear cannot go on ``bed``'s bed (a
     printer; None: not checked), and, when ``check``, its band record and meshing report as
     written, with its mounting record (reused: the band costs its 4 cases)."""
+    from wheelstep_cli.parts.gear_pair import require_pair_on_bed
     from wheelstep_cli.parts.kinds import build_for_printer
 
     pair = build_for_printer("gear-pair", spec, printer)
     if bed is not None:
-        _on_bed(pair, bed)
+        require_pair_on_bed(pair, bed)
     if not check:
         return pair, None, None
     chosen = band_printer(printer)
@@ -78,8 +79,10 @@ def fit_design(spec, printer):
     """(the printer whose band a fit is for: ``printer``, else the default printer; the
     design drawn on it without its tooth clearance, which the fit's inset replaces),
     refused (DesignError) at once when a gear cannot go on its bed."""
+    from wheelstep_cli.parts.gear_pair import require_pair_on_bed
+
     chosen = band_printer(printer)
-    return chosen, _on_bed(design_pair(spec, chosen), chosen)
+    return chosen, require_pair_on_bed(design_pair(spec, chosen), chosen)
 
 
 def design_pair(spec, printer):
@@ -110,17 +113,6 @@ def pair_mounting(pair, sections: SectionedPair | None = None) -> dict:
     sections = sectioned_pair(pair) if sections is None else sections
     return mounting_record(sections.pinion, sections.wheel, sections.law, sections.distance,
                            getattr(pair, "generated", None), float(getattr(pair, "inset", 0.0)))
-
-
-def _on_bed(pair, printer):
-    """``pair``, refused (DesignError) before any band work when a gear cannot go on
-    ``printer``'s bed, as writing it would refuse it."""
-    from wheelstep_cli.parts.gear_pair import footprint
-    from wheelstep_cli.parts.plate_layout import require_on_bed
-
-    require_on_bed([pair.pinion, pair.wheel], printer, "thickness", pair.spec.thickness,
-                   footprint(pair.spec))
-    return pair
 
 
 def printer_band_record(pair, printer) -> dict:
