@@ -54,6 +54,11 @@ def design_backlash(spec: GearPairSpec) -> float:
     return generated_backlash(spec, law, rolling_distance(spec, law), GenerationSettings())
 
 
+def own_backlash(spec: GearPairSpec) -> float:
+    """The normal backlash (mm) the design takes when none is given (:func:`design_backlash`)."""
+    return design_backlash(spec.model_copy(update={"backlash": None}))
+
+
 def generated_backlash(spec: GearPairSpec, law, distance: float, settings) -> float:
     """Default normal backlash (mm) of generated teeth rolling at ``distance`` mm on ``law``:
     the play a flank carries steps the hub speed at the law's handover corners

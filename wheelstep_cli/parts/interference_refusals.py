@@ -37,14 +37,14 @@ def require_play_that_clears(pair, record: dict, failure: str, verify: Callable,
     interference depth (it takes play off both gears), at least 0.01 mm more than given;
     then the design's own backlash. Nothing when the backlash was not set or was not below
     the design's own, or when no try builds within the bounds."""
-    from wheelstep_cli.parts.gear_laws import design_backlash
+    from wheelstep_cli.parts.gear_laws import own_backlash
 
     if pair.generated is None:
         return
     design = pair.as_asked
     if design.backlash is None:
         return
-    own = design_backlash(design.model_copy(update={"backlash": None}))
+    own = own_backlash(design)
     if design.backlash >= own:
         return
     depth = float(record["max_penetration_mm"])

@@ -14,7 +14,7 @@ from typing import Callable
 import numpy as np
 
 from wheelstep_cli.config.names import as_flags
-from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH, MIN_MODULE
+from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH
 from wheelstep_cli.errors import DesignError
 
 
@@ -251,11 +251,11 @@ def _play_first(design, remedy: dict) -> dict:
     """``remedy``, or when it adds teeth to a design whose backlash the user set above the
     design's own (whose play costs the figures too), that backlash alone first: the tries
     that follow add teeth only if it does not do."""
-    from wheelstep_cli.parts.gear_laws import design_backlash
+    from wheelstep_cli.parts.gear_laws import own_backlash
 
     if "z" not in remedy or design.backlash is None:
         return remedy
-    own = round(design_backlash(design.model_copy(update={"backlash": None})), 3)
+    own = round(own_backlash(design), 3)
     return {"backlash": own} if design.backlash > own else remedy
 
 
@@ -263,14 +263,14 @@ def _sized(design, remedy: dict) -> dict:
     """``remedy`` keeping the size of the pair asked for: a module the user gave sizes the
     pair with the tooth count (the centre distance is solved for it), so more teeth on that
     module may outgrow the printer; then a remedy that changes the count scales the module
-    by z / z' (at least MIN_MODULE), one that keeps it keeps the design's module."""
+    by z / z' (printed_teeth.sized_teeth), one that keeps it keeps the design's module."""
+    from wheelstep_cli.parts.printed_teeth import sized_teeth
+
     if design.module is None:
         return remedy
     z = remedy.get("z", design.z)
     kept = {name: value for name, value in remedy.items() if name != "module"}
-    if z == design.z:
-        return kept
-    return {**kept, "module": max(MIN_MODULE, round(float(design.module) * design.z / z, 3))}
+    return kept if z == design.z else {**kept, **sized_teeth(design, z)}
 
 
 def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds

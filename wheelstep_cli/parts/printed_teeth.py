@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from wheelstep_cli.config.names import as_flags
-from wheelstep_cli.config.specs import MIN_TEETH
+from wheelstep_cli.config.specs import MIN_MODULE, MIN_TEETH
 from wheelstep_cli.errors import DesignError
 
 #: Height (mm) the typical (median) tooth may lose: the rounding of a tip land's two
@@ -84,10 +84,10 @@ def sized_teeth(design, z: int) -> dict:
     """The options (name -> value) that give ``design`` (the pair refused, a remedy's try
     included) ``z`` teeth keeping that pair's size: with a module the user gave (which sizes
     the pair with the count) that module scaled by z0 / z too, so the teeth grow; without one
-    the count alone (the module follows it)."""
+    the count alone (the module follows it). The module is at least MIN_MODULE."""
     if design.module is None:
         return {"z": z}
-    return {"z": z, "module": round(float(design.module) * design.z / z, 3)}
+    return {"z": z, "module": max(MIN_MODULE, round(float(design.module) * design.z / z, 3))}
 
 
 def fewer_teeth(pair, design, printer, width: float) -> int | None:
