@@ -134,7 +134,6 @@ def _clean(doc: LocatedYaml, path: tuple, model, bad: set) -> dict:
 def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issue]) -> Entry | None:
     """Check one entry of ``parts`` (with the defaults); returns an Entry or None (issues appended)."""
     doc, path, before = check.doc, ("parts", index), len(issues)
-    first = before
 
     def given(key):  # the entry's value, else the default's, and where it was written
         own = getattr(entry, key)
@@ -162,12 +161,12 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     override_where: dict[str, str] = {}
     faulty: set[str] = set()
     if kind is not None:
-        counted = len(issues)
         override_where, faulty = _check_overrides(doc, path, kind, overrides, issues)
-        before += len(issues) - counted
     allow = _allow_interference(doc, path, kind, entry, issues)
     flawed = any(loc[:2] == path for loc in check.bad)
-    if len(issues) > before or flawed or kind is None or printer is None or design is None:
+    # overrides a field rule refused stop nothing: the rules of the others are checked below
+    others = [issue for issue in issues[before:] if not issue.what.startswith(dotted(path + ("overrides",)))]
+    if others or flawed or kind is None or printer is None or design is None:
         return None
     # the overrides a field rule refused are left out, so the rules of the others (the
     # mechanism's, the kind's) are found in the same run
@@ -177,7 +176,7 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     for err in problems:
         issues.append(_problem(doc, path, err, where, design_name, kept))
     if problems or faulty:
-        issues[first:] = sorted(issues[first:], key=_line)     # the entry's problems in file order
+        issues[before:] = sorted(issues[before:], key=_line)     # the entry's problems in file order
         return None
     return Entry(index, name, kind.name, design_name, quantity, printer, overrides, spec, printed,
                  doc.where(path), override_where, allow)

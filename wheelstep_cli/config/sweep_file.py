@@ -182,9 +182,9 @@ def _check_values(doc: LocatedYaml, spec, command: str, data: dict, grid: dict,
         if b.low > b.high:
             at = ("random", "bounds", key)
             issues.append(Issue(doc.where(at), dotted(at), f"low {show(b.low)} > high {show(b.high)}"))
-    if random is not None and not issues and random.samples > _distinct_draws(random):
+    held = _distinct_draws(random) if random is not None and not issues else None
+    if held is not None and random.samples > held:
         at = ("random", "samples")
-        held = _distinct_draws(random)
         issues.append(Issue(doc.where(at), dotted(at), f"= {random.samples}: more than the {held} "
                             f"different point{'s' if held != 1 else ''} the bounds hold (whole numbers, "
                             f"or decimals to 9 places); at most {held}"))

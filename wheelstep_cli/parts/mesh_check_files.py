@@ -95,9 +95,7 @@ def require_a_pair(radii: tuple[float, float], distance: float, names: tuple[str
     total = sum(radii)
     if abs(total - distance) <= SIZE_SLACK * distance:
         return
-    period = float(law.theta_period)
-    ends = np.asarray(law.carrier_angle(np.array([0.0, period])), dtype=float)
-    ratio = abs(float(ends[1] - ends[0])) / period        # mean wheel turn per pinion turn
+    ratio = _mean_ratio(law)
     expected = (distance * ratio / (1.0 + ratio), distance / (1.0 + ratio))
     off = [abs(r - e) / e for r, e in zip(radii, expected)]
     bad = 0 if off[0] > off[1] else 1
@@ -115,14 +113,19 @@ def require_a_pair(radii: tuple[float, float], distance: float, names: tuple[str
                       "design's --profile)")
 
 
+def _mean_ratio(law) -> float:
+    """The law's mean wheel turn per pinion turn (its rise over one period)."""
+    period = float(law.theta_period)
+    ends = np.asarray(law.carrier_angle(np.array([0.0, period])), dtype=float)
+    return abs(float(ends[1] - ends[0])) / period
+
+
 def require_pinion_first(radii: tuple[float, float], law, pinion: str) -> None:
     """Refuse (naming the pinion) outlines given wheel first (``radii`` by area, mm, in the
     order given): where the law turns the wheel slower than the pinion on average (by more
     than SIZE_SLACK), the wheel is the larger gear. Checked up front: swapped, every pose
     interferes."""
-    period = float(law.theta_period)
-    turned = law.carrier_angle(np.array([0.0, period]))
-    ratio = abs(float(turned[1] - turned[0])) / period      # mean wheel turn per pinion turn
+    ratio = _mean_ratio(law)
     first, second = radii
     require(not (ratio < 1.0 - SIZE_SLACK and first > second), "pinion", pinion,
             f"is the larger gear (radius by area {first:.1f} mm, the wheel given {second:.1f} mm) "
