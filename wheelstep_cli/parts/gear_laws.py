@@ -19,10 +19,11 @@ def generation_law(spec: GearPairSpec):
     return law, blended_law(law, np.radians(spec.blend))
 
 
-def require_law_periods(spec: GearPairSpec) -> None:
+def require_law_periods(spec: GearPairSpec, law=None) -> None:
     """Refuse (DesignError) generated teeth whose count is no whole number per period of the
-    design's law CSV, said of --law-csv when z was not given, with the nearest counts within
-    the tooth limit (a crank law's periods are the sectors rule's, checked with the spec)."""
+    design's law CSV (``law``, when read already), said of --law-csv when z was not given,
+    with the nearest counts within the tooth limit (a crank law's periods are the sectors
+    rule's, checked with the spec)."""
     from wheelstep_cli.config.specs import MAX_TEETH
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.gears.generation.pair import require_whole_periods
@@ -30,7 +31,7 @@ def require_law_periods(spec: GearPairSpec) -> None:
     if spec.law_csv is None or getattr(spec.teeth, "value", spec.teeth) != "generated":
         return
     try:
-        require_whole_periods(design_law(spec), spec.z, MAX_TEETH)
+        require_whole_periods(law if law is not None else design_law(spec), spec.z, MAX_TEETH)
     except DesignError as err:
         raise err.tied_to({"law_csv": spec.law_csv}) from None
 

@@ -168,8 +168,8 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     from wheelstep_cli.gears.generation import generate_pair, simplify_outline
     from wheelstep_cli.parts.gear_laws import require_law_periods
 
-    _, law = generation_law(spec)
-    require_law_periods(spec)
+    designed, law = generation_law(spec)
+    require_law_periods(spec, designed)
     settings = generation_settings(spec)
     distance = rolling_distance(spec, law)
     asked = spec

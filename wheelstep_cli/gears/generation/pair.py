@@ -143,14 +143,13 @@ def require_whole_periods(law: TransmissionLaw, pinion_teeth: int, most: int | N
     periods = law.pinion_periods
     if pinion_teeth >= 6 and pinion_teeth % periods == 0:
         return
-    least, top = -(-6 // periods), (most // periods if most is not None else None)
-    fits = sorted({min(max(least, k), top) if top is not None else max(least, k)
-                   for k in (pinion_teeth // periods, -(-pinion_teeth // periods))})
-    remedies = [{"z": k * periods} for k in fits if top is None or least <= k <= top]
+    # teeth per period: the two round the count's, at least 6 teeth, at most ``most``
+    least, top = -(-6 // periods), (most if most is not None else pinion_teeth + periods) // periods
+    fits = sorted({min(max(least, k), top) for k in (pinion_teeth // periods, -(-pinion_teeth // periods))})
+    remedies = [{"z": k * periods} for k in fits]
     error = DesignError("z", pinion_teeth, f"must be a multiple of {periods} (law periods per pinion "
-                        "turn) and >= 6" + ("; " + " or ".join(f"use --z {r['z']}" for r in remedies)
-                                            if remedies else ""))
-    error.remedy, error.remedies = (remedies[0] if remedies else {}), remedies
+                        "turn) and >= 6; " + " or ".join(f"use --z {r['z']}" for r in remedies))
+    error.remedy, error.remedies = remedies[0], remedies
     raise error
 
 
