@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from wheelstep_cli.batch.interrupts import interrupts_kept_from_children
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.names import remedy_in_yaml
 from wheelstep_cli.errors import DesignError
@@ -202,7 +203,19 @@ def executor(jobs: int, scheduler: str | None = None):
     from concurrent.futures import ProcessPoolExecutor
 
     # spawn: safe with manifold3d's threads and the same on every platform
-    return ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn"))
+    return ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn"),
+                               initializer=ends_at_interrupt)
+
+
+def ends_at_interrupt() -> None:
+    """Set up a local pool worker (started with SIGINT blocked, see :func:`map_items`) to end
+    at once and silently at a Ctrl-C: it holds no file (this process writes them all, and
+    says that the run was stopped), and finishing its entry would keep the person waiting."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
 
 
 def map_items(pool, function, items, step, lazy: bool = False):
@@ -214,7 +227,10 @@ def map_items(pool, function, items, step, lazy: bool = False):
     if pool is None:
         results = (_call_and_step(function, item, step) for item in items)
         return results if lazy else list(results)
-    futures = {pool.submit(function, item): item for item in items}
+    # a local pool starts its worker processes on these submissions: with SIGINT blocked until
+    # they are set up to end quietly (ends_at_interrupt), none dies printing a traceback
+    with interrupts_kept_from_children():
+        futures = {pool.submit(function, item): item for item in items}
     return _collect(futures, step)
 
 

@@ -14,13 +14,11 @@ from __future__ import annotations
 
 import json
 import os
-import signal
-import threading
 import time
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterable
 
+from wheelstep_cli.batch.interrupts import interrupts_deferred
 from wheelstep_cli.batch.sweep_point import BAND_FIGURES, FIGURES
 from wheelstep_cli.errors import DesignError
 
@@ -171,33 +169,13 @@ class ResultStore:
         return self.out / RESULTS
 
 
-@contextmanager
-def interrupts_deferred():
-    """Hold a SIGINT (Ctrl-C) that arrives inside the block and hand it to the handler it
-    would have gone to when the block ends (Python's: KeyboardInterrupt); in the main thread
-    only, elsewhere the block runs as is."""
-    # a handler set from C (getsignal None) could not be put back: left as it is
-    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is None:
-        yield
-        return
-    caught: list = []
-    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
-    if caught and callable(previous):         # Python's own handler raises KeyboardInterrupt
-        previous(signal.SIGINT, None)
-    elif caught and previous == signal.SIG_DFL:
-        signal.raise_signal(signal.SIGINT)
-
-
 def of_points(table, points: dict[str, int]):
     """(the rows of ``points``' keys, each with its point's index; how many other keys)."""
     import pyarrow as pa
 
     keys = table.column("key").to_pylist()
-    kept = table.take([i for i, key in enumerate(keys) if key in points])
+    # typed: an empty list of indices would be an array of nulls, which take refuses
+    kept = table.take(pa.array([i for i, key in enumerate(keys) if key in points], type=pa.int64()))
     column = kept.schema.get_field_index("index")
     index = pa.array([points[key] for key in kept.column("key").to_pylist()],
                      type=kept.schema.field(column).type)
