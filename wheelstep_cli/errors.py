@@ -103,3 +103,9 @@ def require(condition: bool, param: str, value: object, limit: str) -> None:
     """Raise :class:`DesignError` unless ``condition`` holds."""
     if not condition:
         raise DesignError(param, value, limit)
+
+
+class Interrupted(Exception):
+    """A run stopped by Ctrl-C that says what it leaves behind (the rows merged so far): the
+    CLI prints this line in place of its bare 'aborted' and exits 130. Not a
+    KeyboardInterrupt, which the command framework would turn into a silent exit code."""

@@ -37,3 +37,25 @@ def test_the_local_cluster_gives_its_workers_their_share():
     with dask_client(None, 2, "scheduler") as client:
         seen = client.run(lambda: os.environ.get("WHEELSTEP_THREADS"))
     assert sorted(seen.values()) == [worker_env(2)["WHEELSTEP_THREADS"]] * 2
+
+
+def _worker_state():
+    """What a worker process says about itself: Dask's log level, SIGINT blocked."""
+    import logging
+    import signal
+
+    return (logging.getLogger("distributed").getEffectiveLevel(),
+            signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, []))
+
+
+def test_local_workers_are_quiet_and_leave_ctrl_c_to_the_command():
+    """The local cluster's workers print nothing of Dask's below a critical error (its
+    complaints while the cluster stops are noise at a terminal) and never see a Ctrl-C (the
+    command answers it and stops them in order)."""
+    import logging
+
+    from wheelstep_cli.batch.cluster import dask_client
+
+    with dask_client(None, 1, "scheduler") as client:
+        seen = list(client.run(_worker_state).values())
+    assert seen == [(logging.CRITICAL, True)]

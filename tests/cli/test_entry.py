@@ -40,18 +40,24 @@ def test_a_refusal_after_the_work_started_is_the_only_line_on_stderr(cli, tmp_pa
     assert not (tmp_path / "out").exists()
 
 
-@pytest.mark.parametrize("where", ["command", "building the commands"])
+@pytest.mark.parametrize("where", ["command", "building the commands", "wrapped by a library"])
 def test_ctrl_c_in_a_run_is_one_line_and_exit_130(cli, monkeypatch, where):
-    """Ctrl-C while a command works (typer turns it into a silent exit code) or while the
-    commands are being built: one line, exit 130, no traceback."""
+    """Ctrl-C while a command works (typer turns it into a silent exit code), while the
+    commands are being built, or caught and wrapped by a library (Python wraps one that lands
+    in a class body's __set_name__ while a module loads): one line, exit 130, no traceback."""
     import typer
 
     import wheelstep_cli.parts.gear_tables as tables
 
     def interrupt(*args, **kwargs):
-        raise KeyboardInterrupt
+        if where != "wrapped by a library":
+            raise KeyboardInterrupt
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt as err:
+            raise RuntimeError("Error calling __set_name__") from err
 
-    if where == "command":
+    if where != "building the commands":
         monkeypatch.setattr(tables, "pitch_report", interrupt)
     else:
         monkeypatch.setattr(typer.main, "get_command", interrupt)
@@ -68,3 +74,20 @@ def test_ctrl_c_in_a_run_is_one_line_and_exit_130(cli, monkeypatch, where):
 def test_a_refused_number_is_shown_as_typed(cli, tmp_path, args, shown):
     result = cli("gears", *args, "--out", tmp_path / "out")
     assert result.exit_code == 2 and result.stderr.startswith(f"wheelstep: error: {shown}")
+
+
+def test_a_ctrl_c_once_the_command_is_done_does_not_change_its_exit_code(monkeypatch):
+    """While Python shuts down after the command (its signal handlers gone), a Ctrl-C would
+    kill the process: the command's own exit code stands."""
+    import signal
+
+    import wheelstep_cli.cli as cli_module
+
+    monkeypatch.setattr(cli_module, "run", lambda: 1)
+    try:
+        with pytest.raises(SystemExit) as stop:
+            cli_module.main()
+        signal.raise_signal(signal.SIGINT)     # ignored: nothing raised, the process lives
+        assert stop.value.code == 1
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)

@@ -7,6 +7,7 @@ import contextlib
 import os
 import threading
 
+from wheelstep_cli.batch.interrupts import interrupts_deferred, interrupts_kept_from_children
 from wheelstep_cli.errors import DesignError
 
 #: Seconds to reach a scheduler before giving up (the whole refusal stays under 15 s).
@@ -29,9 +30,31 @@ def dask_client(scheduler: str | None, workers: int = 0, option: str = "schedule
             yield client
         return
     count = workers or os.cpu_count() or 1
-    with LocalCluster(n_workers=count, threads_per_worker=1, processes=True, dashboard_address=None,
-                      env=worker_env(count)) as cluster, Client(cluster) as client:
+    # the workers never see a Ctrl-C (this process stops them); one while the cluster starts
+    # or stops is held until it has (a cluster cut off half way waits out its timeouts at exit)
+    cluster = client = None
+    try:
+        with interrupts_deferred(), interrupts_kept_from_children(), _quiet_workers():
+            cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                                   dashboard_address=None, env=worker_env(count))
+            client = Client(cluster)
         yield client
+    finally:
+        with interrupts_deferred():
+            for started in (client, cluster):
+                if started is not None:
+                    started.close()
+
+
+def _quiet_workers():
+    """Settings under which local workers start with Dask's own logging shown only from
+    critical errors up: what a worker says as the cluster stops (a heartbeat to a scheduler
+    already gone) is noise at a terminal, and every point's failure is in its row. An
+    environment variable set before the worker processes start: their logging is set up as
+    they import Dask."""
+    import dask
+
+    return dask.config.set({"distributed.nanny.pre-spawn-environ.DASK_LOGGING__DISTRIBUTED": "critical"})
 
 
 def worker_env(workers: int) -> dict[str, str]:

@@ -58,15 +58,17 @@ def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, 
     failures, finished = 0, 0
     window = max(1, WINDOW_PER_WORKER * max(1, len(client.scheduler_info().get("workers", {}))))
     pending = iter(todo)
-    futures = as_completed()
+    # results gathered on the client's own thread: a Ctrl-C never cuts a wait in this one
+    # (distributed then logs the wait's cancelled callback as an error)
+    futures = as_completed(with_results=True, raise_errors=False)
     by_future = {}
     progress(0, 0, len(todo))
     try:
         for point in _take(pending, window):
             by_future[_submit(client, futures, point)] = point
-        for future in futures:
+        for future, outcome in futures:
             point = by_future.pop(future)
-            row = _result(future, point)
+            row = _result(future, outcome, point)
             store.add(_row(row, point, kinds, tool))
             finished += 1
             failures += row["outcome"] != "ok"
@@ -76,8 +78,7 @@ def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, 
         # inside the guard: a Ctrl-C while merging must still leave a results file
         results = store.consolidate(index_of)
     except KeyboardInterrupt:
-        for future in by_future:
-            future.cancel()
+        client.cancel(list(by_future))
         store.consolidate(index_of)
         raise
     return SweepOutcome(len(points), len(points) - len(todo), finished, failures, results, store.dropped)
@@ -98,17 +99,18 @@ def _submit(client, futures, point: Point):
     return future
 
 
-def _result(future, point: Point) -> dict:
-    """The row a worker computed, or a failed row when the task itself was lost for good."""
-    try:
-        return future.result()
-    except Exception as err:  # e.g. KilledWorker after the retries: this point only
-        from wheelstep_cli.batch.sweep_point import FIGURES
+def _result(future, outcome, point: Point) -> dict:
+    """The row a worker computed (``outcome``, as gathered), or a failed row when the task
+    itself was lost for good (``outcome``: its error's type, value and traceback)."""
+    if future.status != "error":
+        return outcome
+    from wheelstep_cli.batch.sweep_point import FIGURES
 
-        row = dict.fromkeys(FIGURES)
-        row.update(key=point.key, index=point.index, outcome="failed", interference=None,
-                   reason=f"worker failed: {type(err).__name__}: {err}", seconds=None)
-        return row
+    err = outcome[1]            # e.g. KilledWorker after the retries: this point only
+    row = dict.fromkeys(FIGURES)
+    row.update(key=point.key, index=point.index, outcome="failed", interference=None,
+               reason=f"worker failed: {type(err).__name__}: {err}", seconds=None)
+    return row
 
 
 def _row(row: dict, point: Point, kinds: dict[str, str], tool: str) -> dict:

@@ -8,6 +8,7 @@ a report, ``--json``; where it writes files, ``--dry-run``.
 
 from __future__ import annotations
 
+import signal
 import sys
 import warnings
 
@@ -18,9 +19,10 @@ try:  # typer >= 0.2x ships its own copy of click
 except ImportError:  # pragma: no cover - older typer uses click itself
     from click import exceptions as click_errors
 
+from wheelstep_cli.batch.interrupts import caused_by_interrupt, interrupts_not_lost
 from wheelstep_cli.config.names import flag_name
 from wheelstep_cli.config.schema import InvalidInput
-from wheelstep_cli.errors import DesignError, MeshDefect
+from wheelstep_cli.errors import DesignError, Interrupted, MeshDefect
 
 app = typer.Typer(
     name="wheelstep",
@@ -300,11 +302,7 @@ def run(argv: list[str] | None = None) -> int:
         typer.echo(f"wheelstep: error: {misread}", err=True)
         return 2
     try:
-        with warnings.catch_warnings():
-            # library warnings (numpy floating point, matplotlib layout) are not for the person
-            # at the terminal: every figure that matters is checked before it is written
-            warnings.simplefilter("ignore")
-            result = command.main(args=args, prog_name="wheelstep", standalone_mode=False)
+        result = _invoke(command, args)
     except InvalidInput as err:               # a file's problems, each with its file:line
         for line in err.lines():
             typer.echo(f"wheelstep: error: {line}", err=True)
@@ -340,12 +338,31 @@ def run(argv: list[str] | None = None) -> int:
         typer.echo(f"wheelstep: error: {os_error_text(err, _command_options(command, args), args)}",
                    err=True)
         return 2
+    return result if isinstance(result, int) else 0
+
+
+def _invoke(command, args: list[str]):
+    """The command's result; a Ctrl-C in any of its forms said in one line (the command's own
+    :class:`Interrupted` line, else 'aborted') with the exit code :data:`INTERRUPTED`."""
+    try:
+        with warnings.catch_warnings(), interrupts_not_lost():
+            # library warnings (numpy floating point, matplotlib layout) are not for the person
+            # at the terminal: every figure that matters is checked before it is written
+            warnings.simplefilter("ignore")
+            result = command.main(args=args, prog_name="wheelstep", standalone_mode=False)
+    except Interrupted as err:
+        typer.echo(f"wheelstep: {err}", err=True)
+        return INTERRUPTED
     except (typer.Abort, KeyboardInterrupt):
         return _aborted()
+    except Exception as err:
+        if caused_by_interrupt(err):          # a Ctrl-C a library wrapped in an error of its own
+            return _aborted()
+        raise
     if result == INTERRUPTED:
         # typer turns Ctrl-C in a command into this exit code, silently
         return _aborted()
-    return result if isinstance(result, int) else 0
+    return result
 
 
 #: The exit code of a run stopped by Ctrl-C (128 + SIGINT), as shells report it.
@@ -361,4 +378,11 @@ def _aborted() -> int:
 
 def main() -> None:
     """Console-script entry point."""
-    sys.exit(run())
+    try:
+        code = run()
+    except KeyboardInterrupt:                 # in the instant after the command returned
+        code = _aborted()
+    # the command is done and its files are written: a Ctrl-C while Python shuts down (its
+    # handlers gone) would kill the process and turn the command's exit code into SIGINT's
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    sys.exit(code)

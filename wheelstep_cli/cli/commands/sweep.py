@@ -39,7 +39,6 @@ def sweep(
     (rows in point order) and pareto.png. A rerun computes only the missing designs. Exit 1
     if some designs were refused (outside the bounds, like `gears` refuses them) or failed
     (their rows say why), 2 if the input is invalid."""
-    from wheelstep_cli.batch.sweep_run import dask_client, run_sweep
     from wheelstep_cli.config.schema import InvalidInput
     from wheelstep_cli.config.sweep_file import load_sweep
     from wheelstep_cli.errors import DesignError
@@ -63,18 +62,7 @@ def sweep(
     if dry_run:
         _dry_run(plan, file, out, show, (earlier, best))
         return
-    with dask_client(scheduler, workers) as client:
-        show.detail(f"  {len(plan.points)} points on {len(client.scheduler_info()['workers'])} worker(s)")
-        try:
-            with _Bar(not show.quiet) as bar:
-                outcome = run_sweep(plan, out, client, bar.update, earlier)
-        except KeyboardInterrupt:
-            show.error(f"wheelstep: interrupted; the rows so far are in {out / 'results.parquet'} "
-                       "(a rerun computes the rest)")
-            raise typer.Exit(130)
-    written = [outcome.results, out / "results.csv", _plot(plan, outcome.results, out),
-               out / ".wheelstep-sweep.json"]
-    written += _keep_best(plan, outcome.results, out, best, show, force)
+    outcome, written = _computed(plan, out, (scheduler, workers), (earlier, best, force), show)
     show.report({"sweep": str(file), "out": str(out), "points": outcome.total,
                  "skipped": outcome.skipped, "computed": outcome.computed,
                  "failures": outcome.failures, "dropped": outcome.dropped,
@@ -85,6 +73,39 @@ def sweep(
     show.files(written, False)
     if outcome.failures:
         raise typer.Exit(1)
+
+
+def _computed(plan, out: Path, cluster: tuple, run: tuple, show: Output):
+    """(the sweep's outcome, the files written): the points computed on the cluster
+    (``cluster`` = scheduler, workers), plotted, the best kept (``run`` = ``out`` holds an
+    earlier run's results, best designs kept, --force). A Ctrl-C is an Interrupted error
+    saying where the rows so far are."""
+    from wheelstep_cli.batch.interrupts import caused_by_interrupt
+    from wheelstep_cli.batch.sweep_run import dask_client, run_sweep
+    from wheelstep_cli.errors import Interrupted
+
+    earlier, best, force = run
+    try:
+        with dask_client(*cluster) as client:
+            show.detail(f"  {len(plan.points)} points on {len(client.scheduler_info()['workers'])} worker(s)")
+            with _Bar(not show.quiet) as bar:
+                outcome = run_sweep(plan, out, client, bar.update, earlier)
+        written = [outcome.results, out / "results.csv", _plot(plan, outcome.results, out),
+                   out / ".wheelstep-sweep.json"]
+        return outcome, written + _keep_best(plan, outcome.results, out, best, show, force)
+    except BaseException as err:          # a Ctrl-C, also one a library wrapped (the plot's)
+        if not caused_by_interrupt(err):
+            raise
+        # the rows computed so far are merged (run_sweep) before the cluster stops
+        raise Interrupted(_interrupted_text(out)) from None
+
+
+def _interrupted_text(out: Path) -> str:
+    """What an interrupted run leaves: the rows merged so far, if it got to any."""
+    results = out / "results.parquet"
+    if not results.exists():
+        return "interrupted before any design was computed"
+    return f"interrupted; the rows so far are in {results} (a rerun computes the rest)"
 
 
 def _dry_run(plan, file: Path, out: Path, show: Output, run: tuple[bool, int]) -> None:
