@@ -131,10 +131,20 @@ def test_two_wheels_or_two_pinions_are_refused_before_any_work(desk_pair, cli, t
                  if part == "wheel" else f"wheel = {other}: its radius by area 24.1 mm is not the wheel's")
         assert line.startswith(f"wheelstep: error: {named} of a pair at the centre distance 72.125 mm"), line
         assert "two wheels or two pinions" in line
-    # neither fits a distance far off: said of both, as the sizes that do not add up
-    far = error_line(cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--distance", "100"))
-    assert f"wheel = {desk_pair / 'wheel.stl'}: its radius by area 47.7 mm and the pinion's 23.8 mm add to " \
-           "71.6 mm, not the centre distance 100 mm" in far, far
+    # a pinion and its wheel (sizes in the law's ratio) at a distance far off: the distance
+    # named, given or the design's
+    for given in (["--distance", "100"], []):
+        far = error_line(cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", *given))
+        assert far == (f"wheelstep: error: --distance = {given[1] if given else 144}: the pinion and the "
+                       "wheel given are a pair for about 71.6 mm (radii by area 23.8 + 47.7 mm), more than "
+                       "20 % off: give the distance they were designed for, or their design's --profile"), far
+    # neither fits, nor are they in the law's ratio: said of both, as the sizes that do not add up
+    odd = tmp_path / "odd-wheel.stl"
+    vertices, faces = read_mesh(str(desk_pair / "wheel.stl"), "wheel")
+    odd.write_bytes(stl_bytes(vertices * [1.6, 1.6, 1.0], faces))
+    far = error_line(cli("mesh-check", desk_pair / "pinion.stl", odd, "--distance", "200"))
+    assert far.startswith(f"wheelstep: error: wheel = {odd}: its radius by area ") and \
+        "and the pinion's 23.8 mm add to " in far and "not the centre distance 200 mm" in far, far
     apart = cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", "--profile",
                   "desk-demo", "--samples", "160", "--distance", "75")
     assert apart.exit_code in (0, 1), apart.stderr       # a real pair a little apart: checked

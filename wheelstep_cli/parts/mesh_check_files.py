@@ -89,13 +89,19 @@ def require_a_pair(radii: tuple[float, float], distance: float, names: tuple[str
     """Refuse two outlines that cannot be a pinion and its wheel at ``distance`` mm, e.g. two
     wheels or two pinions: their ``radii`` by area (mm; the teeth above and below the pitch
     curve cancel) must add to the distance within SIZE_SLACK. Checked before the poses: two
-    wheels overlap everywhere and their check ran for minutes. When one gear has about the
-    radius ``law``'s mean ratio gives it at that distance, the other (of ``names``, the files
-    as given) is named; else the wheel, for both."""
+    wheels overlap everywhere and their check ran for minutes. Two gears whose sizes are in
+    ``law``'s mean ratio are a pair at another distance: the distance is named. When one gear
+    has about the radius that ratio gives it at the distance, the other (of ``names``, the
+    files as given) is named; else the wheel, for both."""
     total = sum(radii)
     if abs(total - distance) <= SIZE_SLACK * distance:
         return
     ratio = _mean_ratio(law)
+    # sizes in the law's ratio: a pinion and its wheel, checked at a distance not theirs
+    require(abs(radii[1] * ratio / radii[0] - 1.0) > 0.5 * SIZE_SLACK, "distance", distance,
+            f"the pinion and the wheel given are a pair for about {total:.1f} mm (radii by area "
+            f"{radii[0]:.1f} + {radii[1]:.1f} mm), more than {100 * SIZE_SLACK:.0f} % off: give "
+            "the distance they were designed for, or their design's --profile")
     expected = (distance * ratio / (1.0 + ratio), distance / (1.0 + ratio))
     off = [abs(r - e) / e for r, e in zip(radii, expected)]
     bad = 0 if off[0] > off[1] else 1
