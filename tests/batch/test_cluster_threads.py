@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
+
+import pytest
 
 from wheelstep_cli.batch.cluster import worker_env
 
@@ -42,12 +45,12 @@ def test_the_local_cluster_gives_its_workers_their_share():
 def _worker_state():
     """What a worker process says about itself: Dask's log level, SIGINT blocked."""
     import logging
-    import signal
 
     return (logging.getLogger("distributed").getEffectiveLevel(),
             signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, []))
 
 
+@pytest.mark.skipif(not hasattr(signal, "pthread_sigmask"), reason="threads cannot block signals here")
 def test_local_workers_are_quiet_and_leave_ctrl_c_to_the_command():
     """The local cluster's workers print nothing of Dask's below a critical error (its
     complaints while the cluster stops are noise at a terminal) and never see a Ctrl-C (the

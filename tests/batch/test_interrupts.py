@@ -39,6 +39,20 @@ def test_a_second_sigint_goes_through_at_once():
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
 
 
+def test_a_second_sigint_is_handed_on_once():
+    """To a handler that returns (not Python's, which raises): once, at the second."""
+    seen = []
+    before = signal.signal(signal.SIGINT, lambda signum, frame: seen.append(signum))
+    try:
+        with interrupts_deferred():
+            signal.raise_signal(signal.SIGINT)
+            signal.raise_signal(signal.SIGINT)
+            assert len(seen) == 1
+        assert len(seen) == 1
+    finally:
+        signal.signal(signal.SIGINT, before)
+
+
 def test_a_held_sigint_wins_over_the_blocks_own_failure():
     """The person asked to stop: a block that fails after the Ctrl-C ends in KeyboardInterrupt."""
     with pytest.raises(KeyboardInterrupt):
@@ -136,3 +150,18 @@ def test_ctrl_c_to_a_batch_and_its_workers_is_one_line(tmp_path):
     _, err = run.communicate(timeout=120)
     assert (run.returncode, err) == (130, "wheelstep: aborted\n")
     assert not out.exists()
+
+
+def test_a_pool_cut_off_does_not_wait_for_its_workers():
+    """A Ctrl-C (or an error) while a batch's local pool works: its workers killed, nothing
+    waits for their entries (a worker cut off mid-result would keep the wait going for ever)."""
+    from wheelstep_cli.batch.build import executor, map_items
+
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        with executor(2) as pool:
+            results = map_items(pool, time.sleep, [60, 60], lambda: None)
+            time.sleep(1.0)
+            raise KeyboardInterrupt
+    assert time.monotonic() - start < 30      # not the minute the entries take
+    del results

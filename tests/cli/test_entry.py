@@ -76,18 +76,37 @@ def test_a_refused_number_is_shown_as_typed(cli, tmp_path, args, shown):
     assert result.exit_code == 2 and result.stderr.startswith(f"wheelstep: error: {shown}")
 
 
-def test_a_ctrl_c_once_the_command_is_done_does_not_change_its_exit_code(monkeypatch):
-    """While Python shuts down after the command (its signal handlers gone), a Ctrl-C would
-    kill the process: the command's own exit code stands."""
-    import signal
+AFTER_THE_COMMAND = """\
+import atexit, signal, sys, threading, time
+import wheelstep_cli.cli as cli
 
-    import wheelstep_cli.cli as cli_module
+def run():
+    if sys.argv[1] == "done":
+        def waiting_exit_handler():           # a library's, registered while the command ran
+            signal.raise_signal(signal.SIGINT)
+            time.sleep(60)
+        atexit.register(waiting_exit_handler)
+        return 1
+    threading.Thread(target=time.sleep, args=(60,)).start()   # left waiting by the Ctrl-C
+    print("wheelstep: aborted", file=sys.stderr)
+    return 130
 
-    monkeypatch.setattr(cli_module, "run", lambda: 1)
-    try:
-        with pytest.raises(SystemExit) as stop:
-            cli_module.main()
-        signal.raise_signal(signal.SIGINT)     # ignored: nothing raised, the process lives
-        assert stop.value.code == 1
-    finally:
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+cli.run = run
+cli.main()
+"""
+
+
+@pytest.mark.parametrize("case", ["done", "interrupted"])
+def test_nothing_waits_once_the_command_has_returned(tmp_path, case):
+    """Done, a Ctrl-C while a library's exit handler waits ends the wait with the command's
+    own exit code (and none is left to kill the process as Python shuts down); interrupted,
+    the process ends at once, not waiting for threads the Ctrl-C cut off."""
+    import subprocess
+    import time
+
+    script = tmp_path / "entry.py"
+    script.write_text(AFTER_THE_COMMAND)
+    start = time.monotonic()
+    run = subprocess.run([sys.executable, str(script), case], capture_output=True, text=True, timeout=120)
+    assert run.returncode == (1 if case == "done" else 130), run.stderr
+    assert time.monotonic() - start < 45        # not the minute the waits would take

@@ -3,6 +3,7 @@ others), its parts laid on z = 0, compensated for the printer and checked."""
 
 from __future__ import annotations
 
+from contextlib import contextmanager, nullcontext
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -199,12 +200,35 @@ def executor(jobs: int, scheduler: str | None = None):
         return dask_executor(scheduler)
     if jobs <= 1:
         return _Serial()
+    return _local_pool(jobs)
+
+
+@contextmanager
+def _local_pool(jobs: int):
+    """A pool of ``jobs`` worker processes, shut down waiting for them when the block ends
+    normally; when it ends in an error or a Ctrl-C, its workers are killed and nothing waits
+    for them (a worker cut off while it sent a result back would leave the pool's reader
+    waiting on that message for ever)."""
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
+    before = set(multiprocessing.active_children())
     # spawn: safe with manifold3d's threads and the same on every platform
-    return ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn"),
+    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn"),
                                initializer=ends_at_interrupt)
+    try:
+        yield pool
+    except BaseException:
+        for worker in set(multiprocessing.active_children()) - before:
+            worker.kill()
+        # with the workers gone the pool's own end of their result pipe is its last writer:
+        # closed, a result half sent ends the pool's reader (EOF) instead of keeping it waiting
+        writer = getattr(getattr(pool, "_result_queue", None), "_writer", None)
+        if writer is not None:
+            writer.close()
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown(wait=True)
 
 
 def ends_at_interrupt() -> None:
@@ -227,9 +251,12 @@ def map_items(pool, function, items, step, lazy: bool = False):
     if pool is None:
         results = (_call_and_step(function, item, step) for item in items)
         return results if lazy else list(results)
+    from concurrent.futures import ProcessPoolExecutor
+
     # a local pool starts its worker processes on these submissions: with SIGINT blocked until
     # they are set up to end quietly (ends_at_interrupt), none dies printing a traceback
-    with interrupts_kept_from_children():
+    local = isinstance(pool, ProcessPoolExecutor)
+    with interrupts_kept_from_children() if local else nullcontext():
         futures = {pool.submit(function, item): item for item in items}
     return _collect(futures, step)
 

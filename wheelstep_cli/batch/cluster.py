@@ -22,28 +22,53 @@ def dask_client(scheduler: str | None, workers: int = 0, option: str = "schedule
     else of a local cluster of ``workers`` processes (0: one per CPU core), 1 task thread each,
     the cores' threads shared between them (:func:`worker_env`).
     An unreachable scheduler is a DesignError naming ``option``."""
-    from distributed import Client, LocalCluster
-
     address = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")
     if address:
         with _connect(address, option) as client:
             yield client
         return
-    count = workers or os.cpu_count() or 1
-    # the workers never see a Ctrl-C (this process stops them); one while the cluster starts
-    # or stops is held until it has (a cluster cut off half way waits out its timeouts at exit)
-    cluster = client = None
+    started: dict = {}
     try:
-        with interrupts_deferred(), interrupts_kept_from_children(), _quiet_workers():
-            cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                                   dashboard_address=None, env=worker_env(count))
-            client = Client(cluster)
-        yield client
+        _start_local(workers or os.cpu_count() or 1, started)
+        yield started["client"]
     finally:
+        # a Ctrl-C while it stops is held until it has (a cluster cut off half way waits out
+        # its timeouts at exit)
         with interrupts_deferred():
-            for started in (client, cluster):
-                if started is not None:
-                    started.close()
+            try:
+                if "client" in started:
+                    started["client"].close()
+            finally:
+                if "cluster" in started:
+                    started["cluster"].close()
+
+
+def _start_local(count: int, started: dict) -> None:
+    """Start a local cluster of ``count`` worker processes and its client into ``started``
+    (keys "cluster", "client", as each is up). They start on a thread of their own with SIGINT
+    blocked, which their event loop and worker processes inherit for life: a Ctrl-C reaches
+    this process only, which stops them in order (a worker never starts a subprocess that
+    would need one). This thread waits with a Ctrl-C held until they are up; a second one
+    goes through at once, so a start that hangs can be stopped."""
+    from distributed import Client, LocalCluster
+
+    def start():
+        try:
+            with _quiet_workers():
+                started["cluster"] = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                                                  dashboard_address=None, env=worker_env(count))
+            started["client"] = Client(started["cluster"])
+        except BaseException as err:      # handed to the waiting thread
+            started["error"] = err
+
+    with interrupts_deferred():
+        with interrupts_kept_from_children():
+            thread = threading.Thread(target=start, name="wheelstep cluster start", daemon=True)
+            thread.start()
+        while thread.is_alive():
+            thread.join(0.1)
+    if "error" in started:
+        raise started.pop("error")
 
 
 def _quiet_workers():

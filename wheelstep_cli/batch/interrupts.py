@@ -31,6 +31,7 @@ def interrupts_deferred():
         if caught:                            # the second: at once, and not again at the end
             caught.clear()
             _deliver(previous)
+            return
         caught.append(signum)
 
     previous = signal.signal(signal.SIGINT, hold)
@@ -53,10 +54,10 @@ def _deliver(handler) -> None:
 @contextmanager
 def interrupts_kept_from_children():
     """Block SIGINT in this thread for the block. Threads and processes started inside it
-    inherit the blocked signal for their whole life (a process pool's workers, a Dask
-    cluster's event loop and every worker process it starts, restarts included), so a Ctrl-C
-    reaches this process only. One that arrives meanwhile waits and is delivered as the block
-    ends. Where threads cannot block signals (Windows) the block runs as is."""
+    inherit the block (a Dask cluster's event loop and every worker process it starts,
+    restarts included, keep it; a process pool's workers lift it once set up to end quietly),
+    so a Ctrl-C reaches this process only. One that arrives meanwhile waits and is delivered
+    as the block ends. Where threads cannot block signals (Windows) the block runs as is."""
     if not hasattr(signal, "pthread_sigmask"):
         yield
         return
@@ -81,14 +82,15 @@ def interrupts_not_lost():
     import sys
 
     before = sys.unraisablehook
+    timers: list[threading.Timer] = []
 
     def raise_again(unraisable):
         if unraisable.exc_type is not None and issubclass(unraisable.exc_type, KeyboardInterrupt):
             # from another thread, once the callback is left: raised here and now, it would
             # land in this hook, as unraisable as where it came from
-            timer = threading.Timer(AGAIN_SECONDS, _thread.interrupt_main)
-            timer.daemon = True
-            timer.start()
+            timers.append(threading.Timer(AGAIN_SECONDS, _thread.interrupt_main))
+            timers[-1].daemon = True
+            timers[-1].start()
         else:
             before(unraisable)
 
@@ -97,6 +99,8 @@ def interrupts_not_lost():
         yield
     finally:
         sys.unraisablehook = before
+        for timer in timers:                  # the block is over: not into whatever follows
+            timer.cancel()
 
 
 #: Seconds after a lost Ctrl-C that it is raised again: far longer than a garbage-collector
@@ -105,12 +109,46 @@ AGAIN_SECONDS = 0.05
 
 
 def caused_by_interrupt(err: BaseException) -> bool:
-    """Whether ``err`` is a Ctrl-C that a library wrapped in an error of its own (a class
-    body's ``__set_name__`` while a module loads turns it into a RuntimeError)."""
+    """Whether ``err`` is a Ctrl-C or an error raised on account of one: wrapped by a library
+    (a class body's ``__set_name__`` while a module loads turns it into a RuntimeError) or
+    met while cleaning up after it (the person asked to stop; that is what to say). Context
+    a ``raise ... from None`` suppressed is not followed."""
     seen: set[int] = set()
     while err is not None and id(err) not in seen:
         if isinstance(err, KeyboardInterrupt):
             return True
         seen.add(id(err))
-        err = err.__cause__ or err.__context__
+        err = err.__cause__ or (None if err.__suppress_context__ else err.__context__)
     return False
+
+
+def exit_now(code: int) -> None:
+    """End the process with ``code`` at once (what it printed flushed first), leaving out
+    Python's exit handlers and the joining of threads."""
+    import os
+    import sys
+
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):         # a closed pipe: nothing more can be said
+            pass
+    os._exit(code)
+
+
+#: Seconds the threads of a stopped run have to end before the process ends without them.
+STOPPED_THREADS_SECONDS = 2.0
+
+
+def exit_unless_threads_end(code: int, seconds: float = STOPPED_THREADS_SECONDS) -> None:
+    """End the process with ``code`` at once (:func:`exit_now`) unless every thread Python's
+    shutdown would wait for ends within ``seconds``; else return, for the normal shutdown
+    (which lets the standard library release what its worker pools held)."""
+    import time
+
+    deadline = time.monotonic() + seconds
+    for thread in threading.enumerate():
+        if thread is not threading.current_thread() and not thread.daemon:
+            thread.join(max(0.0, deadline - time.monotonic()))
+            if thread.is_alive():
+                exit_now(code)

@@ -101,12 +101,14 @@ def _submit(client, futures, point: Point):
 
 def _result(future, outcome, point: Point) -> dict:
     """The row a worker computed (``outcome``, as gathered), or a failed row when the task
-    itself was lost for good (``outcome``: its error's type, value and traceback)."""
-    if future.status != "error":
+    itself was lost for good (``outcome``: its error's type, value and traceback) or
+    cancelled (by a scheduler restarted under it; ``outcome``: the cancellation)."""
+    if future.status == "finished":
         return outcome
     from wheelstep_cli.batch.sweep_point import FIGURES
 
-    err = outcome[1]            # e.g. KilledWorker after the retries: this point only
+    # e.g. KilledWorker after the retries: this point only
+    err = outcome[1] if isinstance(outcome, tuple) else outcome
     row = dict.fromkeys(FIGURES)
     row.update(key=point.key, index=point.index, outcome="failed", interference=None,
                reason=f"worker failed: {type(err).__name__}: {err}", seconds=None)

@@ -8,6 +8,7 @@ a report, ``--json``; where it writes files, ``--dry-run``.
 
 from __future__ import annotations
 
+import atexit
 import signal
 import sys
 import warnings
@@ -19,7 +20,8 @@ try:  # typer >= 0.2x ships its own copy of click
 except ImportError:  # pragma: no cover - older typer uses click itself
     from click import exceptions as click_errors
 
-from wheelstep_cli.batch.interrupts import caused_by_interrupt, interrupts_not_lost
+from wheelstep_cli.batch.interrupts import (caused_by_interrupt, exit_now, exit_unless_threads_end,
+                                            interrupts_not_lost)
 from wheelstep_cli.config.names import flag_name
 from wheelstep_cli.config.schema import InvalidInput
 from wheelstep_cli.errors import DesignError, Interrupted, MeshDefect
@@ -378,11 +380,18 @@ def _aborted() -> int:
 
 def main() -> None:
     """Console-script entry point."""
+    # registered before any library's, so run after them: past the exit handlers Python drops
+    # its signal handlers, and a Ctrl-C would kill the process with SIGINT's exit code
+    atexit.register(signal.signal, signal.SIGINT, signal.SIG_IGN)
     try:
         code = run()
     except KeyboardInterrupt:                 # in the instant after the command returned
         code = _aborted()
-    # the command is done and its files are written: a Ctrl-C while Python shuts down (its
-    # handlers gone) would kill the process and turn the command's exit code into SIGINT's
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # a Ctrl-C while threads are joined or exit handlers wait ends the wait, with the
+    # command's exit code (its files are written, or left alone)
+    signal.signal(signal.SIGINT, lambda signum, frame: exit_now(code))
+    if code == INTERRUPTED:
+        # workers cut off by the Ctrl-C may have left a thread that waits on them for ever (a
+        # pool's reader of a result half sent), which Python's shutdown would join
+        exit_unless_threads_end(code)
     sys.exit(code)
