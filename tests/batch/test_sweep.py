@@ -480,6 +480,22 @@ def test_a_task_lost_for_good_is_a_failed_row(tmp_path, monkeypatch):
     assert all("worker failed" not in (row["reason"] or "") for i, row in table.items() if i != 1)
 
 
+def test_a_cancelled_task_is_a_failed_row():
+    """A task cancelled under the sweep (a scheduler restarted): a failed row, not a traceback."""
+    from distributed import Client, LocalCluster
+
+    from wheelstep_cli.batch import sweep_point
+    from wheelstep_cli.batch.sweep_run import _result
+
+    point = sweep_point.resolve_point(0, "shoe", None, None, None, {"width": 12}, False, "t")
+    with LocalCluster(n_workers=1, processes=False, dashboard_address=None) as lc, Client(lc) as client:
+        future = client.submit(time.sleep, 30)
+        future.cancel()
+        row = _result(future, point)
+    assert row["outcome"] == "failed" and row["reason"].startswith("worker failed: "), row
+    assert "Cancelled" in row["reason"], row
+
+
 def test_unreachable_scheduler_is_one_line(cli, tmp_path):
     sweep = write(tmp_path / "shoes.yaml", SHOES)
     start = time.monotonic()

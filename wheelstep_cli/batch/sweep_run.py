@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Callable
 
 from wheelstep_cli.batch.cluster import RETRIES, dask_client  # noqa: F401  (dask_client: for the CLI)
+from wheelstep_cli.batch.interrupts import interrupts_deferred
 from wheelstep_cli.batch.sweep_point import Point, evaluate, resolve_point, versions
 from wheelstep_cli.batch.sweep_store import ResultStore, axis_kinds, cell, schema
 from wheelstep_cli.config.sweep_file import SweepPlan
@@ -58,17 +59,15 @@ def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, 
     failures, finished = 0, 0
     window = max(1, WINDOW_PER_WORKER * max(1, len(client.scheduler_info().get("workers", {}))))
     pending = iter(todo)
-    # results gathered on the client's own thread: a Ctrl-C never cuts a wait in this one
-    # (distributed then logs the wait's cancelled callback as an error)
-    futures = as_completed(with_results=True, raise_errors=False)
+    futures = as_completed()
     by_future = {}
     progress(0, 0, len(todo))
     try:
         for point in _take(pending, window):
             by_future[_submit(client, futures, point)] = point
-        for future, outcome in futures:
+        for future in futures:
             point = by_future.pop(future)
-            row = _result(future, outcome, point)
+            row = _result(future, point)
             store.add(_row(row, point, kinds, tool))
             finished += 1
             failures += row["outcome"] != "ok"
@@ -99,20 +98,24 @@ def _submit(client, futures, point: Point):
     return future
 
 
-def _result(future, outcome, point: Point) -> dict:
-    """The row a worker computed (``outcome``, as gathered), or a failed row when the task
-    itself was lost for good (``outcome``: its error's type, value and traceback) or
-    cancelled (by a scheduler restarted under it; ``outcome``: the cancellation)."""
-    if future.status == "finished":
-        return outcome
-    from wheelstep_cli.batch.sweep_point import FIGURES
+def _result(future, point: Point) -> dict:
+    """The row a worker computed, or a failed row when the task itself was lost for good
+    (e.g. KilledWorker after the retries: this point only) or cancelled (by a scheduler
+    restarted under it)."""
+    from asyncio import CancelledError
 
-    # e.g. KilledWorker after the retries: this point only
-    err = outcome[1] if isinstance(outcome, tuple) else outcome
-    row = dict.fromkeys(FIGURES)
-    row.update(key=point.key, index=point.index, outcome="failed", interference=None,
-               reason=f"worker failed: {type(err).__name__}: {err}", seconds=None)
-    return row
+    try:
+        # a Ctrl-C is held while the result is fetched: cut, the fetch's wait would leave a
+        # cancelled callback that distributed logs as an error
+        with interrupts_deferred():
+            return future.result()
+    except (Exception, CancelledError) as err:
+        from wheelstep_cli.batch.sweep_point import FIGURES
+
+        row = dict.fromkeys(FIGURES)
+        row.update(key=point.key, index=point.index, outcome="failed", interference=None,
+                   reason=f"worker failed: {type(err).__name__}: {err}", seconds=None)
+        return row
 
 
 def _row(row: dict, point: Point, kinds: dict[str, str], tool: str) -> dict:
