@@ -3,7 +3,8 @@ others), its parts laid on z = 0, compensated for the printer and checked."""
 
 from __future__ import annotations
 
-from contextlib import contextmanager, nullcontext
+from concurrent.futures import ProcessPoolExecutor
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -210,12 +211,11 @@ def _local_pool(jobs: int):
     for them (a worker cut off while it sent a result back would leave the pool's reader
     waiting on that message for ever)."""
     import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
 
     before = set(multiprocessing.active_children())
     # spawn: safe with manifold3d's threads and the same on every platform
-    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=ends_at_interrupt)
+    pool = _QuietPool(max_workers=jobs, mp_context=multiprocessing.get_context("spawn"),
+                     initializer=ends_at_interrupt)
     try:
         yield pool
     except BaseException:
@@ -231,8 +231,18 @@ def _local_pool(jobs: int):
     pool.shutdown(wait=True)
 
 
+class _QuietPool(ProcessPoolExecutor):
+    """A process pool whose workers never print a traceback at a Ctrl-C."""
+
+    def submit(self, *args, **kwargs):
+        # a submission may start a worker process: with SIGINT blocked until it is set up to
+        # end quietly (ends_at_interrupt)
+        with interrupts_kept_from_children():
+            return super().submit(*args, **kwargs)
+
+
 def ends_at_interrupt() -> None:
-    """Set up a local pool worker (started with SIGINT blocked, see :func:`map_items`) to end
+    """Set up a local pool worker (started with SIGINT blocked, see :func:`_local_pool`) to end
     at once and silently at a Ctrl-C: it holds no file (this process writes them all, and
     says that the run was stopped), and finishing its entry would keep the person waiting."""
     import signal
@@ -251,13 +261,7 @@ def map_items(pool, function, items, step, lazy: bool = False):
     if pool is None:
         results = (_call_and_step(function, item, step) for item in items)
         return results if lazy else list(results)
-    from concurrent.futures import ProcessPoolExecutor
-
-    # a local pool starts its worker processes on these submissions: with SIGINT blocked until
-    # they are set up to end quietly (ends_at_interrupt), none dies printing a traceback
-    local = isinstance(pool, ProcessPoolExecutor)
-    with interrupts_kept_from_children() if local else nullcontext():
-        futures = {pool.submit(function, item): item for item in items}
+    futures = {pool.submit(function, item): item for item in items}
     return _collect(futures, step)
 
 
