@@ -110,3 +110,19 @@ def test_nothing_waits_once_the_command_has_returned(tmp_path, case):
     run = subprocess.run([sys.executable, str(script), case], capture_output=True, text=True, timeout=120)
     assert run.returncode == (1 if case == "done" else 130), run.stderr
     assert time.monotonic() - start < 45        # not the minute the waits would take
+
+
+def test_loading_the_cli_leaves_the_batch_pipeline_unloaded():
+    """Every command imports the console script's Ctrl-C handling (batch.interrupts); the
+    batch pipeline it sits beside (plan, run, build: YAML, pools, printers) is loaded by the
+    batch command alone, so `gears` does not pay for it at start-up."""
+    import subprocess
+
+    probe = ("import sys, wheelstep_cli.cli as cli; cli._register_commands(); "
+             "import wheelstep_cli.batch as batch; "
+             "print(sorted(m for m in sys.modules if m.startswith('wheelstep_cli.batch.'))); "
+             "batch.load_batch; print('wheelstep_cli.batch.plan' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
+    loaded, after = out.stdout.splitlines()
+    assert loaded == "['wheelstep_cli.batch.interrupts']"
+    assert after == "True"     # the package's names still load on first use

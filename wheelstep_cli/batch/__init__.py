@@ -10,7 +10,22 @@ them with the reports, print sheet and manifest (outputs.py) in one atomic step.
 
 from __future__ import annotations
 
-from wheelstep_cli.batch.plan import BatchPlan, Entry, load_batch
-from wheelstep_cli.batch.run import BatchOutcome, run_batch
+import importlib
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from wheelstep_cli.batch.plan import BatchPlan, Entry, load_batch
+    from wheelstep_cli.batch.run import BatchOutcome, run_batch
 
 __all__ = ["BatchOutcome", "BatchPlan", "Entry", "load_batch", "run_batch"]
+
+# Loaded on first use: the console script imports batch.interrupts for every command, and
+# a single `gears` run should not pay for the batch pipeline's imports.
+_HOME = {"BatchPlan": "plan", "Entry": "plan", "load_batch": "plan",
+         "BatchOutcome": "run", "run_batch": "run"}
+
+
+def __getattr__(name: str) -> object:
+    if name not in _HOME:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(importlib.import_module(f"{__name__}.{_HOME[name]}"), name)
