@@ -82,6 +82,7 @@ def _computed(plan, out: Path, cluster: tuple, run: tuple, show: Output):
     saying where the rows so far are."""
     from wheelstep_cli.batch.interrupts import caused_by_interrupt
     from wheelstep_cli.batch.sweep_run import dask_client, run_sweep
+    from wheelstep_cli.batch.sweep_store import CSV, RECORD
     from wheelstep_cli.errors import Interrupted
 
     earlier, best, force = run
@@ -90,8 +91,7 @@ def _computed(plan, out: Path, cluster: tuple, run: tuple, show: Output):
             show.detail(f"  {len(plan.points)} points on {len(client.scheduler_info()['workers'])} worker(s)")
             with _Bar(not show.quiet) as bar:
                 outcome = run_sweep(plan, out, client, bar.update, earlier)
-        written = [outcome.results, out / "results.csv", _plot(plan, outcome.results, out),
-                   out / ".wheelstep-sweep.json"]
+        written = [outcome.results, out / CSV, _plot(plan, outcome.results, out), out / RECORD]
         return outcome, written + _keep_best(plan, outcome.results, out, best, show, force)
     except BaseException as err:          # a Ctrl-C, also one a library wrapped (the plot's)
         if not caused_by_interrupt(err):
@@ -102,7 +102,9 @@ def _computed(plan, out: Path, cluster: tuple, run: tuple, show: Output):
 
 def _interrupted_text(out: Path) -> str:
     """What an interrupted run leaves: the rows merged so far, if it got to any."""
-    results = out / "results.parquet"
+    from wheelstep_cli.batch.sweep_store import RESULTS
+
+    results = out / RESULTS
     if not results.exists():
         return "interrupted before any design was computed"
     return f"interrupted; the rows so far are in {results} (a rerun computes the rest)"
@@ -113,7 +115,7 @@ def _dry_run(plan, file: Path, out: Path, show: Output, run: tuple[bool, int]) -
     would be written and removed; nothing is computed or written. ``run`` = (``out`` holds
     an earlier run's results, best designs kept)."""
     from wheelstep_cli.batch.sweep_run import resolve_points
-    from wheelstep_cli.batch.sweep_store import ResultStore, axis_kinds, schema
+    from wheelstep_cli.batch.sweep_store import CSV, PLOT, RECORD, RESULTS, ResultStore, axis_kinds, schema
 
     earlier, best = run
     _drop_earlier_best(out, best, show, dry_run=True)
@@ -124,8 +126,8 @@ def _dry_run(plan, file: Path, out: Path, show: Output, run: tuple[bool, int]) -
     todo = sum(p.key not in done for p in points)
     dropped = len(done - {p.key for p in points})
     # the best designs' folders: their files are named by the designs the run will rank
-    files = [out / "results.parquet", out / "results.csv", out / "pareto.png",
-             out / ".wheelstep-sweep.json", *(out / f"best-{k}" for k in range(1, best + 1))]
+    files = [out / RESULTS, out / CSV, out / PLOT, out / RECORD,
+             *(out / f"best-{k}" for k in range(1, best + 1))]
     show.report({"sweep": str(file), "out": str(out), "points": len(points),
                  "skipped": len(points) - todo, "would_compute": todo, "would_drop": dropped,
                  "written": []}, lambda: [f"{todo} of {len(points)} designs would be computed"
