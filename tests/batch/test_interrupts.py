@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from tests.helpers.files import SMALL_BATCH, write
+from tests.helpers.terminal import ctrl_c, start_cli
 
 from wheelstep_cli.batch.interrupts import (interrupts_deferred, interrupts_kept_from_children,
                                             interrupts_not_lost)
@@ -137,16 +138,13 @@ def test_ctrl_c_to_a_batch_and_its_workers_is_one_line(tmp_path):
     nothing written."""
     batch = write(tmp_path / "batch.yaml", SMALL_BATCH)
     out = tmp_path / "out"
-    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
-    run = subprocess.Popen([sys.executable, "-m", "wheelstep_cli", "batch", str(batch), "--out", str(out),
-                            "--jobs", "2", "-q"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                           text=True, preexec_fn=lambda: (signal.signal(signal.SIGINT, signal.SIG_DFL), os.setsid()))
+    run = start_cli("batch", batch, "--out", out, "--jobs", "2", "-q")
     deadline = time.monotonic() + 300
     # the command, the standard library's resource tracker and the two workers
     while run.poll() is None and time.monotonic() < deadline and _in_group(run.pid) < 4:
         time.sleep(0.05)
     assert run.poll() is None, "the batch finished before its workers were seen"
-    os.killpg(run.pid, signal.SIGINT)
+    ctrl_c(run)
     _, err = run.communicate(timeout=120)
     assert (run.returncode, err) == (130, "wheelstep: aborted\n")
     assert not out.exists()
