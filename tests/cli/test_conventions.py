@@ -80,6 +80,44 @@ def test_one_style_for_defaults_in_help(cli):
     assert "[default: 60.0]" in text and "[default: 361]" in text
 
 
+def _stated_defaults(command: str) -> dict[str, str]:
+    """option -> the default its help states in words (``[default: ...]`` of an option whose
+    value comes from a profile or the built-in design), for the states a run can confirm: a
+    number or a word, or a formula ending in ``= number``."""
+    import re
+
+    import typer
+
+    import wheelstep_cli.cli as cli_module
+
+    cli_module._register_commands()
+    stated = {}
+    for param in typer.main.get_command(cli_module.app).commands[command].params:
+        found = re.search(r"\[default: ([^\]]*)\]", getattr(param, "help", None) or "")
+        if found and param.default is None:
+            text = found.group(1).rsplit("= ", 1)[-1]
+            if re.fullmatch(r"-?[\d.]+|[a-z]+", text):
+                stated[param.name] = text
+    return stated
+
+
+@pytest.mark.parametrize("command", ["gears", "shoe", "kinematics"])
+def test_the_defaults_the_help_states_are_the_ones_used(cli, command):
+    """An option filled from the built-in design says its default in words (it has no
+    concrete default for the help to show): each such word is the value a run resolves."""
+    stated = _stated_defaults(command)
+    args = [command, "-v"] + (["--dry-run"] if command in ("gears", "shoe") else [])
+    resolved = dict(line.strip().split(" = ", 1) for line in cli(*args).stderr.splitlines()
+                    if line.startswith("  ") and " = " in line)
+    checked = {name: text for name, text in stated.items() if name in resolved}
+    assert len(checked) >= (8 if command == "gears" else 4), (stated, resolved)
+    for name, text in checked.items():
+        try:
+            assert float(resolved[name]) == float(text), name
+        except ValueError:
+            assert resolved[name] == text, name
+
+
 @pytest.mark.parametrize("command", COMMANDS)
 def test_json_is_one_document_on_stdout(cli, tmp_path, pair, command):
     result = cli(*report_args(command, tmp_path / "out", pair), "--json")
