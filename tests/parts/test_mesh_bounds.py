@@ -111,6 +111,31 @@ def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what
     assert "; overrides {z: 48} still gives" in remedy_in_yaml(error)
 
 
+def test_when_more_teeth_do_not_do_the_settings_the_design_changed_are_set_back():
+    """A pair cut with a small pressure angle and a short addendum whose deviations more teeth
+    do not cure: after the tries of more teeth, those settings at their defaults (the count
+    kept) are built and offered; a design at the defaults gets no such try."""
+    from types import SimpleNamespace
+
+    builds = []
+
+    def verify(design):
+        builds.append((design.z, design.pressure_angle, design.addendum))
+        pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
+                               spec=design, as_asked=design, opening=0.0)
+        return pair, record() if design.pressure_angle == 20 else record(drive=flank(total=18.0))
+
+    error, _ = _refusal(verify, pressure_angle=15.0, addendum=0.9, dedendum=1.2)
+    defaults = GearPairSpec.model_fields
+    assert builds == [(40, 15.0, 0.9), (48, 15.0, 0.9), (58, 15.0, 0.9), (32, 20.0, 1.0)]
+    assert error.remedy == {name: defaults[name].default for name in ("pressure_angle", "addendum", "dedendum")}
+    assert error.param == "pressure_angle"
+    assert error.limit.endswith("; use --pressure-angle 20 --addendum 1 --dedendum 1.25")
+    builds.clear()
+    error, _ = _refusal(lambda design: verify(design.model_copy(update={"pressure_angle": 15.0})))
+    assert [z for z, _, _ in builds] == [40, 48, 58] and error.remedy == {}
+
+
 def test_more_teeth_on_a_given_module_that_outgrow_the_printer_keep_the_size_asked_for():
     """--module 2 --z 32: the first try keeps the module given; refused as larger than the
     printer, the tries scale the module by 32 / z' from then on (module x z stays 64, so the

@@ -154,6 +154,8 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
         if verify is not None and remedy:
             # the play alone first only where a build follows it up (a sweep's row keeps the count)
             remedy, tried, candidates = verified_remedy(design, _play_first(design, remedy), verify, bounds)
+        if verify is not None and not remedy:
+            remedy, tried, candidates = _settings_set_back(design, verify, bounds, tried, candidates)
         remedy = dict(sorted(remedy.items(), key=lambda option: option[0] != "z"))   # the count first
     param = next(iter(remedy), "z")
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
@@ -322,6 +324,21 @@ def _within_the_tooth_limit(design, remedy: dict) -> dict:
     # the defaults' teeth with the design's own backlash: the backlash part of the remedy was
     # sized for the other tooth count
     return _changed_settings(design)
+
+
+def _settings_set_back(design, verify: Callable, bounds: MeshBounds, tried: list[str],
+                       candidates: list[dict]) -> tuple[dict, list[str], list[dict]]:
+    """When the remedies the figures point to were built and found wanting, and ``design``
+    changes the generator's settings: those settings at their defaults (its tooth count and
+    backlash kept), followed as :func:`verified_remedy` follows a remedy. Teeth cut with a
+    small pressure angle or short addendum can break the bounds at every tooth count; the
+    defaults are the teeth the bounds were met with. (remedy or {}, every try, every failed
+    remedy.)"""
+    back = _changed_settings(design)
+    if not back or back in candidates:
+        return {}, tried, candidates
+    remedy, more, failed = verified_remedy(design, back, verify, bounds)
+    return remedy, tried + more, candidates + failed
 
 
 def _changed_settings(design) -> dict:
