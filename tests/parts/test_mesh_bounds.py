@@ -8,7 +8,7 @@ import pytest
 from wheelstep_cli.gears.generation.play import largest_play, play_angle, play_ripple
 from wheelstep_cli.gears.pitch_curves import pitch_curves
 from wheelstep_cli.parts.gear_pair import GearPairSpec, design_backlash, generation_law, installed_distance
-from wheelstep_cli.parts.mesh_bounds import bound_violations, teeth_remedy
+from wheelstep_cli.parts.mesh_bounds import bound_violations, ripple_teeth_remedy, teeth_remedy
 
 
 def flank(total=5.0, tooth=4.0, ripple=0.5):
@@ -41,6 +41,18 @@ def test_ripple_bound_is_on_what_the_teeth_add_to_the_laws_own():
 def test_teeth_remedy_scales_z_by_the_worst_ratio_in_whole_periods():
     assert teeth_remedy(record(drive=flank(total=30.0, tooth=12.0)), 24, 2) == 48
     assert teeth_remedy(record(), 48, 2) == 48
+
+
+def test_ripple_of_the_tooth_form_is_remedied_with_fewer_teeth_in_whole_periods():
+    """The form's ripple grows about as z: a pair at z 200 rippling 1.8 % (the law's own 0.1 %
+    taken off) is offered 200 / (1.7 / 0.9) rounded down to whole periods; one within the
+    bound but not its 0.9 margin loses a period at least; never below 6 teeth; unmeasured:
+    two periods more."""
+    over = record(drive=flank(ripple=1.8), coast=flank(ripple=1.2), law_hub_speed_ripple_pct=0.1)
+    assert ripple_teeth_remedy(over, 200, 2) == 104
+    assert ripple_teeth_remedy(record(drive=flank(ripple=0.95)), 48, 2) == 44   # 0.9 x the bound
+    assert ripple_teeth_remedy(record(drive=flank(ripple=50.0)), 48, 4) == 8
+    assert ripple_teeth_remedy(record(drive=flank(ripple=None)), 48, 2) == 52
 
 
 def test_a_constant_play_costs_hub_speed_ripple_at_the_handover_corners():
@@ -134,6 +146,34 @@ def test_when_more_teeth_do_not_do_the_settings_the_design_changed_are_set_back(
     builds.clear()
     error, _ = _refusal(lambda design: verify(design.model_copy(update={"pressure_angle": 15.0})))
     assert [z for z, _, _ in builds] == [40, 48, 58] and error.remedy == {}
+
+
+def test_a_ripple_more_teeth_do_not_cure_is_offered_fewer_teeth():
+    """A ripple alone (the flanks' micron deviations over too small a pitch): after the tries
+    of more teeth, the count :func:`ripple_teeth_remedy` points to is built and offered."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+
+    builds = []
+    rippling = record(drive=flank(ripple=1.6), coast=flank(ripple=1.5))
+
+    def verify(design):
+        builds.append(design.z)
+        pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
+                               spec=design, as_asked=design, opening=0.0)
+        return pair, record() if design.z < 100 else rippling
+
+    spec = GearPairSpec(z=100)
+    pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(spec)[1]), printing=None,
+                           spec=spec, as_asked=spec, opening=0.0)
+    with pytest.raises(DesignError) as err:
+        require_within_bounds(pair, rippling, verify=verify)
+    # the play first (less backlash), then more teeth: found wanting; then fewer teeth
+    assert len(builds) == 4 and min(builds[:-1]) >= 100 and max(builds[:-1]) > 100
+    assert builds[-1] == ripple_teeth_remedy(rippling, 100, 2) == 56
+    assert err.value.remedy == {"z": 56} and err.value.limit.endswith("; use --z 56")
 
 
 def test_more_teeth_on_a_given_module_that_outgrow_the_printer_keep_the_size_asked_for():

@@ -1,106 +1,21 @@
-"""The bounds a written gear pair must mesh within (issue 13, SPEC §10), and what to do when not.
+"""What to do when a written gear pair would mesh outside its bounds (issue 13, SPEC §10):
+refuse it before anything is written, with a remedy whose build meshes within them.
 
-A pair meshes within bounds when no pose interferes and, on both flanks, the total
-tangential composite deviation F'i, the tooth-to-tooth one f'i (both um along the wheel
-pitch curve) and the hub speed ripple band-limited to 3 tooth harmonics (%) are at most
-the bounds. Lengths in mm, figures in um and %.
+The bounds and the remedies the figures point to are in :mod:`~wheelstep_cli.parts.bound_figures`
+(imported here for the callers that name them from this module). Lengths in mm, figures in
+um and %.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Callable
-
-import numpy as np
 
 from wheelstep_cli.config.names import as_flags
 from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH
 from wheelstep_cli.errors import DesignError
-
-
-@dataclass(frozen=True)
-class MeshBounds:
-    """Largest figures (um, um, %) a written pair may show on either flank; with a fit, its
-    design before the inset (the inset is print compensation, judged over the band)."""
-
-    total_um: float = 15.0
-    """F'i, total tangential composite deviation, um."""
-    tooth_um: float = 10.0
-    """f'i, tooth-to-tooth tangential composite deviation, um."""
-    ripple_pct: float = 1.0
-    """Hub speed ripple, band-limited to 3 tooth harmonics, %."""
-
-
-#: (record key, bound field, unit, name in the refusal) per figure of a flank.
-_FIGURES = (("F_i_total_um", "total_um", "um", "F'i"), ("f_i_tooth_um", "tooth_um", "um", "f'i"),
-            ("hub_speed_ripple_pct", "ripple_pct", "%", "band-limited ripple"))
-
-
-def bound_violations(record: dict, bounds: MeshBounds = MeshBounds()) -> list[str]:
-    """What in a meshing record (``MeshingReport.to_dict()``) breaks the bounds, one phrase
-    each (empty: within bounds). A figure that could not be measured (None) breaks them."""
-    found = []
-    if record["interference"]:
-        found.append(f"teeth interfere at {record['interfering_poses']} of {record['samples']} poses")
-    if record.get("contact_lost"):
-        found.append("contact lost at some poses")
-    # the ripple bound is on what the teeth add: a law that is not the crank law (or is
-    # blended) has an output-speed ripple of its own
-    own = record.get("law_hub_speed_ripple_pct", 0.0)
-    for side in ("drive", "coast"):
-        for key, field_name, unit, name in _FIGURES:
-            value, limit, beyond = record[side][key], getattr(bounds, field_name), ""
-            if key == "hub_speed_ripple_pct" and value is not None and own > 0.01:
-                value, beyond = max(0.0, value - own), f" beyond the law's own {own:.2f} %"
-            if value is None or value > limit:
-                shown = "not measured" if value is None else f"{value:.2f} {unit}{beyond}"
-                found.append(f"{side} flank {name} {shown} > {limit:g} {unit}")
-    return found
-
-
-def within_bounds(record: dict, bounds: MeshBounds = MeshBounds()) -> bool:
-    """True when the meshing record meets every bound (see :func:`bound_violations`)."""
-    return not bound_violations(record, bounds)
-
-
-def _side_offsets(record: dict) -> dict[str, float]:
-    """Each flank's mean lag behind the law (rad of wheel angle), from its TE band (arcmin)."""
-    arcmin = np.pi / (180.0 * 60.0)
-    return {side: 0.5 * (record[side]["te_min_arcmin"] + record[side]["te_max_arcmin"]) * arcmin
-            for side in ("drive", "coast") if record[side]["te_min_arcmin"] is not None}
-
-
-def backlash_remedy(law, record: dict, backlash: float, bounds: MeshBounds = MeshBounds(),
-                    margin: float = 0.9) -> float:
-    """Largest normal backlash (mm) at which both flanks' ripple should fall within
-    ``margin`` x the bound: each flank's ripple is split into what its play costs
-    (gears.generation.play) and the rest (the tooth form), and the play scaled down with
-    the backlash. 0 when the rest alone breaks the bound."""
-    from wheelstep_cli.gears.generation.play import largest_play, play_ripple
-
-    scale, own = 1.0, play_ripple(law, 0.0)
-    for side, delta in _side_offsets(record).items():
-        ripple = record[side]["hub_speed_ripple_pct"]
-        if ripple is None or abs(delta) < 1e-9:
-            continue
-        base = ripple / 100.0 - play_ripple(law, delta)
-        allowed = largest_play(law, margin * bounds.ripple_pct / 100.0 + own, base)
-        scale = min(scale, allowed / abs(delta))
-    return float(np.floor(1000.0 * scale * backlash) / 1000.0)
-
-
-def teeth_remedy(record: dict, z: int, periods: int, bounds: MeshBounds = MeshBounds(),
-                 squared: bool = False) -> int:
-    """Pinion teeth at which F'i and f'i should meet the bounds: the composite deviations of
-    the generated teeth fall at least as fast as 1/z (about 1/z^2 measured), so z is scaled
-    by the worst ratio to its bound (or its square root with ``squared``: as 1/z^2), rounded
-    up to whole law periods."""
-    worst = 1.0
-    for side in ("drive", "coast"):
-        flank = record[side]
-        for key, limit in (("F_i_total_um", bounds.total_um), ("f_i_tooth_um", bounds.tooth_um)):
-            worst = max(worst, (flank[key] if flank[key] is not None else 2 * limit) / limit)
-    return int(periods * np.ceil(z * (np.sqrt(worst) if squared else worst) / periods))
+# the figures' side re-exported: callers name the bounds and their remedies from here
+from wheelstep_cli.parts.bound_figures import (MeshBounds, backlash_remedy, bound_violations,  # noqa: F401
+                                               ripple_teeth_remedy, teeth_remedy)
 
 
 #: Remedies tried (each a build and a meshing check) before a refusal offers one.
@@ -155,7 +70,7 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
             # the play alone first only where a build follows it up (a sweep's row keeps the count)
             remedy, tried, candidates = verified_remedy(design, _play_first(design, remedy), verify, bounds)
         if verify is not None and not remedy:
-            remedy, tried, candidates = _settings_set_back(design, verify, bounds, tried, candidates)
+            remedy, tried, candidates = _other_ways(pair, design, record, verify, bounds, (tried, candidates))
         remedy = dict(sorted(remedy.items(), key=lambda option: option[0] != "z"))   # the count first
     param = next(iter(remedy), "z")
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
@@ -326,19 +241,27 @@ def _within_the_tooth_limit(design, remedy: dict) -> dict:
     return _changed_settings(design)
 
 
-def _settings_set_back(design, verify: Callable, bounds: MeshBounds, tried: list[str],
-                       candidates: list[dict]) -> tuple[dict, list[str], list[dict]]:
-    """When the remedies the figures point to were built and found wanting, and ``design``
-    changes the generator's settings: those settings at their defaults (its tooth count and
-    backlash kept), followed as :func:`verified_remedy` follows a remedy. Teeth cut with a
-    small pressure angle or short addendum can break the bounds at every tooth count; the
-    defaults are the teeth the bounds were met with. (remedy or {}, every try, every failed
-    remedy.)"""
-    back = _changed_settings(design)
-    if not back or back in candidates:
-        return {}, tried, candidates
-    remedy, more, failed = verified_remedy(design, back, verify, bounds)
-    return remedy, tried + more, candidates + failed
+def _other_ways(pair, design, record: dict, verify: Callable, bounds: MeshBounds,
+                so_far: tuple[list[str], list[dict]]) -> tuple[dict, list[str], list[dict]]:
+    """(remedy or {}, every try, every failed remedy) once the remedies the figures point to
+    (``so_far``: their tries and candidates) were built and found wanting, each followed as
+    :func:`verified_remedy` follows a remedy: for a ripple alone, fewer teeth (a pitch too
+    small for the flanks' micron deviations, :func:`ripple_teeth_remedy`); then the generator
+    settings ``design`` changes at their defaults, count and backlash kept (a small pressure
+    angle or short addendum can break the bounds at every tooth count)."""
+    tried, candidates = so_far
+    broken = _broken(record, bounds)
+    ways = [_changed_settings(design)]
+    if not any("F'i" in text or "f'i" in text for text in broken):
+        z = ripple_teeth_remedy(record, design.z, pair.generated.law.pinion_periods, bounds)
+        ways.insert(0, _sized(design, {"z": z}) if z < design.z else {})
+    for way in ways:
+        if way and way not in candidates:
+            remedy, more, failed = verified_remedy(design, way, verify, bounds)
+            tried, candidates = tried + more, candidates + failed
+            if remedy:
+                return remedy, tried, candidates
+    return {}, tried, candidates
 
 
 def _changed_settings(design) -> dict:

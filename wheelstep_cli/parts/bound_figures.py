@@ -1,0 +1,110 @@
+"""The bounds a written gear pair must mesh within (issue 13, SPEC §10), and the remedies its
+figures point to: pure functions of a meshing record (``MeshingReport.to_dict()``).
+
+A pair meshes within bounds when no pose interferes and, on both flanks, the total
+tangential composite deviation F'i, the tooth-to-tooth one f'i (both um along the wheel
+pitch curve) and the hub speed ripple band-limited to 3 tooth harmonics (%) are at most
+the bounds. Lengths in mm, figures in um and %.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class MeshBounds:
+    """Largest figures (um, um, %) a written pair may show on either flank; with a fit, its
+    design before the inset (the inset is print compensation, judged over the band)."""
+
+    total_um: float = 15.0
+    """F'i, total tangential composite deviation, um."""
+    tooth_um: float = 10.0
+    """f'i, tooth-to-tooth tangential composite deviation, um."""
+    ripple_pct: float = 1.0
+    """Hub speed ripple, band-limited to 3 tooth harmonics, %."""
+
+
+#: (record key, bound field, unit, name in the refusal) per figure of a flank.
+_FIGURES = (("F_i_total_um", "total_um", "um", "F'i"), ("f_i_tooth_um", "tooth_um", "um", "f'i"),
+            ("hub_speed_ripple_pct", "ripple_pct", "%", "band-limited ripple"))
+
+
+def bound_violations(record: dict, bounds: MeshBounds = MeshBounds()) -> list[str]:
+    """What in a meshing record (``MeshingReport.to_dict()``) breaks the bounds, one phrase
+    each (empty: within bounds). A figure that could not be measured (None) breaks them."""
+    found = []
+    if record["interference"]:
+        found.append(f"teeth interfere at {record['interfering_poses']} of {record['samples']} poses")
+    if record.get("contact_lost"):
+        found.append("contact lost at some poses")
+    # the ripple bound is on what the teeth add: a law that is not the crank law (or is
+    # blended) has an output-speed ripple of its own
+    own = record.get("law_hub_speed_ripple_pct", 0.0)
+    for side in ("drive", "coast"):
+        for key, field_name, unit, name in _FIGURES:
+            value, limit, beyond = record[side][key], getattr(bounds, field_name), ""
+            if key == "hub_speed_ripple_pct" and value is not None and own > 0.01:
+                value, beyond = max(0.0, value - own), f" beyond the law's own {own:.2f} %"
+            if value is None or value > limit:
+                shown = "not measured" if value is None else f"{value:.2f} {unit}{beyond}"
+                found.append(f"{side} flank {name} {shown} > {limit:g} {unit}")
+    return found
+
+
+def _side_offsets(record: dict) -> dict[str, float]:
+    """Each flank's mean lag behind the law (rad of wheel angle), from its TE band (arcmin)."""
+    arcmin = np.pi / (180.0 * 60.0)
+    return {side: 0.5 * (record[side]["te_min_arcmin"] + record[side]["te_max_arcmin"]) * arcmin
+            for side in ("drive", "coast") if record[side]["te_min_arcmin"] is not None}
+
+
+def backlash_remedy(law, record: dict, backlash: float, bounds: MeshBounds = MeshBounds(),
+                    margin: float = 0.9) -> float:
+    """Largest normal backlash (mm) at which both flanks' ripple should fall within
+    ``margin`` x the bound: each flank's ripple is split into what its play costs
+    (gears.generation.play) and the rest (the tooth form), and the play scaled down with
+    the backlash. 0 when the rest alone breaks the bound."""
+    from wheelstep_cli.gears.generation.play import largest_play, play_ripple
+
+    scale, own = 1.0, play_ripple(law, 0.0)
+    for side, delta in _side_offsets(record).items():
+        ripple = record[side]["hub_speed_ripple_pct"]
+        if ripple is None or abs(delta) < 1e-9:
+            continue
+        base = ripple / 100.0 - play_ripple(law, delta)
+        allowed = largest_play(law, margin * bounds.ripple_pct / 100.0 + own, base)
+        scale = min(scale, allowed / abs(delta))
+    return float(np.floor(1000.0 * scale * backlash) / 1000.0)
+
+
+def teeth_remedy(record: dict, z: int, periods: int, bounds: MeshBounds = MeshBounds(),
+                 squared: bool = False) -> int:
+    """Pinion teeth at which F'i and f'i should meet the bounds: the composite deviations of
+    the generated teeth fall at least as fast as 1/z (about 1/z^2 measured), so z is scaled
+    by the worst ratio to its bound (or its square root with ``squared``: as 1/z^2), rounded
+    up to whole law periods."""
+    worst = 1.0
+    for side in ("drive", "coast"):
+        flank = record[side]
+        for key, limit in (("F_i_total_um", bounds.total_um), ("f_i_tooth_um", bounds.tooth_um)):
+            worst = max(worst, (flank[key] if flank[key] is not None else 2 * limit) / limit)
+    return int(periods * np.ceil(z * (np.sqrt(worst) if squared else worst) / periods))
+
+
+def ripple_teeth_remedy(record: dict, z: int, periods: int, bounds: MeshBounds = MeshBounds(),
+                        margin: float = 0.9) -> int:
+    """Pinion teeth at which the tooth form's ripple should fall within ``margin`` x the bound:
+    generated flanks deviate by microns whatever the tooth size, and the smaller the pitch,
+    the steeper the TE those microns make, so their ripple grows about as z. z is scaled down
+    by the worst flank's ratio (beyond the law's own ripple), in whole law periods, by at least
+    a period, to no fewer than 6 teeth; two periods more when the ripple was not measured."""
+    own = record.get("law_hub_speed_ripple_pct", 0.0)
+    ripples = [record[side]["hub_speed_ripple_pct"] for side in ("drive", "coast")]
+    if any(value is None for value in ripples):
+        return z + 2 * periods
+    worst = max(value - own for value in ripples) / (margin * bounds.ripple_pct)
+    fewer = min(z - periods, int(periods * np.floor(z / max(worst, 1.0) / periods)))
+    return max(fewer, periods * -(-6 // periods))
