@@ -96,7 +96,8 @@ def test_a_remedy_is_offered_once_its_build_is_within_the_bounds():
         return None, record()
 
     error, _ = _refusal(verify)
-    assert builds == [40] and error.remedy == {"z": 40} and error.limit.endswith("; use --z 40")
+    # F'i 18 um against 15: z 32 x sqrt(1.2) (the deviations fall about as 1/z^2), whole periods
+    assert builds == [36] and error.remedy == {"z": 36} and error.limit.endswith("; use --z 36")
 
 
 def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what_was_tried():
@@ -111,16 +112,16 @@ def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what
         return pair, record(drive=flank(total=18.0, tooth=6.0))
 
     error, _ = _refusal(verify)
-    assert builds == [40, 48, 58]        # each try from the last one's figures (x 1.2)
+    assert builds == [36, 40, 44]        # each try from the last one's figures (x sqrt 1.2)
     assert error.remedy == {} and "; use --" not in error.limit
-    assert ("no remedy found (--z 40 still gives drive flank F'i 18.00 um > 15 um; --z 48 still "
-            "gives drive flank F'i 18.00 um > 15 um; --z 58 still gives drive flank F'i 18.00 um "
+    assert ("no remedy found (--z 36 still gives drive flank F'i 18.00 um > 15 um; --z 40 still "
+            "gives drive flank F'i 18.00 um > 15 um; --z 44 still gives drive flank F'i 18.00 um "
             "> 15 um): change the mechanism") in error.limit
     from wheelstep_cli.config.names import remedy_in_yaml
 
     # a batch file states the tries as its override keys
-    assert "no remedy found (overrides {z: 40} still gives" in remedy_in_yaml(error)
-    assert "; overrides {z: 48} still gives" in remedy_in_yaml(error)
+    assert "no remedy found (overrides {z: 36} still gives" in remedy_in_yaml(error)
+    assert "; overrides {z: 40} still gives" in remedy_in_yaml(error)
 
 
 def test_when_more_teeth_do_not_do_the_settings_the_design_changed_are_set_back():
@@ -139,13 +140,13 @@ def test_when_more_teeth_do_not_do_the_settings_the_design_changed_are_set_back(
 
     error, _ = _refusal(verify, pressure_angle=15.0, addendum=0.9, dedendum=1.2)
     defaults = GearPairSpec.model_fields
-    assert builds == [(40, 15.0, 0.9), (48, 15.0, 0.9), (58, 15.0, 0.9), (32, 20.0, 1.0)]
+    assert builds == [(36, 15.0, 0.9), (40, 15.0, 0.9), (44, 15.0, 0.9), (32, 20.0, 1.0)]
     assert error.remedy == {name: defaults[name].default for name in ("pressure_angle", "addendum", "dedendum")}
     assert error.param == "pressure_angle"
     assert error.limit.endswith("; use --pressure-angle 20 --addendum 1 --dedendum 1.25")
     builds.clear()
     error, _ = _refusal(lambda design: verify(design.model_copy(update={"pressure_angle": 15.0})))
-    assert [z for z, _, _ in builds] == [40, 48, 58] and error.remedy == {}
+    assert [z for z, _, _ in builds] == [36, 40, 44] and error.remedy == {}
 
 
 def test_a_ripple_more_teeth_do_not_cure_is_offered_fewer_teeth():
@@ -193,17 +194,17 @@ def test_more_teeth_on_a_given_module_that_outgrow_the_printer_keep_the_size_ask
             error = DesignError("printer", "fdm-0.4-pla", "part 'wheel' does not fit the bed")
             error.beyond_printer = "fdm-0.4-pla"
             raise error
-        if design.z == 40:
-            error = DesignError("z", 40, "teeth too thin; nothing written; use --z 36")
-            error.remedy = {"z": 36}
+        if design.z == 36:
+            error = DesignError("z", 36, "teeth too thin; nothing written; use --z 34")
+            error.remedy = {"z": 34}
             raise error
         pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
                                spec=design, as_asked=design, opening=0.0)
         return pair, record()
 
     error, _ = _refusal(verify, module=2)
-    assert tries == [(40, 2), (40, 1.6), (36, round(64 / 36, 3))]
-    assert error.remedy == {"z": 36, "module": round(64 / 36, 3)}
+    assert tries == [(36, 2), (36, round(64 / 36, 3)), (34, round(64 / 34, 3))]
+    assert error.remedy == {"z": 34, "module": round(64 / 34, 3)}
 
 
 def test_the_try_a_given_module_outgrows_the_printer_with_is_not_one_of_the_tries():
@@ -237,12 +238,12 @@ def test_a_remedy_the_pipeline_refuses_is_not_offered():
 
     error, _ = _refusal(verify)
     assert error.remedy == {}
-    assert "no remedy found (--z 40 is refused: --thickness = 5: makes it too tall)" in error.limit
+    assert "no remedy found (--z 36 is refused: --thickness = 5: makes it too tall)" in error.limit
 
 
 def test_a_remedy_already_tried_is_not_built_again():
-    """F'i over its bound at 40 (its remedy 48) and thin teeth at 48 (their remedy 40): the
-    tries go 40 -> 48 and do not build 40 again."""
+    """F'i over its bound at 36 (its remedy 40) and thin teeth at 40 (their remedy 36): the
+    tries go 36 -> 40 and do not build 36 again."""
     from types import SimpleNamespace
 
     from wheelstep_cli.errors import DesignError
@@ -251,16 +252,16 @@ def test_a_remedy_already_tried_is_not_built_again():
 
     def verify(design):
         builds.append(design.z)
-        if design.z == 48:
-            error = DesignError("z", 48, "the teeth are too thin; nothing written; use --z 40")
-            error.remedy = {"z": 40}
+        if design.z == 40:
+            error = DesignError("z", 40, "the teeth are too thin; nothing written; use --z 36")
+            error.remedy = {"z": 36}
             raise error
         pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
                                spec=design, as_asked=design, opening=0.0)
         return pair, record(drive=flank(total=18.0, tooth=6.0))
 
     error, _ = _refusal(verify)
-    assert builds == [40, 48] and error.remedy == {}, builds
+    assert builds == [36, 40] and error.remedy == {}, builds
 
 
 def test_a_batch_remedy_said_as_keys_leaves_longer_numbers_alone():

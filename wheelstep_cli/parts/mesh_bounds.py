@@ -154,11 +154,11 @@ def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
     broken, remedy = _broken(record, bounds), {}
     periods = pair.generated.law.pinion_periods
     if any("F'i" in text or "f'i" in text for text in broken):
-        remedy["z"] = teeth_remedy(record, design.z, periods, bounds)
+        # the deviations fall about as 1/z^2 (measured): the nearest count that should do, not
+        # one many times the design's; a build still outside is followed from its own figures
+        remedy["z"] = teeth_remedy(record, design.z, periods, bounds, squared=True)
         if remedy["z"] > MAX_TEETH and not _changed_settings(design):
-            # nothing to set back: the deviations fall about as 1/z^2, so a pair far outside
-            # the bounds (z = 18: f'i 17 x its bound) is offered that count to try
-            remedy["z"] = min(MAX_TEETH, teeth_remedy(record, design.z, periods, bounds, squared=True))
+            remedy["z"] = MAX_TEETH     # nothing to set back: that count to try
     if any("ripple" in text for text in broken):
         remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
     return _within_the_tooth_limit(design, remedy)
