@@ -151,3 +151,11 @@ def test_the_design_may_come_from_the_two_meshes_and_the_design_options(cli, sli
     result = cli("mesh-check", "--gcode", folder / "gears-1.gcode", folder / "pinion.stl",
                  folder / "wheel.stl", "--pair", "gears")
     assert "--pair = gears: picks a pair on plates" in error_line(result)
+
+
+
+def test_a_missing_plate_is_said_missing(cli, sliced, tmp_path):
+    folder, _ = sliced
+    missing = tmp_path / "nothere.3mf"
+    line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", missing))
+    assert line == f"wheelstep: error: pinion = {missing}: no such file"

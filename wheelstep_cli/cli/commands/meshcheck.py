@@ -85,13 +85,18 @@ def mesh_check(
 
 def _plates_given(pinion: str | None, wheel: str | None) -> bool:
     """Whether the meshes named are plates (3MF) whose pairs their metadata finds; a missing
-    mesh refused as Click refuses a missing argument (the user gave none to name)."""
+    mesh refused as Click refuses a missing argument (the user gave none to name), a file
+    named alone that does not exist as when two are named."""
     from wheelstep_cli.cli import click_errors
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.formats.mesh_read import split_mesh_spec
     from wheelstep_cli.parts.plate_pairs import is_plate_input
 
     if pinion is None:
         raise click_errors.UsageError("Missing argument 'PINION': give the PINION and WHEEL meshes, a "
                                       "plate, or --gcode FILE")
+    if wheel is None and not split_mesh_spec(pinion)[0].is_file():
+        raise DesignError("pinion", pinion, "no such file")
     plates = is_plate_input(pinion, wheel)
     if wheel is None and not plates:
         raise click_errors.UsageError(f"Missing argument 'WHEEL': {pinion} is one gear; give the wheel "
