@@ -153,6 +153,18 @@ def test_the_design_may_come_from_the_two_meshes_and_the_design_options(cli, sli
     assert "--pair = gears: picks a pair on plates" in error_line(result)
 
 
+def test_the_same_gcode_twice_is_refused_naming_gcode(cli, sliced, tmp_path):
+    folder, _ = sliced
+    gcode = folder / "gears-2.gcode"
+    copy = tmp_path / "copy.gcode"
+    shutil.copy(gcode, copy)
+    for second, said in ((gcode, "is given twice"), (copy, f"is the same G-code as the first "
+                                                          f"--gcode ({gcode})")):
+        line = error_line(cli("mesh-check", "--gcode", gcode, "--gcode", second))
+        assert line.startswith(f"wheelstep: error: --gcode = {second}: {said}: give it once when its "
+                               "plate holds the whole pair, or the G-code of each of the pair's two "
+                               "plates"), line
+
 
 def test_a_missing_plate_is_said_missing(cli, sliced, tmp_path):
     folder, _ = sliced

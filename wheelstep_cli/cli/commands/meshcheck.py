@@ -178,19 +178,12 @@ def _same_mesh(pinion: str, wheel: str | None) -> bool:
     """Whether the two mesh arguments name one mesh: the same file (or object of a 3MF), or
     two files of identical content. Checking a part against itself cannot give a meshing
     figure, and its sections overlap everywhere: refused before any work."""
-    from pathlib import Path
+    from wheelstep_cli.cli.commands.meshcheck_shared import same_file
 
     if wheel is None:
         return False
     (p_file, p_obj), (w_file, w_obj) = (_split(pinion), _split(wheel))
-    if p_obj != w_obj:
-        return False
-    try:
-        sizes = (Path(p_file).stat().st_size, Path(w_file).stat().st_size)
-        return Path(p_file).resolve() == Path(w_file).resolve() or (
-            sizes[0] == sizes[1] and Path(p_file).read_bytes() == Path(w_file).read_bytes())
-    except OSError:
-        return False        # a missing or unreadable file is refused where it is read
+    return p_obj == w_obj and same_file(p_file, w_file)
 
 
 def _split(given: str) -> tuple[str, str]:

@@ -26,6 +26,7 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
                                                                    "files of the pair's two plates")
     chosen = band_printer_of(*band)
     require_gcode_files(gcode)
+    _not_twice(gcode)
     found = _designs(plates, gcode, pair, design)
     require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID)")
     report, summary, read = with_progress(not quiet, "G-code read-back", run_gcode_check, gcode,
@@ -41,6 +42,20 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     warn_band_jams(show, summary.get("tolerance"), band[1])
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
+
+
+def _not_twice(gcode: list[Path]) -> None:
+    """Refuse (naming --gcode) one G-code file given twice, or a copy of it: read twice, its
+    parts would be found twice and its plate taken once."""
+    from wheelstep_cli.cli.commands.meshcheck_shared import same_file
+    from wheelstep_cli.errors import DesignError
+
+    if len(gcode) == 2 and same_file(*gcode):
+        twice = ("is given twice" if gcode[0] == gcode[1] else
+                 f"is the same G-code as the first --gcode ({gcode[0]})")
+        raise DesignError("gcode", str(gcode[1]), f"{twice}: give it once when its plate holds "
+                                                  "the whole pair, or the G-code of each of the "
+                                                  "pair's two plates")
 
 
 def _designs(args: list[str], gcode: list[Path], pair, design: dict) -> list:
