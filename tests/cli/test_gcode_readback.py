@@ -153,6 +153,39 @@ def test_the_design_may_come_from_the_two_meshes_and_the_design_options(cli, sli
     assert "--pair = gears: picks a pair on plates" in error_line(result)
 
 
+def test_the_layer_read_is_half_way_up_the_named_meshes_tooth_zone(cli, sliced, tmp_path):
+    """Two meshes named: their section and the G-code layer are taken half-way up the meshes'
+    tooth zone, as `mesh-check PINION WHEEL` sections them, whatever thickness the design
+    options say (here a profile's 30 mm against the 10 mm gears sliced)."""
+    folder, _ = sliced
+    profile = tmp_path / "thick.yaml"
+    profile.write_text("gears:\n  thickness: 30\n")
+    result = cli("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode", folder / "gears-2.gcode",
+                 folder / "pinion.stl", folder / "wheel.stl", "--profile", profile, "--samples", "256",
+                 "--json")
+    assert result.exit_code == 0, result.stderr
+    summary = json.loads(result.stdout)
+    assert not summary["interference"] and not summary["contact_lost"]
+    for gear in ("pinion", "wheel"):     # a layer round 5 mm, the middle of the 10 mm teeth
+        assert abs(summary["gcode"][gear]["layer_z_mm"] - 5.0) <= 0.3, summary["gcode"][gear]
+
+
+def test_a_mesh_that_cannot_be_sectioned_is_named_as_typed(cli, sliced, tmp_path):
+    """A pinion mesh with a hole in its skin: refused naming the file as given, in the line
+    `mesh-check PINION WHEEL` gives, not as "pinion = mesh"."""
+    import trimesh
+
+    folder, _ = sliced
+    holed = tmp_path / "holed.stl"
+    mesh = trimesh.load(folder / "pinion.stl", force="mesh")
+    mesh.update_faces(list(range(3, len(mesh.faces))))
+    mesh.export(holed)
+    line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode",
+                          folder / "gears-2.gcode", holed, folder / "wheel.stl"))
+    assert line.startswith(f"wheelstep: error: pinion = {holed}: is not a closed manifold solid"), line
+    assert line == error_line(cli("mesh-check", holed, folder / "wheel.stl"))
+
+
 def test_the_same_gcode_twice_is_refused_naming_gcode(cli, sliced, tmp_path):
     folder, _ = sliced
     gcode = folder / "gears-2.gcode"
