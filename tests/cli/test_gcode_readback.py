@@ -186,6 +186,18 @@ def test_a_mesh_that_cannot_be_sectioned_is_named_as_typed(cli, sliced, tmp_path
     assert line == error_line(cli("mesh-check", holed, folder / "wheel.stl"))
 
 
+def test_meshes_of_a_pair_for_another_distance_are_refused_as_without_gcode(cli, sliced):
+    """The 144 mm pair's meshes checked at the desk pair's 72.125 mm: the same one-line refusal
+    naming --distance as `mesh-check PINION WHEEL`, before any G-code is read."""
+    folder, _ = sliced
+    meshes = (folder / "pinion.stl", folder / "wheel.stl", "--distance", "72.125")
+    line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode",
+                          folder / "gears-2.gcode", *meshes))
+    assert line.startswith("wheelstep: error: --distance = 72.125: the pinion and the wheel given "
+                           "are a pair for about 14"), line
+    assert line == error_line(cli("mesh-check", *meshes))
+
+
 def test_the_same_gcode_twice_is_refused_naming_gcode(cli, sliced, tmp_path):
     folder, _ = sliced
     gcode = folder / "gears-2.gcode"

@@ -219,14 +219,24 @@ class MeshPair:
     files: tuple[str, str]      # the two meshes as named
 
 
-def mesh_pair(pinion: str, wheel: str, spec) -> MeshPair:
-    """Read the two meshes (FILE.stl, FILE.3mf[:NAME]) the G-code was sliced from."""
+def mesh_pair(pinion: str, wheel: str, spec, samples: int | None, window: float | None) -> MeshPair:
+    """Read the two meshes (FILE.stl, FILE.3mf[:NAME]) the G-code was sliced from; refused
+    (DesignError) as ``mesh-check PINION WHEEL`` refuses them (e.g. not a pair at the
+    design's distance), before any G-code is read."""
     from wheelstep_cli.formats.mesh_read import MeshObject, read_mesh
+    from wheelstep_cli.parts.gear_pair import design_law
+    from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, require_written_pair
 
+    check = WrittenPairCheck(pinion, wheel, spec, samples, window)
+    law = design_law(spec)
+    check.validate()
     objects = [MeshObject(gear, *read_mesh(given, gear, default_name=gear), np.eye(4, 3), {})
                for gear, given in (("pinion", pinion), ("wheel", wheel))]
-    return MeshPair(f"{Path(pinion).name} + {Path(wheel).name}", objects[0], objects[1], spec,
+    pair = MeshPair(f"{Path(pinion).name} + {Path(wheel).name}", objects[0], objects[1], spec,
                     (pinion, wheel))
+    designs = design_sections(pair)
+    require_written_pair(check, (designs["pinion"][0], designs["wheel"][0]), law)
+    return pair
 
 
 def default_plates(gcode_files: list[Path]) -> list[str]:
