@@ -151,3 +151,68 @@ def test_the_design_may_come_from_the_two_meshes_and_the_design_options(cli, sli
     result = cli("mesh-check", "--gcode", folder / "gears-1.gcode", folder / "pinion.stl",
                  folder / "wheel.stl", "--pair", "gears")
     assert "--pair = gears: picks a pair on plates" in error_line(result)
+
+
+def test_the_layer_read_is_half_way_up_the_named_meshes_tooth_zone(cli, sliced, tmp_path):
+    """Two meshes named: their section and the G-code layer are taken half-way up the meshes'
+    tooth zone, as `mesh-check PINION WHEEL` sections them, whatever thickness the design
+    options say (here a profile's 30 mm against the 10 mm gears sliced)."""
+    folder, _ = sliced
+    profile = tmp_path / "thick.yaml"
+    profile.write_text("gears:\n  thickness: 30\n")
+    result = cli("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode", folder / "gears-2.gcode",
+                 folder / "pinion.stl", folder / "wheel.stl", "--profile", profile, "--samples", "256",
+                 "--json")
+    assert result.exit_code == 0, result.stderr
+    summary = json.loads(result.stdout)
+    assert not summary["interference"] and not summary["contact_lost"]
+    for gear in ("pinion", "wheel"):     # a layer round 5 mm, the middle of the 10 mm teeth
+        assert abs(summary["gcode"][gear]["layer_z_mm"] - 5.0) <= 0.3, summary["gcode"][gear]
+
+
+def test_a_mesh_that_cannot_be_sectioned_is_named_as_typed(cli, sliced, tmp_path):
+    """A pinion mesh with a hole in its skin: refused naming the file as given, in the line
+    `mesh-check PINION WHEEL` gives, not as "pinion = mesh"."""
+    import trimesh
+
+    folder, _ = sliced
+    holed = tmp_path / "holed.stl"
+    mesh = trimesh.load(folder / "pinion.stl", force="mesh")
+    mesh.update_faces(list(range(3, len(mesh.faces))))
+    mesh.export(holed)
+    line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode",
+                          folder / "gears-2.gcode", holed, folder / "wheel.stl"))
+    assert line.startswith(f"wheelstep: error: pinion = {holed}: is not a closed manifold solid"), line
+    assert line == error_line(cli("mesh-check", holed, folder / "wheel.stl"))
+
+
+def test_meshes_of_a_pair_for_another_distance_are_refused_as_without_gcode(cli, sliced):
+    """The 144 mm pair's meshes checked at the desk pair's 72.125 mm: the same one-line refusal
+    naming --distance as `mesh-check PINION WHEEL`, before any G-code is read."""
+    folder, _ = sliced
+    meshes = (folder / "pinion.stl", folder / "wheel.stl", "--distance", "72.125")
+    line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode",
+                          folder / "gears-2.gcode", *meshes))
+    assert line.startswith("wheelstep: error: --distance = 72.125: the pinion and the wheel given "
+                           "are a pair for about 14"), line
+    assert line == error_line(cli("mesh-check", *meshes))
+
+
+def test_the_same_gcode_twice_is_refused_naming_gcode(cli, sliced, tmp_path):
+    folder, _ = sliced
+    gcode = folder / "gears-2.gcode"
+    copy = tmp_path / "copy.gcode"
+    shutil.copy(gcode, copy)
+    for second, said in ((gcode, "is given twice"), (copy, f"is the same G-code as the first "
+                                                          f"--gcode ({gcode})")):
+        line = error_line(cli("mesh-check", "--gcode", gcode, "--gcode", second))
+        assert line.startswith(f"wheelstep: error: --gcode = {second}: {said}: give it once when its "
+                               "plate holds the whole pair, or the G-code of each of the pair's two "
+                               "plates"), line
+
+
+def test_a_missing_plate_is_said_missing(cli, sliced, tmp_path):
+    folder, _ = sliced
+    missing = tmp_path / "nothere.3mf"
+    line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", missing))
+    assert line == f"wheelstep: error: pinion = {missing}: no such file"

@@ -236,6 +236,16 @@ def test_one_gear_alone_is_told_to_name_its_wheel(desk_pair, cli):
                         "gear; give the wheel mesh after it (PINION WHEEL), or a plate (3MF) holding the pair")
 
 
+def test_a_missing_file_named_alone_is_said_missing(cli, tmp_path):
+    """As when two are named: the file is missing, before it is taken for a plate or half a pair."""
+    other = tmp_path / "other.stl"
+    for missing in ("nothere.3mf", "nothere.stl", "nothere.3mf:pinion"):
+        given = f"{tmp_path / missing}"
+        line = error_line(cli("mesh-check", given))
+        assert line == f"wheelstep: error: pinion = {given}: no such file"
+        assert line == error_line(cli("mesh-check", given, other))
+
+
 def test_a_plot_over_a_users_file_is_refused_unless_forced(desk_pair, cli, tmp_path):
     mine = tmp_path / "mine.png"
     mine.write_bytes(b"the user's picture")

@@ -1,15 +1,17 @@
 """The meshing check of what PrusaSlicer will print (SPEC §11): a gear pair read back from
 its G-code.
 
-Of each G-code file the layer at mid-height of the teeth (the design's mid-thickness) is
-taken; its external perimeters, offset outward by half their extrusion width (an exact
-polygon offset), are the printed outlines. The G-code carries no design, so the design is
-the pair on the wheelstep plate(s) the G-code was sliced from (3MF metadata: law, installed
-distance). Each designed gear is found among the printed parts by its section area, then
-laid back into its own frame by the rigid motion that best fits the printed outline to the
-designed one (the slicer or its user may have moved and turned the parts on the bed): a
-part that fits no designed gear is refused, so a file of another pair, or one part, is
-named as such. The printed outlines are then checked at the installed distance, in phase,
+Of each G-code file the layer half-way up each gear's tooth zone is taken (where
+``mesh-check`` sections a gear mesh, measured from the mesh's lowest point: the slicer lays
+that on the bed); its external perimeters, offset outward by half their extrusion width (an
+exact polygon offset), are the printed outlines. The G-code carries no design, so the design
+is the pair on the wheelstep plate(s) the G-code was sliced from (3MF metadata: law,
+installed distance), or the two meshes it was sliced from with the design the options give.
+Each designed gear is found among the printed parts by its section area, then laid back
+into its own frame by the rigid motion that best fits the printed outline to the designed
+one (the slicer or its user may have moved and turned the parts on the bed): a part that
+fits no designed gear is refused, so a file of another pair, or one part, is named as
+such. The printed outlines are then checked at the installed distance, in phase,
 as ``mesh-check`` checks written meshes. Lengths in mm, angles in radians.
 """
 
@@ -99,8 +101,8 @@ def mid_layer(layers: GcodeLayers, height: float, source: str = "gcode") -> floa
 
 
 def printed_parts(layers: GcodeLayers, source: str, height: float) -> list[PrintedPart]:
-    """The parts printed at mid-``height`` (mm): each outermost loop with the loops inside it
-    (its holes), offset by half their extrusion width away from the material."""
+    """The parts printed at ``height`` mm above the bed: each outermost loop with the loops
+    inside it (its holes), offset by half their extrusion width away from the material."""
     z = mid_layer(layers, height, source)
     loops = [(np.asarray(loop.points, float), loop.width) for loop in layers.layers[z]]
     loops = [(p if signed_area(p) > 0 else p[::-1], w) for p, w in loops if abs(signed_area(p)) > 1e-6]
@@ -168,29 +170,38 @@ def gear_record(gear: PrintedGear, design_hole: float | None) -> dict:
 
 
 def design_sections(pair) -> dict:
-    """Per gear of a plate pair (parts.plate_pairs.PlatePair): (outer ring, area-equivalent
-    bore diameter or None) at mid-thickness, mm, own frame."""
+    """Per gear of a pair (parts.plate_pairs.PlatePair, MeshPair): (outer ring, area-equivalent
+    bore diameter or None, own frame; the section's height above the mesh's lowest point), mm,
+    half-way up the gear's tooth zone as ``mesh-check`` sections a mesh; DesignError naming
+    the gear's file when it cannot be sectioned."""
+    from wheelstep_cli.geometry.mesh_checks import tooth_zone_middle
     from wheelstep_cli.geometry.solids import section_outline, section_rings
 
-    mid = 0.5 * float(pair.spec.thickness)
     out = {}
-    for gear, obj in (("pinion", pair.pinion), ("wheel", pair.wheel)):
+    for gear, obj, file in zip(("pinion", "wheel"), (pair.pinion, pair.wheel), pair.files):
+        mid = tooth_zone_middle(obj.vertices)
+        try:
+            outline = section_outline(obj.vertices, obj.faces, gear, mid)
+        except DesignError as err:          # named by the gear's file, as given, not "mesh"
+            raise DesignError(gear, file, err.limit) from None
         holes = [abs(signed_area(r)) for r in section_rings(obj, mid) if signed_area(r) < 0]
-        out[gear] = (section_outline(obj.vertices, obj.faces, gear, mid),
-                     float(np.sqrt(4.0 * max(holes) / np.pi)) if holes else None)
+        out[gear] = (outline, float(np.sqrt(4.0 * max(holes) / np.pi)) if holes else None,
+                     mid - float(np.min(obj.vertices[:, 2])))
     return out
 
 
-def printed_pair(gcode_files: list[Path], pair) -> tuple[dict, dict]:
-    """The pinion and wheel of plate pair ``pair`` as printed by the G-code files:
-    ({gear: PrintedGear}, {gear: record})."""
-    designs = design_sections(pair)
-    parts = []
-    for path in gcode_files:
-        parts += printed_parts(read_gcode_file(path), str(path), 0.5 * float(pair.spec.thickness))
+def printed_pair(gcode_files: list[Path], pair, designs: dict) -> tuple[dict, dict]:
+    """The pinion and wheel of ``pair`` (its :func:`design_sections` ``designs``) as printed
+    by the G-code files: ({gear: PrintedGear}, {gear: record})."""
+    read = [(str(path), read_gcode_file(path)) for path in gcode_files]
+    parts_at: dict[float, list[PrintedPart]] = {}
     found, records = {}, {}
     for gear in ("wheel", "pinion"):         # the larger first: its area is the surer
-        found[gear] = find_gear(parts, designs[gear][0], gear, pair.pair,
+        height = designs[gear][2]
+        if height not in parts_at:          # one list per height: a part taken stays taken
+            parts_at[height] = [part for source, layers in read
+                                for part in printed_parts(layers, source, height)]
+        found[gear] = find_gear(parts_at[height], designs[gear][0], gear, pair.pair,
                                 [g.part for g in found.values()])
         records[gear] = gear_record(found[gear], designs[gear][1])
     return found, records
@@ -205,15 +216,27 @@ class MeshPair:
     pinion: object      # formats.mesh_read.MeshObject, own frame
     wheel: object
     spec: object
+    files: tuple[str, str]      # the two meshes as named
 
 
-def mesh_pair(pinion: str, wheel: str, spec) -> MeshPair:
-    """Read the two meshes (FILE.stl, FILE.3mf[:NAME]) the G-code was sliced from."""
+def mesh_pair(pinion: str, wheel: str, spec, samples: int | None, window: float | None) -> MeshPair:
+    """Read the two meshes (FILE.stl, FILE.3mf[:NAME]) the G-code was sliced from; refused
+    (DesignError) as ``mesh-check PINION WHEEL`` refuses them (e.g. not a pair at the
+    design's distance), before any G-code is read."""
     from wheelstep_cli.formats.mesh_read import MeshObject, read_mesh
+    from wheelstep_cli.parts.gear_pair import design_law
+    from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, require_written_pair
 
+    check = WrittenPairCheck(pinion, wheel, spec, samples, window)
+    law = design_law(spec)
+    check.validate()
     objects = [MeshObject(gear, *read_mesh(given, gear, default_name=gear), np.eye(4, 3), {})
                for gear, given in (("pinion", pinion), ("wheel", wheel))]
-    return MeshPair(f"{Path(pinion).name} + {Path(wheel).name}", objects[0], objects[1], spec)
+    pair = MeshPair(f"{Path(pinion).name} + {Path(wheel).name}", objects[0], objects[1], spec,
+                    (pinion, wheel))
+    designs = design_sections(pair)
+    require_written_pair(check, (designs["pinion"][0], designs["wheel"][0]), law)
+    return pair
 
 
 def default_plates(gcode_files: list[Path]) -> list[str]:
@@ -264,7 +287,7 @@ def gcode_sections(gcode_files: list[Path], pair, samples: int | None, window: f
     designs = design_sections(pair)
     # the designed pinion's own teeth (two meshes named with design options need not have z's)
     require_poses_per_tooth(samples, pair_teeth(designs["pinion"][0], None, law)[0], law)
-    found, records = printed_pair(gcode_files, pair)
+    found, records = printed_pair(gcode_files, pair, designs)
     _, blended = generation_law(pair.spec)
     settings = replace(MeshingSettings(), samples=samples, window=window)
     design = SectionedPair(designs["pinion"][0], designs["wheel"][0], blended,

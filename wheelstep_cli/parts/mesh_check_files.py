@@ -48,18 +48,27 @@ class WrittenPairCheck:
 def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
     """Check the inputs and read both meshes' mid-thickness sections (mm, own frames)."""
     from wheelstep_cli.formats.mesh_read import read_outline
-    from wheelstep_cli.gears.meshing.check import radius_by_area
 
     law = design_law(check.spec)
     check.validate()
     outlines = (read_outline(check.pinion, "pinion", default_name="pinion"),
                 read_outline(check.wheel, "wheel", default_name="wheel"))
+    require_written_pair(check, outlines, law)
+    return outlines
+
+
+def require_written_pair(check: WrittenPairCheck, outlines: tuple[np.ndarray, np.ndarray], law) -> None:
+    """Refuse (DesignError naming the file or option to change) two mesh sections (mm, own
+    frames, half-way up the tooth zone) that are not the pinion and the wheel of ``check``'s
+    design under ``law``: sizes that do not add to the distance, the two swapped, teeth the
+    law does not pair, too few poses per tooth. Checked before any pose is run."""
+    from wheelstep_cli.gears.meshing.check import radius_by_area
+
     radii = tuple(radius_by_area(o) for o in outlines)
     require_a_pair(radii, installed_distance(check.spec), (check.pinion, check.wheel), law)
     require_pinion_first(radii, law, check.pinion)
     teeth = _teeth_under_the_law(outlines, law, check)
     require_poses_per_tooth(check.samples, teeth, law)
-    return outlines
 
 
 def _teeth_under_the_law(outlines: tuple[np.ndarray, np.ndarray], law, check: WrittenPairCheck) -> int:

@@ -48,6 +48,8 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
     read: set[Path] = set()
     for file, param in zip(files, GEARS):
         path = Path(file)
+        if not path.exists():
+            raise DesignError(param, file, "no such file")
         if path.suffix.lower() != ".3mf" or not path.is_file():
             raise DesignError(param, file, "must be a 3MF plate written by wheelstep (or name two "
                                            "meshes, the pinion and the wheel)")

@@ -85,13 +85,18 @@ def mesh_check(
 
 def _plates_given(pinion: str | None, wheel: str | None) -> bool:
     """Whether the meshes named are plates (3MF) whose pairs their metadata finds; a missing
-    mesh refused as Click refuses a missing argument (the user gave none to name)."""
+    mesh refused as Click refuses a missing argument (the user gave none to name), a file
+    named alone that does not exist as when two are named."""
     from wheelstep_cli.cli import click_errors
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.formats.mesh_read import split_mesh_spec
     from wheelstep_cli.parts.plate_pairs import is_plate_input
 
     if pinion is None:
         raise click_errors.UsageError("Missing argument 'PINION': give the PINION and WHEEL meshes, a "
                                       "plate, or --gcode FILE")
+    if wheel is None and not split_mesh_spec(pinion)[0].is_file():
+        raise DesignError("pinion", pinion, "no such file")
     plates = is_plate_input(pinion, wheel)
     if wheel is None and not plates:
         raise click_errors.UsageError(f"Missing argument 'WHEEL': {pinion} is one gear; give the wheel "
@@ -173,19 +178,12 @@ def _same_mesh(pinion: str, wheel: str | None) -> bool:
     """Whether the two mesh arguments name one mesh: the same file (or object of a 3MF), or
     two files of identical content. Checking a part against itself cannot give a meshing
     figure, and its sections overlap everywhere: refused before any work."""
-    from pathlib import Path
+    from wheelstep_cli.cli.commands.meshcheck_shared import same_file
 
     if wheel is None:
         return False
     (p_file, p_obj), (w_file, w_obj) = (_split(pinion), _split(wheel))
-    if p_obj != w_obj:
-        return False
-    try:
-        sizes = (Path(p_file).stat().st_size, Path(w_file).stat().st_size)
-        return Path(p_file).resolve() == Path(w_file).resolve() or (
-            sizes[0] == sizes[1] and Path(p_file).read_bytes() == Path(w_file).read_bytes())
-    except OSError:
-        return False        # a missing or unreadable file is refused where it is read
+    return p_obj == w_obj and same_file(p_file, w_file)
 
 
 def _split(given: str) -> tuple[str, str]:

@@ -26,7 +26,8 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
                                                                    "files of the pair's two plates")
     chosen = band_printer_of(*band)
     require_gcode_files(gcode)
-    found = _designs(plates, gcode, pair, design)
+    _not_twice(gcode)
+    found = _designs(plates, gcode, pair, design, (samples, window))
     require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID)")
     report, summary, read = with_progress(not quiet, "G-code read-back", run_gcode_check, gcode,
                                           found[0], samples, window)
@@ -43,9 +44,24 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     return report.interferes or report.contact_lost
 
 
-def _designs(args: list[str], gcode: list[Path], pair, design: dict) -> list:
+def _not_twice(gcode: list[Path]) -> None:
+    """Refuse (naming --gcode) one G-code file given twice, or a copy of it: read twice, its
+    parts would be found twice and its plate taken once."""
+    from wheelstep_cli.cli.commands.meshcheck_shared import same_file
+    from wheelstep_cli.errors import DesignError
+
+    if len(gcode) == 2 and same_file(*gcode):
+        twice = ("is given twice" if gcode[0] == gcode[1] else
+                 f"is the same G-code as the first --gcode ({gcode[0]})")
+        raise DesignError("gcode", str(gcode[1]), f"{twice}: give it once when its plate holds "
+                                                  "the whole pair, or the G-code of each of the "
+                                                  "pair's two plates")
+
+
+def _designs(args: list[str], gcode: list[Path], pair, design: dict, poses: tuple) -> list:
     """The pair(s) the G-code was sliced from: two meshes (STL, FILE.3mf:NAME) drawn for the
-    design the options give, else plates (the design from their metadata; default FILE.3mf
+    design the options give, checked for it as plain ``mesh-check`` checks them (``poses`` =
+    (samples, window)), else plates (the design from their metadata; default FILE.3mf
     beside each FILE.gcode)."""
     from wheelstep_cli.cli.commands.meshcheck_shared import design_spec, no_design_options
     from wheelstep_cli.errors import DesignError
@@ -55,7 +71,7 @@ def _designs(args: list[str], gcode: list[Path], pair, design: dict) -> list:
     if len(args) == 2 and not is_plate_input(*args):
         if pair is not None:
             raise DesignError("pair", pair, "picks a pair on plates; the meshes named are one pair")
-        return [mesh_pair(args[0], args[1], design_spec(design))]
+        return [mesh_pair(args[0], args[1], design_spec(design), *poses)]
     no_design_options(design)
     if args or len(gcode) != 1:
         return find_plate_pairs(args or default_plates(gcode), pair)

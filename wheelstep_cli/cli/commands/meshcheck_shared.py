@@ -33,6 +33,19 @@ def design_spec(design: dict):
     return spec
 
 
+def same_file(first: str, second: str) -> bool:
+    """Whether two paths name one file, or two files of identical content (a copy); False
+    when either cannot be read (a missing or unreadable file is refused where it is read)."""
+    from pathlib import Path
+
+    try:
+        a, b = Path(first), Path(second)
+        return a.resolve() == b.resolve() or (
+            a.stat().st_size == b.stat().st_size and a.read_bytes() == b.read_bytes())
+    except OSError:
+        return False
+
+
 def band_printer_of(tolerance: bool, printer):
     """The printer whose band --tolerance checks (None: no band check); --printer alone is
     refused (it only says whose band)."""
