@@ -223,3 +223,26 @@ def test_a_choice_is_not_told_to_be_digits_and_a_dedendum_states_both_ends(cli, 
     profile = write(tmp_path / "p.yaml", "gears:\n" + text)
     line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
     assert line == f"wheelstep: error: {profile}:2: {expect}", line
+
+
+@pytest.mark.parametrize("args", [
+    ("gears", "--turns", "2", "--dry-run"), ("gears", "--dry-run"), ("shoe", "--dry-run"),
+    ("kinematics", "--turns", "4"), ("pitch",),
+])
+def test_a_profiles_turns_is_checked_with_the_rest_at_its_line_whatever_overrides_it(cli, tmp_path, args):
+    """The law takes 2 or 4 turns: a profile's other value is refused at its line, overridden
+    or not, and by every command that reads the profile (the shoe's too)."""
+    profile = write(tmp_path / "p.yaml", "mechanism:\n  a: 30\n  b: 50\n  c: 180\ngears:\n  z: 42\n"
+                    "  turns: 3\nshoe:\n  width: 20\n")
+    line = error_line(cli(args[0], "--profile", profile, *args[1:], *(
+        ["--out", tmp_path / "out"] if "--dry-run" in args else [])))
+    assert line == (f"wheelstep: error: {profile}:{line_of(profile, 'turns: 3')}: gears.turns = 3: "
+                    "must be 2 (balanced pinion) or 4 (one pinion turn per shoe)"), line
+
+
+def test_kinematics_takes_a_profiles_turns_as_the_model_reads_them(cli, tmp_path):
+    """`turns: 4.0` is the whole number 4 in a profile as on the command line."""
+    profile = write(tmp_path / "p.yaml", "gears:\n  turns: 4.0\n")
+    result = cli("kinematics", "--profile", profile)
+    assert result.exit_code == 0, result.stderr
+    assert "4 pinion turns per carrier turn" in result.stdout
