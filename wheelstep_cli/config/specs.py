@@ -181,6 +181,10 @@ class GearPairSpec(BaseModel):
                               {"module": (self.module, "cannot be combined with --center-distance: "
                                           "generated teeth roll at the distance the module "
                                           "fits (SPEC §9)")})
+        if self.teeth == Teeth.generated:
+            # the rack's own rules (the dedendum above the addendum) with the other values', before
+            # any tooth is cut: a rule of the tooth form is not blamed on what sizes the pair
+            self.cutter()
         self._bore_fits()
         return self
 
