@@ -297,6 +297,19 @@ def test_invalid_batch_reports_file_line_exit_2_nothing_written(cli, tmp_path, t
     assert not out.exists()
 
 
+@pytest.mark.parametrize("other, expect", [
+    (VALID_ENTRY, "is a batch file, not a printer profile (`wheelstep batch other.yaml` takes it)"),
+    ("{}\n", "is not a printer profile (no printer keys: a printer profile has a printer: section)"),
+])
+def test_a_printer_entry_naming_no_printer_profile_says_what_it_names(cli, tmp_path, other, expect):
+    write(tmp_path / "other.yaml", other)
+    batch = write(tmp_path / "bad.yaml", VALID_ENTRY.replace("printer: fdm-0.4-pla", "printer: other.yaml"))
+    line = error_line(cli("batch", batch, "--out", tmp_path / "out"))
+    assert line.startswith(f"wheelstep: error: {batch}:{line_of(batch, 'printer:')}: "
+                           f"parts[0].printer = 'other.yaml': {expect}; printer profiles: "), line
+    assert not (tmp_path / "out").exists()
+
+
 def test_all_problems_reported_together(cli, tmp_path):
     batch = write(tmp_path / "bad.yaml", VALID_ENTRY + "    quantity: -1\n  - kind: shoe\n    colour: 1\n")
     result = cli("batch", batch, "--out", tmp_path / "out")

@@ -266,6 +266,26 @@ def _model_metadata(plate) -> dict[str, str]:
     return {k: unescape(v) for k, v in re.findall(r'<metadata name="wheelstep:([^"]+)">([^<]*)</metadata>', head)}
 
 
+def test_a_bad_turns_in_a_plates_metadata_is_said_of_the_metadata(desk_pair, cli, tmp_path):
+    """The plate's wheelstep:turns edited to 3: refused as its metadata, as other keys are,
+    not as a --turns the user never typed."""
+    import zipfile
+
+    plate = tmp_path / "edited.3mf"
+    with zipfile.ZipFile(desk_pair / "gears.3mf") as source, zipfile.ZipFile(plate, "w") as edited:
+        for item in source.infolist():
+            data = source.read(item)
+            if item.filename == "3D/3dmodel.model":
+                text = data.decode()
+                assert '<metadata name="wheelstep:turns">2</metadata>' in text
+                data = text.replace('<metadata name="wheelstep:turns">2</metadata>',
+                                    '<metadata name="wheelstep:turns">3</metadata>').encode()
+            edited.writestr(item, data)
+    assert error_line(cli("mesh-check", plate)) == (
+        f"wheelstep: error: pinion = {plate}: metadata turns = 3: must be 2 (balanced pinion) or 4 "
+        "(one pinion turn per shoe)")
+
+
 def test_a_plate_says_whether_its_parts_were_drawn_for_its_printer(desk_pair, cli, tmp_path):
     # no --printer: laid out on the default printer's bed with its slicer settings, drawn as designed
     plain = _model_metadata(desk_pair / "gears.3mf")

@@ -30,6 +30,40 @@ def test_the_wrong_kind_of_profile_is_refused_naming_the_right_option(cli, tmp_p
     assert not (tmp_path / "out").exists()
 
 
+KINDS = {
+    "batch": "defaults:\n  printer: fdm-0.4-pla\nparts:\n  - kind: shoe\n    design: desk-demo\n",
+    "sweep": "command: gears\ndesign: desk-demo\ngrid:\n  backlash: [0.03, 0.1]\n",
+    "empty": "{}\n",
+    "described": "description: a printer, some day\n",
+}
+PRINTERS = "printer profiles: fdm-0.4-petg, fdm-0.4-pla, resin-0.05-standard"
+
+
+@pytest.mark.parametrize("option, kind, expect", [
+    ("--printer", "batch", "is a batch file, not a printer profile (`wheelstep batch {file}` takes it); "
+                           + PRINTERS),
+    ("--printer", "sweep", "is a sweep file, not a printer profile (`wheelstep sweep {file}` takes it); "
+                           + PRINTERS),
+    # no section tells what it is: not called a design profile
+    ("--printer", "empty", "is not a printer profile (no printer keys: a printer profile has a printer: "
+                           "section); " + PRINTERS),
+    ("--printer", "described", "is not a printer profile (no printer keys: a printer profile has a "
+                               "printer: section); " + PRINTERS),
+    ("--profile", "batch", "is a batch file, not a design profile (`wheelstep batch {file}` takes it); "
+                           "design profiles: bntu-2024, desk-demo"),
+    ("--profile", "sweep", "is a sweep file, not a design profile (`wheelstep sweep {file}` takes it); "
+                           "design profiles: bntu-2024, desk-demo"),
+])
+def test_a_file_of_another_kind_is_said_to_be_what_it_is(cli, tmp_path, option, kind, expect):
+    """A batch or sweep file given as a profile is named as one with the command that takes
+    it (not called a design profile, then refused as one for its unknown keys); a file whose
+    sections do not tell is said to be no printer profile."""
+    file = write(tmp_path / f"{kind}.yaml", KINDS[kind])
+    assert error_line(cli("shoe", option, file, "--out", tmp_path / "out")) == (
+        f"wheelstep: error: {option} = {file}: " + expect.format(file=file))
+    assert not (tmp_path / "out").exists()
+
+
 @pytest.mark.parametrize("option", ["--profile", "--printer"])
 @pytest.mark.parametrize("text, why", [("", "is empty"), ("- a\n- b\n", "holds a list"),
                                        ("3\n", "holds a single value"), (None, "folder")])

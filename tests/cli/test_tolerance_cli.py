@@ -20,6 +20,26 @@ def test_a_printer_without_a_band_is_refused_by_tolerance_and_fit(cli, tmp_path)
         assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("kept, expect", [
+    (["outline"], "needs the keys 'hole_shrink', 'center_distance'"),
+    (["outline", "hole_shrink"], "needs the key 'center_distance'"),
+])
+def test_a_band_that_leaves_out_keys_is_refused_at_its_line_naming_them(cli, tmp_path, kept, expect):
+    """A key left out of a band is not taken as 0 (it said `centre distance +-0 mm`)."""
+    from pathlib import Path
+
+    preset = (Path(__file__).resolve().parents[2] / "profiles" / "fdm-0.4-pla.yaml").read_text()
+    head, band = preset.split("\nband:", 1)
+    body, tail = band.split("\nmaterial:", 1)
+    keep = [line for line in body.splitlines()[1:] if line.strip().split(":")[0] in kept]
+    printer = tmp_path / "partial.yaml"
+    printer.write_text(f"{head}\nband:\n" + "\n".join(keep) + f"\nmaterial:{tail}")
+    line_no = printer.read_text().splitlines().index("band:") + 1
+    line = error_line(cli("gears", "--tolerance", "--printer", printer, "--out", tmp_path / "out"))
+    assert line == f"wheelstep: error: {printer}:{line_no}: band: {expect}"
+    assert not (tmp_path / "out").exists()
+
+
 def test_an_unknown_fit_is_refused(cli, tmp_path):
     result = cli("gears", "--fit", "snug", "--out", tmp_path / "out")
     assert result.exit_code == 2 and "--fit" in result.stderr

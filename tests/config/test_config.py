@@ -223,3 +223,55 @@ def test_a_choice_is_not_told_to_be_digits_and_a_dedendum_states_both_ends(cli, 
     profile = write(tmp_path / "p.yaml", "gears:\n" + text)
     line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
     assert line == f"wheelstep: error: {profile}:2: {expect}", line
+
+
+@pytest.mark.parametrize("args", [
+    ("gears", "--turns", "2", "--dry-run"), ("gears", "--dry-run"), ("shoe", "--dry-run"),
+    ("kinematics", "--turns", "4"), ("pitch",),
+])
+def test_a_profiles_turns_is_checked_with_the_rest_at_its_line_whatever_overrides_it(cli, tmp_path, args):
+    """The law takes 2 or 4 turns: a profile's other value is refused at its line, overridden
+    or not, and by every command that reads the profile (the shoe's too)."""
+    profile = write(tmp_path / "p.yaml", "mechanism:\n  a: 30\n  b: 50\n  c: 180\ngears:\n  z: 42\n"
+                    "  turns: 3\nshoe:\n  width: 20\n")
+    line = error_line(cli(args[0], "--profile", profile, *args[1:], *(
+        ["--out", tmp_path / "out"] if "--dry-run" in args else [])))
+    assert line == (f"wheelstep: error: {profile}:{line_of(profile, 'turns: 3')}: gears.turns = 3: "
+                    "must be 2 (balanced pinion) or 4 (one pinion turn per shoe)"), line
+
+
+def test_kinematics_takes_a_profiles_turns_as_the_model_reads_them(cli, tmp_path):
+    """`turns: 4.0` is the whole number 4 in a profile as on the command line."""
+    profile = write(tmp_path / "p.yaml", "gears:\n  turns: 4.0\n")
+    result = cli("kinematics", "--profile", profile)
+    assert result.exit_code == 0, result.stderr
+    assert "4 pinion turns per carrier turn" in result.stdout
+
+
+ADDENDUM_RULE = "must be < dedendum (1.25) and >= 0.3 x module (tip clearance)"
+
+
+@pytest.mark.parametrize("args, expect", [
+    (["--addendum", "1.5"], f"--addendum = 1.5: {ADDENDUM_RULE}"),
+    (["--dedendum", "0.9"], "--dedendum = 0.9: must be > addendum (1) and <= 2.5 x module (tip clearance)"),
+    (["--addendum", "1.5", "--dedendum", "1.4"],
+     "--dedendum = 1.4: must be > addendum (1.5) and <= 2.5 x module (tip clearance)"),
+])
+def test_the_dedendum_above_the_addendum_is_said_of_the_one_given(cli, tmp_path, args, expect):
+    """Of the two tied values the refusal names the option the user typed, not the default."""
+    line = error_line(cli("gears", "--profile", "desk-demo", *args, "--out", tmp_path / "out"))
+    assert line == f"wheelstep: error: {expect}"
+    assert not (tmp_path / "out").exists()
+
+
+def test_an_addendum_above_the_dedendum_is_said_at_its_line_in_a_profile_and_a_batch(cli, tmp_path):
+    """Not at the profile's first key that sizes the pair (it said `gears.z = 42: with it,
+    dedendum = 1.25 fails`)."""
+    profile = write(tmp_path / "p.yaml", "gears:\n  z: 42\n  addendum: 1.5\n")
+    line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
+    assert line == f"wheelstep: error: {profile}:3: gears.addendum = 1.5: {ADDENDUM_RULE}"
+    batch = write(tmp_path / "b.yaml", "parts:\n  - kind: gear-pair\n    design: desk-demo\n"
+                  "    printer: fdm-0.4-pla\n    overrides:\n      addendum: 1.5\n")
+    line = error_line(cli("batch", batch, "--out", tmp_path / "out"))
+    assert line == f"wheelstep: error: {batch}:6: parts[0].overrides.addendum = 1.5: {ADDENDUM_RULE}"
+    assert not (tmp_path / "out").exists()

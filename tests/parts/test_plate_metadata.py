@@ -22,3 +22,15 @@ def test_a_bad_field_value_is_named_with_its_value():
     with pytest.raises(DesignError) as err:
         spec_from_metadata({"z": "many"}, "odd.3mf")
     assert err.value.limit.startswith("metadata z = 'many': ")
+
+
+@pytest.mark.parametrize("values, expect", [
+    # the law's turns: a field's rule, said of the metadata like any other value
+    ({"turns": "3"}, "metadata turns = 3: must be 2 (balanced pinion) or 4 (one pinion turn per shoe)"),
+    # a field's range in the words of every other refusal, not the validator's
+    ({"z": "300"}, "metadata z = 300: must be 6..240 (pinion teeth)"),
+])
+def test_a_bad_field_value_is_said_in_the_models_words(values, expect):
+    with pytest.raises(DesignError) as err:
+        spec_from_metadata(values, "odd.3mf")
+    assert (err.value.param, err.value.value, err.value.limit) == ("pinion", "odd.3mf", expect)

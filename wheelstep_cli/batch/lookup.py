@@ -12,7 +12,7 @@ from wheelstep_cli.config.profiles import (
     design_from_file,
     find_profile,
     profile_label as file_label,
-    profile_names,
+    wrong_kind,
 )
 from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, show
 from wheelstep_cli.errors import DesignError
@@ -27,8 +27,7 @@ def profile_label(name: str) -> str:
 
 def _load_printer(name: str, file: Path, located: LocatedYaml) -> Printer:
     if not is_printer_profile(located.data):
-        raise DesignError("printer", name, "is a design profile, not a printer profile; "
-                          "printer profiles: " + ", ".join(profile_names(printer=True)))
+        raise DesignError("printer", name, wrong_kind(located.data, "printer", name))
     return printer_from_profile(profile_label(name), file, file_label(file), located, given=name)
 
 

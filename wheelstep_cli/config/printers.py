@@ -96,13 +96,14 @@ class Fit(str, Enum):
 class BandSection(BaseModel):
     """The printer's dimensional band (SPEC §11), mm: outlines come out offset along their
     normals by -outline..+outline, holes come out up to ``hole_shrink`` smaller in diameter,
-    and the frame holds a centre distance to +-``center_distance``."""
+    and the frame holds a centre distance to +-``center_distance``. Each is given: one left
+    out is not taken as 0 (a printer is never taken as perfect)."""
 
     model_config = STRICT
 
     outline: Real = length(..., gt=0, le=1)
-    hole_shrink: Real = length(0.0, ge=0, le=1)
-    center_distance: Real = length(0.0, ge=0, le=1)
+    hole_shrink: Real = length(..., ge=0, le=1)
+    center_distance: Real = length(..., ge=0, le=1)
     # the fit batch draws gear pairs with (parts.fit); none: the printer's tooth_clearance
     fit: Optional[Fit] = None
 

@@ -68,6 +68,43 @@ def _not_sections(data: Any) -> str | None:
     return f"must be a mapping of sections; the file {what}"
 
 
+def profile_kind(data: Any) -> str | None:
+    """The kind of wheelstep YAML file a top-level mapping is, by its sections: 'printer' (a
+    ``printer:`` section), else 'design', 'batch' or 'sweep' (a section only that kind's model
+    has); None when no section tells."""
+    from wheelstep_cli.config.batch_file import BatchFile
+    from wheelstep_cli.config.design import DesignProfile
+    from wheelstep_cli.config.printers import is_printer_profile
+    from wheelstep_cli.config.sweep_model import SweepFile
+
+    if not isinstance(data, dict):
+        return None
+    if is_printer_profile(data):
+        return "printer"
+    models = {"design": DesignProfile, "batch": BatchFile, "sweep": SweepFile}
+    for kind, model in models.items():
+        others = set().union(*(other.model_fields for name, other in models.items() if name != kind))
+        if any(key in data for key in model.model_fields if key not in others):
+            return kind
+    return None
+
+
+def wrong_kind(data: Any, wanted: str, given: str, goes_in: dict[str, str] | None = None) -> str:
+    """Why the file the user named ``given`` (its top-level mapping ``data``) is no ``wanted``
+    ('printer', 'design') profile: what it is when its sections tell and what takes it (a
+    profile's option from ``goes_in``, kind -> option), then the known profiles wanted."""
+    kind = profile_kind(data)
+    if kind in ("batch", "sweep"):
+        what = f"is a {kind} file, not a {wanted} profile (`wheelstep {kind} {given}` takes it)"
+    elif kind is not None:
+        what = f"is a {kind} profile, not a {wanted} profile" + (
+            f" (a {kind} profile goes in {goes_in[kind]})" if goes_in and kind in goes_in else "")
+    else:
+        sections = "a printer: section" if wanted == "printer" else "a mechanism:, gears: or shoe: section"
+        what = f"is not a {wanted} profile (no {wanted} keys: a {wanted} profile has {sections})"
+    return f"{what}; {wanted} profiles: " + ", ".join(profile_names(printer=wanted == "printer"))
+
+
 def load_profile(name_or_path: str) -> tuple[Path, dict[str, Any]]:
     """Read a profile file; returns its path and its top-level mapping."""
     import yaml
@@ -140,6 +177,9 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
     if is_printer_profile(doc.data):
         raise DesignError("design", name, "is not a design profile; design profiles: "
                           + ", ".join(profile_names(printer=False)))
+    # a key no design profile has may tell another kind of file (a batch's parts:)
+    if not set(doc.data) <= set(DesignProfile.model_fields) and profile_kind(doc.data) in ("batch", "sweep"):
+        raise DesignError("design", name, wrong_kind(doc.data, "design", name))
     profile = validate_file(DesignProfile, doc)
     gears = profile.gears
     if gears is not None and gears.law_csv is not None:
@@ -163,7 +203,7 @@ def load_design_profile(name_or_path: str):
             raise _unreadable("profile", name_or_path, err) from None
         if err.param != "design":
             raise
-        if err.limit.startswith("must be a mapping"):
+        if not err.limit.startswith("is not a design profile"):
             raise DesignError("profile", name_or_path, err.limit) from None
         raise DesignError("profile", name_or_path, "is a printer profile, not a design profile (a "
                           "printer profile goes in --printer); design profiles: "
@@ -196,9 +236,8 @@ def load_printer_profile(name_or_path: str):
     if (why := _not_sections(doc.data)) is not None:
         raise DesignError("printer", name_or_path, why)
     if not is_printer_profile(doc.data):
-        raise DesignError("printer", name_or_path, "is a design profile, not a printer profile (a "
-                          "design profile goes in --profile); printer profiles: "
-                          + ", ".join(profile_names(printer=True)))
+        raise DesignError("printer", name_or_path, wrong_kind(doc.data, "printer", name_or_path,
+                                                              {"design": "--profile"}))
     name = Path(name_or_path).name if Path(name_or_path).suffix in (".yaml", ".yml") else name_or_path
     return printer_from_profile(name, file, label, doc, given=name_or_path)
 

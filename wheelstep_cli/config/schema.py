@@ -204,11 +204,22 @@ def _as_digits(value) -> str:
 def located_issues(model: type[BaseModel], doc: LocatedYaml, path: tuple,
                    err: ValidationError) -> list[tuple[tuple, Issue]]:
     """(path in the file, issue) of every error of validating ``doc``'s value at ``path``."""
-    out = []
+    out, needed = [], {}
     for error in err.errors():
         loc = path + tuple(error["loc"])
+        if error["type"] == "missing":
+            # a mapping's missing keys in one line, at the mapping
+            needed.setdefault(loc[:-1], []).append(loc[-1])
+            if len(needed[loc[:-1]]) > 1:
+                continue
         out.append((loc, _issue(model, doc, loc, error)))
-    return out
+    return [(loc, _needs(doc, loc[:-1], needed[loc[:-1]]) if len(needed.get(loc[:-1], ())) > 1
+             and issue.message.startswith("needs the key ") else issue) for loc, issue in out]
+
+
+def _needs(doc: LocatedYaml, at: tuple, keys: list) -> Issue:
+    """The mapping at ``at`` lacks several ``keys``: one issue naming them all."""
+    return Issue(doc.where(at), dotted(at), "needs the keys " + ", ".join(f"'{key}'" for key in keys))
 
 
 def file_issues(model: type[BaseModel], doc: LocatedYaml, path: tuple,

@@ -2,22 +2,25 @@
 
 Defaults are the source design (BNTU prototype, profiles/bntu-2024.yaml). Lengths in mm,
 angles in degrees (user-facing values; converted to radians where they are used). The
-mechanism's own rules (R_min = a - 4b + c > 0, k > 0, lengths > 0, turns) stay with the
-mechanism and the law, which raise them when the spec is used.
+mechanism's own rules (R_min = a - 4b + c > 0, k > 0, lengths > 0) stay with the mechanism,
+which raises them when the spec is used; the turns the law takes are a field's, so a profile
+states them wrong at its line.
 """
 
 from __future__ import annotations
 
 from enum import Enum
-from typing import Optional
+from typing import Annotated, Optional
 
 import numpy as np
-from pydantic import BaseModel, Field, model_validator
+from pydantic import AfterValidator, BaseModel, Field, model_validator
+from pydantic_core import PydanticCustomError
 
 from wheelstep_cli.config.fields import STRICT, Number, Real, Whole, length, quantity
 from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.gears.cutter_limits import (ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG,
                                                range_text)
+from wheelstep_cli.gears.laws import TURNS, TURNS_LIMIT
 
 #: Mechanism parameters (the ``mechanism:`` section of a design profile).
 MECHANISM_KEYS = ("a", "b", "c", "r_min")
@@ -45,6 +48,13 @@ MIN_MODULE = 0.1
 #: Least gear thickness (mm): a few layers of any printer; far below it the extrusion is flat
 #: and no solid.
 MIN_THICKNESS = 0.5
+
+
+def _law_turns(value: int) -> int:
+    """Pinion turns per carrier turn, one of those the crank law takes."""
+    if value not in TURNS:
+        raise PydanticCustomError("turns", TURNS_LIMIT)
+    return value
 
 
 def paper_design_distance(center: float | None, install: float | None) -> float:
@@ -98,7 +108,7 @@ class GearPairSpec(BaseModel):
     c: Number = length(360.0, le=MAX_LENGTH)
     z: Whole = quantity(48, limit=f"must be {MIN_TEETH}..{MAX_TEETH} (pinion teeth)", strict=True,
                       ge=MIN_TEETH, le=MAX_TEETH)
-    turns: Whole = Field(2, strict=True)
+    turns: Annotated[Whole, AfterValidator(_law_turns)] = quantity(2, limit=TURNS_LIMIT, strict=True)
     # generated teeth: the distance the pitch curves roll at (None: the installed distance, or
     # the one a --module fits); paper teeth: the sectors' design distance L_p (None: the
     # installed less the source's 0.5 mm opening, 143.5)
@@ -171,6 +181,10 @@ class GearPairSpec(BaseModel):
                               {"module": (self.module, "cannot be combined with --center-distance: "
                                           "generated teeth roll at the distance the module "
                                           "fits (SPEC §9)")})
+        if self.teeth == Teeth.generated:
+            # the rack's own rules (the dedendum above the addendum) with the other values', before
+            # any tooth is cut: a rule of the tooth form is not blamed on what sizes the pair
+            self.cutter()
         self._bore_fits()
         return self
 

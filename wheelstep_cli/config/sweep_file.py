@@ -13,74 +13,25 @@ import itertools
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal, Optional
+from typing import Any
 
-from pydantic import BaseModel, Field, ValidationError
+from pydantic import ValidationError
 
-from wheelstep_cli.config.fields import STRICT, Number, Whole
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
 from wheelstep_cli.config.schema import (InvalidInput, Issue, dotted, file_issues, section_model, show,
                                          validate_file)
 from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
+from wheelstep_cli.config.sweep_model import MAX_POINTS, OBJECTIVES, Bounds, RandomAxes, Range, SweepFile
 from wheelstep_cli.errors import DesignError
 
-#: Most design points one sweep may hold (each takes seconds; more is a cluster's week).
-MAX_POINTS = 10_000
 #: The spec of each command a sweep can run, and the design-profile section of its options.
 COMMANDS = {"gears": (GearPairSpec, "gears"), "shoe": (ShoeSpec, "shoe")}
-#: Figures a sweep can rank designs by (columns of the results; smaller is better).
-OBJECTIVES = ("drive_f_i_um", "coast_f_i_um", "drive_F_i_um", "coast_F_i_um", "drive_ripple_pct",
-              "coast_ripple_pct", "backlash_max_mm", "backlash_min_mm", "volume_mm3", "mass_g")
+#: The figures each command's designs are ranked by when the file names none (of OBJECTIVES).
 DEFAULT_OBJECTIVES = {"gears": ["drive_f_i_um", "backlash_max_mm"], "shoe": ["volume_mm3", "mass_g"]}
 #: The figures each command's rows hold (a shoe has no teeth to measure).
 COMMAND_OBJECTIVES = {"gears": OBJECTIVES, "shoe": ("volume_mm3", "mass_g")}
 #: The figure that needs a printer: the volume times the printer's material density.
 NEEDS_PRINTER = "mass_g"
-
-
-class Range(BaseModel):
-    """A grid axis from ``start`` to ``stop`` (included when hit) in steps of ``step``."""
-
-    model_config = STRICT
-    start: Number
-    stop: Number
-    step: Number = Field(gt=0, json_schema_extra={"limit": "must be > 0"})
-
-
-class Bounds(BaseModel):
-    """A random axis: uniform in [low, high]; whole numbers if both bounds are."""
-
-    model_config = STRICT
-    low: Number
-    high: Number
-
-
-class RandomAxes(BaseModel):
-    """``samples`` seeded draws of every bounded parameter."""
-
-    model_config = STRICT
-    seed: Whole = Field(strict=True, ge=0)
-    samples: Whole = Field(strict=True, ge=1, le=MAX_POINTS,
-                         json_schema_extra={"limit": f"must be 1..{MAX_POINTS}"})
-    bounds: dict[str, Bounds] = Field(min_length=1, json_schema_extra={
-        "limit": "must map at least one parameter to {low, high}"})
-
-
-class SweepFile(BaseModel):
-    """The whole sweep file."""
-
-    model_config = STRICT
-    description: Optional[str] = Field(None, strict=True)
-    command: Literal["gears", "shoe"]
-    design: Optional[str] = Field(None, strict=True)
-    printers: Optional[list[str]] = Field(None, min_length=1)
-    fixed: dict[str, Any] = {}
-    grid: dict[str, Any] = {}          # name -> list of values or {start, stop, step} (a Range)
-    random: Optional[dict[str, Any]] = None   # a RandomAxes, checked on its own
-    objectives: Optional[list[str]] = Field(None, min_length=2, max_length=2, json_schema_extra={
-        "limit": "must name two figures: " + ", ".join(OBJECTIVES)})
-    allow_interference: bool = Field(False, strict=True)
-    tolerance: bool = Field(False, strict=True)   # gears: also the check over the printer's band
 
 
 @dataclass(frozen=True)

@@ -18,6 +18,10 @@ from wheelstep_cli.mechanism.crank import SHOE_CYCLE, CrankMechanism, local_angl
 
 #: Samples per law period in tabulated laws (linear interpolation error ~1e-9 rad).
 TABLE_SAMPLES = 8192
+#: Pinion turns per carrier turn the crank law takes, and the limit a refusal states (the
+#: configuration's field states it from here).
+TURNS = (2, 4)
+TURNS_LIMIT = "must be 2 (balanced pinion) or 4 (one pinion turn per shoe)"
 
 
 @dataclass(frozen=True)
@@ -33,8 +37,7 @@ class CrankLaw:
     turns: int = 2
 
     def __post_init__(self) -> None:
-        require(self.turns in (2, 4), "turns", self.turns,
-                "must be 2 (balanced pinion) or 4 (one pinion turn per shoe)")
+        require(self.turns in TURNS, "turns", self.turns, TURNS_LIMIT)
 
     @property
     def u(self) -> float:

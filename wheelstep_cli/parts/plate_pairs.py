@@ -7,6 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from wheelstep_cli.config.schema import limit_text
 from wheelstep_cli.config.specs import GearPairSpec
 from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.formats.mesh_read import MeshObject, read_3mf_objects, split_mesh_spec
@@ -130,4 +131,4 @@ def spec_from_metadata(values: dict[str, str], file: str) -> GearPairSpec:
             raise DesignError("pinion", file, f"metadata {cause.param} = {cause.shown_value}: "
                                               f"{cause.limit}") from None
         raise DesignError("pinion", file, f"metadata {'.'.join(map(str, first['loc']))} = "
-                          f"{first.get('input')!r}: {first['msg']}") from None
+                          f"{first.get('input')!r}: {limit_text(GearPairSpec, first)}") from None

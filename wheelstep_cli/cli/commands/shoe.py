@@ -136,16 +136,11 @@ def _kinematics_lines(report: dict, rows: int) -> list[str]:
 
 
 def _profile_turns(profile: str) -> int:
-    """Pinion turns per carrier turn from a profile's ``gears:`` section (2 if not set)."""
-    from wheelstep_cli.config.profiles import load_profile
-    from wheelstep_cli.errors import DesignError
+    """Pinion turns per carrier turn from a design profile's ``gears:`` section (2 if not
+    set); the profile is checked whole by its model, turns with the rest."""
+    from wheelstep_cli.config.profiles import load_design_profile
 
-    _, data = load_profile(profile)
-    gears = data.get("gears") or {}
-    turns = gears.get("turns", 2) if isinstance(gears, dict) else 2
-    if not isinstance(turns, int):
-        raise DesignError("turns", turns, f"in profile {profile} must be 2 or 4")
-    return turns
+    return load_design_profile(profile).values("gears").get("turns", 2)
 
 
 def register(app) -> None:

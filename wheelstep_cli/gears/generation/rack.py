@@ -42,8 +42,13 @@ class RackCutter:
         require(np.radians(a_lo) <= self.pressure_angle <= np.radians(a_hi), "pressure_angle",
                 float(np.degrees(self.pressure_angle)), range_text(PRESSURE_ANGLE_DEG, "deg"))
         require(h_lo <= self.addendum <= h_hi, "addendum", self.addendum, range_text(ADDENDUM, "x module"))
-        require(self.addendum < self.dedendum <= DEDENDUM_MAX, "dedendum", self.dedendum,
-                f"must be > addendum ({self.addendum:g}) and <= {DEDENDUM_MAX:g} x module (tip clearance)")
+        if not self.addendum < self.dedendum <= DEDENDUM_MAX:
+            # the rule ties the two: stated for the addendum too, so a refusal names the one given
+            raise DesignError("dedendum", self.dedendum, f"must be > addendum ({self.addendum:g}) and "
+                              f"<= {DEDENDUM_MAX:g} x module (tip clearance)",
+                              {"addendum": (self.addendum, f"must be < dedendum ({self.dedendum:g}) and "
+                                                           f">= {h_lo:g} x module (tip clearance)")}
+                              if self.dedendum <= DEDENDUM_MAX else None)
         require(FILLET[0] <= self.fillet <= FILLET[1], "fillet", self.fillet, range_text(FILLET, "x module"))
         require(np.isfinite(self.backlash) and self.backlash >= 0, "backlash", self.backlash,
                 "must be >= 0 mm")
