@@ -246,9 +246,10 @@ parts:
 
 @pytest.mark.parametrize("text, needle, expect", [
     (VALID_ENTRY + "    colour: red\n", "colour", "parts[0].colour: unknown key; allowed: name, kind"),
+    (VALID_ENTRY + "    quantitiy: 2\n", "quantitiy", "parts[0].quantitiy: unknown key; did you mean quantity? allowed:"),
     (VALID_ENTRY + "    quantity: two\n", "quantity", "parts[0].quantity = 'two': must be a whole number"),
     (VALID_ENTRY + "    quantity: 0\n", "quantity", "must be between 1 and 200"),
-    (VALID_ENTRY + "    overrides:\n      zz: 3\n", "zz", "overrides.zz: unknown key; allowed: a, b, c, z"),
+    (VALID_ENTRY + "    overrides:\n      zz: 3\n", "zz", "overrides.zz: unknown key; did you mean z? allowed: a, b, c, z"),
     (VALID_ENTRY + "    overrides:\n      z: 24.5\n", "z: 24.5", "overrides.z = 24.5: must be a whole number"),
     (VALID_ENTRY + "    overrides:\n      module: fine\n", "module", "must be a number"),
     (VALID_ENTRY + "    overrides:\n      b: 110\n", "b: 110", "b = 110: must be <"),

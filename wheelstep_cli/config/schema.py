@@ -8,6 +8,8 @@ for values given in code or on the command line.
 
 from __future__ import annotations
 
+import difflib
+
 import functools
 import types
 import typing
@@ -179,7 +181,9 @@ def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) ->
         return Issue(doc.where(loc[:-1]), dotted(loc[:-1]), f"needs the key '{loc[-1]}'")
     if kind == "extra_forbidden":
         allowed = allowed_keys(model, tuple(error["loc"][:-1]))
-        return Issue(doc.where(loc), dotted(loc), "unknown key; allowed: " + ", ".join(allowed))
+        near = difflib.get_close_matches(str(loc[-1]), allowed, n=1)
+        hint = f"did you mean {near[0]}? " if near else ""
+        return Issue(doc.where(loc), dotted(loc), f"unknown key; {hint}allowed: " + ", ".join(allowed))
     cause = error.get("ctx", {}).get("error")
     if isinstance(cause, DesignError):
         return Issue(doc.where(loc), dotted(loc), yaml_message(cause))
