@@ -198,3 +198,12 @@ def test_a_mesh_that_fails_its_own_check_is_wheelsteps_defect_exit_1_nothing_wri
     assert line.startswith("wheelstep: error: the ") and "failed the print check" in line
     assert "a defect of wheelstep" in line and "--width" not in line
     assert not (tmp_path / "out").exists()
+
+
+def test_a_choice_typed_in_capitals_is_that_choice(cli, tmp_path):
+    """`--format STL` (extensions are often written in capitals) is `--format stl`; a word
+    that is no choice is still refused."""
+    result = cli("gears", "--format", "STL", "--corner", "Space", "--dry-run", "--out", tmp_path / "o")
+    assert result.exit_code == 0, result.stderr
+    assert "pinion.stl" in result.stdout and "3mf" not in result.stdout
+    assert cli("gears", "--format", "STP", "--dry-run", "--out", tmp_path / "o").exit_code == 2

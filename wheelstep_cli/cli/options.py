@@ -46,6 +46,8 @@ def opt(*names: str, help: str, shown: str | None = None, **kwargs):
     option defaulting to None."""
     text = help if shown is None else f"{help}  [default: {shown}]"
     kwargs.setdefault("callback", finite)
+    # a choice typed in capitals (--format STL) is the choice: file extensions are often written so
+    kwargs.setdefault("case_sensitive", False)
     return typer.Option(*names, help=text, **kwargs)
 
 
