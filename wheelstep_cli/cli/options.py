@@ -87,7 +87,7 @@ Profile = Annotated[Optional[str], opt("--profile",
                                        help="Design preset: a name in profiles/ or a YAML path.")]
 Printer = Annotated[Optional[str], opt(
     "--printer", help="Printer profile (a name in profiles/ or a YAML path): draw the part as it "
-                      "must be printed there (bores + hole compensation, backlash + tooth "
+                      "must be printed there (holes + hole compensation, gear teeth + tooth "
                       "clearance, elephant-foot inset or its edge chamfer), as batch does.",
     shown="none: the geometry as designed")]
 Out = Annotated[Path, opt("--out", "-o", help="Output folder.")]
@@ -105,7 +105,8 @@ FitChoice = Annotated[Optional[Fit], opt(
     "--fit", help="Draw both tooth outlines smaller along their normals (instead of the "
                   "printer's tooth clearance), just enough that the least backlash over its band "
                   "keeps the fit's margin (auto 0.01, tight 0.05, normal 0.1, loose 0.2 mm); "
-                  "implies --tolerance.", shown="the printer band's fit, else its clearance")]
+                  "implies --tolerance. Drawn for --printer, else the default printer (its "
+                  "compensation too).", shown="the printer band's fit, else its clearance")]
 Format = Annotated[MeshFormat, opt("--format", help="Mesh files to write.")]
 # --- conventions of every command
 Json = Annotated[bool, opt("--json", help="Print the report as one JSON document on stdout "
