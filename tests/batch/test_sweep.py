@@ -280,7 +280,11 @@ def test_unreachable_scheduler_is_one_line(cli, tmp_path):
     line = error_line(result)
     assert time.monotonic() - start < 15     # the bound on the refusal, not a benchmark
     assert "--scheduler" in line and "tcp://127.0.0.1:9" in line and "cannot be reached" in line
+    assert "(nothing listens at that port); give the address `dask scheduler` prints" in line
     assert not (tmp_path / "out").exists()
+    # a name that is no host is said to be one
+    line = error_line(cli("sweep", sweep, "--out", tmp_path / "out", "--scheduler", "no-such-host.invalid"))
+    assert "(its host name does not resolve)" in line and not (tmp_path / "out").exists()
 
 
 def test_bad_axes_refused_with_every_line(cli, tmp_path):

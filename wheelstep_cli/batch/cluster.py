@@ -110,8 +110,22 @@ def _connect(address: str, option: str):
     thread.join(CONNECT_SECONDS + 1)
     if "client" in box:
         return box["client"]
-    why = type(box["error"]).__name__ if "error" in box else "no answer"
-    raise DesignError(option, address, f"cannot be reached within {CONNECT_SECONDS} s ({why})")
+    raise DesignError(option, address, f"cannot be reached within {CONNECT_SECONDS} s "
+                                       f"({_why(box.get('error'))}); give the address `dask "
+                                       "scheduler` prints, tcp://HOST:PORT (port 8786 if left out)")
+
+
+def _why(error: BaseException | None) -> str:
+    """What a failed connection attempt says of the address, in a few words."""
+    import socket
+
+    if error is None:
+        return "no answer"
+    if isinstance(error, socket.gaierror):
+        return "its host name does not resolve"
+    if isinstance(error, ConnectionRefusedError):
+        return "nothing listens at that port"
+    return type(error).__name__
 
 
 def _probe(address: str) -> None:
