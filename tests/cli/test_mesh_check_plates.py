@@ -184,6 +184,10 @@ def test_two_plates_each_holding_a_pair_are_both_checked(desk_pair, cli, tmp_pat
     pairs = json.loads(result.stdout)["pairs"]
     assert [p["pinion_teeth"] for p in pairs] == [42, 44]
     assert [p["pinion"] for p in pairs] == [f"{desk_pair / 'gears.3mf'}:pinion", f"{other / 'gears.3mf'}:pinion"]
+    # a plot draws one pair: the refusal names the ids to choose from
+    line = error_line(cli("mesh-check", desk_pair / "gears.3mf", other / "gears.3mf", "--plot",
+                          tmp_path / "pair.png"))
+    assert line.endswith(f"draws one pair: add --pair ID, one of 'gears', 'gears ({other / 'gears.3mf'})'")
     monkeypatch.chdir(other)
     twice = cli("mesh-check", "gears.3mf", "./gears.3mf", "--samples", "160", "--json")
     assert twice.exit_code == 0, twice.stderr

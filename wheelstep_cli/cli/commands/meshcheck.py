@@ -158,7 +158,8 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
 
     no_design_options(design)
     pairs = find_plate_pairs(plates, pair)
-    require(plot is None or len(pairs) == 1, "plot", str(plot), "draws one pair: add --pair ID")
+    require(plot is None or len(pairs) == 1, "plot", str(plot),
+            "draws one pair: add --pair ID, one of " + ", ".join(f"'{p.pair}'" for p in pairs))
     summaries, failed, files = [], False, {}
     for found in pairs:
         report, summary = with_progress(not quiet, f"meshing check {found.pair}", run_plate_pair_check,

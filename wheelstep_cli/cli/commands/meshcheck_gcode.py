@@ -28,7 +28,8 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     require_gcode_files(gcode)
     _not_twice(gcode)
     found = _designs(plates, gcode, pair, design, (samples, window))
-    require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID)")
+    require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID), "
+                                             "one of " + ", ".join(f"'{p.pair}'" for p in found))
     report, summary, read = with_progress(not quiet, "G-code read-back", run_gcode_check, gcode,
                                           found[0], samples, window)
     if chosen is not None:
