@@ -158,10 +158,16 @@ def test_a_part_without_the_teeth_of_the_pair_is_refused_though_the_sizes_add_up
     shoe = tmp_path / "shoe"
     assert cli("shoe", "--out", shoe, "--format", "stl", "-q").exit_code == 0
     result = cli("mesh-check", desk_pair / "pinion.stl", shoe / "shoe.stl", "--profile", "desk-demo")
-    assert error_line(result) == (
-        f"wheelstep: error: wheel = {shoe / 'shoe.stl'}: has 1 tooth along its pitch curve, not the 84 "
+    # (the shoe, drawn about its strut pivot, does not even surround the axis)
+    assert error_line(result).startswith(f"wheelstep: error: wheel = {shoe / 'shoe.stl'}: does not surround (0, 0)")
+    ring = tmp_path / "ring.stl"
+    ring.write_bytes(trimesh.creation.annulus(r_min=20.0, r_max=47.9, height=6.0, sections=256).export(file_type="stl"))
+    # (a plain ring crosses the non-circular pitch curve a few times: counted as that many teeth)
+    assert re.fullmatch(
+        f"wheelstep: error: wheel = {re.escape(str(ring))}: has [0-9] teeth? along its pitch curve, not the 84 "
         "that the pinion's 42 need under the law: give the wheel of this pinion's pair, and its design "
-        "(--profile, --a/--b/--c, --law-csv)")
+        r"\(--profile, --a/--b/--c, --law-csv\)",
+        error_line(cli("mesh-check", desk_pair / "pinion.stl", ring, "--profile", "desk-demo")))
     disc = tmp_path / "disc.stl"
     disc.write_bytes(trimesh.creation.cylinder(radius=24.0, height=6.0, sections=256).export(file_type="stl"))
     line = error_line(cli("mesh-check", disc, desk_pair / "wheel.stl", "--profile", "desk-demo"))
@@ -341,3 +347,17 @@ def test_out_of_phase_says_what_the_check_found(desk_pair, cli, distance, cause)
                  "--distance", distance, "--samples", "384")
     assert result.exit_code == 1
     assert f"phase: OUT OF PHASE (the pair does not follow its law: {cause})" in result.stdout, result.stdout
+
+
+def test_a_gear_moved_off_its_axis_is_told_to_give_it_in_its_own_frame(desk_pair, cli, tmp_path):
+    """A pinion exported where it lay on a bed (30 mm off its axis) does not surround the
+    origin the check turns it about: said of that file, before any pose is run."""
+    import trimesh
+
+    moved = trimesh.load(desk_pair / "pinion.stl")
+    moved.apply_translation([30.0, 0.0, 0.0])
+    moved.export(tmp_path / "pinion_on_bed.stl")
+    line = error_line(cli("mesh-check", tmp_path / "pinion_on_bed.stl", desk_pair / "wheel.stl",
+                          "--profile", "desk-demo"))
+    assert line.startswith(f"wheelstep: error: pinion = {tmp_path / 'pinion_on_bed.stl'}: does not surround "
+                           "(0, 0), where the check takes its axis (its section is centred near (30.0, 0.0) mm)")

@@ -64,6 +64,8 @@ def require_written_pair(check: WrittenPairCheck, outlines: tuple[np.ndarray, np
     law does not pair, too few poses per tooth. Checked before any pose is run."""
     from wheelstep_cli.gears.meshing.check import radius_by_area
 
+    for outline, name, file in zip(outlines, ("pinion", "wheel"), (check.pinion, check.wheel)):
+        require_about_its_axis(outline, name, file)
     radii = tuple(radius_by_area(o) for o in outlines)
     require_a_pair(radii, installed_distance(check.spec), (check.pinion, check.wheel), law)
     require_pinion_first(radii, law, check.pinion)
@@ -92,6 +94,20 @@ def _teeth_under_the_law(outlines: tuple[np.ndarray, np.ndarray], law, check: Wr
         raise DesignError(err.param, err.value, f"has {_teeth(counted)} along its pitch curve at "
                           f"{spec.turns} pinion turns per carrier turn, but the two count as one pair's "
                           f"at {turns}: give -n {turns}") from None
+
+
+def require_about_its_axis(outline: np.ndarray, name: str, file: str) -> None:
+    """Refuse (naming ``name`` = ``file``) a gear section (mm) that does not surround (0, 0):
+    the check turns each gear about its frame's origin, and a gear surrounds its axis, so the
+    mesh was moved off it (exported where it lay on a bed, say)."""
+    from wheelstep_cli.geometry.planar import points_inside, prepared_polygon
+
+    inside = bool(points_inside(prepared_polygon(outline), np.zeros((1, 2)))[0])
+    centre = 0.5 * (outline.min(axis=0) + outline.max(axis=0))
+    require(inside, name, file,
+            f"does not surround (0, 0), where the check takes its axis (its section is centred "
+            f"near ({centre[0]:.1f}, {centre[1]:.1f}) mm): give the mesh in the gear's own frame, "
+            "axis at the origin, as wheelstep writes it (not moved to where it lay on a bed)")
 
 
 def require_a_pair(radii: tuple[float, float], distance: float, names: tuple[str, str], law) -> None:
@@ -163,8 +179,8 @@ def require_gear_teeth(outlines: tuple[np.ndarray, np.ndarray], law, names: tupl
     z_p, z_w, needed = pair_teeth(*outlines, law)
     require(z_p >= MIN_TEETH, "pinion", names[0],
             f"has {_teeth(z_p)} along the pitch curve of the law; a pinion has "
-            f"at least {MIN_TEETH}: give the pinion mesh of a gear pair, and its design (--profile, "
-            "--a/--b/--c, --law-csv)")
+            f"at least {MIN_TEETH}: give the pinion mesh of a gear pair in its own frame (axis at the "
+            "origin), and its design (--profile, --a/--b/--c, --law-csv)")
     require(abs(z_w - needed) <= max(1.0, TEETH_SLACK * needed), "wheel", names[1],
             f"has {_teeth(z_w)} along its pitch curve, not the {needed:.0f} that the pinion's {z_p} "
             "need under the law: give the wheel of this pinion's pair, and its design (--profile, "
