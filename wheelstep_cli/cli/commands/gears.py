@@ -231,7 +231,8 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     ``slice_``: slice the plates and check the G-code; ``printer_given``: --printer as given."""
     import typer
 
-    from wheelstep_cli.cli.commands.gears_checks import checked_pair, collisions_first, require_height_first
+    from wheelstep_cli.cli.commands.gears_checks import (checked_pair, collisions_first, require_height_first,
+                                                         warn_of_the_figures)
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
@@ -260,7 +261,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
               "written": [] if dry_run else [str(p) for p in written],
               "removed": [str(p) for p in show.removed]}
     show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
-    _warn_interference(show, record)
+    warn_of_the_figures(show, record)
     warn_band_jams(show, record.get("tolerance"), printer_given, rerun=True)
     show.files(written, dry_run, joined=True)
     if sliced is not None and not sliced["meshes"]:
@@ -382,15 +383,6 @@ def _lighten_lines(pair) -> list[str]:
 
 def _num(record: dict, key: str, fmt: str) -> str:
     return "n/a" if record[key] is None else format(record[key], fmt)
-
-
-def _warn_interference(show: Output, record: dict) -> None:
-    """A warning line on stderr when the (allowed) teeth interfere."""
-    if record["interference"]:
-        show.warning(f"WARNING: the teeth interfere at {record['interfering_poses']} of "
-                     f"{record['samples']} poses (max overlap {record['max_overlap_area_mm2']:.3f} "
-                     f"mm2); pointwise hub speed ripple where they do not (diagnostic): "
-                     f"{_num(record, 'diagnostic_pointwise_ripple_clear_pct', '.2f')} %")
 
 
 def register(app) -> None:

@@ -138,3 +138,23 @@ def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
             raise DesignError(option, str(path), f"is where this run writes {what}: give the picture "
                                                  "another name")
     show.write_owned(out, "gears", dict.fromkeys(certain, b""), True, force, check_only=True)
+
+
+def warn_of_the_figures(show: Output, record: dict) -> None:
+    """A warning line on stderr when the (allowed) teeth interfere, and when the law the teeth
+    follow (blended, or from a CSV) ripples beyond the bound the teeth are held to (SPEC §10)."""
+    from wheelstep_cli.parts.bound_figures import MeshBounds
+
+    own = record.get("law_hub_speed_ripple_pct", 0.0)
+    if own > MeshBounds().ripple_pct:
+        show.warning(f"WARNING: the law the teeth follow itself ripples {own:.2f} % (however exact "
+                     "the teeth, the output speed varies that much; the teeth add the figures above)")
+    if record["interference"]:
+        show.warning(f"WARNING: the teeth interfere at {record['interfering_poses']} of "
+                     f"{record['samples']} poses (max overlap {record['max_overlap_area_mm2']:.3f} "
+                     f"mm2); pointwise hub speed ripple where they do not (diagnostic): "
+                     f"{_number(record['diagnostic_pointwise_ripple_clear_pct'])} %")
+
+
+def _number(value) -> str:
+    return "n/a" if value is None else f"{value:.2f}"
