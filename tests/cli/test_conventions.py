@@ -207,3 +207,17 @@ def test_a_choice_typed_in_capitals_is_that_choice(cli, tmp_path):
     assert result.exit_code == 0, result.stderr
     assert "pinion.stl" in result.stdout and "3mf" not in result.stdout
     assert cli("gears", "--format", "STP", "--dry-run", "--out", tmp_path / "o").exit_code == 2
+
+
+def test_verbose_says_which_file_a_profile_name_was_read_from(cli, tmp_path, monkeypatch):
+    """A profiles/ folder in the working folder comes before the shipped presets: -v says
+    which file `--profile desk-demo` was read from, so a local copy never acts unseen."""
+    from wheelstep_cli.config.profiles import shipped_profiles
+
+    shipped = cli("shoe", "--profile", "desk-demo", "-v", "--dry-run", "--out", tmp_path / "a")
+    assert f"  profile = desk-demo ({shipped_profiles() / 'desk-demo.yaml'})\n" in shipped.stderr
+    (tmp_path / "profiles").mkdir()
+    (tmp_path / "profiles" / "desk-demo.yaml").write_bytes((shipped_profiles() / "desk-demo.yaml").read_bytes())
+    monkeypatch.chdir(tmp_path)
+    local = cli("shoe", "--profile", "desk-demo", "-v", "--dry-run", "--out", tmp_path / "b")
+    assert f"  profile = desk-demo ({Path.cwd() / 'profiles' / 'desk-demo.yaml'})\n" in local.stderr

@@ -61,11 +61,17 @@ class Output:
         """An error on stderr, always."""
         typer.echo(text, err=True)
 
-    def parameters(self, values: Mapping) -> None:
+    def parameters(self, values: Mapping, profile: str | None = None) -> None:
         """The parameters as resolved so far, one ``name = value`` per line (with -v); a nested
         mapping's entries as ``name.key``. Those still None are left to the design or preset
         (a command passes the values it has resolved by then) or do not apply: they are
-        named on one last line, never printed as ``None``."""
+        named on one last line, never printed as ``None``. ``profile``: the --profile given,
+        said first with the file it was read from (a profiles/ folder in the working folder
+        comes before the shipped presets)."""
+        if profile and self.verbose and not self.quiet:
+            from wheelstep_cli.config.profiles import find_profile
+
+            self.detail(f"  profile = {profile} ({find_profile(profile)})")
         left = []
         for name, value in _flat(values):
             if value is None:

@@ -186,7 +186,7 @@ def gears(
                           pressure_angle=pressure_angle, addendum=addendum, dedendum=dedendum,
                           fillet=fillet, clearance=clearance, blend=blend, corner=_value(corner),
                           tilt=tilt, law_csv=str(law_csv) if law_csv else None)
-    show.parameters(vars(spec))
+    show.parameters(vars(spec), profile)
     chosen = _printer(printer)
     _require_slicer(slice_, fmt.value, chosen)
     # --fit, else the fit the printer's band names (batch fits to it too)

@@ -49,7 +49,7 @@ def shoe(
     spec = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min, width=width,
                      strut_diameter=strut_diameter, socket_depth=socket_depth, rim=rim)
     design = spec.design()
-    show.parameters({**vars(spec), "c": design.c, "r_min": design.r_min})
+    show.parameters({**vars(spec), "c": design.c, "r_min": design.r_min}, profile)
     built = build_for_printer("shoe", spec, load_printer_profile(printer) if printer else None)
     files = shoe_files(built, out, fmt.value)
     written = show.write_owned(out, "shoe", files, dry_run, force)
@@ -107,7 +107,7 @@ def kinematics(
     if turns is None:
         turns = _profile_turns(profile) if profile else 2
     show.parameters({"a": design.a, "b": design.b, "c": design.c, "r_min": design.r_min,
-                     "turns": turns})
+                     "turns": turns}, profile)
     kin = hub_speed_study(design, turns, motor_rpm, points)
     files = kinematics_files(design, kin, plot)
     named = show.write_named("kinematics", files, dry_run, force, plot=plot)
