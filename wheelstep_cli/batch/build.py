@@ -13,7 +13,8 @@ from wheelstep_cli.batch.interrupts import interrupts_kept_from_children
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.names import remedy_in_yaml
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.parts.interference_refusals import require_mounted_where_rolling, require_play_that_clears
+from wheelstep_cli.parts.interference_refusals import (interference_phrase, require_mounted_where_rolling,
+                                                       require_play_that_clears)
 from wheelstep_cli.parts.kinds import KINDS, for_printer
 from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
 from wheelstep_cli.parts.tolerance import design_printer
@@ -149,8 +150,7 @@ def _refused(entry: Entry, built, result: EntryResult, printer) -> EntryResult |
     mating = result.mating
     if mating is None or not mating["interference"] or entry.allow_interference:
         return None
-    interfere = (f"the teeth interfere at {mating['interfering_poses']} of {mating['samples']} poses "
-                 f"at {mating['distance_mm']:g} mm (max overlap {mating['max_overlap_area_mm2']:.3f} mm2)")
+    interfere = interference_phrase(mating)
     try:
         require_mounted_where_rolling(built, interfere)
         require_play_that_clears(built, mating, interfere, remedy_check(printer, bed=printer))

@@ -13,6 +13,15 @@ from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.mesh_bounds import OPENING_TOLERANCE, MeshBounds, opening_phrase, verified_remedy
 
 
+def interference_phrase(record: dict) -> str:
+    """What a meshing record's interference is, for a refusal: poses, distance (mm) and the
+    largest overlap (mm^2; under a thousandth, as a zero-play pair's is, in um^2)."""
+    area = float(record["max_overlap_area_mm2"])
+    shown = f"{area:.3f} mm2" if area >= 5e-4 else f"{area * 1e6:.0f} um2"
+    return (f"the teeth interfere at {record['interfering_poses']} of {record['samples']} poses at "
+            f"{record['distance_mm']:g} mm (max overlap {shown})")
+
+
 def require_mounted_where_rolling(pair, failure: str) -> None:
     """Refuse (DesignError on the installed distance, with the remedy) a generated pair mounted
     off its rolling distance whose check found ``failure``; nothing for a pair mounted where

@@ -60,14 +60,13 @@ def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, ver
     by ``verify`` when given) when the mounted distance or a backlash set too small is the cause."""
     import typer
 
-    from wheelstep_cli.parts.interference_refusals import require_mounted_where_rolling, require_play_that_clears
+    from wheelstep_cli.parts.interference_refusals import (interference_phrase, require_mounted_where_rolling,
+                                                           require_play_that_clears)
     from wheelstep_cli.parts.mesh_check import meshing_record
 
     record = meshing_record(check)
     if record["interference"] and not allow_interference:
-        interfere = (f"the teeth interfere at {record['interfering_poses']} of {record['samples']} "
-                     f"poses at {record['distance_mm']:g} mm (max overlap "
-                     f"{record['max_overlap_area_mm2']:.3f} mm2)")
+        interfere = interference_phrase(record)
         # mounted off the rolling distance the user's distance is the cause: refused as bad
         # input (exit 2) like a pair mounted farther off, whose figures break the bounds
         require_mounted_where_rolling(pair, interfere)
