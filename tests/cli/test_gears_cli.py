@@ -261,3 +261,13 @@ def test_a_pair_exactly_as_tall_as_the_printer_prints_is_not_refused_early(cli, 
     result = cli("gears", "--profile", "desk-demo", "--thickness", f"{tallest + 1e-6:.6f}", "--printer",
                  "resin-0.05-standard", "--format", "stl", "--dry-run", "-q", "--out", tmp_path / "o")
     assert result.exit_code == 0, result.stderr
+
+
+def test_a_pair_that_tolerates_no_closer_mounting_is_warned_of(cli, tmp_path):
+    """--clearance 0 leaves the wheel's spaces no room below the pinion's tips: written (it
+    meshes where designed), with a warning that a printed frame cannot hold that distance;
+    the default pair (0.047 mm) gets none."""
+    result = cli("gears", "--clearance", "0", "--format", "stl", "--dry-run", "--out", tmp_path / "o")
+    assert result.exit_code == 0, result.stderr
+    assert result.stderr.startswith("WARNING: mounted 0.00") and "--clearance" in result.stderr
+    assert cli("gears", "--format", "stl", "--dry-run", "--out", tmp_path / "o").stderr == ""

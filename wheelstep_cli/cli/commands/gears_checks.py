@@ -139,15 +139,26 @@ def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
     show.write_owned(out, "gears", dict.fromkeys(certain, b""), True, force, check_only=True)
 
 
+#: Least closer mounting (mm) a written pair tolerates without a warning: a hundredth, well
+#: below any printed frame's centre-distance error (FDM +-0.05 mm, SPEC §11).
+MOUNTING_WARNING = 0.01
+
+
 def warn_of_the_figures(show: Output, record: dict) -> None:
-    """A warning line on stderr when the (allowed) teeth interfere, and when the law the teeth
-    follow (blended, or from a CSV) ripples beyond the bound the teeth are held to (SPEC §10)."""
+    """Warning lines on stderr: when the law the teeth follow (blended, or from a CSV) ripples
+    beyond the bound the teeth are held to (SPEC §10), when the pair tolerates next to no
+    closer mounting, and when the (allowed) teeth interfere."""
     from wheelstep_cli.parts.bound_figures import MeshBounds
 
     own = record.get("law_hub_speed_ripple_pct", 0.0)
     if own > MeshBounds().ripple_pct:
         show.warning(f"WARNING: the law the teeth follow itself ripples {own:.2f} % (however exact "
                      "the teeth, the output speed varies that much; the teeth add the figures above)")
+    closer = record.get("mounting", {}).get("closer_mm")
+    if closer is not None and closer < MOUNTING_WARNING and not record["interference"]:
+        show.warning(f"WARNING: mounted {closer:.3f} mm closer than designed the teeth meet (see "
+                     "'mounting'): a printed frame holds its centre distance to a few hundredths "
+                     "of a mm at best (more tip clearance: --clearance)")
     if record["interference"]:
         show.warning(f"WARNING: the teeth interfere at {record['interfering_poses']} of "
                      f"{record['samples']} poses (max overlap {record['max_overlap_area_mm2']:.3f} "
