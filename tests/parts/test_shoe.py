@@ -361,3 +361,14 @@ def test_a_strut_wider_than_a_small_mechanisms_body_names_what_the_user_gave(cli
     limit = line.split("must be <= ")[1].split(" mm")[0]
     assert cli("shoe", "--rmin", "0.5", "--a", "5", "--b", "5", "--strut-diameter", limit, "--socket-depth",
                "1", "--rim", "30", "--out", tmp_path / "ok", "-q").exit_code == 0
+
+
+def test_a_mechanism_typed_in_metres_is_told_lengths_are_millimetres(cli, tmp_path):
+    """--a 0.06 --b 0.1 --rmin 0.02 (metres for 60, 100, 20 mm) draw a sole a fifth of a
+    millimetre long: no socket fits, said so (not 'must be <= -3.84 mm'), with the unit."""
+    from tests.helpers.clicheck import error_line
+
+    line = error_line(cli("shoe", "--a", "0.06", "--b", "0.1", "--rmin", "0.02", "--out", tmp_path / "o"))
+    assert line.startswith("wheelstep: error: --a = 0.06: with it, strut-diameter = 12 fails: fits no socket: "
+                           "the body is 0.17 mm across (its sole)"), line
+    assert line.endswith("lengths are in millimetres") and "<= -" not in line

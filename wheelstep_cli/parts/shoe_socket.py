@@ -28,7 +28,13 @@ def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
         # draws the sole, so a user who gave its sizes rather than the diameter is named
         alternatives = {"width": (spec.width, f"must be >= {rounded_up(d + 2.0 * MIN_WALL)} mm {why}")
                         } if spec.width <= length else {}
-        raise DesignError("strut_diameter", d, f"must be <= {rounded_down(limit)} mm {why}", alternatives
+        # a body narrower than its two walls has no socket to offer: most likely sizes typed
+        # in metres (a = 0.06 for 60 mm) drew a sole a fraction of a millimetre long
+        rule = (f"must be <= {rounded_down(limit)} mm {why}" if limit > 0 else
+                f"fits no socket: the body is {min(spec.width, length):.2g} mm across (its "
+                f"{'sole' if spec.width > length else 'width'}), less than its {MIN_WALL:g} mm walls "
+                "either side; lengths are in millimetres")
+        raise DesignError("strut_diameter", d, rule, alternatives
                           ).tied_to({"a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min})
     floor = polyline_box_distance(sole_part, (-d / 2.0, top - spec.socket_depth, d / 2.0, top))
     if floor < MIN_WALL:
