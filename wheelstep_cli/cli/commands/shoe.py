@@ -75,8 +75,8 @@ def _shoe_lines(built, report: dict) -> list[str]:
     check = built.checks["shoe"]
     size = built.part.bounds[1] - built.part.bounds[0]
     lines.append(f"shoe: {check.triangles} triangles, {check.volume / 1000:.2f} cm3, "
-                 f"{size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} mm, socket floor "
-                 f"{report['part']['socket_floor_mm']:.1f} mm, printable")
+                 f"{size[0]:.1f} x {size[1]:.1f} x {size[2]:.1f} mm, "
+                 f"{report['part']['socket_floor_mm']:.1f} mm of plastic under the socket, printable")
     return lines
 
 
