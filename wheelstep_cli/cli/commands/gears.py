@@ -330,7 +330,7 @@ def _gears_lines(pair, record: dict) -> list[str]:
                      + (f" (the centre distance module {pair.spec.module:g} mm fits)"
                         if pair.spec.module is not None else "")
                      + _opening_text(pair)
-                     + f", backlash j_n = {gen.cutter.backlash:g} mm" + _clearance_text(pair))
+                     + f", backlash j_n = {gen.cutter.backlash:.4g} mm" + _clearance_text(pair))
     lines.append(f"meshing at {pair.mounted_distance:g} mm: backlash "
                  f"{_num(record, 'backlash_min_mm', '.3f')}..{_num(record, 'backlash_max_mm', '.3f')}"
                  f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
