@@ -275,3 +275,13 @@ def test_an_addendum_above_the_dedendum_is_said_at_its_line_in_a_profile_and_a_b
     line = error_line(cli("batch", batch, "--out", tmp_path / "out"))
     assert line == f"wheelstep: error: {batch}:6: parts[0].overrides.addendum = 1.5: {ADDENDUM_RULE}"
     assert not (tmp_path / "out").exists()
+
+
+def test_a_long_value_in_an_error_line_is_said_by_what_it_is(cli, tmp_path):
+    """A JSON report given as a batch file: its nested 'parts' mapping is named by its keys,
+    not dumped whole into the line."""
+    assert cli("gears", "--format", "stl", "-q", "--out", tmp_path / "o").exit_code == 0
+    result = cli("batch", tmp_path / "o" / "gears.json", "--dry-run")
+    assert result.exit_code == 2
+    line = next(line for line in result.stderr.splitlines() if ": parts = " in line)
+    assert line.endswith(": parts = {a mapping of 2 keys: pinion, wheel}: must be a list of at least one part"), line

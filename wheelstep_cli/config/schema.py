@@ -66,7 +66,23 @@ def dotted(path: Iterable) -> str:
 
 
 def show(value: Any) -> str:
-    return repr(value) if isinstance(value, str) else f"{value:g}" if isinstance(value, float) else str(value)
+    """A value as an error line shows it: text quoted, numbers short, and a long mapping or
+    list (a JSON report given as a batch file, say) by what it is, not dumped whole."""
+    if isinstance(value, str):
+        return repr(value)
+    if isinstance(value, float):
+        return f"{value:g}"
+    text = str(value)
+    if len(text) <= SHOWN_LENGTH or not isinstance(value, (dict, list)):
+        return text
+    if isinstance(value, dict):
+        keys = ", ".join(map(str, list(value)[:4])) + (", ..." if len(value) > 4 else "")
+        return f"{{a mapping of {len(value)} keys: {keys}}}"
+    return f"[a list of {len(value)} items]"
+
+
+#: Longest value (characters) an error line shows whole.
+SHOWN_LENGTH = 60
 
 
 # ----------------------------------------------------------------------------- models
