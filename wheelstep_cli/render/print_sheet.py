@@ -33,7 +33,8 @@ def print_sheet_bytes(plan, plates, built, results, failed, masses) -> bytes:
 
 def _parts(plates, built, results, masses) -> list[str]:
     lines = ["## Parts", "",
-             "| entry | part | design | printer | qty | volume (cm3) | solid mass (g) | est. printed mass (g) "
+             "| entry | part | design | printer | qty | volume each (cm3) | solid mass each (g) "
+             "| est. printed mass each (g) "
              "| size X x Y x Z (mm) | checks |",
              "| --- | --- | --- | --- | ---: | ---: | ---: | ---: | --- | --- |"]
     totals: Counter = Counter()
