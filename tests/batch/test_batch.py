@@ -573,5 +573,6 @@ def test_a_batch_gear_pair_whose_hub_makes_it_too_tall_is_refused_before_it_is_b
     result = cli("batch", batch, "--out", tmp_path / "out")
     assert result.exit_code == 2, result.stderr
     assert (f"{batch}:{line_of(batch, 'thickness: 200')}: parts[0].overrides.thickness = 200: makes "
-            "part 'pinion' 260.0 mm tall, more than the 250 mm printer 'fdm-0.4-pla' prints") in result.stderr
+            "part 'pinion' 260.0 mm tall (its 200 mm plate and 60 mm hub), more than the 250 mm printer "
+            "'fdm-0.4-pla' prints") in result.stderr
     assert not (tmp_path / "out").exists()

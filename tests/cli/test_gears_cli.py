@@ -229,7 +229,9 @@ def test_a_pair_taller_than_the_printer_is_refused_before_any_tooth_is_cut(cli, 
         assert result.exit_code == 2, result.stderr
         line = error_line(result)
         assert line.startswith(f"wheelstep: error: --thickness = {args[1]}: makes part 'pinion'")
-        assert "mm tall, more than the" in line and (printer is None or f"printer '{printer}'" in line)
+        assert "mm tall" in line and "more than the" in line and (printer is None or f"printer '{printer}'" in line)
+        # with a hub the line says what the height is made of
+        assert ("260.0 mm tall (its 200 mm plate and 60 mm hub), more" in line) == ("--hub-d" in args)
         assert ("(the default printer; --printer chooses another" in line) == (printer is None)
         assert not (tmp_path / "tall").exists()
     # only the hub made it too tall: the line names the hub length, with the same note

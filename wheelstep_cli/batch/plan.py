@@ -296,11 +296,11 @@ def _require_height(kind: PartKind, printed, printer: Printer) -> None:
     """A part taller than its printer prints, refused before it is built (as the plate would
     refuse it after): a gear pair stands on its face, a shoe on its side (its width upright)."""
     from wheelstep_cli.parts.gear_pair import footprint
-    from wheelstep_cli.parts.plate_layout import gear_pair_height, require_height
+    from wheelstep_cli.parts.plate_layout import gear_pair_height, gear_pair_stack, require_height
 
     if kind.name == "gear-pair":
         require_height("pinion", gear_pair_height(printed), printer, "thickness", printed.thickness,
-                       footprint(printed))
+                       footprint(printed), gear_pair_stack(printed))
     elif kind.name == "shoe":
         # as the mesh's float32 vertices hold it (the plate's check sees that)
         require_height("shoe", float(np.float32(printed.width)), printer, "width", printed.width)

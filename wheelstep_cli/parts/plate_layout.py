@@ -55,12 +55,20 @@ def gear_pair_height(spec) -> float:
     return float(np.float32(spec.thickness + spec.hub_mm[1]))
 
 
+def gear_pair_stack(spec) -> str:
+    """What a gear pair's height (:func:`gear_pair_height`) is made of, for a refusal: the
+    plate and the hub when it has one ("" without)."""
+    hub = spec.hub_mm[1]
+    return f" (its {spec.thickness:g} mm plate and {hub:g} mm hub)" if hub > 0 else ""
+
+
 def require_height(name: str, tall: float, printer: Printer, height_param: str, height: float,
-                   footprint: dict[str, object] | None = None) -> None:
+                   footprint: dict[str, object] | None = None, stack: str = "") -> None:
     """Refuse (DesignError on ``height_param`` = ``height``) a part ``name`` ``tall`` mm tall
-    when ``printer`` prints less; a build can check this before it spends time on the part."""
+    (``stack``: what makes it that tall, when more than the parameter) when ``printer`` prints
+    less; a build can check this before it spends time on the part."""
     if tall > printer.max_height:
-        raise _beyond(DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall, more "
+        raise _beyond(DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall{stack}, more "
                                   f"than the {printer.max_height:g} mm printer '{printer.given or printer.name}' prints"),
                       printer).tied_to(footprint or {})
 
