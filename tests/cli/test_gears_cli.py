@@ -266,10 +266,21 @@ def test_a_pair_exactly_as_tall_as_the_printer_prints_is_not_refused_early(cli, 
 
 
 def test_a_pair_that_tolerates_no_closer_mounting_is_warned_of(cli, tmp_path):
-    """--clearance 0 leaves the wheel's spaces no room below the pinion's tips: written (it
-    meshes where designed), with a warning that a printed frame cannot hold that distance;
-    the default pair (0.047 mm) gets none."""
-    result = cli("gears", "--clearance", "0", "--format", "stl", "--dry-run", "--out", tmp_path / "o")
-    assert result.exit_code == 0, result.stderr
-    assert result.stderr.startswith("WARNING: mounted 0.00") and "--clearance" in result.stderr
+    """--clearance 0 leaves the wheel's spaces no room below the pinion's tips, --backlash 0.02
+    next to no play between the flanks: written (they mesh where designed), each with a warning
+    that a printed frame cannot hold that distance; the default pair (0.047 mm) gets none."""
+    for option, value in (("--clearance", "0"), ("--backlash", "0.02")):
+        result = cli("gears", option, value, "--format", "stl", "--dry-run", "--out", tmp_path / "o")
+        assert result.exit_code == 0, result.stderr
+        assert result.stderr.startswith("WARNING: mounted 0.00") and "--" not in result.stderr
     assert cli("gears", "--format", "stl", "--dry-run", "--out", tmp_path / "o").stderr == ""
+
+
+def test_a_written_pair_that_interferes_is_warned_of_with_its_overlap_in_um2(cli, tmp_path):
+    """--allow-interference on a pair with no play: written, warned of with the refusal's own
+    words (an overlap under a thousandth of a mm2 in um2, never '0.000 mm2')."""
+    result = cli("gears", "--backlash", "0", "--allow-interference", "--format", "stl", "--dry-run",
+                 "--out", tmp_path / "o")
+    assert result.exit_code == 0, result.stderr
+    warning = next(line for line in result.stderr.splitlines() if "interfere" in line)
+    assert warning.startswith("WARNING: the teeth interfere at ") and " um2); pointwise" in warning, warning

@@ -248,14 +248,17 @@ def test_kinematics_takes_a_profiles_turns_as_the_model_reads_them(cli, tmp_path
     assert "4 pinion turns per carrier turn" in result.stdout
 
 
-ADDENDUM_RULE = "must be < dedendum (1.25) and >= 0.3 x module (tip clearance)"
+ADDENDUM_RULE = ("must be < the dedendum (1.25 x module; the difference is the tip clearance) "
+                 "and >= 0.3 x module")
 
 
 @pytest.mark.parametrize("args, expect", [
     (["--addendum", "1.5"], f"--addendum = 1.5: {ADDENDUM_RULE}"),
-    (["--dedendum", "0.9"], "--dedendum = 0.9: must be > addendum (1) and <= 2.5 x module (tip clearance)"),
+    (["--dedendum", "0.9"], "--dedendum = 0.9: must be > the addendum (1 x module; the difference is the tip "
+                               "clearance) and <= 2.5 x module"),
     (["--addendum", "1.5", "--dedendum", "1.4"],
-     "--dedendum = 1.4: must be > addendum (1.5) and <= 2.5 x module (tip clearance)"),
+     "--dedendum = 1.4: must be > the addendum (1.5 x module; the difference is the tip clearance) "
+     "and <= 2.5 x module"),
 ])
 def test_the_dedendum_above_the_addendum_is_said_of_the_one_given(cli, tmp_path, args, expect):
     """Of the two tied values the refusal names the option the user typed, not the default."""

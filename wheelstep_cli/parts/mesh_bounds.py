@@ -18,7 +18,9 @@ from wheelstep_cli.parts.bound_figures import (MeshBounds, backlash_remedy, boun
                                                ripple_teeth_remedy, teeth_remedy)
 
 
-#: Remedies tried (each a build and a meshing check) before a refusal offers one.
+#: Remedies tried (each a build and a meshing check) along each way of remedying a design
+#: before a refusal offers one: the figures' remedy, then (:func:`_other_ways`) fewer teeth
+#: for a ripple alone and the changed settings at their defaults; 3 ways at most.
 REMEDY_TRIES = 3
 
 
@@ -65,7 +67,7 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
         broken.append(opening_phrase(pair))
         remedy["install_distance"] = pair.design_distance
     else:
-        remedy = _remedy_of(pair, design, record, bounds)
+        remedy = _remedy_of(pair, design, record, bounds, built=verify is not None)
         if verify is not None and remedy:
             # the play alone first only where a build follows it up (a sweep's row keeps the count)
             remedy, tried, candidates = verified_remedy(design, _play_first(design, remedy), verify, bounds)
@@ -149,16 +151,18 @@ def _broken(record: dict, bounds: MeshBounds) -> list[str]:
     return [text for text in bound_violations(record, bounds) if "interfere" not in text]
 
 
-def _remedy_of(pair, design, record: dict, bounds: MeshBounds) -> dict:
-    """The options (name -> value) the figures of ``record`` point to for ``design``."""
+def _remedy_of(pair, design, record: dict, bounds: MeshBounds, built: bool = True) -> dict:
+    """The options (name -> value) the figures of ``record`` point to for ``design``; ``built``:
+    the remedy is built and checked before it is offered (else, a sweep's row, said as a try)."""
     broken, remedy = _broken(record, bounds), {}
     periods = pair.generated.law.pinion_periods
     if any("F'i" in text or "f'i" in text for text in broken):
         # the deviations fall about as 1/z^2 (measured): the nearest count that should do, not
-        # one many times the design's; a build still outside is followed from its own figures
-        remedy["z"] = teeth_remedy(record, design.z, periods, bounds, squared=True)
+        # one many times the design's, where a build still outside is followed from its own
+        # figures; a try said unbuilt keeps the surer 1/z count
+        remedy["z"] = teeth_remedy(record, design.z, periods, bounds, squared=built)
         if remedy["z"] > MAX_TEETH and not _changed_settings(design):
-            remedy["z"] = MAX_TEETH     # nothing to set back: that count to try
+            remedy["z"] = periods * (MAX_TEETH // periods)     # nothing to set back: that count to try
     if any("ripple" in text for text in broken):
         remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
     return _within_the_tooth_limit(design, remedy)
@@ -190,14 +194,15 @@ def _sized(design, remedy: dict) -> dict:
     return kept if z == design.z else {**kept, **sized_teeth(design, z)}
 
 
-def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds
+def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, known: list[dict] = ()
                     ) -> tuple[dict, list[str], list[dict]]:
     """(the first remedy whose build is within the bounds, or {}; what each failed try gave;
-    the failed remedies). Each try follows from the last one's figures (or from its refusal's
-    own remedy); a try that leads back to the design as it is, or to a remedy already tried,
-    or beyond the tooth limit ends the search. REMEDY_TRIES tries, besides the one a module
-    the user gave outgrew the printer with (the same remedy then keeps the size asked for)."""
-    tried, candidate, failed, sized = [], dict(remedy), [], False
+    the failed remedies, ``known`` ones first: remedies an earlier search found wanting, not
+    built again). Each try follows from the last one's figures (or from its refusal's own
+    remedy); a try that leads back to the design as it is, or to a remedy already tried, or
+    beyond the tooth limit ends the search. REMEDY_TRIES tries, besides the one a module the
+    user gave outgrew the printer with (the same remedy then keeps the size asked for)."""
+    tried, candidate, failed, sized = [], dict(remedy), list(known), False
     while len(tried) - sized < REMEDY_TRIES:
         if sized:       # undercut options and followed remedies too
             candidate = _sized(design, candidate)
@@ -252,13 +257,14 @@ def _other_ways(pair, design, record: dict, verify: Callable, bounds: MeshBounds
     tried, candidates = so_far
     broken = _broken(record, bounds)
     ways = [_changed_settings(design)]
-    if not any("F'i" in text or "f'i" in text for text in broken):
+    if any("ripple" in text for text in broken) and not any("F'i" in text or "f'i" in text
+                                                             for text in broken):
         z = ripple_teeth_remedy(record, design.z, pair.generated.law.pinion_periods, bounds)
         ways.insert(0, _sized(design, {"z": z}) if z < design.z else {})
     for way in ways:
         if way and way not in candidates:
-            remedy, more, failed = verified_remedy(design, way, verify, bounds)
-            tried, candidates = tried + more, candidates + failed
+            remedy, more, candidates = verified_remedy(design, way, verify, bounds, candidates)
+            tried = tried + more
             if remedy:
                 return remedy, tried, candidates
     return {}, tried, candidates

@@ -157,14 +157,14 @@ def warn_of_the_figures(show: Output, record: dict) -> None:
                      "the teeth, the output speed varies that much; the teeth add the figures above)")
     closer = record.get("mounting", {}).get("closer_mm")
     if closer is not None and closer < MOUNTING_WARNING and not record["interference"]:
-        show.warning(f"WARNING: mounted {closer:.3f} mm closer than designed the teeth meet (see "
-                     "'mounting'): a printed frame holds its centre distance to a few hundredths "
-                     "of a mm at best (more tip clearance: --clearance)")
+        show.warning(f"WARNING: mounted {max(closer, 0.0):.3f} mm closer than designed the teeth meet "
+                     "(see 'mounting'): less than a printed frame's centre distance can be held to "
+                     "(FDM about +-0.05 mm)")
     if record["interference"]:
-        show.warning(f"WARNING: the teeth interfere at {record['interfering_poses']} of "
-                     f"{record['samples']} poses (max overlap {record['max_overlap_area_mm2']:.3f} "
-                     f"mm2); pointwise hub speed ripple where they do not (diagnostic): "
-                     f"{_number(record['diagnostic_pointwise_ripple_clear_pct'])} %")
+        from wheelstep_cli.parts.interference_refusals import interference_phrase
+
+        show.warning(f"WARNING: {interference_phrase(record)}; pointwise hub speed ripple where they "
+                     f"do not (diagnostic): {_number(record['diagnostic_pointwise_ripple_clear_pct'])} %")
 
 
 def _number(value) -> str:

@@ -44,10 +44,11 @@ class RackCutter:
         require(h_lo <= self.addendum <= h_hi, "addendum", self.addendum, range_text(ADDENDUM, "x module"))
         if not self.addendum < self.dedendum <= DEDENDUM_MAX:
             # the rule ties the two: stated for the addendum too, so a refusal names the one given
-            raise DesignError("dedendum", self.dedendum, f"must be > addendum ({self.addendum:g}) and "
-                              f"<= {DEDENDUM_MAX:g} x module (tip clearance)",
-                              {"addendum": (self.addendum, f"must be < dedendum ({self.dedendum:g}) and "
-                                                           f">= {h_lo:g} x module (tip clearance)")}
+            raise DesignError("dedendum", self.dedendum, f"must be > the addendum ({self.addendum:g} x "
+                              f"module; the difference is the tip clearance) and <= {DEDENDUM_MAX:g} x module",
+                              {"addendum": (self.addendum, f"must be < the dedendum ({self.dedendum:g} x "
+                                                           "module; the difference is the tip clearance) "
+                                                           f"and >= {h_lo:g} x module")}
                               if self.dedendum <= DEDENDUM_MAX else None)
         require(FILLET[0] <= self.fillet <= FILLET[1], "fillet", self.fillet, range_text(FILLET, "x module"))
         require(np.isfinite(self.backlash) and self.backlash >= 0, "backlash", self.backlash,
