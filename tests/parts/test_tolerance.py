@@ -334,3 +334,25 @@ def test_a_jammed_case_line_says_how_much_of_its_jam_is_at_the_corners():
     # jammed at every pose: the corner share would only measure the corner zone
     case.update(jammed_poses=1536, interfering_poses=1536, jammed_at_corners=219)
     assert "JAMS (1536 poses" in band_lines(record)[1] and "corner" not in band_lines(record)[1]
+
+
+def test_printed_outlines_are_checked_over_the_whole_cycle_as_densely_as_one_period():
+    """A printed pair (``whole_cycle``) is checked over the law's whole cycle (one wheel turn:
+    4 periods of the crank law) with the poses of one period in each, given (--samples, per
+    period) or by default: a tooth is sampled as in the designed pair's check. A designed pair
+    (its outlines repeat) keeps one period."""
+    from wheelstep_cli.gears.cycle import WholeCycle
+    from wheelstep_cli.gears.laws import CrankLaw
+    from wheelstep_cli.gears.meshing import MeshingSettings
+    from wheelstep_cli.gears.meshing.check import default_pose_count
+    from wheelstep_cli.mechanism.crank import CrankMechanism
+    from wheelstep_cli.parts.tolerance import SectionedPair, checked_law
+
+    law = CrankLaw(CrankMechanism(30, 50, 180), 2)
+    designed = SectionedPair(np.zeros((3, 2)), np.zeros((3, 2)), law, 72.125, 42)
+    printed = SectionedPair(np.zeros((3, 2)), np.zeros((3, 2)), law, 72.125, 42, whole_cycle=True)
+    given = MeshingSettings(samples=256)
+    assert checked_law(designed, given) == (law, given)
+    cycle, settings = checked_law(printed, given)
+    assert cycle == WholeCycle(law) and settings.samples == 4 * 256
+    assert checked_law(printed, MeshingSettings())[1].samples == 4 * default_pose_count(law, 42) == 4 * 1536

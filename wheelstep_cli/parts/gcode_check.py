@@ -293,8 +293,9 @@ def gcode_sections(gcode_files: list[Path], pair, samples: int | None, window: f
     design = SectionedPair(designs["pinion"][0], designs["wheel"][0], blended,
                            installed_distance(pair.spec, blended), int(pair.spec.z))
     nominal = check_case(design, NOMINAL, settings)
-    printed = mid_play(replace(design, pinion=found["pinion"].outline, wheel=found["wheel"].outline),
-                       nominal)
+    # a print's teeth are each its own: it is checked over the whole cycle, not one period
+    printed = mid_play(replace(design, pinion=found["pinion"].outline, wheel=found["wheel"].outline,
+                               whole_cycle=True), nominal)
     return GcodeCheck(design, printed, nominal, settings, records,
                       (found["pinion"].part.source, found["wheel"].part.source))
 
@@ -315,10 +316,27 @@ def run_gcode_check(gcode_files: list[Path], pair, samples: int | None, window: 
     summary = {"pair": pair.pair, "distance_mm": read.design.distance,
                "pinion": f"{read.sources[0]}:pinion", "wheel": f"{read.sources[1]}:wheel",
                "law": {**law_record(pair.spec, law), "blend_deg": pair.spec.blend}, **report.to_dict(),
+               "cycle": cycle_record(read.printed.law),
                "gcode": {"source": source, "pinion": read.records["pinion"],
                          "wheel": read.records["wheel"]}}
     summary["meshes"] = not (report.interferes or report.contact_lost)
     return report, summary, read
+
+
+def cycle_record(law) -> dict:
+    """What the read-back's poses span: the whole cycle of ``law`` (gears.cycle.WholeCycle),
+    in which every printed pinion tooth meets every wheel tooth it will meet."""
+    from wheelstep_cli.gears.cycle import WholeCycle
+
+    cycle = WholeCycle(law)
+    return {"law_periods": cycle.periods, "pinion_turns": cycle.pinion_turns,
+            "wheel_turns": cycle.wheel_turns}
+
+
+def cycle_words(cycle: dict) -> str:
+    """A :func:`cycle_record` in words, for the text report."""
+    turns = "one wheel turn" if cycle["wheel_turns"] == 1 else f"{cycle['wheel_turns']} wheel turns"
+    return f"{turns}, {cycle['law_periods']} law periods: every printed tooth meets all it will meet"
 
 
 def band_prediction(read: GcodeCheck, printer, progress=None) -> dict:

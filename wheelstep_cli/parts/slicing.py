@@ -103,12 +103,12 @@ def slice_and_check(files: dict[Path, bytes], band: dict | None = None,
 
 def slice_lines(record: dict) -> list[str]:
     """The read-back as text lines (the gears report)."""
-    from wheelstep_cli.parts.gcode_check import gcode_lines
+    from wheelstep_cli.parts.gcode_check import cycle_words, gcode_lines
     from wheelstep_cli.parts.mesh_check import flank_line
 
     verdict = "meshes" if record["meshes"] else "DOES NOT MESH (interference or lost contact)"
-    return [f"sliced ({record['slicer']}): {', '.join(record['gcode_files'])}; as printed the pair {verdict}, "
-            f"backlash {_mm(record['backlash_min_mm'])}..{_mm(record['backlash_max_mm'])} mm",
+    return [f"sliced ({record['slicer']}): {', '.join(record['gcode_files'])}; as printed the pair {verdict} "
+            f"over {cycle_words(record['cycle'])}; backlash {_mm(record['backlash_min_mm'])}..{_mm(record['backlash_max_mm'])} mm",
             *(f"  {line}" for line in gcode_lines(record)),
             *(f"  printed {flank_line(side, record[side], record.get('law_hub_speed_ripple_pct', 0.0))}"
               for side in ("drive", "coast"))]

@@ -16,7 +16,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from wheelstep_cli.errors import DesignError
+from wheelstep_cli.gears.cycle import WholeCycle
 from wheelstep_cli.gears.meshing import MeshingReport, MeshingSettings, check_meshing
+from wheelstep_cli.gears.meshing.check import default_pose_count
 from wheelstep_cli.geometry.planar import offset_outline
 
 
@@ -32,7 +34,9 @@ class BandCase:
 
 @dataclass(frozen=True)
 class SectionedPair:
-    """A pair's mid-thickness outlines (mm, own frames), law, installed distance and teeth."""
+    """A pair's mid-thickness outlines (mm, own frames), law, installed distance and teeth.
+    ``whole_cycle``: outlines that do not repeat every period of the law (printed ones), so
+    checked over its whole cycle (gears.cycle.WholeCycle); else over one period."""
 
     pinion: np.ndarray
     wheel: np.ndarray
@@ -40,6 +44,7 @@ class SectionedPair:
     distance: float
     teeth: int
     shift: tuple | None = None   # (theta, wheel angle rad): start poses moved into the play
+    whole_cycle: bool = False
 
 
 def mid_play(sections: SectionedPair, nominal: MeshingReport) -> SectionedPair:
@@ -99,16 +104,32 @@ def case_settings(settings: MeshingSettings) -> MeshingSettings:
 
 def check_case(sections: SectionedPair, case: BandCase,
                settings: MeshingSettings = MeshingSettings()) -> MeshingReport:
-    """The meshing check of ``sections`` offset and moved as ``case`` says."""
+    """The meshing check of ``sections`` offset and moved as ``case`` says: over one period of
+    the law, or its whole cycle (:func:`checked_law`)."""
     pinion = offset_outline(sections.pinion, case.pinion_offset, "pinion", thin=OFFSET_THIN)
     wheel = offset_outline(sections.wheel, case.wheel_offset, "wheel", thin=OFFSET_THIN)
-    return check_meshing(pinion, wheel, sections.law, sections.distance + case.distance_shift,
+    law, settings = checked_law(sections, settings)
+    return check_meshing(pinion, wheel, law, sections.distance + case.distance_shift,
                          settings, teeth=sections.teeth, start_offset=_start_offset(sections))
+
+
+def checked_law(sections: SectionedPair, settings: MeshingSettings) -> tuple[object, MeshingSettings]:
+    """The law ``sections`` are checked over and the settings for it: ``sections.law`` for
+    outlines that repeat every period; for ``whole_cycle`` ones its whole cycle, in each of
+    whose periods ``settings.samples`` poses (None: the default count of one period), so a
+    tooth is sampled as densely as in the designed pair's check of one period."""
+    if not sections.whole_cycle:
+        return sections.law, settings
+    cycle = WholeCycle(sections.law)
+    per_period = (default_pose_count(sections.law, sections.teeth) if settings.samples is None
+                  else settings.samples)
+    return cycle, replace(settings, samples=cycle.periods * per_period)
 
 
 def _start_offset(sections: SectionedPair):
     """Where each pose's contact search starts (rad of wheel angle from the law's) for
-    ``sections``: its ``shift`` interpolated over the period (None: at the law's angle)."""
+    ``sections``: its ``shift`` (found over one period of the designed pair, which repeats)
+    interpolated over the law's period (None: at the law's angle)."""
     if sections.shift is None:
         return None
     theta, shift = sections.shift

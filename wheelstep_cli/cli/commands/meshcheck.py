@@ -24,8 +24,9 @@ Gcode = Annotated[Optional[List[Path]], opt(
                     "mid-height layer, offset by half its width, is each printed outline; the "
                     "design (law, installed distance) comes from the plate(s) it was sliced from: "
                     "PINION [WHEEL] name them, else FILE.3mf beside each FILE.gcode; or from "
-                    "the two meshes named (PINION.stl WHEEL.stl) and the design options. With "
-                    "--tolerance, also the band's prediction of the least backlash.",
+                    "the two meshes named (PINION.stl WHEEL.stl) and the design options. A print's "
+                    "teeth are each its own: it is checked over the law's whole cycle (one wheel "
+                    "turn), not one period. With --tolerance, also the band's prediction of the least backlash.",
     callback=None, metavar="<FILE.gcode>")]
 
 
@@ -43,8 +44,11 @@ def mesh_check(
     profile: Profile = None,
     pair: Annotated[Optional[str], opt("--pair", help="On plates: the pair to check (its "
                                                       "wheelstep:pair id).", shown="every pair")] = None,
-    samples: Annotated[Optional[int], opt("--samples", help="Poses over one period of the pinion "
-                                                               "(more than 6 per tooth pitch).",
+    samples: Annotated[Optional[int], opt("--samples", help="Poses over one period of the law "
+                                                               "(more than 6 per tooth pitch); with "
+                                                               "--gcode as many in each period of the "
+                                                               "whole cycle a print is checked over "
+                                                               "(one wheel turn).",
                                           shown="16 in the shortest tooth pitch, at least 1536")] = None,
     window: Annotated[Optional[float], opt("--window", help="Half-height of the mesh window round "
                                                             "the line of centres, mm; larger than "
@@ -61,7 +65,8 @@ def mesh_check(
     design, or any law given as --law-csv, blended by --blend as the teeth were cut. Given plates (3MF written by wheelstep),
     the pinion and wheel of each pair are found by their metadata and checked with the law and
     installed distance stored there. With --gcode, the pair as PrusaSlicer's G-code prints it
-    (SPEC §11). Exit 1 if they interfere or lose contact."""
+    (SPEC §11), over the law's whole cycle (one wheel turn): a print does not repeat every
+    period. Exit 1 if they interfere or lose contact."""
     show = Output(json, quiet, verbose)
     require_a_file(dry_run, force, plot=plot)
     design = {"distance": distance, "a": a, "b": b, "c": c, "turns": turns,

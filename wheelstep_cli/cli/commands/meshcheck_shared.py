@@ -76,9 +76,14 @@ def pair_lines(summary: dict, distance: float) -> list[str]:
     from wheelstep_cli.parts.mesh_check import meshing_lines
 
     pair = f"pair {summary['pair']}: " if "pair" in summary else ""
+    over = ""
+    if "cycle" in summary:        # a print read back from G-code
+        from wheelstep_cli.parts.gcode_check import cycle_words
+
+        over = f" ({cycle_words(summary['cycle'])})"
     return [f"meshing check: {pair}{summary['pinion']} + {summary['wheel']} at {distance:g} mm, "
-            f"{summary['samples']} poses over {summary['period_deg']:g} deg of pinion", *meshing_lines(summary),
-            *_band_lines(summary)]
+            f"{summary['samples']} poses over {summary['period_deg']:g} deg of pinion{over}",
+            *meshing_lines(summary), *_band_lines(summary)]
 
 
 def _band_lines(summary: dict) -> list[str]:

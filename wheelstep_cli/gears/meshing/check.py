@@ -54,7 +54,8 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, d
                   progress: Callable[[int, int], None] | None = None,
                   teeth: int | None = None,
                   start_offset: Callable[[np.ndarray], np.ndarray] | None = None) -> MeshingReport:
-    """Run the meshing check (SPEC §10) over one period of ``law``.
+    """Run the meshing check (SPEC §10) over one period of ``law`` (outlines that do not repeat
+    every period, a print's, pass :class:`~wheelstep_cli.gears.cycle.WholeCycle` of it).
 
     ``pinion``, ``wheel``: closed outlines (N, 2) in mm in their own frames (any
     orientation). ``law``: read through ``carrier_angle`` (the wheel angle the pair
