@@ -53,10 +53,12 @@ def test_mesh_check_printer_without_tolerance_is_refused(cli, tmp_path):
 
 
 def test_mesh_check_tolerance_on_plates_is_refused(cli, tmp_path):
-    result = cli("mesh-check", "plate.3mf", "--tolerance")
+    plate = tmp_path / "plate.3mf"      # refused for the option before the file is read
+    plate.write_bytes(b"not read")
+    result = cli("mesh-check", plate, "--tolerance")
     assert "checks two named meshes (PINION WHEEL), not plates" in error_line(result)
     # the switch is named with its own value, not the printer's
-    line = error_line(cli("mesh-check", "plate.3mf", "--tolerance", "--printer", "fdm-0.4-pla"))
+    line = error_line(cli("mesh-check", plate, "--tolerance", "--printer", "fdm-0.4-pla"))
     assert line.startswith("wheelstep: error: --tolerance = on: checks two named meshes")
 
 
