@@ -257,3 +257,22 @@ def test_a_missing_plate_is_said_missing(cli, sliced, tmp_path):
     missing = tmp_path / "nothere.3mf"
     line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", missing))
     assert line == f"wheelstep: error: pinion = {missing}: no such file"
+
+
+def test_a_plate_named_with_its_object_is_not_said_missing(cli, sliced, tmp_path):
+    """FILE.3mf:NAME names an existing file: it is not 'no such file' (a missing one is)."""
+    folder, _ = sliced
+    plate = next(folder.glob("gears*.3mf"))
+    line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", f"{plate}:pinion"))
+    assert "no such file" not in line, line
+    missing = tmp_path / "nothere.3mf"
+    line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", f"{missing}:pinion"))
+    assert line == f"wheelstep: error: pinion = {missing}:pinion: no such file"
+
+
+@pytest.mark.parametrize("option, value, limit", [("--samples", "5", "must be in [16, "),
+                                                  ("--window", "-1", "must be > 0 mm")])
+def test_a_sampling_that_cannot_work_is_refused_before_the_gcode_is_read(cli, sliced, option, value, limit):
+    folder, _ = sliced
+    line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", option, value))
+    assert line.startswith(f"wheelstep: error: {option} = {value}: {limit}"), line

@@ -37,12 +37,18 @@ class WrittenPairCheck:
         """Raise DesignError for a distance, pose count, window or plot name that cannot work."""
         dist = installed_distance(self.spec)
         require(dist > 0, "distance", dist, "must be > 0 mm")
-        # each pose sections and intersects both outlines: the count bounds the run time
-        require(self.samples is None or 16 <= self.samples <= MAX_SAMPLES, "samples", self.samples,
-                f"must be in [16, {MAX_SAMPLES}]")
-        require(self.window is None or self.window > 0, "window", self.window, "must be > 0 mm")
-        if self.plot is not None:
-            require(self.plot.suffix.lower() == ".png", "plot", str(self.plot), "must be a .png file")
+        require_sampling(self.samples, self.window, self.plot)
+
+
+def require_sampling(samples: int | None, window: float | None, plot: Path | None) -> None:
+    """Raise DesignError for a pose count (per law period), window (mm) or plot name that
+    cannot work, before anything is read."""
+    # each pose sections and intersects both outlines: the count bounds the run time
+    require(samples is None or 16 <= samples <= MAX_SAMPLES, "samples", samples,
+            f"must be in [16, {MAX_SAMPLES}]")
+    require(window is None or window > 0, "window", window, "must be > 0 mm")
+    if plot is not None:
+        require(plot.suffix.lower() == ".png", "plot", str(plot), "must be a .png file")
 
 
 def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:

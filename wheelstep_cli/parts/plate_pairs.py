@@ -49,7 +49,7 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
     read: set[Path] = set()
     for file, param in zip(files, GEARS):
         path = Path(file)
-        if not path.exists():
+        if not split_mesh_spec(file)[0].exists():       # FILE.3mf:NAME names a file too
             raise DesignError(param, file, "no such file")
         if path.suffix.lower() != ".3mf" or not path.is_file():
             raise DesignError(param, file, "must be a 3MF plate written by wheelstep (or name two "

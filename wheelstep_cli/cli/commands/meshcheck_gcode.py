@@ -17,7 +17,7 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     from wheelstep_cli.errors import require
     from wheelstep_cli.parts.gcode_check import (band_prediction, gcode_lines,
                                                  require_gcode_files, run_gcode_check, within_band)
-    from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, written_pair_files
+    from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, require_sampling, written_pair_files
     from wheelstep_cli.parts.tolerance_cli import tolerance_lines
 
     samples, window, plot = how
@@ -25,6 +25,7 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     require(len(gcode) <= 2, "gcode", " ".join(map(str, gcode)), "takes one file, or the two "
                                                                    "files of the pair's two plates")
     chosen = band_printer_of(*band)
+    require_sampling(samples, window, plot)
     require_gcode_files(gcode)
     _not_twice(gcode)
     found = _designs(plates, gcode, pair, design, (samples, window))
