@@ -123,7 +123,7 @@ def printed_parts(layers: GcodeLayers, source: str, height: float) -> list[Print
 
 def find_gear(parts: list[PrintedPart], design: np.ndarray, gear: str, pair: str,
               taken: list) -> PrintedGear:
-    """The printed part that is ``design`` (the gear's mid-thickness outer ring, own frame):
+    """The printed part that is ``design`` (the gear's outer ring half-way up its teeth, own frame):
     nearest in the area its outer outline bounds (holes and pockets aside), then fitted;
     DesignError naming the G-code when none is."""
     want = signed_area(design)
@@ -138,7 +138,7 @@ def find_gear(parts: list[PrintedPart], design: np.ndarray, gear: str, pair: str
         found = ", ".join(f"{outer(p):.0f}" for p in parts) or "none"
         raise DesignError("gcode", where, f"has no printed part the size of the {gear} of pair "
                                           f"'{pair}' (section {want:.0f} mm2; {len(parts)} printed "
-                                          f"part(s) at mid-height: {found} mm2): slice both gears of "
+                                          f"part(s) half-way up the teeth: {found} mm2): slice both gears of "
                                           "this pair (one plate, or the files of both plates)")
     best = None
     for part in near:       # nearest in area first; a plate may hold gears of other pairs
@@ -310,7 +310,7 @@ def run_gcode_check(gcode_files: list[Path], pair, samples: int | None, window: 
     read = gcode_sections(gcode_files, pair, samples, window)
     report = check_case(read.printed, NOMINAL, read.settings)
     law, _ = generation_law(pair.spec)
-    source = ("external perimeters of the mid-height layer, offset outward by half their "
+    source = ("external perimeters of the layer half-way up the teeth, offset outward by half their "
               "extrusion width, fitted into each gear's frame; poses start in the middle of the "
               "designed pair's play (SPEC §11)")
     summary = {"pair": pair.pair, "distance_mm": read.design.distance,

@@ -52,7 +52,7 @@ def require_sampling(samples: int | None, window: float | None, plot: Path | Non
 
 
 def read_written_pair(check: WrittenPairCheck) -> tuple[np.ndarray, np.ndarray]:
-    """Check the inputs and read both meshes' mid-thickness sections (mm, own frames)."""
+    """Check the inputs and read both meshes' sections half-way up their teeth (mm, own frames)."""
     from wheelstep_cli.formats.mesh_read import read_outline
 
     law = design_law(check.spec)

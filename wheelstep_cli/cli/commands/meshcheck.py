@@ -21,7 +21,7 @@ BandPrinter = Annotated[Optional[str], opt(
 Gcode = Annotated[Optional[List[Path]], opt(
     "--gcode", help="Check the pair as PrusaSlicer prints it: G-code of the pair (one plate, or "
                     "repeat --gcode for the files of both plates). The external perimeter of the "
-                    "mid-height layer, offset by half its width, is each printed outline; the "
+                    "layer half-way up the teeth, offset by half its width, is each printed outline; the "
                     "design (law, installed distance) comes from the plate(s) it was sliced from: "
                     "PINION [WHEEL] name them, else FILE.3mf beside each FILE.gcode; or from "
                     "the two meshes named (PINION.stl WHEEL.stl) and the design options. A print's "
@@ -136,7 +136,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
                                           "pinion and the wheel of one pair")
     spec = design_spec(design)
     check = WrittenPairCheck(pinion, wheel, spec, samples, window, plot)
-    show.parameters(vars(spec))
+    show.parameters(vars(spec), design["profile"])
     chosen = band_printer_of(*band)
     outlines = read_written_pair(check)
     report, summary = with_progress(not quiet, "meshing check", run_written_pair_check, check,
