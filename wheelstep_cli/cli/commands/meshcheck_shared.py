@@ -40,6 +40,8 @@ def same_file(first: str, second: str) -> bool:
 
     try:
         a, b = Path(first), Path(second)
+        if not (a.is_file() and b.is_file()):
+            return False
         return a.resolve() == b.resolve() or (
             a.stat().st_size == b.stat().st_size and a.read_bytes() == b.read_bytes())
     except OSError:
