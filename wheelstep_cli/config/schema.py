@@ -65,6 +65,12 @@ def dotted(path: Iterable) -> str:
     return out
 
 
+def nearest_name(name: str, known: Iterable[str]) -> str | None:
+    """The known name closest to a mistyped one (for "did you mean"), or None."""
+    near = difflib.get_close_matches(name, list(known), n=1)
+    return near[0] if near else None
+
+
 def show(value: Any) -> str:
     """A value as an error line shows it: text quoted, numbers short, and a long mapping or
     list (a JSON report given as a batch file, say) by what it is, not dumped whole."""
@@ -197,8 +203,8 @@ def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) ->
         return Issue(doc.where(loc[:-1]), dotted(loc[:-1]), f"needs the key '{loc[-1]}'")
     if kind == "extra_forbidden":
         allowed = allowed_keys(model, tuple(error["loc"][:-1]))
-        near = difflib.get_close_matches(str(loc[-1]), allowed, n=1)
-        hint = f"did you mean {near[0]}? " if near else ""
+        near = nearest_name(str(loc[-1]), allowed)
+        hint = f"did you mean {near}? " if near else ""
         return Issue(doc.where(loc), dotted(loc), f"unknown key; {hint}allowed: " + ", ".join(allowed))
     cause = error.get("ctx", {}).get("error")
     if isinstance(cause, DesignError):

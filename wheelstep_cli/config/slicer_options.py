@@ -13,7 +13,6 @@ PrusaSlicer itself (see ``tests/helpers/prusa_options.py``).
 
 from __future__ import annotations
 
-import difflib
 import functools
 import importlib.resources
 import json
@@ -21,7 +20,7 @@ import math
 import re
 from typing import Any
 
-from wheelstep_cli.config.schema import show
+from wheelstep_cli.config.schema import nearest_name, show
 
 #: Keys wheelstep writes from the printer section itself (a slicer value would contradict it).
 FROM_PRINTER = {"bed_shape": "printer.bed", "max_print_height": "printer.max_height",
@@ -117,8 +116,8 @@ def slicer_problems(settings: dict[str, Any], technology: str) -> list[tuple[str
         if key in FROM_PRINTER and key in known:
             problems.append((key, f"is set by {FROM_PRINTER[key]} of this profile; give it there"))
         elif key not in known:
-            near = difflib.get_close_matches(key, known, n=1)
-            hint = f"; did you mean {near[0]}?" if near else ""
+            near = nearest_name(key, known)
+            hint = f"; did you mean {near}?" if near else ""
             what = "FDM" if technology == "fdm" else "resin (SLA)"
             problems.append((key, f"not a PrusaSlicer option of {what} printers{hint}"))
         elif (limit := _limit(known[key], value)) is not None:

@@ -88,7 +88,8 @@ def meshing_record(report: MeshingReport) -> dict:
             **report.to_dict()}
 
 
-def _fmt(value, spec: str) -> str:
+def figure_text(value, spec: str) -> str:
+    """A figure formatted by ``spec``, or "n/a" when it was not measured (None)."""
     return "n/a" if value is None else format(value, spec)
 
 
@@ -99,10 +100,10 @@ def flank_line(side: str, flank: dict, own: float = 0.0) -> str:
     ripple = flank["hub_speed_ripple_pct"]
     beyond = (f"; {max(0.0, ripple - own):.2f} % beyond the law's own {own:.2f} %"
               if ripple is not None and own > 0.01 else "")
-    return (f"{side} flank: F'i {_fmt(flank['F_i_total_um'], '.1f')} um, "
-            f"f'i {_fmt(flank['f_i_tooth_um'], '.1f')} um, hub speed ripple "
-            f"{_fmt(ripple, '.2f')} % (3 tooth harmonics{beyond}), "
-            f"largest TE step {_fmt(flank['te_max_step_um'], '.1f')} um")
+    return (f"{side} flank: F'i {figure_text(flank['F_i_total_um'], '.1f')} um, "
+            f"f'i {figure_text(flank['f_i_tooth_um'], '.1f')} um, hub speed ripple "
+            f"{figure_text(ripple, '.2f')} % (3 tooth harmonics{beyond}), "
+            f"largest TE step {figure_text(flank['te_max_step_um'], '.1f')} um")
 
 
 def _out_of_phase_cause(summary: dict) -> str:
@@ -130,19 +131,19 @@ def meshing_lines(summary: dict) -> list[str]:
         lines.append("contact: LOST at some poses (teeth out of mesh in the drive direction)")
     lines.append("phase: in phase with the law" if summary["in_phase"] else
                  f"phase: OUT OF PHASE (the pair does not follow its law: {_out_of_phase_cause(summary)})")
-    lines.append(f"backlash: {_fmt(summary['backlash_min_mm'], '.3f')} .. "
-                 f"{_fmt(summary['backlash_max_mm'], '.3f')} mm on the wheel pitch curve "
-                 f"({_fmt(summary['backlash_min_arcmin'], '.1f')}' .. "
-                 f"{_fmt(summary['backlash_max_arcmin'], '.1f')}' at the wheel)")
+    lines.append(f"backlash: {figure_text(summary['backlash_min_mm'], '.3f')} .. "
+                 f"{figure_text(summary['backlash_max_mm'], '.3f')} mm on the wheel pitch curve "
+                 f"({figure_text(summary['backlash_min_arcmin'], '.1f')}' .. "
+                 f"{figure_text(summary['backlash_max_arcmin'], '.1f')}' at the wheel)")
     for side in ("drive", "coast"):
         lines.append(flank_line(side, summary[side], summary.get("law_hub_speed_ripple_pct", 0.0)))
     if "mounting" in summary:
         lines.append(mounting_line(summary["mounting"]))
-    lines.append(f"diagnostic: pointwise hub speed ripple {_fmt(summary['diagnostic_pointwise_ripple_pct'], '.2f')} % "
+    lines.append(f"diagnostic: pointwise hub speed ripple {figure_text(summary['diagnostic_pointwise_ripple_pct'], '.2f')} % "
                  f"(drive side, grows with the sampling; the law alone: "
                  f"{summary['law_hub_speed_ripple_pct']:.2f} %)")
     if summary["interference"]:
         lines.append(f"diagnostic: pointwise hub speed ripple where the teeth do not interfere "
                      f"({summary['clear_poses']} poses): "
-                     f"{_fmt(summary['diagnostic_pointwise_ripple_clear_pct'], '.2f')} %")
+                     f"{figure_text(summary['diagnostic_pointwise_ripple_clear_pct'], '.2f')} %")
     return lines

@@ -314,7 +314,7 @@ def _clearance_text(pair) -> str:
 
 def _gears_lines(pair, record: dict) -> list[str]:
     """Both parts, the generated teeth and the meshing check's figures of both flanks."""
-    from wheelstep_cli.parts.mesh_check import flank_line, mounting_line
+    from wheelstep_cli.parts.mesh_check import figure_text, flank_line, mounting_line
 
     lines = []
     for part in (pair.pinion, pair.wheel):
@@ -332,7 +332,8 @@ def _gears_lines(pair, record: dict) -> list[str]:
                      + _opening_text(pair)
                      + f", backlash j_n = {gen.cutter.backlash:.4g} mm" + _clearance_text(pair))
     lines.append(f"meshing at {pair.mounted_distance:g} mm: backlash "
-                 f"{_num(record, 'backlash_min_mm', '.3f')}..{_num(record, 'backlash_max_mm', '.3f')}"
+                 f"{figure_text(record['backlash_min_mm'], '.3f')}.."
+                 f"{figure_text(record['backlash_max_mm'], '.3f')}"
                  f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
                  f"hub speed ripple {record['law_hub_speed_ripple_pct']:.2f} %")
     own = record.get("law_hub_speed_ripple_pct", 0.0)
@@ -379,10 +380,6 @@ def _lighten_lines(pair) -> list[str]:
     return [f"lighten: {name} {saved[name]['pockets']} pockets, {saved[name]['volume_saved_cm3']:.1f} "
             f"cm3 / {saved[name]['mass_saved_g']:.1f} g saved ({saved['density_from']})"
             for name in ("pinion", "wheel")]
-
-
-def _num(record: dict, key: str, fmt: str) -> str:
-    return "n/a" if record[key] is None else format(record[key], fmt)
 
 
 def register(app) -> None:

@@ -162,10 +162,8 @@ def warn_of_the_figures(show: Output, record: dict) -> None:
                      "(FDM about +-0.05 mm)")
     if record["interference"]:
         from wheelstep_cli.parts.interference_refusals import interference_phrase
+        from wheelstep_cli.parts.mesh_check import figure_text
 
+        clear = figure_text(record["diagnostic_pointwise_ripple_clear_pct"], ".2f")
         show.warning(f"WARNING: {interference_phrase(record)}; pointwise hub speed ripple where they "
-                     f"do not (diagnostic): {_number(record['diagnostic_pointwise_ripple_clear_pct'])} %")
-
-
-def _number(value) -> str:
-    return "n/a" if value is None else f"{value:.2f}"
+                     f"do not (diagnostic): {clear} %")
