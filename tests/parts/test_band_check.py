@@ -30,3 +30,9 @@ def test_zero_clearance_jams_at_the_fdm_tight_corner(zero_backlash):
     record = band_record(sections, band, "fdm-0.4-pla", nominal, FEW, cases=(tight,))
     assert record["cases"][0]["case"] == "tight"
     assert record["jams"] and record["cases"][0]["jams"]
+    # where rigid teeth cannot go there is no backlash or TE to give: none, and the band's
+    # least backlash is none (0), not a penetration estimate
+    case = record["cases"][0]
+    assert case["interfering_poses"] > 0 and case["max_penetration_mm"] > 0
+    assert case["backlash_min_mm"] is None and case["backlash_max_mm"] is None
+    assert record["least_backlash_mm"] == 0.0

@@ -98,8 +98,9 @@ OFFSET_THIN = 5e-4
 
 
 def case_settings(settings: MeshingSettings) -> MeshingSettings:
-    """``settings`` for a band case: its record gives jam, poses and depth, not the area."""
-    return replace(settings, overlap_area=False)
+    """``settings`` for a band case: its record gives jam, poses and depth, not the area, and
+    no contacts where the teeth overlap."""
+    return replace(settings, overlap_area=False, contacts_where_jammed=False)
 
 
 def check_case(sections: SectionedPair, case: BandCase,
@@ -182,6 +183,10 @@ def case_record(case: BandCase, report: MeshingReport) -> dict:
     """What the band report says of one case (mm, um, %)."""
     summary = report.to_dict()
     flank = ("F_i_total_um", "f_i_tooth_um", "hub_speed_ripple_pct")
+    if summary["interference"]:
+        # searched only where the teeth clear (case_settings): a backlash over those poses
+        # alone would read as the play of a pair that does not turn
+        summary.update(backlash_min_mm=None, backlash_max_mm=None)
     return {"case": case.name, "pinion_offset_mm": case.pinion_offset,
             "wheel_offset_mm": case.wheel_offset, "distance_mm": summary["distance_mm"],
             "jams": jams(summary), "interference": summary["interference"],
@@ -203,7 +208,9 @@ def band_record(sections: SectionedPair, band, printer_name: str, nominal: Meshi
     for case in cases:
         report = (known or {}).get(case.name) or check_case(sections, case, case_settings(settings))
         records.append({**case_record(case, report), **jam_record(report, sections.law)})
-    least = [r["backlash_min_mm"] for r in records if r["backlash_min_mm"] is not None]
+    # a case that jams has no backlash somewhere: the band's least is then none (0)
+    least = [0.0 if r["jams"] else r["backlash_min_mm"] for r in records
+             if r["jams"] or r["backlash_min_mm"] is not None]
     largest = [r["backlash_max_mm"] for r in records if r["backlash_max_mm"] is not None]
     return {"printer": printer_name,
             "band": {"outline_mm": band.outline, "hole_shrink_mm": band.hole_shrink,

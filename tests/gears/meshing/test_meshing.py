@@ -138,6 +138,29 @@ def test_without_the_overlap_area_the_rest_of_an_interfering_report_is_the_same(
     assert np.isnan(bare.overlap_area).all() and bare.to_dict()["max_overlap_area_mm2"] is None
 
 
+def test_without_contacts_where_jammed_only_the_jammed_poses_lose_their_contacts(spur_pair):
+    """The band's cases search contacts only where the teeth clear: the poses that overlap
+    get NaN rotations, every other pose, the interference and the depth stay bit for bit."""
+    pinion, wheel = spur_pair
+    # one pinion tooth 0.6 mm longer (past the 0.5 mm tip clearance): it jams where it meshes
+    radius, angle = np.hypot(*pinion.T), np.arctan2(pinion[:, 1], pinion[:, 0])
+    rp = M * Z1 / 2.0
+    grow = (np.abs(angle) < np.pi / Z1) & (radius > rp)
+    radius = radius + np.where(grow, 0.6 * (radius - rp) / M, 0.0)
+    long_tooth = np.column_stack([radius * np.cos(angle), radius * np.sin(angle)])
+    law, a = spur_transmission(Z1, Z2), M * (Z1 + Z2) / 2.0
+    plain = MeshingSettings(samples=240, overlap_area=False)
+    full = check_meshing(long_tooth, wheel, law, a, plain)
+    bare = check_meshing(long_tooth, wheel, law, a, replace(plain, contacts_where_jammed=False))
+    jammed = full.interference
+    assert 0 < jammed.sum() < len(jammed)
+    assert np.array_equal(bare.interference, jammed) and np.array_equal(bare.penetration, full.penetration)
+    for name in ("phi_drive", "phi_coast"):
+        assert np.isnan(getattr(bare, name)[jammed]).all()
+        np.testing.assert_array_equal(getattr(bare, name)[~jammed], getattr(full, name)[~jammed])
+    assert bare.to_dict()["backlash_min_mm"] > 0 > full.to_dict()["backlash_min_mm"]
+
+
 def _bar_and_plates():
     """Wheel: a bar 2 mm wide from its axis to 22 mm out; pinion: plates above and below it."""
     bar = np.array([[0.0, -1.0], [22.0, -1.0], [22.0, 1.0], [0.0, 1.0]])

@@ -94,12 +94,14 @@ class MeshingReport:
         only means "at this sampling".
         """
         te = self.transmission_error
-        return float(np.nanmax(np.abs(np.diff(np.append(te, te[:1])))))
+        return _most(np.abs(np.diff(np.append(te, te[:1]))))
 
     @property
     def hub_speed_ripple(self) -> float:
         """Pointwise peak-to-peak over mean of the hub speed from the drive-side contact
         (fraction): a diagnostic that grows with the sampling (SPEC §10)."""
+        if np.all(np.isnan(self.hub_speed)):
+            return float("nan")
         return _peak_to_peak(self.hub_speed) / float(np.nanmean(self.hub_speed))
 
     @property
@@ -148,10 +150,10 @@ class MeshingReport:
             "max_overlap_area_mm2": _nan_none(float(np.max(self.overlap_area))),
             "max_penetration_mm": float(self.penetration.max()),
             "contact_lost": self.contact_lost,
-            "backlash_min_arcmin": _nan_none(np.nanmin(self.backlash) * arcmin),
-            "backlash_max_arcmin": _nan_none(np.nanmax(self.backlash) * arcmin),
-            "backlash_min_mm": _nan_none(np.nanmin(self.backlash_mm)),
-            "backlash_max_mm": _nan_none(np.nanmax(self.backlash_mm)),
+            "backlash_min_arcmin": _nan_none(_least(self.backlash) * arcmin),
+            "backlash_max_arcmin": _nan_none(_most(self.backlash) * arcmin),
+            "backlash_min_mm": _nan_none(_least(self.backlash_mm)),
+            "backlash_max_mm": _nan_none(_most(self.backlash_mm)),
             "drive": drive,
             "in_phase": self._in_phase(drive),
             "coast": _flank_dict(self.coast, (self.phi_coast - self.phi_law) * arcmin),
@@ -173,16 +175,24 @@ def _flank_dict(figures: FlankFigures, te_arcmin: np.ndarray) -> dict:
         "f_i_tooth_um": _nan_none(figures.tooth_um),
         "hub_speed_ripple_pct": _nan_none(100.0 * figures.ripple),
         "te_max_step_um": _nan_none(figures.max_step_um),
-        "te_min_arcmin": _nan_none(np.nanmin(te_arcmin)),
-        "te_max_arcmin": _nan_none(np.nanmax(te_arcmin)),
+        "te_min_arcmin": _nan_none(_least(te_arcmin)),
+        "te_max_arcmin": _nan_none(_most(te_arcmin)),
     }
 
 
 def _peak_to_peak(values: np.ndarray) -> float:
     """Greatest minus least value, NaNs ignored (NaN when all are)."""
-    if np.all(np.isnan(values)):
-        return float("nan")
-    return float(np.nanmax(values) - np.nanmin(values))
+    return _most(values) - _least(values)
+
+
+def _least(values: np.ndarray) -> float:
+    """The least value, NaNs ignored (NaN when all are: a check that searched no pose)."""
+    return float("nan") if np.all(np.isnan(values)) else float(np.nanmin(values))
+
+
+def _most(values: np.ndarray) -> float:
+    """The greatest value, NaNs ignored (NaN when all are)."""
+    return float("nan") if np.all(np.isnan(values)) else float(np.nanmax(values))
 
 
 def _nan_none(value: float) -> float | None:

@@ -166,17 +166,17 @@ def batch_contacts(pair: Pair, theta: np.ndarray, phi: np.ndarray,
     """Contacts and interference of a batch of poses (pinion ``theta``, wheel ``phi``, rad)."""
     poses, reach = len(theta), settings.reach
     sides = posed_sides(pair, theta, phi, reach)
-    # first only rotations within the reach: exact wherever a contact lies that close; the
-    # other poses again without the limit
-    back, fwd, unsettled = _pose_minima(sides, poses, reach, np.ones(poses, dtype=bool),
-                                        settings.max_pairs)
-    redo = unsettled | ~(back <= reach) | ~(fwd <= reach)
-    if redo.any():
-        back_all, fwd_all, _ = _pose_minima(sides, poses, np.inf, redo, settings.max_pairs)
-        back[redo], fwd[redo] = back_all[redo], fwd_all[redo]
     interference = np.zeros(poses, dtype=bool)
     for side in sides:
         interference[side.verts.v_pose[side.inside]] = True
+    searched = np.ones(poses, dtype=bool) if settings.contacts_where_jammed else ~interference
+    # first only rotations within the reach: exact wherever a contact lies that close; the
+    # other poses again without the limit
+    back, fwd, unsettled = _pose_minima(sides, poses, reach, searched, settings.max_pairs)
+    redo = searched & (unsettled | ~(back <= reach) | ~(fwd <= reach))
+    if redo.any():
+        back_all, fwd_all, _ = _pose_minima(sides, poses, np.inf, redo, settings.max_pairs)
+        back[redo], fwd[redo] = back_all[redo], fwd_all[redo]
     area = np.zeros(poses) if settings.overlap_area else np.full(poses, np.nan)
     deepest = np.zeros(poses)
     if interference.any() and settings.overlap_area:

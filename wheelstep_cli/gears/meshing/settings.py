@@ -88,6 +88,12 @@ class MeshingSettings:
     """Measure each interfering pose's overlapping area (mm^2; False: not measured, the
     report gives none). The band's cases report depth and poses, not the area."""
 
+    contacts_where_jammed: bool = True
+    """Search the contacts of the poses whose outlines overlap at the start pose too (False:
+    none there, their rotations to contact are NaN). Where rigid teeth cannot go the
+    rotations are only penetration estimates: the band's cases report jam, poses and depth
+    there, and give backlash and TE only where the teeth clear."""
+
     threads: int = THREADS
     """Threads (count) sharing the batches; each fills its own slice of the result.
     Search only: speed, not results."""
