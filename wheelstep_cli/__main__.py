@@ -4,6 +4,7 @@ The CLI is imported inside :func:`main`, so that Ctrl-C while its libraries load
 shapely, manifold3d: about half a second) ends in one line, not a traceback.
 """
 
+import gc
 import sys
 
 
@@ -14,6 +15,8 @@ def main() -> None:
     except KeyboardInterrupt:                 # nothing started, nothing written
         print("wheelstep: aborted", file=sys.stderr)
         sys.exit(130)
+    # what the imports made lives as long as the process: the collector need not walk it again
+    gc.freeze()
     run_cli()
 
 

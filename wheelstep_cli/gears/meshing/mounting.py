@@ -62,8 +62,8 @@ def least_separation(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw
     """(least separation mm, pinion angle rad where it occurs) of two closed outlines (N, 2)
     mm in their own frames over one period of ``law``, wheel axis at ``distance`` mm (the
     meshing check's convention, SPEC §10): ``samples`` poses, then the ``refine`` closest
-    of them again at 8 poses either side between their neighbours (a tip passing a root
-    is closest for a fraction of a sample step). Only the parts within ``half_height`` mm
+    of them again at 7 poses either side between their neighbours, eighths of a step apart
+    (a tip passing a root is closest for a fraction of a sample step). Only the parts within ``half_height`` mm
     of the line of centres take part (None: a quarter of the smaller outer radius, the
     meshing check's window). 0 when they touch or overlap; less the thinning's
     error (twice :data:`THIN`), so never more than the true gap."""
@@ -73,8 +73,11 @@ def least_separation(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw
     step = law.theta_period / samples
     theta = step * np.arange(samples)
     coarse = _gaps_over(pinion, wheel, law, distance, half_height, theta, np.inf)
-    fine = (theta[np.argsort(coarse)[:refine]][:, None]
-            + step * np.linspace(-1.0, 1.0, 17)[None, :]).ravel()
+    # on a grid of eighths of a step, each pose once: neighbouring candidates share the poses
+    # between them, and the coarse poses are measured already
+    eighths = (8 * np.argsort(coarse)[:refine][:, None] + np.arange(-7, 8)[None, :]).ravel()
+    eighths = np.unique(eighths[eighths % 8 != 0])
+    fine = step * eighths / 8.0
     fine_gaps = _gaps_over(pinion, wheel, law, distance, half_height, fine, float(coarse.min()))
     every, at = np.concatenate([coarse, fine_gaps]), np.concatenate([theta, fine])
     k = int(np.argmin(every))
