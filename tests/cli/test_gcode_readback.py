@@ -192,6 +192,13 @@ def test_the_design_may_come_from_the_two_meshes_and_the_design_options(cli, sli
     result = cli("mesh-check", "--gcode", folder / "gears-1.gcode", folder / "pinion.stl",
                  folder / "wheel.stl", "--pair", "gears")
     assert "--pair = gears: picks a pair on plates" in error_line(result)
+    # the same mesh twice: the one-line refusal of `mesh-check PINION WHEEL`, before any G-code is read
+    twice = (folder / "wheel.stl", folder / "wheel.stl")
+    line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode",
+                          folder / "gears-2.gcode", *twice))
+    assert line.startswith(f"wheelstep: error: wheel = {folder / 'wheel.stl'}: is the same mesh as the "
+                           "pinion"), line
+    assert line == error_line(cli("mesh-check", *twice))
 
 
 def test_the_layer_read_is_half_way_up_the_named_meshes_tooth_zone(cli, sliced, tmp_path):

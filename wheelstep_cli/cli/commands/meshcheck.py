@@ -123,6 +123,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
                   band: tuple = (False, None)) -> bool:
     """Two meshes named on the command line, the design from the options; with
     ``band`` = (--tolerance, --printer) also over the printer's band (SPEC §11)."""
+    from wheelstep_cli.cli.commands.meshcheck_shared import require_two_meshes
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.gear_laws import installed_distance
@@ -131,9 +132,7 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
 
     if pair is not None:
         raise DesignError("pair", pair, "picks a pair on plates; give one or two 3MF plates")
-    if _same_mesh(pinion, wheel):
-        raise DesignError("wheel", wheel, f"is the same mesh as the pinion ({pinion}): give the "
-                                          "pinion and the wheel of one pair")
+    require_two_meshes(pinion, wheel)
     spec = design_spec(design)
     check = WrittenPairCheck(pinion, wheel, spec, samples, window, plot)
     show.parameters(vars(spec), design["profile"])
@@ -180,22 +179,6 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
     return failed
 
 
-def _same_mesh(pinion: str, wheel: str | None) -> bool:
-    """Whether the two mesh arguments name one mesh: the same file (or object of a 3MF), or
-    two files of identical content. Checking a part against itself cannot give a meshing
-    figure, and its sections overlap everywhere: refused before any work."""
-    from wheelstep_cli.cli.commands.meshcheck_shared import same_file
-
-    if wheel is None:
-        return False
-    (p_file, p_obj), (w_file, w_obj) = (_split(pinion), _split(wheel))
-    return p_obj == w_obj and same_file(p_file, w_file)
-
-
-def _split(given: str) -> tuple[str, str]:
-    """FILE.3mf:NAME -> (FILE.3mf, NAME); any other argument -> (it, "")."""
-    head, sep, tail = given.rpartition(":")
-    return (head, tail) if sep and head.lower().endswith(".3mf") else (given, "")
 
 
 def summary_files(summary: dict) -> tuple[str, str]:

@@ -65,7 +65,7 @@ def _designs(args: list[str], gcode: list[Path], pair, design: dict, poses: tupl
     design the options give, checked for it as plain ``mesh-check`` checks them (``poses`` =
     (samples, window)), else plates (the design from their metadata; default FILE.3mf
     beside each FILE.gcode)."""
-    from wheelstep_cli.cli.commands.meshcheck_shared import design_spec, no_design_options
+    from wheelstep_cli.cli.commands.meshcheck_shared import design_spec, no_design_options, require_two_meshes
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.gcode_check import default_plates, mesh_pair
     from wheelstep_cli.parts.plate_pairs import find_plate_pairs, is_plate_input
@@ -73,6 +73,7 @@ def _designs(args: list[str], gcode: list[Path], pair, design: dict, poses: tupl
     if len(args) == 2 and not is_plate_input(*args):
         if pair is not None:
             raise DesignError("pair", pair, "picks a pair on plates; the meshes named are one pair")
+        require_two_meshes(*args)
         return [mesh_pair(args[0], args[1], design_spec(design), *poses)]
     no_design_options(design)
     if args or len(gcode) != 1:

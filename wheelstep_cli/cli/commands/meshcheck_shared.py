@@ -48,6 +48,19 @@ def same_file(first: str, second: str) -> bool:
         return False
 
 
+def require_two_meshes(pinion: str, wheel: str) -> None:
+    """Refuse (naming the wheel) two mesh arguments that name one mesh: the same file (or
+    object of a 3MF), or two files of identical content. A part checked against itself gives
+    no meshing figure, its sections overlapping everywhere."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.formats.mesh_read import split_mesh_spec
+
+    (p_file, p_obj), (w_file, w_obj) = split_mesh_spec(pinion), split_mesh_spec(wheel)
+    if p_obj == w_obj and same_file(str(p_file), str(w_file)):
+        raise DesignError("wheel", wheel, f"is the same mesh as the pinion ({pinion}): give the "
+                                          "pinion and the wheel of one pair")
+
+
 def band_printer_of(tolerance: bool, printer):
     """The printer whose band --tolerance checks (None: no band check); --printer alone is
     refused (it only says whose band)."""
