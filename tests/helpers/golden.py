@@ -36,7 +36,7 @@ CASES: dict[str, list[str]] = {
     "gears-default": ["gears", "--z", "48", "--out", "out"],
     "gears-desk-demo": ["gears", "--profile", "desk-demo", "--out", "out"],
     "gears-z24": ["gears", "--z", "24", "--out", "out"],
-    "gears-turns4-z24": ["gears", "--turns", "4", "--z", "24", "--out", "out"],
+    "gears-turns4-z32": ["gears", "--turns", "4", "--z", "32", "--out", "out"],
     "gears-paper": ["gears", "--teeth", "paper", "--allow-interference", "--out", "out"],
     "shoe-default": ["shoe", "--out", "out"],
     "shoe-desk-demo": ["shoe", "--profile", "desk-demo", "--out", "out"],

@@ -117,10 +117,16 @@ def test_a_window_narrower_than_the_default_is_refused_before_any_pose(paper_pai
 def test_blend_10_is_checked_against_the_blended_law_and_written(cli, tmp_path):
     # the pair is cut for the blended law and checked against it, with the design's own
     # default backlash (measured on the blended law the play looked free and the default
-    # doubled to 0.52 mm, which cost F'i 17 um): written at z = 48 within the bounds (issue 13)
+    # doubled to 0.52 mm, which cost F'i 17 um). At z = 48 its f'i, measured with the peaks
+    # between poses, is above the bound: refused, and the remedy it names, applied, writes
+    # the pair within the bounds (issue 13)
     from wheelstep_cli.parts.mesh_bounds import bound_violations
 
-    result = cli("gears", "--z", "48", "--blend", "10", "--format", "stl", "--out", tmp_path)
+    refused = error_line(cli("gears", "--z", "48", "--blend", "10", "--format", "stl", "--out", tmp_path))
+    assert "f'i" in refused and "> 10 um" in refused and "; nothing written; use --z " in refused, refused
+    z = refused.rsplit("use --z ", 1)[1]
+    assert not (tmp_path / "gears.json").exists()
+    result = cli("gears", "--z", z, "--blend", "10", "--format", "stl", "--out", tmp_path)
     assert result.exit_code == 0, result.stderr
     report = json.loads((tmp_path / "gears.json").read_text())
     meshing = report["meshing"]

@@ -326,7 +326,7 @@ def test_pilot_narrowed_reach_changes_nothing(case, margin, spur_pair, paper_pai
     import wheelstep_cli.gears.meshing.check as check
 
     pinion, wheel, args = _case(case, spur_pair, paper_pair)
-    base = MeshingSettings(samples=48, pilot=8, pilot_margin=margin)
+    base = MeshingSettings(samples=48, pilot=8, pilot_margin=margin, peak_rounds=0)   # the pilot alone
     reaches = []
     searched = check.batch_contacts
 

@@ -15,6 +15,7 @@ import numpy as np
 from wheelstep_cli.errors import require, rounded_up
 from wheelstep_cli.gears.meshing.figures import BAND_HARMONICS, Track, count_teeth, pitch_arc
 from wheelstep_cli.gears.meshing.outlines import MeshWindow
+from wheelstep_cli.gears.meshing.peaks import PeakPoses, error_um, refine_peaks
 from wheelstep_cli.gears.meshing.report import MeshingReport
 from wheelstep_cli.gears.meshing.search import Pair, PoseContacts, batch_contacts, prepare
 from wheelstep_cli.gears.meshing.settings import MeshingSettings, default_samples
@@ -83,7 +84,58 @@ def check_meshing(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw, d
     batch = max(1, min(settings.batch, settings.batch_points // (len(pinion) + len(wheel))))
     slices = [slice(lo, min(lo + batch, samples)) for lo in range(0, samples, batch)]
     contacts = _search(make_pair, theta, phi_start, slices, settings, progress)
-    return _report(law, theta, (phi_law, phi_start), contacts, float(distance), start, teeth)
+    report = _report(law, theta, (phi_law, phi_start), contacts, float(distance), start, teeth)
+    if settings.peak_rounds <= 0:
+        return report
+    return replace(report, peaks=_peaks(report, law, settings, _contacts_at(make_pair(), law, settings,
+                                                                             start_offset)))
+
+
+def _contacts_at(pair: Pair, law: TransmissionLaw, settings: MeshingSettings,
+                 start_offset: Callable[[np.ndarray], np.ndarray] | None):
+    """A function of pinion angles (rad) giving (the law's wheel angle, drive-side and
+    coast-side contact angles) there, rad; NaN where the teeth overlap or none was found."""
+    def contacts_at(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        phi_law = np.asarray(law.carrier_angle(theta), dtype=float)
+        phi_start = phi_law if start_offset is None else phi_law + np.asarray(start_offset(theta), float)
+        found = [batch_contacts(pair, theta[lo:lo + settings.batch], phi_start[lo:lo + settings.batch],
+                                settings) for lo in range(0, len(theta), settings.batch)]
+        back, fwd = (np.concatenate([getattr(f, name) for f in found]) for name in ("back", "fwd"))
+        clear = ~np.concatenate([f.interference for f in found])
+        drive = np.where(clear & np.isfinite(back), phi_start - back, np.nan)
+        coast = np.where(clear & np.isfinite(fwd), phi_start + fwd, np.nan)
+        return phi_law, drive, coast
+    return contacts_at
+
+
+def _peaks(report: MeshingReport, law: TransmissionLaw, settings: MeshingSettings,
+           contacts_at) -> PeakPoses | None:
+    """The poses measured round the TE's extremes that could raise F'i or f'i
+    (gears.meshing.peaks), None when there are none."""
+    period, distance = float(report.period), report.distance
+    sides = {"drive": "phi_drive", "coast": "phi_coast"}
+    te = {flank: getattr(report, side) - report.phi_law for flank, side in sides.items()}
+    means = {flank: float(np.mean(values)) for flank, values in te.items()}
+    errors = {flank: error_um(values, report.pitch_radius, means[flank]) for flank, values in te.items()}
+    rows = []
+
+    def measure(theta: np.ndarray) -> dict[str, np.ndarray]:
+        phi_law, drive, coast = contacts_at(theta)
+        radius = distance / (1.0 + _law_rate(law, theta))
+        rows.append((theta, phi_law, drive, coast, radius))
+        return {flank: error_um(angle - phi_law, radius, means[flank])
+                for flank, angle in (("drive", drive), ("coast", coast))}
+
+    refine_peaks(report.theta, errors, report.track, settings.peak_rounds, measure)
+    if not rows:
+        return None
+    theta, phi_law, drive, coast, radius = (np.concatenate(column) for column in zip(*rows))
+    # the arc along the wheel pitch curve, taken back into the period the poses began
+    start = float(report.theta[0])
+    at = start + np.mod(theta - start, period)
+    arc = np.interp(at, np.append(report.theta, start + period),
+                    np.append(report.track.arc, report.track.arc_total))
+    return PeakPoses(theta, phi_law, drive, coast, radius, arc)
 
 
 def default_pose_count(law: TransmissionLaw, teeth: int) -> int:

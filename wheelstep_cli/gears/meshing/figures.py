@@ -60,19 +60,33 @@ class FlankFigures:
     max_step_um: float
 
 
-def flank_figures(te: np.ndarray, track: Track) -> FlankFigures:
-    """The figures of a flank side whose TE (rad at the wheel, per pose) is ``te``."""
+def flank_figures(te: np.ndarray, track: Track, between: tuple | None = None) -> FlankFigures:
+    """The figures of a flank side whose TE (rad at the wheel, per pose) is ``te``.
+
+    ``between`` = (TE rad, pitch radius mm, arc mm) at poses measured between the equal
+    steps (gears.meshing.peaks): F'i and f'i take them too (NaN ones left out); the ripple
+    and the largest step are of the equal steps.
+    """
     nan = float("nan")
     if not np.all(np.isfinite(te)):
         return FlankFigures(np.full(len(te), nan), nan, nan, nan, nan)
     # the mean is removed from the angle: a constant angular offset (backlash, thinning)
     # times the varying pitch radius is no position error
-    e = 1000.0 * track.pitch_radius * (te - float(np.mean(te)))
+    mean_te = float(np.mean(te))
+    e = 1000.0 * track.pitch_radius * (te - mean_te)
     low, rate = band_limited(te, track.harmonics, track.period)
     v = np.asarray(track.factor(track.phi_law + low), dtype=float) * (track.law_rate + rate)
     mean = float(np.mean(v))
-    return FlankFigures(e, float(np.ptp(e)),
-                        window_peak_to_peak(e, track.arc, track.arc_total, track.pitch),
+    every, arc = e, track.arc
+    if between is not None:
+        te_b, radius_b, arc_b = between
+        e_b = 1000.0 * radius_b * (te_b - mean_te)
+        kept = np.isfinite(e_b)
+        every, arc = np.concatenate([e, e_b[kept]]), np.concatenate([track.arc, arc_b[kept]])
+        order = np.argsort(arc, kind="stable")
+        every, arc = every[order], arc[order]
+    return FlankFigures(e, float(np.ptp(every)),
+                        window_peak_to_peak(every, arc, track.arc_total, track.pitch),
                         float(np.ptp(v)) / mean if mean > 0 else nan,
                         float(np.max(np.abs(np.diff(np.append(e, e[:1]))))))
 

@@ -11,6 +11,7 @@ from functools import cached_property
 import numpy as np
 
 from wheelstep_cli.gears.meshing.figures import FlankFigures, Track, flank_figures
+from wheelstep_cli.gears.meshing.peaks import PeakPoses
 
 
 @dataclass(frozen=True)
@@ -43,16 +44,23 @@ class MeshingReport:
     teeth: int
     track: Track
     mounting: dict | None = None   # how much closer it may be mounted (parts.mesh_check), mm
+    peaks: PeakPoses | None = None  # poses measured between the equal steps round the TE's peaks
 
     @cached_property
     def drive(self) -> FlankFigures:
         """Figures of merit of the drive flank (SPEC §10): F'i, f'i, band-limited ripple."""
-        return flank_figures(self.transmission_error, self.track)
+        return flank_figures(self.transmission_error, self.track, self._between("phi_drive"))
 
     @cached_property
     def coast(self) -> FlankFigures:
         """Figures of merit of the coast flank (SPEC §10), its TE phi_coast - phi_law."""
-        return flank_figures(self.phi_coast - self.phi_law, self.track)
+        return flank_figures(self.phi_coast - self.phi_law, self.track, self._between("phi_coast"))
+
+    def _between(self, side: str) -> tuple | None:
+        """(TE rad, pitch radius mm, arc mm) of ``side`` at the peaks' poses, None without them."""
+        if self.peaks is None:
+            return None
+        return (getattr(self.peaks, side) - self.peaks.phi_law, self.peaks.pitch_radius, self.peaks.arc)
 
     @property
     def transmission_error(self) -> np.ndarray:
@@ -141,6 +149,7 @@ class MeshingReport:
         summary = {
             "distance_mm": self.distance,
             "samples": int(len(self.theta)),
+            "peak_poses": 0 if self.peaks is None else int(len(self.peaks.theta)),
             "period_deg": float(np.degrees(self.period)),
             "pinion_teeth": int(self.teeth),
             "tooth_pitch_mm": self.track.pitch,

@@ -94,6 +94,12 @@ class MeshingSettings:
     rotations are only penetration estimates: the band's cases report jam, poses and depth
     there, and give backlash and TE only where the teeth clear."""
 
+    peak_rounds: int = 4
+    """Bisection rounds (count) round each TE extreme that could raise F'i or f'i, between the
+    equal-step poses (gears.meshing.peaks): the handover kinks lie between poses, and read
+    off the poses alone the figures fall short of the continuous ones. 4 rounds pin a kink
+    to a sixteenth of the step. 0: the equal-step poses only."""
+
     threads: int = THREADS
     """Threads (count) sharing the batches; each fills its own slice of the result.
     Search only: speed, not results."""
