@@ -542,6 +542,25 @@ def test_profiles_given_as_absolute_paths_leave_no_folder_in_the_outputs(cli, tm
         assert str(tmp_path).encode() not in zf.read("3D/3dmodel.model")
 
 
+def test_two_profiles_of_one_file_name_are_refused_before_anything_is_written(cli, tmp_path):
+    """The outputs name profiles by file name (slicer settings FILE.ini, manifest, print sheet):
+    two printer files named alike, or a file named as a preset, would be written over."""
+    for sub in ("a", "b"):
+        (tmp_path / sub).mkdir()
+        write(tmp_path / sub / "shop.yaml", (ROOT / "profiles" / "fdm-0.4-pla.yaml").read_text())
+    write(tmp_path / "b" / "fdm-0.4-pla.yaml", (ROOT / "profiles" / "fdm-0.4-pla.yaml").read_text())
+    entry = "  - kind: shoe\n    design: desk-demo\n    printer: {}\n"
+    for first, second in (("a/shop.yaml", "b/shop.yaml"), ("fdm-0.4-pla", "b/fdm-0.4-pla.yaml")):
+        batch = write(tmp_path / "batch.yaml", "parts:\n" + entry.format(first) + entry.format(first)
+                      + entry.format(second))
+        out = tmp_path / "out"
+        line = error_line(cli("batch", batch, "--out", out))
+        assert line == (f"wheelstep: error: {batch}:{line_of(batch, second)}: parts[2].printer = '{second}': "
+                        f"names another file than '{first}' of the same name ({Path(second).stem}), and the "
+                        "outputs name profiles by file name: rename one of the two files"), line
+        assert not out.exists()
+
+
 def test_batch_refuses_teeth_too_thin_for_the_entrys_printer_with_a_remedy_that_prints(cli, tmp_path):
     """The desk demonstrator at z 44 on the PETG printer: its pinion's tip lands are under two
     0.4 mm lines, so the entry fails alone (exit 1) with the tooth count to use; the same

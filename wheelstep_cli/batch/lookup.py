@@ -43,6 +43,8 @@ class Profiles:
         self.folder = Path(batch_file).parent
         self.printers: dict[str, Printer | None] = {}
         self.designs: dict[str, tuple | None] = {}   # name -> (DesignProfile, file, sha256)
+        # the outputs name a profile by its file's stem (no folder): one stem, one file
+        self._stems: dict[tuple[bool, str], tuple[str, Path]] = {}
 
     def find(self, name: str, printer: bool | None = None) -> Path:
         """The file of profile ``name``; ``printer`` (True: a printer's, False: a design's)
@@ -61,6 +63,7 @@ class Profiles:
             cache[name] = None
             try:
                 file = self.find(name, printer=cache is self.printers)
+                self._one_file_a_stem(name, file, cache is self.printers)
                 cache[name] = (load(name, file, read_located_yaml(file, file_label(file))), file)
             except InvalidInput as err:
                 issues.extend(err.issues)
@@ -70,6 +73,16 @@ class Profiles:
                 else:
                     issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: {err.limit}"))
         return cache[name]
+
+    def _one_file_a_stem(self, name: str, file: Path, printer: bool) -> None:
+        """Refuse (DesignError) a profile whose file stem another file of its kind already has:
+        its slicer settings, manifest and print-sheet entries would be written over."""
+        key = (printer, Path(file).stem)
+        seen = self._stems.setdefault(key, (name, Path(file).resolve()))
+        if seen[1] != Path(file).resolve():
+            raise DesignError("profile", name, f"names another file than {show(seen[0])} of the same "
+                                               f"name ({Path(file).stem}), and the outputs name profiles "
+                                               "by file name: rename one of the two files")
 
     def printer(self, doc: LocatedYaml, path: tuple, name: str, issues: list[Issue]) -> Printer | None:
         found = self._lookup(doc, path, name, self.printers, issues, _load_printer)
