@@ -329,7 +329,7 @@ def test_a_pair_drawn_for_other_pinion_turns_is_told_which(cli, tmp_path):
     that law's pitch curve; the refusal says the two count as one pair's at n = 4 and to give
     -n 4 (it said to give the pinion of a gear pair); applied, the check passes."""
     out = tmp_path / "t4"
-    assert cli("gears", "--turns", "4", "--z", "24", "--format", "stl", "--out", out, "-q").exit_code == 0
+    assert cli("gears", "--turns", "4", "--z", "32", "--format", "stl", "--out", out, "-q").exit_code == 0
     meshes = [out / "pinion.stl", out / "wheel.stl"]
     line = error_line(cli("mesh-check", *meshes))
     assert line.endswith("but the two count as one pair's at 4: give -n 4"), line
