@@ -43,6 +43,12 @@ def test_batch_records_the_band_per_case_and_names_a_printer_without_one(cli, tm
     # the advice does not promise what --fit auto may refuse
     assert "says so when none within its limits does" in warning
     assert "has no dimensional band: add a `band:` section" in result.stderr
+    # the bare printer's pair alone: nothing jams, but it was never checked over a band
+    alone = write(tmp_path / "alone.yaml", "parts:\n"
+                  f"  - name: bare\n    kind: gear-pair\n    design: desk-demo\n    printer: {bare}\n")
+    assert cli("batch", alone, "--out", tmp_path / "alone", "--jobs", "1").exit_code == 0
+    checks = json.loads((tmp_path / "alone" / "manifest.json").read_text())["checks"]
+    assert checks["gear_pairs_mesh_over_printer_bands"] is None and len(checks["printers_without_band"]) == 1
 
 
 def test_no_tolerance_runs_no_band_check(cli, tmp_path):

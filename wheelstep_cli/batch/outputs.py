@@ -134,8 +134,11 @@ def _band_checks(built, results) -> dict:
     bands = [results[e.index].band for e in built if results[e.index].band is not None]
     if not bands:
         return {}
-    return {"gear_pairs_mesh_over_printer_bands": not any(b["jams"] for b in bands if b["checked"]),
-            "printers_without_band": sorted({b["printer"] for b in bands if not b["checked"]})}
+    jams = any(b["jams"] for b in bands if b["checked"])
+    unchecked = sorted({b["printer"] for b in bands if not b["checked"]})
+    # a pair whose printer states no band was not checked over one: not known to mesh (null)
+    return {"gear_pairs_mesh_over_printer_bands": False if jams else (None if unchecked else True),
+            "printers_without_band": unchecked}
 
 
 def manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
