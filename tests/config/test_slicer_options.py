@@ -47,6 +47,13 @@ def _printer(tmp_path, replaced: str, by: str):
      "slicer.fill_density = 'thirty': must be a percentage such as 15% (or a fraction such as 0.15)"),
     ("  perimeters: 3\n", "  perimeters: 3\n  bed_shape: 0x0,100x0,100x100,0x100\n", "bed_shape",
      "slicer.bed_shape: is set by printer.bed of this profile; give it there"),
+    # the meshes are drawn compensated: the slicer's own compensation would do it twice
+    ("  perimeters: 3\n", "  perimeters: 3\n  elefant_foot_compensation: 0.2\n", "elefant_foot",
+     "slicer.elefant_foot_compensation: would compensate again what the meshes are drawn compensated "
+     "for (printer.elephant_foot_inset of this profile); give it there"),
+    ("  perimeters: 3\n", "  perimeters: 3\n  xy_size_compensation: -0.1\n", "xy_size",
+     "slicer.xy_size_compensation: would compensate again what the meshes are drawn compensated "
+     "for (printer.hole_compensation and printer.tooth_clearance of this profile); give it there"),
     ("  perimeters: 3\n", "  perimeters: 3\n  exposure_time: 2\n", "exposure_time",
      "slicer.exposure_time: not a PrusaSlicer option of FDM printers"),
 ])

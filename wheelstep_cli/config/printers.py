@@ -204,8 +204,8 @@ class Printer:
         return max(self.margin, self.brim_width + skirt + line)
 
     def slicer_config(self) -> dict[str, Any]:
-        """PrusaSlicer's configuration of a plate: the bed (shape and height), skirt, brim,
-        then the profile's slicer settings (PrusaSlicer option names)."""
+        """PrusaSlicer's configuration of a plate: the bed (shape and height), skirt, brim, no
+        compensation of its own, then the profile's slicer settings (PrusaSlicer option names)."""
         x, y = self.bed
         config: dict[str, Any] = {"bed_shape": f"0x0,{x:g}x0,{x:g}x{y:g},0x{y:g}",
                                   "max_print_height": f"{self.max_height:g}"}
@@ -213,7 +213,10 @@ class Printer:
             config["printer_technology"] = "SLA"
         else:
             config.update(skirts=self.skirts, skirt_distance=f"{self.skirt_distance:g}",
-                          brim_width=f"{self.brim_width:g}")
+                          brim_width=f"{self.brim_width:g}", xy_size_compensation="0")
+        # the meshes are drawn compensated (foot, holes, teeth): a slicer preset's own
+        # compensation (PrusaSlicer's are often 0.2 mm) would do it twice
+        config["elefant_foot_compensation"] = "0"
         config.update(self.slicer)
         return config
 

@@ -27,6 +27,11 @@ FROM_PRINTER = {"bed_shape": "printer.bed", "max_print_height": "printer.max_hei
                 "skirts": "printer.skirts", "skirt_distance": "printer.skirt_distance",
                 "brim_width": "printer.brim_width", "printer_technology": "printer.technology"}
 
+#: Keys that would compensate in the slicer what the meshes are already drawn compensated for
+#: (twice over): the printer section's fields that do it instead.
+COMPENSATED = {"elefant_foot_compensation": "printer.elephant_foot_inset",
+               "xy_size_compensation": "printer.hole_compensation and printer.tooth_clearance"}
+
 #: One plain number as PrusaSlicer reads it (a sign, digits, a fraction, an exponent).
 _NUMBER = r"-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
 #: A value per extruder, comma-separated (spaces allowed after a comma).
@@ -115,6 +120,9 @@ def slicer_problems(settings: dict[str, Any], technology: str) -> list[tuple[str
     for key, value in settings.items():
         if key in FROM_PRINTER and key in known:
             problems.append((key, f"is set by {FROM_PRINTER[key]} of this profile; give it there"))
+        elif key in COMPENSATED and key in known:
+            problems.append((key, f"would compensate again what the meshes are drawn compensated for "
+                                  f"({COMPENSATED[key]} of this profile); give it there"))
         elif key not in known:
             near = nearest_name(key, known)
             hint = f"; did you mean {near}?" if near else ""
