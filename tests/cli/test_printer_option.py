@@ -186,16 +186,25 @@ def test_a_chamfer_too_small_to_replace_the_foot_is_refused(cli, tmp_path, comma
 
 
 def test_the_backlash_line_says_how_the_printers_clearance_makes_it_up(cli):
+    """A backlash the design sets gets the printer's tooth clearance on top; a default one (the
+    most play the ripple bound allows) holds it, and the line says what play is left printed."""
     import re
 
-    result = cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--dry-run")
+    result = cli("gears", "--profile", "desk-demo", "--backlash", "0.05", "--printer", "fdm-0.4-pla",
+                 "--dry-run")
     assert result.exit_code == 0, result.stderr
     found = re.search(r"backlash j_n = ([0-9.]+) mm \(([0-9.]+) designed \+ 0\.15 tooth clearance of "
                       r"printer 'fdm-0.4-pla'\)", result.stdout)
     assert found, result.stdout
-    assert float(found[1]) == pytest.approx(float(found[2]) + 0.15, abs=1e-4)
+    assert float(found[1]) == pytest.approx(0.2, abs=1e-4) and float(found[2]) == pytest.approx(0.05)
+    default = cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--dry-run")
+    found = re.search(r"backlash j_n = ([0-9.]+) mm \(the design's default, which holds the 0\.15 mm tooth "
+                      r"clearance of printer 'fdm-0.4-pla': ([0-9.]+) mm of play once printed\)", default.stdout)
+    assert found, default.stdout
+    assert float(found[1]) >= 0.15 and float(found[2]) == pytest.approx(float(found[1]) - 0.15, abs=1e-4)
     plain = cli("gears", "--profile", "desk-demo", "--dry-run")
-    assert "designed +" not in plain.stdout and "backlash j_n = " in plain.stdout
+    assert "designed +" not in plain.stdout and "holds the" not in plain.stdout
+    assert "backlash j_n = " in plain.stdout
 
 
 def test_a_name_not_found_lists_only_readable_profiles_whatever_lies_in_profiles(cli, tmp_path, monkeypatch):

@@ -165,7 +165,7 @@ def _dimensions(ax, drawing: PairDrawing) -> None:
     ax.annotate("", (0.0, low), (d, low), arrowprops={"arrowstyle": "<->", "lw": 0.8})
     ax.plot([0.0, 0.0], [0.0, low], ":", color="0.4", lw=0.6)
     ax.plot([d, d], [0.0, low], ":", color="0.4", lw=0.6)
-    ax.text(d / 2.0, low, f"centre distance {d:.2f} mm", ha="center", va="bottom", fontsize=8)
+    ax.text(d / 2.0, low, f"centre distance {d:.6g} mm", ha="center", va="bottom", fontsize=8)
     rows = [f"module {drawing.module:.4g} mm, face width {drawing.thickness:g} mm"]
     for name in ("pinion", "wheel"):
         tip, root = _radii(drawing.faces[name])

@@ -117,7 +117,8 @@ def _teeth_compensation(printer) -> str:
     """How the printer's gear teeth are compensated: its tooth clearance, or its band's fit."""
     fit = getattr(printer.band, "fit", None) if printer.band is not None else None
     if fit is None:
-        return f"tooth clearance +{printer.tooth_clearance:g} mm"
+        return (f"gear teeth with the tooth clearance {printer.tooth_clearance:g} mm in their backlash "
+                "(held in a default backlash, added to one the design sets)")
     return (f"gear tooth outlines inset along their normals for the band's fit '{fit}' "
             "(each pair's report gives the inset; no tooth clearance)")
 

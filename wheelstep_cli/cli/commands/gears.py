@@ -170,8 +170,9 @@ def gears(
 ) -> None:
     """Write the gear pair as printable STL/3MF meshes, gears.json and the exports asked for.
 
-    The written meshes are checked first (SPEC §10); overlapping teeth are refused (exit 1,
-    nothing written) unless --allow-interference. Generated teeth roll at --center-distance
+    The written meshes are checked first (SPEC §10); overlapping teeth are refused, nothing
+    written (generated teeth: exit 2 with what to set; paper teeth: exit 1), unless
+    --allow-interference. Generated teeth roll at --center-distance
     (or the distance a --module fits, SPEC §9) and are checked at --install-distance. Each
     gear carries an engraved timing mark; gears.json states the assembly phase the marks
     and keyed bores build in."""
@@ -308,6 +309,10 @@ def _clearance_text(pair) -> str:
     if clearance <= 0.0:
         return ""
     designed = pair.generated.cutter.backlash - clearance
+    if printing.design is not None and printing.design.backlash is None:
+        # the default is the most play the ripple bound allows: the clearance is held in it
+        return (f" (the design's default, which holds the {clearance:g} mm tooth clearance of printer "
+                f"'{printing.printer.name}': {designed:.4g} mm of play once printed)")
     return (f" ({designed:.4g} designed + {clearance:g} tooth clearance of printer "
             f"'{printing.printer.name}')")
 

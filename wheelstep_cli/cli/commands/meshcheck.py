@@ -7,7 +7,7 @@ from typing import Annotated, List, Optional
 
 import typer
 
-from wheelstep_cli.cli.options import (A, B, Blend, C, CenterDistance, DryRun, Force, Json, LawCsv,
+from wheelstep_cli.cli.options import (A, B, Blend, C, DryRun, Force, Json, LawCsv,
                                        Profile, Quiet, Tolerance, Turns, Verbose, opt, plot_option,
                                        require_a_file)
 from wheelstep_cli.cli.commands.meshcheck_shared import (band_printer_of, design_spec, no_design_options,
@@ -40,8 +40,11 @@ def mesh_check(
     distance: Annotated[Optional[float], opt("--distance", "-d", help="Installed centre distance, mm.",
                                              shown="the design's, 144")] = None,
     a: A = None, b: B = None, c: C = None, turns: Turns = None,
-    center_distance: CenterDistance = None, law_csv: LawCsv = None, blend: Blend = None,
-    profile: Profile = None,
+    center_distance: Annotated[Optional[float], opt(
+        "--center-distance", help="Centre distance the pitch curves roll at, mm: here the distance "
+                                  "checked at when no --distance (or profile install_distance) is "
+                                  "given.", shown="the design's, 144")] = None,
+    law_csv: LawCsv = None, blend: Blend = None, profile: Profile = None,
     pair: Annotated[Optional[str], opt("--pair", help="On plates: the pair to check (its "
                                                       "wheelstep:pair id).", shown="every pair")] = None,
     samples: Annotated[Optional[int], opt("--samples", help="Poses over one period of the law "
