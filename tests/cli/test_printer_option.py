@@ -216,3 +216,28 @@ def test_a_name_not_found_lists_only_readable_profiles_whatever_lies_in_profiles
     (tmp_path / "profiles" / "empty.yaml").write_text("")
     line = error_line(cli("shoe", "--profile", "nosuch"))
     assert line == "wheelstep: error: --profile = nosuch: not found; known design profiles: bntu-2024, desk-demo"
+
+
+def test_a_limit_on_a_value_the_printer_changes_is_said_for_the_value_as_given(cli, tmp_path):
+    """The bore is drawn larger by the printer's hole compensation: the refusal gives the limit
+    for the bore as typed (the printed one beside it), and that value, applied, passes it; batch
+    says the same of the entry's value (it showed only the printed 40.2)."""
+    import re
+
+
+    line = error_line(cli("gears", "--profile", "desk-demo", "--bore", "40", "--printer", "fdm-0.4-pla",
+                          "--out", tmp_path / "out"))
+    found = re.search(r"--bore = 40 \(([0-9.]+) as printed\): must be < ([0-9.]+) mm \(< ([0-9.]+) mm as "
+                      r"printed\)", line)
+    assert found, line
+    shift = float(found[1]) - 40.0
+    assert shift > 0 and float(found[2]) == pytest.approx(float(found[3]) - shift, abs=0.011)
+    passed = cli("gears", "--profile", "desk-demo", "--bore", found[2], "--mark-depth", "0", "--printer",
+                 "fdm-0.4-pla", "--dry-run", "--out", tmp_path / "out")
+    assert passed.exit_code == 0, passed.stderr
+    batch = write(tmp_path / "b.yaml", "parts:\n  - name: g\n    kind: gear-pair\n    design: desk-demo\n"
+                  "    printer: fdm-0.4-pla\n    overrides:\n      bore: 40\n")
+    result = cli("batch", batch, "--out", tmp_path / "batch")
+    assert result.exit_code == 1
+    assert f"bore = 40 ({found[1]} as printed): must be < {found[2]} mm (< {found[3]} mm as printed)" \
+        in result.stderr, result.stderr

@@ -15,7 +15,7 @@ from wheelstep_cli.config.names import remedy_in_yaml
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.interference_refusals import (interference_phrase, require_mounted_where_rolling,
                                                        require_play_that_clears)
-from wheelstep_cli.parts.kinds import KINDS, for_printer
+from wheelstep_cli.parts.kinds import KINDS, as_designed, for_printer
 from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
 from wheelstep_cli.parts.tolerance import design_printer
 from wheelstep_cli.parts.tolerance_cli import design_pair
@@ -82,6 +82,8 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
             result.report["tolerance"] = band
         return EntryResult(entry.index, result.parts, result.report, mating=mating, band=band)
     except DesignError as err:
+        # raised on the printer's compensated values: said as the entry gives them
+        err = as_designed(err, entry.spec, entry.printed)
         return EntryResult(entry.index, error=remedy_in_yaml(err), param=err.param)
     except Exception as err:  # an unexpected failure must not stop the other entries
         return EntryResult(entry.index, error=f"internal error: {type(err).__name__}: {err}")

@@ -12,12 +12,13 @@ Pipelines are imported lazily, so a kind whose module is missing is reported as
 from __future__ import annotations
 
 import importlib
+import re
 from dataclasses import dataclass, replace
 from typing import Any, Callable
 
 from wheelstep_cli.config.batch_file import KindName
 from wheelstep_cli.config.resolve import updated
-from wheelstep_cli.errors import DesignError, format_value
+from wheelstep_cli.errors import DesignError, format_value, rounded_down, rounded_up
 
 
 @dataclass(frozen=True)
@@ -163,19 +164,44 @@ def build_for_printer(kind_name: str, spec, printer=None):
 
 def as_designed(err: DesignError, spec, printed) -> DesignError:
     """``err`` (raised on the printer-compensated ``printed`` spec) showing each value the
-    printer changed as the user gave it in ``spec``, the printed one beside it."""
-    def shown(name: str, value):
+    printer changed as the user gave it in ``spec``, the printed one beside it, and a limit
+    of it in mm both ways (the user's value is the one to change)."""
+    def changed(name: str) -> tuple | None:
         field = name.replace("-", "_")
         if field not in type(spec).model_fields:
-            return value
+            return None
         given, drawn = getattr(spec, field), getattr(printed, field)
-        if given is None or given == drawn:
-            return value
-        return f"{format_value(given)} ({format_value(drawn)} as printed)"
+        return None if given is None or given == drawn else (given, drawn)
+
+    def shown(name: str, value):
+        both = changed(name)
+        return value if both is None else f"{format_value(both[0])} ({format_value(both[1])} as printed)"
+
+    def limit_of(name: str, limit: str) -> str:
+        both = changed(name)
+        if both is None or not all(isinstance(v, (int, float)) for v in both):
+            return limit
+        return given_limit(limit, float(both[1]) - float(both[0]))
 
     return err._with_extras(DesignError(
-        err.param, shown(err.param, err.value), err.limit,
-        {name: (shown(name, value), limit) for name, (value, limit) in err.alternatives.items()}))
+        err.param, shown(err.param, err.value), limit_of(err.param, err.limit),
+        {name: (shown(name, value), limit_of(name, limit)) for name, (value, limit) in err.alternatives.items()}))
+
+
+_BOUND = re.compile(r"must be (<=|<|>=|>) (-?\d+(?:\.\d+)?) mm")
+
+
+def given_limit(limit: str, shift: float) -> str:
+    """``limit`` (a DesignError's, on a value the printer drew ``shift`` mm larger) with its
+    first bound in mm said for the value as given, the printed bound beside it: "must be <
+    36.09 mm" -> "must be < 35.89 mm (< 36.09 mm as printed)", rounded the safe way."""
+    found = _BOUND.search(limit)
+    if found is None:
+        return limit
+    op, bound = found.group(1), float(found.group(2))
+    as_given = (rounded_down if op.startswith("<") else rounded_up)(bound - shift)
+    return limit[:found.start()] + f"must be {op} {as_given} mm ({op} {found.group(2)} mm as printed)" \
+        + limit[found.end():]
 
 
 def printing_record(printing: Printing | None, printed) -> dict:
