@@ -56,6 +56,9 @@ def test_too_few_rows_is_one_line(tmp_path):
     (lambda rows: rows[:20] + [rows[19]] + rows[20:],
      "line 22: the driving angle 47.5 deg does not increase past 47.5 deg (line 21); both angles "
      "increase strictly over one period"),
+    # a kink half-way: the rows are a period but no smooth law (said of the file, not of a residual)
+    (lambda rows: [f"{a:.6f},{(0.7 * a if a <= 90 else 63 + 0.3 * (a - 90)):.6f}" for a in DRIVING],
+     "the samples do not fit a smooth periodic law: they stray up to "),
     # the last row left out: 177.5 deg is no 360/k
     (lambda rows: rows[:-1], "the driving angle spans 177.5 deg from line 2 to line 73; it must span "
                              "360/k deg (k whole: closed gears)"),

@@ -65,7 +65,12 @@ def read_law_csv(path, param: str = "law_csv"):
     data = np.array(rows)
     _period_as_written(data, written)
     _require_period(data, lines, param, str(path))
-    return law_from_samples(data[:, 0], data[:, 1], param)
+    try:
+        return law_from_samples(data[:, 0], data[:, 1], param)
+    except DesignError as err:      # said of the file as given (its limit says what was found)
+        if err.param != param:
+            raise
+        raise DesignError(param, str(path), err.limit) from None
 
 
 def _period_as_written(data: np.ndarray, written: list[list[str]]) -> None:

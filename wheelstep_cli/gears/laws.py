@@ -244,8 +244,8 @@ def law_from_samples(theta_deg, phi_deg, param: str = "law_csv") -> TabulatedLaw
     if fault is not None:
         name, at, span = fault
         raise (DesignError(param, "rows", "both angles must increase strictly over the period") if at is not None
-               else DesignError(param, f"{span:g} deg",
-                                f"the {name} angle must span 360/k deg over one period (closed gears)"))
+               else DesignError(param, f"{span:g} deg", f"the {name} angle must span 360/k deg over one "
+                                                        f"period (closed gears); it spans {span:g} deg"))
     theta_period, phi_period = theta[-1] - theta[0], phi[-1] - phi[0]
     slope = phi_period / theta_period
     t = (theta - theta[0]) / theta_period * 2.0 * np.pi
@@ -256,7 +256,8 @@ def law_from_samples(theta_deg, phi_deg, param: str = "law_csv") -> TabulatedLaw
     coef, *_ = np.linalg.lstsq(basis, rest, rcond=None)
     residual = float(np.max(np.abs(basis @ coef - rest)))
     require(residual < 1e-3, param, f"{np.degrees(residual):.3g} deg",
-            "the samples do not fit a smooth periodic law (residual > 0.06 deg)")
+            f"the samples do not fit a smooth periodic law: they stray up to {np.degrees(residual):.3g} "
+            "deg from it (at most 0.06 deg)")
     a, b = coef[1:1 + harmonics], coef[1 + harmonics:]
     grid_t = np.linspace(0.0, 2.0 * np.pi, TABLE_SAMPLES + 1)
     dt = theta_period / (2.0 * np.pi)
