@@ -3,6 +3,8 @@ header lines) is refused naming its line, never skipped — a skipped typo chang
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -128,3 +130,23 @@ def test_a_batch_entrys_law_csv_whose_periods_do_not_divide_its_teeth_is_refused
     assert error_line(result) == (f"wheelstep: error: {batch}:6: parts[0].overrides.law_csv = '{path}': with "
                                   "it, z = 48 fails: must be a multiple of 7 (law periods per pinion turn) "
                                   "and >= 6; use z 42 or use z 49")
+
+
+def test_a_plate_keeps_its_law_csvs_digest_and_is_checked_only_with_that_file(cli, tmp_path, monkeypatch):
+    """A plate's design names its law CSV by the path given where it was made: checked from
+    another folder the plate is named with what it lacks (not a --law-csv never given), and
+    a CSV changed since is refused (it would check another law)."""
+    monkeypatch.chdir(tmp_path)
+    _write(tmp_path, ROWS)
+    result = cli("gears", "--law-csv", "law.csv", "--format", "3mf", "--out", "out")
+    assert result.exit_code == 0, result.stderr
+    plates = sorted(str(p.relative_to(tmp_path)) for p in (tmp_path / "out").glob("gears*.3mf"))
+    assert cli("mesh-check", *plates, "--samples", "384").exit_code == 0
+    monkeypatch.chdir(tmp_path / "out")
+    line = error_line(cli("mesh-check", *(Path(p).name for p in plates), "--samples", "384"))
+    assert line.startswith("wheelstep: error: pinion = gears-") and "its design's law CSV 'law.csv'" in line
+    assert line.endswith("cannot be read from here: run where the plate was made, or put the CSV at that path")
+    monkeypatch.chdir(tmp_path)
+    _write(tmp_path, ROWS[:-1] + ["180.000000,90.000001"])
+    line = error_line(cli("mesh-check", *plates, "--samples", "384"))
+    assert "is not the file the plate was made with" in line and "the law changed since" in line, line

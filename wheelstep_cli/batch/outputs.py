@@ -141,6 +141,22 @@ def _band_checks(built, results) -> dict:
             "printers_without_band": unchecked}
 
 
+def _law_csvs(plan) -> dict:
+    """The law CSVs the entries name (as given; no folder), each with the SHA-256 of its bytes."""
+    from wheelstep_cli.parts.gear_laws import law_csv_metadata
+
+    found = {}
+    for entry in plan.entries:
+        path = getattr(entry.printed, "law_csv", None)
+        if path is not None:
+            try:
+                digest = law_csv_metadata(entry.printed)["law_csv_sha256"]
+            except OSError:         # its entry failed on it, and says so
+                digest = None
+            found[Path(path).name] = {"file": Path(path).name, "sha256": digest}
+    return dict(sorted(found.items()))
+
+
 def manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
     from wheelstep_cli.formats.jsonio import json_bytes
 
@@ -156,6 +172,7 @@ def manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
             "batch": {"file": plan.file.name, "sha256": plan.sha256},
             "design_profiles": {n: {"file": f, "sha256": s} for n, (f, s) in sorted(plan.designs.items())},
             "printer_profiles": dict(sorted(printers.items())),
+            "law_csvs": _law_csvs(plan),
         },
         "entries": [
             {"name": e.name, "kind": e.kind, "design_profile": e.design_label, "printer_profile": e.printer.name,

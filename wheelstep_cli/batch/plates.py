@@ -85,13 +85,14 @@ def _metadata(entry: Entry, result: EntryResult, part: str, copy: int) -> dict[s
     if entry.kind == "gear-pair":
         meta["pair"] = f"{entry.name}/{copy}"
     if entry.kind == "gear-pair":   # where it is mounted, for mesh-check of the plate
-        from wheelstep_cli.parts.gear_laws import distance_record
+        from wheelstep_cli.parts.gear_laws import distance_record, law_csv_metadata
 
         # the distances as the design gives them (a module resolves the rolling distance:
         # it is not stored beside it), whatever the report resolved
         values = {k: v for k, v in printed_values(entry, result).items()
                   if k not in ("center_distance", "install_distance")}
         meta.update(design_metadata({**values, **distance_record(entry.printed)}))
+        meta.update(law_csv_metadata(entry.printed))
     else:
         meta.update(design_metadata(printed_values(entry, result)))
     geometry = printer_geometry(entry, result)

@@ -6,6 +6,8 @@ and the bounds' remedies (``mesh_bounds``). Lengths in mm, angles in radians ins
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
 from wheelstep_cli.config.specs import GearPairSpec
@@ -34,6 +36,38 @@ def require_law_periods(spec: GearPairSpec, law=None) -> None:
         require_whole_periods(law if law is not None else design_law(spec), spec.z, MAX_TEETH)
     except DesignError as err:
         raise err.tied_to({"law_csv": spec.law_csv}) from None
+
+
+def law_csv_metadata(spec: GearPairSpec) -> dict[str, str]:
+    """What a plate keeps of the design's law CSV besides its path: the SHA-256 of its bytes
+    (a plate is checked later, maybe elsewhere: the file found then must be the same)."""
+    import hashlib
+
+    if spec.law_csv is None:
+        return {}
+    return {"law_csv_sha256": hashlib.sha256(Path(spec.law_csv).read_bytes()).hexdigest()}
+
+
+def require_plate_law_csv(spec: GearPairSpec, metadata: dict[str, str], plate: str) -> None:
+    """Refuse (DesignError naming the plate's pinion file ``plate``) a plate design whose law
+    CSV cannot be read from here, or is not the file the plate was made with (its metadata
+    law_csv_sha256, when it has one)."""
+    import hashlib
+
+    from wheelstep_cli.errors import DesignError
+
+    if spec.law_csv is None:
+        return
+    kept = f"its design's law CSV {spec.law_csv!r} (metadata law_csv: the path as given where the plate was made)"
+    try:
+        data = Path(spec.law_csv).read_bytes()
+    except OSError:
+        raise DesignError("pinion", plate, f"{kept} cannot be read from here: run where the plate was made, "
+                                           "or put the CSV at that path") from None
+    digest = metadata.get("law_csv_sha256")
+    if digest is not None and hashlib.sha256(data).hexdigest() != digest:
+        raise DesignError("pinion", plate, f"{kept} is not the file the plate was made with (its SHA-256 "
+                                           "differs from the plate's law_csv_sha256): the law changed since")
 
 
 def design_law(spec: GearPairSpec):

@@ -17,7 +17,7 @@ from wheelstep_cli.formats.stl import stl_bytes
 from wheelstep_cli.parts.gear_phase import phase_report
 from wheelstep_cli.parts.gear_laws import (design_backlash, design_law, distance_record,  # noqa: F401
                                            generated_backlash, generation_law, installed_distance,
-                                           rolling_distance)
+                                           law_csv_metadata, rolling_distance)
 from wheelstep_cli.parts.plate_layout import bed_plates, design_metadata, plate_files, require_on_bed
 
 FORMATS = ("stl", "3mf", "both")
@@ -373,7 +373,8 @@ def gear_pair_files(pair: GearPair, out: Path, fmt: str = "both", meshing: dict 
             files[out / f"{part.name}.stl"] = stl_bytes(part.vertices, part.faces, f"wheelstep {part.name}")
     if fmt in ("3mf", "both"):
         inset = {"outline_inset": float(pair.inset)} if pair.inset else {}
-        meta = design_metadata({**pair.spec.model_dump(), **_metadata_distances(pair), **inset})
+        meta = {**design_metadata({**pair.spec.model_dump(), **_metadata_distances(pair), **inset}),
+                **law_csv_metadata(pair.spec)}
         plates = bed_plates(parts, printer, [{"part": p.name, "pair": "gears", **meta} for p in parts])
         for name, data in plate_files("gears", plates, printer, "wheelstep gear pair",
                                           pair.printing is not None).items():

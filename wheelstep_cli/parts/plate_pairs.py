@@ -11,6 +11,7 @@ from wheelstep_cli.config.schema import limit_text
 from wheelstep_cli.config.specs import GearPairSpec
 from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.formats.mesh_read import MeshObject, read_3mf_objects, split_mesh_spec
+from wheelstep_cli.parts.gear_laws import require_plate_law_csv
 
 GEARS = ("pinion", "wheel")
 
@@ -101,7 +102,9 @@ def _plate_pair(pair: str, group: dict[str, tuple[str, MeshObject]]) -> PlatePai
     design = {k: v for k, v in pinion.metadata.items() if k in keys}
     if design != {k: v for k, v in wheel.metadata.items() if k in keys}:
         raise DesignError("wheel", w_file, f"carries another design than the pinion of pair '{pair}'")
-    return PlatePair(pair, pinion, wheel, (p_file, w_file), spec_from_metadata(design, p_file))
+    spec = spec_from_metadata(design, p_file)
+    require_plate_law_csv(spec, pinion.metadata, p_file)
+    return PlatePair(pair, pinion, wheel, (p_file, w_file), spec)
 
 
 def spec_from_metadata(values: dict[str, str], file: str) -> GearPairSpec:
