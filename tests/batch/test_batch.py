@@ -595,3 +595,14 @@ def test_a_batch_gear_pair_whose_hub_makes_it_too_tall_is_refused_before_it_is_b
             "part 'pinion' 260.0 mm tall (its 200 mm plate and 60 mm hub), more than the 250 mm printer "
             "'fdm-0.4-pla' prints") in result.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_an_empty_override_is_refused_at_its_line(cli, tmp_path):
+    """`width: ~` overrode nothing while the manifest listed it as given: refused, naming it."""
+    batch = write(tmp_path / "b.yaml", "parts:\n  - kind: shoe\n    design: desk-demo\n"
+                  "    printer: fdm-0.4-pla\n    overrides:\n      rim: 3\n      width: ~\n")
+    out = tmp_path / "out"
+    result = cli("batch", batch, "--out", out)
+    assert result.exit_code == 2 and not out.exists()
+    assert error_line(result) == (f"wheelstep: error: {batch}:{line_of(batch, 'width')}: parts[0].overrides.width "
+                                  "= null: give a value, or leave the key out for the design's")

@@ -229,8 +229,14 @@ def _check_overrides(doc, path, kind: PartKind, overrides: dict, issues: list[Is
     at = path + ("overrides",)
     model = section_model(kind.spec_type())
     faulty: set[str] = set()
+    for key, value in overrides.items():
+        if value is None and key in model.model_fields:
+            # an empty override would do nothing while the manifest lists it as given
+            issues.append(Issue(doc.where(at + (key,)), dotted(at + (key,)),
+                                "= null: give a value, or leave the key out for the design's"))
+            faulty.add(key)
     try:
-        model.model_validate(overrides)
+        model.model_validate({key: value for key, value in overrides.items() if key not in faulty})
     except ValidationError as err:
         for loc, issue in located_issues(model, doc, at, err):
             issues.append(issue)
