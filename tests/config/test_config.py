@@ -288,3 +288,16 @@ def test_a_long_value_in_an_error_line_is_said_by_what_it_is(cli, tmp_path):
     assert result.exit_code == 2
     line = next(line for line in result.stderr.splitlines() if ": parts = " in line)
     assert line.endswith(": parts = {a mapping of 2 keys: pinion, wheel}: must be a list of at least one part"), line
+
+
+def test_a_choice_is_read_in_any_case_in_a_profile_as_on_the_command_line(cli, tmp_path):
+    """`--corner Tooth` was taken and `corner: Tooth` in a profile refused: both are taken, as
+    the name the choice has (what is stored and written), and a wrong name is still refused."""
+    from wheelstep_cli.config.resolve import gear_pair_spec
+
+    profile = write(tmp_path / "p.yaml", "gears:\n  corner: Tooth\n  bore_shape: HEX\n  teeth: Generated\n")
+    spec = gear_pair_spec(str(profile))
+    assert (spec.corner, spec.bore_shape, spec.teeth) == ("tooth", "hex", "generated")
+    wrong = write(tmp_path / "q.yaml", "gears:\n  corner: Tooht\n")
+    line = error_line(cli("gears", "--profile", wrong, "--dry-run", "--out", tmp_path / "out"))
+    assert "corner = 'Tooht': must be one of: space, tooth" in line, line

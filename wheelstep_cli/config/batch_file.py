@@ -6,15 +6,14 @@ Entry values missing from an entry come from ``defaults:``; the kind's parameter
 
 from __future__ import annotations
 
-from enum import Enum
 from typing import Annotated, Any, Optional
 
 from pydantic import BaseModel, Field
 
-from wheelstep_cli.config.fields import STRICT
+from wheelstep_cli.config.fields import STRICT, Choice
 
 
-class KindName(str, Enum):
+class KindName(Choice):
     """The part kinds a batch can build."""
 
     gear_pair = "gear-pair"

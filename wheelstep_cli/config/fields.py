@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from enum import Enum
 from typing import Annotated, Any
 
 from pydantic import BeforeValidator, ConfigDict, Field, WrapValidator
@@ -67,3 +68,16 @@ def quantity(default: Any = ..., unit: str = "", limit: str | None = None, **bou
 def length(default: Any = ..., **bounds) -> Any:
     """A length field in mm."""
     return quantity(default, unit="mm", **bounds)
+
+
+class Choice(str, Enum):
+    """A choice among names, read in any case as the command line reads it (``Tooth`` is
+    ``tooth``): a profile and an option say the same thing the same way."""
+
+    @classmethod
+    def _missing_(cls, value: object):
+        if isinstance(value, str):
+            for member in cls:
+                if member.value == value.lower():
+                    return member
+        return None

@@ -11,20 +11,19 @@ from __future__ import annotations
 
 import hashlib
 from dataclasses import dataclass
-from enum import Enum
 from pathlib import Path
 from typing import Annotated, Any, Optional
 
 from pydantic import AfterValidator, BaseModel, Field, ValidationInfo, field_validator
 from pydantic_core import PydanticCustomError
 
-from wheelstep_cli.config.fields import STRICT, Real, Whole, length, quantity
+from wheelstep_cli.config.fields import STRICT, Choice, Real, Whole, length, quantity
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
 from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, validate_file
 from wheelstep_cli.errors import DesignError
 
 
-class Technology(str, Enum):
+class Technology(Choice):
     fdm = "fdm"
     resin = "resin"
 
@@ -84,7 +83,7 @@ def chamfer_limit(least: float, printer: str = "") -> str:
             "chamfer replaces the inset, so a smaller one would leave the first layers bulging)")
 
 
-class Fit(str, Enum):
+class Fit(Choice):
     """How much play a printed pair is given over its band (see :data:`FIT_MARGINS`)."""
 
     auto = "auto"

@@ -16,7 +16,7 @@ import numpy as np
 from pydantic import AfterValidator, BaseModel, Field, model_validator
 from pydantic_core import PydanticCustomError
 
-from wheelstep_cli.config.fields import STRICT, Number, Real, Whole, length, quantity
+from wheelstep_cli.config.fields import STRICT, Choice, Number, Real, Whole, length, quantity
 from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.gears.cutter_limits import (ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG,
                                                range_text)
@@ -65,21 +65,21 @@ def paper_design_distance(center: float | None, install: float | None) -> float:
     return (DEFAULT_INSTALL if install is None else float(install)) - PAPER_OPENING
 
 
-class Teeth(str, Enum):
+class Teeth(Choice):
     """How the teeth are made: generated conjugate teeth (SPEC §9) or the paper's involutes (§5)."""
 
     generated = "generated"
     paper = "paper"
 
 
-class Corner(str, Enum):
+class Corner(Choice):
     """What the generated pinion centres on each pitch-curve corner."""
 
     space = "space"
     tooth = "tooth"
 
 
-class BoreShape(str, Enum):
+class BoreShape(Choice):
     """The shaft hole of each gear: round, D-flat (motor shafts), DIN 6885 keyway, hexagon."""
 
     round = "round"
