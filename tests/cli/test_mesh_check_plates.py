@@ -165,8 +165,9 @@ def test_a_part_without_the_teeth_of_the_pair_is_refused_though_the_sizes_add_up
     # (a plain ring crosses the non-circular pitch curve a few times: counted as that many teeth)
     assert re.fullmatch(
         f"wheelstep: error: wheel = {re.escape(str(ring))}: has [0-9] teeth? along its pitch curve, not the 84 "
-        "that the pinion's 42 need under the law: give the wheel of this pinion's pair, and its design "
-        r"\(--profile, --a/--b/--c, --law-csv\)",
+        "that the pinion's 42 need under the law: give the wheel of this pinion's pair, both as written "
+        r"\(a gear turned about its axis is counted against the wrong stretch of its pitch curve\), and its "
+        r"design \(--profile, --a/--b/--c, --law-csv\)",
         error_line(cli("mesh-check", desk_pair / "pinion.stl", ring, "--profile", "desk-demo")))
     disc = tmp_path / "disc.stl"
     disc.write_bytes(trimesh.creation.cylinder(radius=24.0, height=6.0, sections=256).export(file_type="stl"))

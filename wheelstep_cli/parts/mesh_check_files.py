@@ -189,8 +189,9 @@ def require_gear_teeth(outlines: tuple[np.ndarray, np.ndarray], law, names: tupl
             "origin), and its design (--profile, --a/--b/--c, --law-csv)")
     require(abs(z_w - needed) <= max(1.0, TEETH_SLACK * needed), "wheel", names[1],
             f"has {_teeth(z_w)} along its pitch curve, not the {needed:.0f} that the pinion's {z_p} "
-            "need under the law: give the wheel of this pinion's pair, and its design (--profile, "
-            "--a/--b/--c, --law-csv)")
+            "need under the law: give the wheel of this pinion's pair, both as written (a gear turned "
+            "about its axis is counted against the wrong stretch of its pitch curve), and its design "
+            "(--profile, --a/--b/--c, --law-csv)")
     return z_p
 
 
