@@ -213,7 +213,8 @@ def test_bad_parts_fail_alone_named_with_their_line(cli, tmp_path):
 def test_same_batch_twice_identical_bytes_serial_and_parallel(cli, tmp_path):
     """In-process --jobs 1 and a separate process with --jobs 2 (spawned workers) agree byte for byte."""
     batch = write(tmp_path / "small.yaml", SMALL)
-    assert cli("batch", batch, "--out", tmp_path / "a", "--jobs", "1").exit_code == 0
+    verbose = cli("batch", batch, "--out", tmp_path / "a", "--jobs", "1", "-v")   # -v changes no file
+    assert verbose.exit_code == 0, verbose.stderr
     subprocess.run([sys.executable, "-m", "wheelstep_cli", "batch", str(batch), "--out",
                     str(tmp_path / "b"), "--jobs", "2"], check=True, capture_output=True, cwd=ROOT)
     files_a = sorted(p.relative_to(tmp_path / "a") for p in (tmp_path / "a").rglob("*") if p.is_file())
@@ -221,6 +222,10 @@ def test_same_batch_twice_identical_bytes_serial_and_parallel(cli, tmp_path):
     assert files_a == files_b and len(files_a) >= 7
     for name in files_a:
         assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes(), name
+    # -v says what each entry resolved to and every file written
+    resolved = [line for line in verbose.stderr.splitlines() if " from desk-demo for printer " in line]
+    assert len(resolved) == SMALL.count("kind:") and all(" = " in line for line in resolved), verbose.stderr
+    assert {f"  wrote {tmp_path / 'a' / name}" for name in files_a} <= set(verbose.stderr.splitlines())
 
 
 def test_rerun_into_the_same_folder_removes_stale_plates(cli, tmp_path):

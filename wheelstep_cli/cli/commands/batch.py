@@ -48,11 +48,19 @@ def batch(
         for line in err.lines():
             show.error(f"wheelstep: error: {line}")
         raise typer.Exit(2)
+    for entry in plan.entries:      # -v: what each entry resolved to, before any build
+        values = ", ".join(f"{k} = {v}" for k, v in entry.spec.model_dump().items() if v is not None)
+        show.detail(f"  {entry.name}: {entry.kind} x {entry.quantity} from {entry.design_label} for printer "
+                    f"{entry.printer.name}: {values}")
     outcome, written = _run(plan, out, jobs, show, dry_run, force, scheduler, tolerance)
     show.report(_summary(file, out, plan, outcome, [] if dry_run else written),
                 lambda: _lines(out, plan, outcome))
     _band_warnings(show, outcome)
-    # a real run's files are said by its summary lines; a dry run's, and what either removes, here
+    # a real run's files are said by its summary lines (each one with -v); a dry run's, and what
+    # either removes, here
+    if show.verbose and not dry_run:
+        for path in written:
+            show.detail(f"  wrote {path}")
     show.files(written if dry_run else [], dry_run=dry_run)
     if outcome.failed:
         show.error(f"{_count(len(outcome.failed), 'entry', 'entries')} failed:")
