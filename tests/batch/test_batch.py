@@ -192,7 +192,7 @@ def test_bad_parts_fail_alone_named_with_their_line(cli, tmp_path):
     out = tmp_path / "out"
     result = cli("batch", batch, "--out", out, "--jobs", "1")
     assert result.exit_code == 1
-    assert f"bored-out ({batch}:{line_of(batch, 'bore: 40')}): bore = 40.2: must be <" in result.stderr
+    assert f"bored-out ({batch}:{line_of(batch, 'bore: 40')}): bore = 40 (40.2 as printed): must be <" in result.stderr, result.stderr
     assert f"too-big ({batch}:{line_of(batch, 'name: too-big')})" in result.stderr
     assert "does not fit the bed of printer 'resin-0.05-standard' (218 x 123 mm" in result.stderr
     assert "part 'wheel'" in result.stderr
