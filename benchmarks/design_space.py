@@ -74,7 +74,7 @@ def evaluate(fields: dict) -> dict:
     """Build and check one design; the row: outcome, reason, figures (um, %, mm), seconds."""
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.gear_pair import GearPairSpec, build_gear_pair
-    from wheelstep_cli.parts.mesh_bounds import bound_violations, require_within_bounds
+    from wheelstep_cli.parts.mesh_bounds import bound_violations, remedy_check, require_within_bounds
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
 
     start = time.perf_counter()
@@ -87,7 +87,8 @@ def evaluate(fields: dict) -> dict:
     remedy = None
     if broken and not record["interference"]:
         try:
-            require_within_bounds(pair, record)
+            # as `gears` refuses it: a remedy is offered once a build with it is within the bounds
+            require_within_bounds(pair, record, verify=remedy_check(None))
         except DesignError as err:
             remedy = remedy_fields(str(err))
     outcome = "within bounds"
@@ -105,6 +106,8 @@ def evaluate(fields: dict) -> dict:
 
 def remedy_fields(message: str) -> dict:
     """The options a refusal's remedy names (``use --z 56 --backlash 0.2``) as spec fields."""
+    if "use --" not in message:          # no remedy found
+        return {}
     words = message.rsplit("use ", 1)[1].split()
     return {flag[2:].replace("-", "_"): (int(v) if flag == "--z" else float(v))
             for flag, v in zip(words[::2], words[1::2])}
