@@ -116,7 +116,7 @@ def _peaks(report: MeshingReport, law: TransmissionLaw, settings: MeshingSetting
     sides = {"drive": "phi_drive", "coast": "phi_coast"}
     te = {flank: getattr(report, side) - report.phi_law for flank, side in sides.items()}
     means = {flank: float(np.mean(values)) for flank, values in te.items()}
-    errors = {flank: error_um(values, report.pitch_radius, means[flank]) for flank, values in te.items()}
+    errors = {"drive": report.drive.error_um, "coast": report.coast.error_um}
     rows = []
 
     def measure(theta: np.ndarray) -> dict[str, np.ndarray]:

@@ -102,22 +102,27 @@ def band_limited(values: np.ndarray, harmonics: int, period: float
     return np.fft.irfft(spectrum, n), np.fft.irfft(1j * omega * spectrum, n)
 
 
+def pitch_windows(arc: np.ndarray, total: float, length: float) -> tuple[np.ndarray, np.ndarray]:
+    """Per pose, the poses of the window ``length`` long (in ``arc``, increasing over one period
+    of ``total``, wrapping round its end) that starts there: (index (n, width) into the values
+    repeated twice, inside mask)."""
+    n = len(arc)
+    ends = np.searchsorted(np.concatenate([arc, arc + total]), arc + length, side="right")
+    width = max(1, int((ends - np.arange(n)).max()))
+    index = np.minimum(np.arange(n)[:, None] + np.arange(width)[None, :], 2 * n - 1)
+    return index, index < ends[:, None]
+
+
 def window_peak_to_peak(values: np.ndarray, arc: np.ndarray, total: float, length: float) -> float:
     """Largest peak-to-peak of periodic ``values`` inside any window ``length`` long in ``arc``.
 
     ``arc`` (same length as ``values``) increases over one period of ``total``; the
     window wraps round the period's end.
     """
-    n = len(values)
-    if n < 2 or length >= total:
+    if len(values) < 2 or length >= total:
         return float(np.ptp(values))
-    ext_arc = np.concatenate([arc, arc + total])
-    ext = np.concatenate([values, values])
-    ends = np.searchsorted(ext_arc, arc + length, side="right")
-    width = int((ends - np.arange(n)).max())
-    index = np.arange(n)[:, None] + np.arange(width)[None, :]
-    inside = index < ends[:, None]
-    window = ext[np.minimum(index, 2 * n - 1)]
+    index, inside = pitch_windows(arc, total, length)
+    window = np.concatenate([values, values])[index]
     hi = np.where(inside, window, -np.inf).max(axis=1)
     lo = np.where(inside, window, np.inf).min(axis=1)
     return float(np.max(hi - lo))

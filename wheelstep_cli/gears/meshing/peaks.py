@@ -17,7 +17,7 @@ from typing import Callable
 
 import numpy as np
 
-from wheelstep_cli.gears.meshing.figures import Track
+from wheelstep_cli.gears.meshing.figures import Track, pitch_windows
 
 
 @dataclass(frozen=True)
@@ -56,17 +56,6 @@ def _slack(e: np.ndarray) -> np.ndarray:
     return np.maximum(after, before)
 
 
-def _windows(e: np.ndarray, track: Track) -> tuple[np.ndarray, np.ndarray]:
-    """Per pose, the poses of the one-tooth-pitch window (arc length) that starts there:
-    (index (n, width) into e repeated twice, inside mask)."""
-    n = len(e)
-    ext_arc = np.concatenate([track.arc, track.arc + track.arc_total])
-    ends = np.searchsorted(ext_arc, track.arc + track.pitch, side="right")
-    width = max(1, int((ends - np.arange(n)).max()))
-    index = np.minimum(np.arange(n)[:, None] + np.arange(width)[None, :], 2 * n - 1)
-    return index, index < ends[:, None]
-
-
 def candidates(e: np.ndarray, track: Track) -> tuple[np.ndarray, np.ndarray]:
     """(highs, lows): the poses whose value, passed between poses by its slack, could
     raise F'i or f'i: within a window one tooth pitch long whose peak-to-peak so passed
@@ -74,7 +63,7 @@ def candidates(e: np.ndarray, track: Track) -> tuple[np.ndarray, np.ndarray]:
     (highs) or lowest (lows) value; the whole period likewise for F'i."""
     slack = _slack(e)
     up, down = e + slack, e - slack
-    index, inside = _windows(e, track)
+    index, inside = pitch_windows(track.arc, track.arc_total, track.pitch)
     twice = np.concatenate([e, e])
     top = np.where(inside, twice[index], -np.inf).max(axis=1)
     bottom = np.where(inside, twice[index], np.inf).min(axis=1)
