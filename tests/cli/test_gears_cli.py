@@ -98,7 +98,7 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_pa
 
 
 @pytest.mark.parametrize("args, param", [
-    (["--b", "110"], "b ="),                      # R_min = a - 4b + c < 0
+    (["--b", "110", "--c", "360"], "c ="),         # R_min = a - 4b + c < 0
     (["--z", "47"], "z ="),                        # not whole sectors
     (["--teeth", "paper", "--module", "4"], "module ="),   # pointed teeth
     (["--bore", "100"], "bore ="),                 # bore larger than the root

@@ -301,3 +301,38 @@ def test_a_choice_is_read_in_any_case_in_a_profile_as_on_the_command_line(cli, t
     wrong = write(tmp_path / "q.yaml", "gears:\n  corner: Tooht\n")
     line = error_line(cli("gears", "--profile", wrong, "--dry-run", "--out", tmp_path / "out"))
     assert "corner = 'Tooht': must be one of: space, tooth" in line, line
+
+
+@pytest.mark.parametrize("given", [{"a": 50}, {"b": 90}, {"a": 45, "b": 110}])
+def test_a_gear_pair_and_a_shoe_of_the_same_a_and_b_follow_one_mechanism(given):
+    """Without a strut both take R_min = 20 mm (c = R_min - a + 4b), as the help says."""
+    from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
+
+    pair, shoe = GearPairSpec(**given), ShoeSpec(**given).design()
+    assert pair.c == pytest.approx(shoe.c) == pytest.approx(20 - shoe.a + 4 * shoe.b)
+    assert pair.mechanism().r_min == pytest.approx(20)
+    assert GearPairSpec(**given, c=300).c == 300
+
+
+def test_a_gear_pair_whose_a_and_b_leave_no_strut_is_said_of_them(cli, tmp_path):
+    line = error_line(cli("gears", "--a", "500", "--b", "10", "--out", tmp_path / "out"))
+    assert line.startswith("wheelstep: error: --b = 10: must be > (a - R_min)/4 = 120 mm"), line
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("command", ["gears", "shoe", "kinematics"])
+def test_a_parts_section_that_changes_the_profiles_mechanism_is_refused_at_its_lines(cli, tmp_path, command):
+    """The gears and the shoe of a profile share its mechanism: a part section giving other
+    lengths is said at each of its lines, whatever the command; the same lengths pass."""
+    profile = write(tmp_path / "p.yaml", "mechanism:\n  a: 60\n  b: 100\n  r_min: 20\n"
+                                         "gears:\n  a: 50\n  c: 360\nshoe:\n  c: 360\n")
+    out = ["--out", tmp_path / "out"] if command != "kinematics" else []
+    result = cli(command, "--profile", profile, *out)
+    assert result.exit_code == 2, result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert [line.split(": ", 3)[3].split(" =")[0] for line in lines] == ["gears.a", "gears.c"], lines
+    assert f"{profile}:{line_of(profile, 'a: 50')}" in lines[0]
+    assert "a = 50, b = 100, c = 360 mm" in lines[0] and "a = 60, b = 100, c = 360 mm" in lines[0]
+    assert not (tmp_path / "out").exists()
+    write(profile, "mechanism:\n  a: 60\n  b: 100\n  r_min: 20\ngears:\n  a: 60\n  c: 360\nshoe:\n  c: 360\n")
+    assert cli(command, "--profile", profile, *out).exit_code == 0

@@ -12,7 +12,8 @@ from pydantic import BaseModel, Field, PrivateAttr
 
 from wheelstep_cli.config.fields import STRICT, Number
 from wheelstep_cli.config.schema import section_model
-from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
+from wheelstep_cli.config.specs import DEFAULT_R_MIN, MECHANISM_KEYS, GearPairSpec, ShoeSpec
+from wheelstep_cli.errors import DesignError
 
 
 class MechanismSection(BaseModel):
@@ -55,3 +56,46 @@ class DesignProfile(BaseModel):
         """The values a section gives (``mechanism``, ``gears``, ``shoe``), without the unset."""
         given = getattr(self, section)
         return {} if given is None else given.model_dump(exclude_none=True)
+
+    def mechanism_conflicts(self) -> list[tuple[str, str, str]]:
+        """(section, key, why) of each mechanism length a part's section gives that makes its
+        mechanism differ from the ``mechanism:`` section's: the gears' law and the shoe's sole
+        come from one crank mechanism (a gear pair following a law CSV has none)."""
+        shared = self.values("mechanism")
+        if not shared:
+            return []
+        conflicts = []
+        for section in ("gears", "shoe"):
+            part = self.values(section)
+            keys = [k for k in MECHANISM_KEYS if k in part]
+            if not keys or part.get("law_csv"):
+                continue
+            base, own = _crank([shared]), _crank([shared, part])
+            if base is None or own is None or all(abs(x - y) <= 1e-9 for x, y in zip(base, own)):
+                continue
+            lengths = "a = {:g}, b = {:g}, c = {:g} mm"
+            why = (f"gives the {section} the mechanism {lengths.format(*own)}, the mechanism section "
+                   f"{lengths.format(*base)}: a mover's parts share one mechanism; give a, b and the strut "
+                   "in mechanism: only")
+            conflicts += [(section, key, why) for key in keys]
+        return conflicts
+
+
+def _crank(layers: list[dict]) -> tuple[float, float, float] | None:
+    """(a, b, c) in mm the layers give, higher layers winning, a strut given as c or R_min
+    replacing the lower layers' (R_min 20 mm when none gives one); None: no such mechanism."""
+    from wheelstep_cli.mechanism.crank import CrankMechanism
+
+    merged: dict = {}
+    for layer in layers:
+        if "c" in layer or "r_min" in layer:
+            merged.pop("c", None)
+            merged.pop("r_min", None)
+        merged.update({k: layer[k] for k in MECHANISM_KEYS if k in layer})
+    a, b = merged.get("a", 60.0), merged.get("b", 100.0)
+    if "c" in merged:
+        return a, b, merged["c"]
+    try:
+        return a, b, CrankMechanism.from_r_min(a, b, merged.get("r_min", DEFAULT_R_MIN)).c
+    except DesignError:
+        return None

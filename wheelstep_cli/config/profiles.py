@@ -188,6 +188,10 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
         profile = profile.model_copy(update={"gears": gears})
     profile._where = {(section, key): doc.where((section, key)) for section in ("mechanism", "gears", "shoe")
                       for key in profile.values(section)}
+    if conflicts := profile.mechanism_conflicts():
+        raise InvalidInput([Issue(profile.where(section, key), f"{section}.{key}",
+                                  f"= {profile.values(section)[key]:g}: {why}")
+                            for section, key, why in conflicts])
     profile._shipped = Path(file).resolve().parent == shipped_profiles().resolve()
     return profile
 

@@ -156,7 +156,7 @@ class GearPairSpec(BaseModel):
         as given), and refuse dimensions the shape does not use."""
         if not isinstance(values, dict):
             return values
-        return bore_defaults(values)
+        return bore_defaults(strut_default(values))
 
     @model_validator(mode="after")
     def _distances(self) -> "GearPairSpec":
@@ -207,8 +207,11 @@ class GearPairSpec(BaseModel):
 
         require(self.set_screw is None or self.set_screw in SET_SCREWS, "set_screw", self.set_screw,
                 f"must be one of {', '.join(SET_SCREWS)}")
-        require(self.set_screw is None or self.hub_d is not None, "set_screw", self.set_screw,
-                "needs --hub-d (the screw goes through the hub)")
+        if self.set_screw is not None and self.hub_d is None:
+            # also stated for the hub: a hub_d left out (found at fault) is not blamed on the screw
+            raise DesignError("set_screw", self.set_screw, "needs --hub-d (the screw goes through the hub)",
+                              {"hub_d": (None, f"must be given: the {self.set_screw} set screw goes "
+                                               "through the hub")})
         if self.bore_shape == BoreShape.keyway:
             require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a keyway")
             if not self.key_width < self.bore:
@@ -298,6 +301,21 @@ class GearPairSpec(BaseModel):
 
         return RackCutter(np.radians(self.pressure_angle), self.addendum, self.dedendum,
                           self.fillet, self.backlash_mm, self.clearance)
+
+
+def strut_default(values: dict) -> dict:
+    """``values`` (a GearPairSpec's raw fields) with the strut c filled when not given: the
+    source's R_min = 20 mm for the given a and b (c = R_min - a + 4b), as the shoe takes it,
+    so a gear pair and a shoe of the same a and b follow one mechanism."""
+    if values.get("c") is not None:
+        return values
+    a, b = values.get("a", 60.0), values.get("b", 100.0)
+    if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in (a, b)):
+        return values   # the field checks say what is wrong with them
+    from wheelstep_cli.mechanism.crank import CrankMechanism
+
+    c = CrankMechanism.from_r_min(a, b, DEFAULT_R_MIN).c   # refuses a and b no strut fits
+    return values if c == 360.0 else {**values, "c": c}
 
 
 def bore_defaults(values: dict) -> dict:
