@@ -50,3 +50,68 @@ def test_bad_input_one_line_exit_2_no_plot(cli, tmp_path, args, param):
     result = cli("kinematics", *args, "--plot", png)
     assert param in error_line(result), result.stderr
     assert not png.exists()
+
+
+def _speed_check(data: dict, ratio_of, rtol: float = 1e-8) -> None:
+    """The geared curve is the hub speed of gears following ``ratio_of(phi rad)``: omega / U(phi)
+    times the speed analogue k + 3b cos 2phi (SPEC §3), and its ripple is peak-to-peak over the
+    time mean (each equal carrier step lasting U dphi / omega). ``rtol``: of the ratio (the report
+    keeps 10 digits; a law read from a CSV is a fit to its samples)."""
+    import numpy as np
+
+    curve = data["curve"]
+    phi = np.radians(curve["phi_deg"])
+    u = ratio_of(phi)
+    assert np.allclose(curve["ratio_u"], u, rtol=rtol, atol=0)
+    k, b = data["a_mm"] - data["b_mm"] + data["c_mm"], data["b_mm"]
+    omega = data["motor_rpm"] * 2 * np.pi / 60
+    speed = omega / u * (k + 3 * b * np.cos(2 * phi)) / 1000
+    assert np.allclose(curve["with_m_s"], speed, rtol=rtol, atol=0)
+    time = np.concatenate([[0.0], np.cumsum(0.5 * (u[1:] + u[:-1]) * np.diff(phi))])
+    mean = np.trapezoid(speed, time) / time[-1]
+    assert data["with_gears"]["ripple_pct"] == pytest.approx(100 * np.ptp(speed) / mean, rel=1e-3)
+
+
+def test_profile_blend_is_the_law_the_gears_follow(cli, tmp_path):
+    """A design profile's gears.blend smooths the law the gears are cut for: the hub speed
+    ripples as much as the blended law departs from the crank law (not 0)."""
+    import numpy as np
+
+    from wheelstep_cli.gears.laws import CrankLaw, blended_law
+    from wheelstep_cli.mechanism.crank import CrankMechanism
+
+    profile = tmp_path / "blend.yaml"
+    profile.write_text("gears:\n  blend: 10\n")
+    result = cli("kinematics", "--profile", profile, "--json")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    law = blended_law(CrankLaw(CrankMechanism(60, 100, 360), 2), np.radians(10))
+    _speed_check(data, law.ratio)
+    assert data["with_gears"]["ripple_pct"] > 1 and "blended over 10 deg" in data["with_gears"]["law"]
+    plain = json.loads(cli("kinematics", "--json").stdout)
+    assert plain["without_gears"] == data["without_gears"]
+
+
+def test_profile_law_csv_is_the_law_the_gears_follow(cli, tmp_path):
+    """A profile's law CSV repeating within the shoe cycle drives the hub; its mean ratio is
+    the pinion turns; --turns with it is refused; one of another period is refused."""
+    import numpy as np
+
+    phi = np.linspace(0.0, 90.0, 181)
+    theta = 4 * phi + np.degrees(0.1 * np.sin(np.radians(4 * phi)))
+    law = tmp_path / "law.csv"
+    law.write_text("driving_deg,driven_deg\n" + "\n".join(f"{t:.12f},{p:.12f}" for t, p in zip(theta, phi)))
+    profile = tmp_path / "p.yaml"
+    profile.write_text(f"gears:\n  law_csv: {law}\n")
+    result = cli("kinematics", "--profile", profile, "--json")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert data["turns"] == 4 and data["cycle_time_s"] == pytest.approx(1.0)
+    _speed_check(data, lambda p: 4 + 0.4 * np.cos(4 * p), rtol=1e-4)
+    assert str(law) in data["with_gears"]["law"]
+    assert "-n = 4" in error_line(cli("kinematics", "--profile", profile, "-n", "4"))
+    half = tmp_path / "half.csv"
+    half.write_text("driving_deg,driven_deg\n" + "\n".join(f"{3 * p:.12f},{p:.12f}" for p in np.linspace(0, 120, 121)))
+    profile.write_text(f"gears:\n  law_csv: {half}\n")
+    line = error_line(cli("kinematics", "--profile", profile))
+    assert "law_csv" in line and "must divide 90 deg" in line, line

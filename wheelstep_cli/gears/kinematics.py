@@ -5,8 +5,10 @@ Without them the motor drives the carrier through a circular pair of the same me
 ratio (``turns`` pinion turns per carrier turn), so the carrier turns at omega/turns and
 the hub speed follows dX01/dphi. With them the carrier turns at omega_H = omega / U(phi)
 and v = omega_H dX01/dphi = omega k / u is constant. Both make one shoe cycle in the
-same time. Speeds in mm/s, angles in rad; the report (what ``wheelstep kinematics``
-prints) in m/s and degrees.
+same time. The gears may follow another law whose driven angle is the carrier's (a
+blended crank law, a law CSV): their ratio U(phi) is then the law's, and the hub speed
+ripples as the law departs from the crank law. Speeds in mm/s, angles in rad; the report
+(what ``wheelstep kinematics`` prints) in m/s and degrees.
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ class HubKinematics:
     speed_geared: np.ndarray    # non-circular gears, mm/s
     ratio: np.ndarray           # U(phi) = omega / omega_H of the non-circular pair
     motor_speed: float          # rad/s
-    turns: int
+    turns: int | float          # pinion turns per carrier turn (the law's mean ratio)
 
     @property
     def ripple_plain(self) -> float:
@@ -39,8 +41,12 @@ class HubKinematics:
 
     @property
     def ripple_geared(self) -> float:
-        """Peak-to-peak over mean with them (fraction; 0 up to rounding)."""
-        return float(np.ptp(self.speed_geared) / self.speed_geared.mean())
+        """Peak-to-peak over time-mean with them (fraction; 0 up to rounding on the crank law).
+        The carrier's equal angle steps last U dphi / omega: the mean is weighted by U."""
+        weight = np.full(len(self.ratio), 1.0)
+        weight[[0, -1]] = 0.5
+        weight *= self.ratio
+        return float(np.ptp(self.speed_geared) / (np.sum(weight * self.speed_geared) / weight.sum()))
 
     @property
     def cycle_time(self) -> float:
@@ -49,20 +55,33 @@ class HubKinematics:
 
 
 def hub_kinematics(design: CrankMechanism, motor_speed: float, turns: int = 2,
-                   count: int = 361) -> HubKinematics:
-    """Hub speed over one shoe cycle at pinion (motor) speed ``motor_speed`` rad/s."""
-    law = CrankLaw(design, turns)
+                   count: int = 361, law=None) -> HubKinematics:
+    """Hub speed over one shoe cycle at pinion (motor) speed ``motor_speed`` rad/s, with gears
+    following ``law`` (a TransmissionLaw whose driven angle is the carrier's and that repeats
+    within the shoe cycle; None: the crank law of ``turns``)."""
+    if law is None:
+        law = CrankLaw(design, turns)
+    mean_ratio = law.theta_period / law.phi_period
     phi = contact_angles(count)
     analogue = design.speed_analogue(phi)
     u_phi = law.ratio(phi)
     return HubKinematics(
         phi=phi,
-        speed_plain=motor_speed / turns * analogue,
+        speed_plain=motor_speed / mean_ratio * analogue,
         speed_geared=motor_speed / u_phi * analogue,
         ratio=u_phi,
         motor_speed=float(motor_speed),
-        turns=turns,
+        turns=int(round(mean_ratio)) if abs(mean_ratio - round(mean_ratio)) < 1e-9 else float(mean_ratio),
     )
+
+
+def require_shoe_cycle_period(law, param: str, value) -> None:
+    """Refuse (DesignError of ``param`` = ``value``) a law that does not repeat within the
+    shoe cycle (a quarter carrier turn): the hub speed of its gears has no cycle."""
+    periods = law.wheel_periods
+    require(periods % 4 == 0 and abs(law.phi_period * periods - 2.0 * np.pi) < 1e-6, param, value,
+            f"repeats every {np.degrees(law.phi_period):.6g} deg of the driven angle; the mover's shoe "
+            "cycle is a quarter carrier turn (90 deg), so the law's period must divide 90 deg")
 
 
 def check_inputs(motor_rpm: float, points: int, rows: int) -> None:
@@ -74,9 +93,11 @@ def check_inputs(motor_rpm: float, points: int, rows: int) -> None:
     require(2 <= rows <= 10_000, "rows", rows, "must be 2..10000")
 
 
-def hub_speed_study(design: CrankMechanism, turns: int, motor_rpm: float, points: int) -> HubKinematics:
-    """Hub kinematics at ``motor_rpm`` (pinion, rpm) over ``points`` samples of one cycle."""
-    return hub_kinematics(design, motor_rpm * 2.0 * np.pi / 60.0, turns, points)
+def hub_speed_study(design: CrankMechanism, turns: int, motor_rpm: float, points: int,
+                    law=None) -> HubKinematics:
+    """Hub kinematics at ``motor_rpm`` (pinion, rpm) over ``points`` samples of one cycle,
+    with gears following ``law`` (None: the crank law)."""
+    return hub_kinematics(design, motor_rpm * 2.0 * np.pi / 60.0, turns, points, law)
 
 
 def _speeds(speed: np.ndarray, ripple: float) -> dict:
@@ -84,15 +105,17 @@ def _speeds(speed: np.ndarray, ripple: float) -> dict:
             "ripple_pct": 100.0 * ripple}
 
 
-def kinematics_report(design: CrankMechanism, kin: HubKinematics, motor_rpm: float) -> dict:
-    """The mechanism, cycle time (s), mean speed and both speed curves (m/s) over the cycle."""
+def kinematics_report(design: CrankMechanism, kin: HubKinematics, motor_rpm: float,
+                      law: str = "the crank law") -> dict:
+    """The mechanism, cycle time (s), mean speed and both speed curves (m/s) over the cycle;
+    ``law`` says what the gears follow."""
     return {
         "a_mm": design.a, "b_mm": design.b, "c_mm": design.c, "r_min_mm": design.r_min,
         "turns": kin.turns, "motor_rpm": motor_rpm, "cycle_time_s": kin.cycle_time,
         "x_cycle_mm": design.x_cycle,
         "mean_speed_m_s": design.x_cycle / kin.cycle_time / 1000.0,
         "without_gears": _speeds(kin.speed_plain, kin.ripple_plain),
-        "with_gears": _speeds(kin.speed_geared, kin.ripple_geared),
+        "with_gears": {**_speeds(kin.speed_geared, kin.ripple_geared), "law": law},
         "curve": {"phi_deg": np.degrees(kin.phi), "without_m_s": kin.speed_plain / 1000.0,
                   "with_m_s": kin.speed_geared / 1000.0, "ratio_u": kin.ratio},
     }

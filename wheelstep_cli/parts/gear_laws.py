@@ -21,6 +21,35 @@ def generation_law(spec: GearPairSpec):
     return law, blended_law(law, np.radians(spec.blend))
 
 
+def kinematics_law(design, turns: int, gears: dict, turns_given: bool):
+    """(law, what it is) the gears of a design profile's ``gears`` section (its values) follow
+    on ``design`` (a CrankMechanism), for the hub speed over a shoe cycle: the crank law of
+    ``turns``, or the section's law CSV (which must repeat within the shoe cycle; --turns,
+    ``turns_given``, is refused with it), blended by the section's blend. Law None: the plain
+    crank law."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.gears.kinematics import require_shoe_cycle_period
+    from wheelstep_cli.gears.laws import CrankLaw, blended_law
+
+    law_csv, blend = gears.get("law_csv"), gears.get("blend", 0)
+    if law_csv is not None:
+        if turns_given:
+            raise DesignError("turns", turns, "sets the crank law, which the profile's gears.law_csv replaces "
+                                              "(the gears follow the law read from the CSV)")
+        from wheelstep_cli.formats.law_csv import read_law_csv
+
+        law = read_law_csv(law_csv)
+        require_shoe_cycle_period(law, "law_csv", law_csv)
+        what = f"the law of {law_csv}"
+    elif blend:
+        law, what = CrankLaw(design, turns), "the crank law"
+    else:
+        return None, "the crank law"
+    if blend:
+        law, what = blended_law(law, np.radians(blend)), f"{what} blended over {blend:g} deg"
+    return law, what
+
+
 def require_law_periods(spec: GearPairSpec, law=None) -> None:
     """Refuse (DesignError) generated teeth whose count is no whole number per period of the
     design's law CSV (``law``, when read already), said of --law-csv when z was not given,

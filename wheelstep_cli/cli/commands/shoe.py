@@ -92,6 +92,7 @@ def kinematics(
     """Hub speed over one shoe cycle with a constant-speed motor, without and with the
     non-circular gears (why the gears exist)."""
     from wheelstep_cli.gears.kinematics import check_inputs, hub_speed_study, kinematics_report
+    from wheelstep_cli.parts.gear_laws import kinematics_law
     from wheelstep_cli.parts.mechanism_files import kinematics_files
 
     show = Output(json, quiet, verbose)
@@ -104,14 +105,14 @@ def kinematics(
     rows = 9 if rows is None else rows
     check_inputs(motor_rpm, points, rows)
     design = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min).design()
-    if turns is None:
-        turns = _profile_turns(profile) if profile else 2
+    gears = _profile_gears(profile)
+    law, what = kinematics_law(design, 2 if turns is None else turns, gears, turns is not None)
+    kin = hub_speed_study(design, gears.get("turns", 2) if turns is None else turns, motor_rpm, points, law)
     show.parameters({"a": design.a, "b": design.b, "c": design.c, "r_min": design.r_min,
-                     "turns": turns}, profile)
-    kin = hub_speed_study(design, turns, motor_rpm, points)
+                     "turns": kin.turns, "gears_law": what}, profile)
     files = kinematics_files(design, kin, plot)
     named = show.write_named("kinematics", files, dry_run, force, plot=plot)
-    report = kinematics_report(design, kin, motor_rpm)
+    report = kinematics_report(design, kin, motor_rpm, what)
     show.report(report, lambda: _kinematics_lines(report, rows))
     show.files(named, dry_run)
 
@@ -122,7 +123,7 @@ def _kinematics_lines(report: dict, rows: int) -> list[str]:
 
     curve = report["curve"]
     lines = [f"a = {report['a_mm']:g}  b = {report['b_mm']:g}  c = {report['c_mm']:g} mm, motor "
-             f"{report['motor_rpm']:g} rpm, {report['turns']} pinion turns per carrier turn: one "
+             f"{report['motor_rpm']:g} rpm, {report['turns']:g} pinion turns per carrier turn: one "
              f"shoe cycle {report['cycle_time_s']:.3f} s, {report['x_cycle_mm']:.1f} mm, mean hub "
              f"speed {report['mean_speed_m_s']:.3f} m/s",
              f"{'phi deg':>8} {'U':>8} {'without m/s':>12} {'with m/s':>10}"]
@@ -131,16 +132,16 @@ def _kinematics_lines(report: dict, rows: int) -> list[str]:
                      f"{curve['without_m_s'][i]:12.3f} {curve['with_m_s'][i]:10.3f}")
     lines.append(f"ripple (peak-to-peak / mean): without gears "
                  f"{report['without_gears']['ripple_pct']:.1f} %, with non-circular gears "
-                 f"{report['with_gears']['ripple_pct']:.1f} %")
+                 f"{report['with_gears']['ripple_pct']:.1f} % (gears on {report['with_gears']['law']})")
     return lines
 
 
-def _profile_turns(profile: str) -> int:
-    """Pinion turns per carrier turn from a design profile's ``gears:`` section (2 if not
-    set); the profile is checked whole by its model, turns with the rest."""
+def _profile_gears(profile: str | None) -> dict:
+    """The values a design profile's ``gears:`` section gives (none without a profile); the
+    profile is checked whole by its model, the section with the rest."""
     from wheelstep_cli.config.profiles import load_design_profile
 
-    return load_design_profile(profile).values("gears").get("turns", 2)
+    return load_design_profile(profile).values("gears") if profile else {}
 
 
 def register(app) -> None:
