@@ -265,7 +265,8 @@ parts:
     # a strut socket wider than the shoe: refused at the plan, as the value given (not the 100.2
     # the printer's hole compensation would draw)
     (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      strut_diameter: 100\n", "strut_diameter",
-     "parts[0].overrides.strut_diameter = 100: must be <= 16.00 mm (socket wider than the body"),
+     "parts[0].overrides.strut_diameter = 100: must be <= 15.79 mm (<= 16.00 mm as printed) (socket wider "
+     "than the body"),
     # a shoe stands on its side: its width is its height on the bed
     (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      width: 300\n", "width: 300",
      "overrides.width = 300: makes part 'shoe' 300.0 mm tall, more than the 250 mm printer"),
@@ -350,6 +351,41 @@ def test_every_override_at_fault_is_reported_at_once_in_the_files_words(cli, tmp
 
     (entry,) = load_batch(fixed, str(fixed)).entries
     assert (entry.spec.key_angle, entry.spec.hub_length, entry.spec.flat_depth) == (30, 5, 1)
+
+
+def _stated_bound(line: str, key: str) -> float:
+    """The number a refusal line asks ``key`` to be at least (``... >= 8.22 mm``)."""
+    import re
+
+    found = re.search(rf"(?:= \S+: must be|needs {key}) >= (\d+(?:\.\d+)?) mm", line)
+    assert found, line
+    return float(found.group(1))
+
+
+@pytest.mark.parametrize("overrides, key", [
+    ("      hub_d: 4\n", "hub_d"),
+    ("      hub_d: 8\n      set_screw: M4\n", "hub_d"),
+])
+def test_a_hub_that_cannot_fit_round_the_bore_is_refused_at_the_plan(cli, tmp_path, overrides, key):
+    """A hub (or its set screw's nut) too small round the printed bore is refused at its line
+    before anything is built (exit 2), with the bound for the bore as printed (the printer
+    draws holes larger); that bound applied, the entry passes the plan and builds."""
+    from wheelstep_cli.batch.plan import load_batch
+
+    batch = write(tmp_path / "bad.yaml", VALID_ENTRY + "    overrides:\n" + overrides)
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2, result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert not (tmp_path / "out").exists()
+    bound = max(_stated_bound(line, key) for line in lines)
+    fixed = write(tmp_path / "fixed.yaml", VALID_ENTRY + "    overrides:\n" + overrides.replace(
+        overrides.split("hub_d: ")[1].split("\n")[0], f"{bound:g}", 1))
+    (entry,) = load_batch(fixed, str(fixed)).entries
+    assert entry.spec.hub_d == bound
+    from wheelstep_cli.parts.kinds import build_for_printer
+
+    pair = build_for_printer("gear-pair", entry.spec, entry.printer)
+    assert pair.pinion.bounds[1][2] == pytest.approx(entry.spec.thickness + 8.0, abs=1e-3)   # the hub stands
 
 
 def test_an_entrys_law_csv_is_found_beside_the_batch_file(tmp_path, monkeypatch):

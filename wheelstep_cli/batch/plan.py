@@ -20,7 +20,7 @@ from wheelstep_cli.config.profiles import beside, profile_names
 from wheelstep_cli.config.resolve import spec_problems, spec_values
 from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, located_issues, section_model, show
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.parts.kinds import KINDS, PartKind, printed_spec
+from wheelstep_cli.parts.kinds import KINDS, PartKind, as_designed, printed_spec
 
 
 @dataclass(frozen=True)
@@ -288,14 +288,40 @@ def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
             return None, None, problems
         problems = kind.problems(spec)
         if problems:
-            return None, None, problems
+            return None, None, _as_printed(kind, spec, printer, problems)
         printed = printed_spec(kind, spec, printer)
-        problems = kind.problems(printed)
+        problems = [_as_given(err, spec, printed) for err in kind.problems(printed)]
         if not problems:
             _require_height(kind, printed, printer)
     except DesignError as err:
         return None, None, [err]
     return (None, None, problems) if problems else (spec, printed, [])
+
+
+def _as_printed(kind: PartKind, spec, printer: Printer, problems: list[DesignError]) -> list[DesignError]:
+    """``problems`` of ``spec`` with each one the printer-compensated spec also has said with
+    the printed limit (a hole drawn larger needs more round it: that limit is the one to meet),
+    in the values the user gave."""
+    try:
+        printed = printed_spec(kind, spec, printer)
+    except DesignError:
+        return problems
+    bound = {err.param: _as_given(err, spec, printed) for err in kind.problems(printed)}
+    return [bound.get(err.param, err) for err in problems]
+
+
+def _as_given(err: DesignError, spec, printed) -> DesignError:
+    """``err`` (of the ``printed`` spec) with its limits in the values the user gave
+    (parts.kinds.as_designed) and each value as given: the file's line shows it as written."""
+    said = as_designed(err, spec, printed)
+
+    def given(name: str, value):
+        field = name.replace("-", "_")
+        return getattr(spec, field) if field in type(spec).model_fields else value
+
+    return said._with_extras(DesignError(
+        said.param, given(said.param, err.value), said.limit,
+        {name: (given(name, value), limit) for name, (value, limit) in said.alternatives.items()}))
 
 
 def _require_height(kind: PartKind, printed, printer: Printer) -> None:

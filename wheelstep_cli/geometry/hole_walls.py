@@ -36,17 +36,47 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
                           f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
 
 
+def hole_reach(hole: np.ndarray | None) -> float:
+    """How far (mm) a shaft ``hole`` ring reaches from the axis (0 without one)."""
+    return float(np.max(np.hypot(hole[:, 0], hole[:, 1]))) if hole is not None else 0.0
+
+
 def require_hub_fits(outline: np.ndarray, hole: np.ndarray | None, diameter: float) -> None:
     """DesignError naming hub_d when a hub of ``diameter`` mm leaves under MIN_HOLE_WALL mm
     to the root of ``outline`` or round the shaft ``hole`` (rings in mm)."""
     root = min_radius(outline)
-    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1]))) if hole is not None else 0.0
     if diameter / 2.0 > root - MIN_HOLE_WALL:
         raise DesignError("hub_d", diameter, f"must be <= {rounded_down(2 * (root - MIN_HOLE_WALL))} mm (leave "
                           f"{MIN_HOLE_WALL:g} mm to the root)")
+    require_hub_clears_hole(hole_reach(hole), diameter)
+
+
+def require_hub_clears_hole(reach: float, diameter: float) -> None:
+    """DesignError naming hub_d when a hub of ``diameter`` mm leaves under MIN_HOLE_WALL mm
+    round a shaft hole reaching ``reach`` mm from the axis."""
     if diameter / 2.0 < reach + MIN_HOLE_WALL:
         raise DesignError("hub_d", diameter, f"must be >= {rounded_up(2 * (reach + MIN_HOLE_WALL))} mm (leave "
                           f"{MIN_HOLE_WALL:g} mm of wall round the shaft hole)")
+
+
+def require_screw_fits(name: str, reach: float, hub: tuple[float, float], thickness: float,
+                       flats: float, height: float) -> None:
+    """DesignError naming set_screw ``name`` when its captive nut (``flats`` across, ``height``
+    mm, between MIN_HOLE_WALL of wall round a hole reaching ``reach`` mm and the hub's wall)
+    does not fit the hub = (diameter, length) mm on a plate ``thickness`` mm thick. The
+    limits are rounded up: applied as printed, they fit."""
+    # each also stated for the hub's diameter: the rule is shared with it
+    if hub[0] <= 0:
+        raise DesignError("set_screw", name, "needs --hub-d (the screw goes through the hub)",
+                          {"hub_d": (None, f"must be given: the {name} set screw goes through the hub")})
+    nut_out = reach + MIN_HOLE_WALL + height
+    if nut_out > hub[0] / 2.0 - MIN_HOLE_WALL:
+        least = rounded_up(2 * (nut_out + MIN_HOLE_WALL))
+        raise DesignError("set_screw", name, f"does not fit the hub: needs --hub-d >= {least} mm",
+                          {"hub_d": (hub[0], f"must be >= {least} mm (room for the {name} set screw's nut)")})
+    if flats / np.sqrt(3.0) > hub[1] / 2.0 + thickness - 1.0:
+        raise DesignError("set_screw", name, "does not fit the hub: its nut needs --hub-length >= "
+                          f"{rounded_up(2.0 * (flats / np.sqrt(3.0) - thickness + 1.0))} mm")
 
 
 def corner_clear_of(direction: float, segments: int) -> float:

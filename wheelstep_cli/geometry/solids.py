@@ -5,8 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError, rounded_down, rounded_up
-from wheelstep_cli.geometry.hole_walls import MIN_HOLE_WALL, corner_clear_of, require_hub_fits, require_wall
+from wheelstep_cli.errors import DesignError, rounded_down
+from wheelstep_cli.geometry.hole_walls import (MIN_HOLE_WALL, corner_clear_of, hole_reach, require_hub_fits,
+                                               require_screw_fits, require_wall)
 from wheelstep_cli.geometry.mesh_checks import Part, tooth_zone_middle
 from wheelstep_cli.geometry.staircase import staircase_mesh
 from wheelstep_cli.geometry.planar import (check_outline, drop_collinear, group_rings_by_shell,
@@ -123,19 +124,10 @@ def _set_screw(body, volume: float, hole, hub: tuple[float, float], thickness: f
     import manifold3d as m3d
 
     name, direction, drop, flats, height = screw
-    if hub[0] <= 0:
-        raise DesignError("set_screw", name, "needs --hub-d (the screw goes through the hub)")
-    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1]))) if hole is not None else 0.0
+    reach = hole_reach(hole)
+    require_screw_fits(name, reach, hub, thickness, flats, height)
     r_hub, axis_z = hub[0] / 2.0, thickness + hub[1] / 2.0
     nut_in = reach + MIN_HOLE_WALL
-    nut_out = nut_in + height
-    # the limits rounded up: applied as printed, they fit
-    if nut_out > r_hub - MIN_HOLE_WALL:
-        raise DesignError("set_screw", name, f"does not fit the hub: needs --hub-d >= "
-                          f"{rounded_up(2 * (nut_out + MIN_HOLE_WALL))} mm")
-    if flats / np.sqrt(3.0) > hub[1] / 2.0 + thickness - 1.0:
-        raise DesignError("set_screw", name, "does not fit the hub: its nut needs --hub-length >= "
-                          f"{rounded_up(2.0 * (flats / np.sqrt(3.0) - thickness + 1.0))} mm")
     # the hole: the teardrop in the (y, z) plane extruded along +x, then turned to direction
     rod = m3d.Manifold.extrude(m3d.CrossSection([np.ascontiguousarray(drop)]), r_hub + 1.0)
     rod = rod.rotate((0.0, 90.0, 0.0)).rotate((90.0, 0.0, 0.0))

@@ -15,7 +15,7 @@ import numpy as np
 
 from wheelstep_cli.gears import bore_shapes as shapes
 from wheelstep_cli.gears.phase import assembly_phase
-from wheelstep_cli.geometry.hole_walls import corner_clear_of
+from wheelstep_cli.geometry.hole_walls import corner_clear_of, hole_reach, require_hub_clears_hole, require_screw_fits
 from wheelstep_cli.geometry.planar import min_radius, signed_area, spoked_pockets
 from wheelstep_cli.geometry.solids import bore_segments, extrude_gear
 
@@ -149,6 +149,20 @@ def lighten_record(faces: dict[str, GearFace], spec, printer) -> dict:
                       "volume_saved_cm3": saved(face, spec) / 1000.0,
                       "mass_saved_g": saved(face, spec) / 1000.0 * density}
                for name, face in faces.items()}}
+
+
+def require_hub_round_hole(spec) -> None:
+    """Refuse (DesignError) a hub (--hub-d) or set screw that cannot fit round the shaft hole
+    of ``spec`` (a GearPairSpec, mm) whatever the teeth: checked before they are generated
+    (the limits the teeth's roots set come with the solids)."""
+    reach = hole_reach(shaft_hole(spec, 0.0))
+    screw = _set_screw(spec, 0.0)
+    if screw is not None:
+        # first: its nut needs more hub round the hole than the hole's own wall
+        name, _, _, flats, height = screw
+        require_screw_fits(name, reach, spec.hub_mm, float(spec.thickness), flats, height)
+    if spec.hub_d is not None:
+        require_hub_clears_hole(reach, float(spec.hub_d))
 
 
 def _set_screw(spec, direction: float):

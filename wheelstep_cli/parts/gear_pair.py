@@ -94,6 +94,9 @@ def build_gear_pair(spec: GearPairSpec) -> GearPair:
 
 
 def _build(spec: GearPairSpec) -> GearPair:
+    from wheelstep_cli.parts.gear_faces import require_hub_round_hole
+
+    require_hub_round_hole(spec)   # before the teeth are made: what does not fit round the bore
     if spec.teeth == "generated":
         return _build_generated(spec)
     law = spec.law()

@@ -249,6 +249,12 @@ def _gear_pair_clearance(spec, extra: float) -> dict:
     return {"backlash": spec.backlash_mm + extra}
 
 
+def _hub_round_hole(spec) -> None:
+    from wheelstep_cli.parts.gear_faces import require_hub_round_hole
+
+    require_hub_round_hole(spec)
+
+
 def _law_periods(spec) -> None:
     from wheelstep_cli.parts.gear_laws import require_law_periods
 
@@ -273,7 +279,8 @@ KINDS: dict[str, PartKind] = {
         parts=lambda pair: [pair.pinion, pair.wheel], hole_fields=("bore", "key_width"),
         clearance=_gear_pair_clearance, mating_check=_gear_pair_meshing, chamfer_field="chamfer",
         with_parts=lambda pair, parts, checks: replace(pair, pinion=parts[0], wheel=parts[1], checks=checks),
-        checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _cutter, _sectors, _law_periods)),
+        checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _cutter, _sectors, _law_periods,
+                _hub_round_hole)),
     KindName.shoe.value: PartKind(
         name=KindName.shoe.value, module="wheelstep_cli.parts.shoe", spec_class="ShoeSpec",
         build="build_shoe", report="shoe_report", section="shoe", parts=lambda shoe: list(shoe.parts),
