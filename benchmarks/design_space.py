@@ -109,8 +109,17 @@ def remedy_fields(message: str) -> dict:
     if "use --" not in message:          # no remedy found
         return {}
     words = message.rsplit("use ", 1)[1].split()
-    return {flag[2:].replace("-", "_"): (int(v) if flag == "--z" else float(v))
-            for flag, v in zip(words[::2], words[1::2])}
+    return {flag[2:].replace("-", "_"): _value(v) for flag, v in zip(words[::2], words[1::2])}
+
+
+def _value(word: str):
+    """A remedy's value as the spec takes it: a whole number, a number, or a choice's text."""
+    for kind in (int, float):
+        try:
+            return kind(word)
+        except ValueError:
+            pass
+    return word
 
 
 def _f(value, spec=".1f") -> str:
