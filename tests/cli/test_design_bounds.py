@@ -39,6 +39,23 @@ def test_refused_design_passes_with_its_remedy(cli, tmp_path, design):
     assert bound_violations(meshing) == []
 
 
+def test_a_pair_mounted_off_its_rolling_distance_gets_a_remedy_that_passes(cli, tmp_path):
+    """The desk demonstrator as it once was (rolling at 71.75, mounted 0.375 mm farther) at z 32:
+    mounted where they roll its teeth still mesh outside the bounds, so the remedy goes on
+    from that build (it was --install-distance alone, which applied was refused again)."""
+    out = tmp_path / "out"
+    design = ["--profile", "desk-demo", "--z", "32", "--center-distance", "71.75", "--install-distance",
+              "72.125", "--backlash", "0.375", "--format", "stl"]
+    line = error_line(cli("gears", *design, "--out", out))
+    assert line.startswith("wheelstep: error: --install-distance = 72.125: the pair would mesh outside")
+    assert "0.375 mm farther than the pitch curves roll (71.75 mm)" in line and not out.exists()
+    remedy = remedy_options(line)
+    assert remedy[:2] == ["--install-distance", "71.75"] and len(remedy) > 2, line
+    result = cli("gears", *with_remedy(design, remedy), "--out", out)
+    assert result.exit_code == 0, result.stderr
+    assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
+
+
 def test_default_pair_meets_the_bounds_on_both_flanks(cli, tmp_path):
     result = cli("gears", "--format", "stl", "--out", tmp_path)
     assert result.exit_code == 0, result.stderr

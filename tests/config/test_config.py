@@ -210,8 +210,9 @@ def test_a_whole_number_written_with_a_point_is_that_number_as_on_the_command_li
 def test_what_is_no_whole_number_stays_refused_at_its_line(cli, tmp_path, text):
     profile = write(tmp_path / "p.yaml", f"gears:\n  z: {text}\n")
     line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
+    note = " (YAML reads yes, no, on and off, unquoted, as true or false)" if text == "true" else ""
     assert line.startswith(f"wheelstep: error: {profile}:2: gears.z = ") and line.endswith(
-        ": must be a whole number"), line
+        ": must be a whole number" + note), line
     assert not (tmp_path / "out").exists()
 
 
@@ -336,3 +337,25 @@ def test_a_parts_section_that_changes_the_profiles_mechanism_is_refused_at_its_l
     assert not (tmp_path / "out").exists()
     write(profile, "mechanism:\n  a: 60\n  b: 100\n  r_min: 20\ngears:\n  a: 60\n  c: 360\nshoe:\n  c: 360\n")
     assert cli(command, "--profile", profile, *out).exit_code == 0
+
+
+def test_a_yaml_word_read_as_a_switch_is_said_in_yamls_words(cli, tmp_path):
+    """`quantity: yes` is YAML 1.1's true: said as the file's reader sees it, with why."""
+    batch = write(tmp_path / "b.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n    design: desk-demo\n"
+                                       "    printer: fdm-0.4-pla\n    quantity: yes\n")
+    line = error_line(cli("batch", batch, "--out", tmp_path / "out"))
+    assert line.endswith(f"{batch}:6: parts[0].quantity = true: must be a whole number (YAML reads yes, no, "
+                         "on and off, unquoted, as true or false)"), line
+
+
+def test_a_batch_law_csv_is_said_as_the_file_writes_it(cli, tmp_path, monkeypatch):
+    """An entry's law CSV is found beside the batch file; a refusal at its line shows the path
+    as written there, not as found from the working folder."""
+    jobs = tmp_path / "jobs"
+    jobs.mkdir()
+    write(tmp_path / "short.csv", "driving_deg,driven_deg\n0,0\n10,5\n")
+    batch = write(jobs / "b.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n    design: desk-demo\n"
+                                   "    printer: fdm-0.4-pla\n    overrides:\n      law_csv: ../short.csv\n")
+    monkeypatch.chdir(tmp_path)
+    line = error_line(cli("batch", "jobs/b.yaml", "--out", "out"))
+    assert "parts[0].overrides.law_csv = '../short.csv': needs at least" in line, line

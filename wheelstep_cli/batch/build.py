@@ -154,8 +154,9 @@ def _refused(entry: Entry, built, result: EntryResult, printer) -> EntryResult |
         return None
     interfere = interference_phrase(mating)
     try:
-        require_mounted_where_rolling(built, interfere)
-        require_play_that_clears(built, mating, interfere, remedy_check(printer, bed=printer))
+        verify = remedy_check(printer, bed=printer)
+        require_mounted_where_rolling(built, interfere, verify)
+        require_play_that_clears(built, mating, interfere, verify)
     except DesignError as err:
         err = err.for_given(entry.overrides)     # the override that moved the distance or the play
         return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),

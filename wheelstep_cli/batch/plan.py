@@ -173,8 +173,9 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     kept = {key: value for key, value in overrides.items() if key not in faulty}
     spec, printed, problems = _every_problem(kind, design[0], kept, printer, frozenset(faulty))
     where = {key: line for key, line in override_where.items() if key in kept}
+    written = {**kept, **{key: entry.overrides[key] for key in kept if key in (entry.overrides or {})}}
     for err in problems:
-        issues.append(_problem(doc, path, err, where, design_name, kept))
+        issues.append(_problem(doc, path, err, where, design_name, written))
     if problems or faulty:
         issues[before:] = sorted(issues[before:], key=_line)     # the entry's problems in file order
         return None
@@ -343,7 +344,8 @@ def _problem(doc, path, err: DesignError, override_where, design_name, overrides
     err = err.for_given(override_where)
     param = err.param.replace("-", "_")
     if param in override_where:
+        # the value as the file gives it (a law CSV's path as written, not as found from here)
         return Issue(override_where[param], dotted(path + ("overrides", param)),
-                     f"= {show(err.value)}: {in_file_words(err.limit)}")
+                     f"= {show(overrides.get(param, err.value))}: {in_file_words(err.limit)}")
     given = f", with overrides {', '.join(overrides)}" if overrides else ""
     return Issue(doc.where(path), dotted(path), f"{yaml_message(err)} (from design {design_name}{given})")

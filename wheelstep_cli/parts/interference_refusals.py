@@ -22,17 +22,23 @@ def interference_phrase(record: dict) -> str:
             f"{record['distance_mm']:g} mm (max overlap {shown})")
 
 
-def require_mounted_where_rolling(pair, failure: str) -> None:
+def require_mounted_where_rolling(pair, failure: str, verify: Callable | None = None) -> None:
     """Refuse (DesignError on the installed distance, with the remedy) a generated pair mounted
     off its rolling distance whose check found ``failure``; nothing for a pair mounted where
-    its pitch curves roll."""
+    its pitch curves roll. With ``verify(design)`` (pair, record) the remedy is built and
+    followed up (mounted where they roll, the teeth may still mesh outside the bounds) before
+    it is offered."""
     if pair.generated is None or abs(pair.opening) <= OPENING_TOLERANCE:
         return
     design = pair.as_asked
+    remedy, tried = {"install_distance": pair.design_distance}, []
+    if verify is not None:
+        remedy, tried, _ = verified_remedy(design, remedy, verify, MeshBounds())
+    advice = (f"use {as_flags(remedy)} (for more play, more backlash)" if remedy else
+              f"no remedy found ({'; '.join(tried)})")
     error = DesignError("install_distance", pair.mounted_distance,
-                        f"{failure}; {opening_phrase(pair)}; nothing written; use --install-distance "
-                        f"{pair.design_distance:g} (for more play, more backlash)")
-    error.remedy = {"install_distance": pair.design_distance}
+                        f"{failure}; {opening_phrase(pair)}; nothing written; {advice}")
+    error.remedy = remedy
     # the rolling distance comes from the centre distance or the module: named if given instead
     raise error.tied_to({"center_distance": design.center_distance, "module": design.module})
 

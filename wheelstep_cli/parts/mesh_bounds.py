@@ -63,9 +63,12 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     design = pair.as_asked
     remedy, tried, candidates = {}, [], []
     if abs(pair.opening) > OPENING_TOLERANCE:
-        # off the distance they roll at the pitch curves do not roll: mount them there
+        # off the distance they roll at the pitch curves do not roll: mount them there (built
+        # and followed up like any remedy: mounted right, the teeth may still need changing)
         broken.append(opening_phrase(pair))
         remedy["install_distance"] = pair.design_distance
+        if verify is not None:
+            remedy, tried, candidates = verified_remedy(design, remedy, verify, bounds)
     else:
         remedy = _remedy_of(pair, design, record, bounds, built=verify is not None)
         if verify is not None and remedy:

@@ -69,7 +69,7 @@ def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, ver
         interfere = interference_phrase(record)
         # mounted off the rolling distance the user's distance is the cause: refused as bad
         # input (exit 2) like a pair mounted farther off, whose figures break the bounds
-        require_mounted_where_rolling(pair, interfere)
+        require_mounted_where_rolling(pair, interfere, verify)
         if verify is not None:
             require_play_that_clears(pair, record, interfere, verify)
         show.error(f"wheelstep: refused: {interfere}; nothing written (--allow-interference "
