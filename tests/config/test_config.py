@@ -357,5 +357,5 @@ def test_a_batch_law_csv_is_said_as_the_file_writes_it(cli, tmp_path, monkeypatc
     batch = write(jobs / "b.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n    design: desk-demo\n"
                                    "    printer: fdm-0.4-pla\n    overrides:\n      law_csv: ../short.csv\n")
     monkeypatch.chdir(tmp_path)
-    line = error_line(cli("batch", "jobs/b.yaml", "--out", "out"))
+    line = error_line(cli("batch", batch.relative_to(tmp_path), "--out", "out"))
     assert "parts[0].overrides.law_csv = '../short.csv': needs at least" in line, line
