@@ -115,3 +115,11 @@ def test_profile_law_csv_is_the_law_the_gears_follow(cli, tmp_path):
     profile.write_text(f"gears:\n  law_csv: {half}\n")
     line = error_line(cli("kinematics", "--profile", profile))
     assert "law_csv" in line and "must divide 90 deg" in line, line
+
+
+def test_a_profiles_gears_that_cannot_be_made_are_refused_as_gears_refuses_them(cli, tmp_path):
+    profile = tmp_path / "p.yaml"
+    profile.write_text("gears:\n  teeth: paper\n  blend: 10\n")
+    line = error_line(cli("kinematics", "--profile", profile))
+    assert line == error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
+    assert f"{profile}:3: gears.blend = 10:" in line

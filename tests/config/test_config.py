@@ -331,7 +331,8 @@ def test_a_parts_section_that_changes_the_profiles_mechanism_is_refused_at_its_l
     result = cli(command, "--profile", profile, *out)
     assert result.exit_code == 2, result.stderr
     lines = result.stderr.strip().splitlines()
-    assert [line.split(": ", 3)[3].split(" =")[0] for line in lines] == ["gears.a", "gears.c"], lines
+    # the key that differs, not its section's other keys, which agree
+    assert [line.split(": ", 3)[3].split(" =")[0] for line in lines] == ["gears.a"], lines
     assert f"{profile}:{line_of(profile, 'a: 50')}" in lines[0]
     assert "a = 50, b = 100, c = 360 mm" in lines[0] and "a = 60, b = 100, c = 360 mm" in lines[0]
     assert not (tmp_path / "out").exists()
@@ -359,3 +360,31 @@ def test_a_batch_law_csv_is_said_as_the_file_writes_it(cli, tmp_path, monkeypatc
     monkeypatch.chdir(tmp_path)
     line = error_line(cli("batch", batch.relative_to(tmp_path), "--out", "out"))
     assert "parts[0].overrides.law_csv = '../short.csv': needs at least" in line, line
+
+
+@pytest.mark.parametrize("text, key", [
+    ("gears:\n  a: 50\n", "gears.a"),           # no mechanism section: the source design's is shared
+    ("shoe:\n  r_min: 25\n", "shoe.r_min"),
+    ("gears:\n  law_csv: law.csv\n  turns: 4\n", "gears.turns"),   # a law CSV has no crank law
+    ("gears:\n  law_csv: law.csv\n  b: 90\n", "gears.b"),
+])
+def test_a_part_section_cannot_set_its_own_crank_law(cli, tmp_path, text, key):
+    import numpy as np
+
+    phi = np.linspace(0.0, 90.0, 91)
+    write(tmp_path / "law.csv", "driving_deg,driven_deg\n" + "\n".join(f"{2 * p:g},{p:g}" for p in phi))
+    profile = write(tmp_path / "p.yaml", text)
+    for command in (["gears", "--dry-run"], ["kinematics"]):
+        line = error_line(cli(*command, "--profile", profile))
+        assert f"{profile}:{line_of(profile, key.split('.')[1] + ':')}: {key} = " in line, line
+
+
+def test_an_empty_value_in_a_profile_is_refused_at_its_line(cli, tmp_path):
+    """`law_csv:` with nothing after it is YAML's null: the default would stand while the file
+    seems to set it."""
+    profile = write(tmp_path / "p.yaml", "gears:\n  law_csv:\n  z: 48\nmechanism:\n  a:\n")
+    result = cli("gears", "--profile", profile, "--out", tmp_path / "out")
+    assert result.exit_code == 2 and not (tmp_path / "out").exists()
+    assert result.stderr.strip().splitlines() == [
+        f"wheelstep: error: {profile}:2: gears.law_csv = null: give a value, or leave the key out for the default",
+        f"wheelstep: error: {profile}:5: mechanism.a = null: give a value, or leave the key out for the default"]

@@ -58,26 +58,32 @@ class DesignProfile(BaseModel):
         return {} if given is None else given.model_dump(exclude_none=True)
 
     def mechanism_conflicts(self) -> list[tuple[str, str, str]]:
-        """(section, key, why) of each mechanism length a part's section gives that makes its
-        mechanism differ from the ``mechanism:`` section's: the gears' law and the shoe's sole
-        come from one crank mechanism (a gear pair following a law CSV has none)."""
+        """(section, key, why) of each mechanism length a part's section gives that differs
+        from the mechanism's (the ``mechanism:`` section over the source design's): the
+        gears' law and the shoe's sole come from one crank mechanism, and ``kinematics`` reads
+        it for both. A gear pair following a law CSV has no crank law: what sets one (the
+        lengths, ``turns``) is refused beside it, as on the command line."""
         shared = self.values("mechanism")
-        if not shared:
-            return []
+        base = _crank([shared])
         conflicts = []
         for section in ("gears", "shoe"):
             part = self.values(section)
-            keys = [k for k in MECHANISM_KEYS if k in part]
-            if not keys or part.get("law_csv"):
+            if section == "gears" and part.get("law_csv") is not None:
+                conflicts += [(section, key, "sets the crank law, which gears.law_csv replaces (the gears "
+                                             "follow the law read from the CSV)")
+                              for key in ("a", "b", "c", "turns") if key in part]
                 continue
-            base, own = _crank([shared]), _crank([shared, part])
+            keys = [k for k in MECHANISM_KEYS if k in part]
+            own = _crank([shared, part]) if keys else None
             if base is None or own is None or all(abs(x - y) <= 1e-9 for x, y in zip(base, own)):
                 continue
+            values = dict(zip(("a", "b", "c", "r_min"), (*base, base[0] - 4 * base[1] + base[2])))
+            differing = [k for k in keys if abs(float(part[k]) - values[k]) > 1e-9] or keys
             lengths = "a = {:g}, b = {:g}, c = {:g} mm"
-            why = (f"gives the {section} the mechanism {lengths.format(*own)}, the mechanism section "
-                   f"{lengths.format(*base)}: a mover's parts share one mechanism; give a, b and the strut "
-                   "in mechanism: only")
-            conflicts += [(section, key, why) for key in keys]
+            where = "the mechanism section" if shared else "the mechanism (no mechanism section: the source design's)"
+            why = (f"gives the {section} the mechanism {lengths.format(*own)}, {where} {lengths.format(*base)}: "
+                   "a mover's parts share one mechanism; give a, b and the strut in mechanism: only")
+            conflicts += [(section, key, why) for key in differing]
         return conflicts
 
 

@@ -180,6 +180,12 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
     # a key no design profile has may tell another kind of file (a batch's parts:)
     if not set(doc.data) <= set(DesignProfile.model_fields) and profile_kind(doc.data) in ("batch", "sweep"):
         raise DesignError("design", name, wrong_kind(doc.data, "design", name))
+    # an empty value would do nothing (the default stands) while the file seems to set it
+    empty = [Issue(doc.where((section, key)), f"{section}.{key}", "= null: give a value, or leave the key out "
+                   "for the default") for section, values in doc.data.items() if isinstance(values, dict)
+             for key, value in values.items() if value is None and section in DesignProfile.model_fields]
+    if empty:
+        raise InvalidInput(empty)
     profile = validate_file(DesignProfile, doc)
     gears = profile.gears
     if gears is not None and gears.law_csv is not None:

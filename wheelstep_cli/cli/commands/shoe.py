@@ -123,7 +123,7 @@ def _kinematics_lines(report: dict, rows: int) -> list[str]:
 
     curve = report["curve"]
     lines = [f"a = {report['a_mm']:g}  b = {report['b_mm']:g}  c = {report['c_mm']:g} mm, motor "
-             f"{report['motor_rpm']:g} rpm, {report['turns']:g} pinion turns per carrier turn: one "
+             f"{report['motor_rpm']:g} rpm, {report['turns']:g} pinion turn{'' if report['turns'] == 1 else 's'} per carrier turn: one "
              f"shoe cycle {report['cycle_time_s']:.3f} s, {report['x_cycle_mm']:.1f} mm, mean hub "
              f"speed {report['mean_speed_m_s']:.3f} m/s",
              f"{'phi deg':>8} {'U':>8} {'without m/s':>12} {'with m/s':>10}"]
@@ -138,10 +138,15 @@ def _kinematics_lines(report: dict, rows: int) -> list[str]:
 
 def _profile_gears(profile: str | None) -> dict:
     """The values a design profile's ``gears:`` section gives (none without a profile); the
-    profile is checked whole by its model, the section with the rest."""
+    profile is checked whole by its model, and a gears section as ``gears --profile`` checks
+    it (the hub speed of gears that cannot be made is no answer)."""
     from wheelstep_cli.config.profiles import load_design_profile
+    from wheelstep_cli.config.resolve import gear_pair_spec
 
-    return load_design_profile(profile).values("gears") if profile else {}
+    values = load_design_profile(profile).values("gears") if profile else {}
+    if values:
+        gear_pair_spec(profile)
+    return values
 
 
 def register(app) -> None:
