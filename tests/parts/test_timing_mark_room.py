@@ -15,9 +15,9 @@ def test_a_hub_that_leaves_the_pinion_no_room_for_its_mark_is_refused(cli, tmp_p
     out = tmp_path / "out"
     args = ("gears", "--profile", "desk-demo", "--hub-d", "34", "--format", "stl", "--out", out, "-q")
     line = error_line(cli(*args))
-    assert line.startswith("wheelstep: error: --hub-d = 34: with it, mark-depth = 0.5 fails: leaves "
+    assert line.startswith("wheelstep: error: --hub-d = 34: must be <= 27.91 mm: larger, it leaves "
                            "the pinion no room for its timing mark"), line
-    assert line.endswith(": a smaller --hub-d or --bore, or --mark-depth 0 for no marks") and not out.exists()
+    assert line.endswith("; or --mark-depth 0 for no marks") and not out.exists()
     # the remedy, applied: no marks asked for, none missing
     result = cli(*args, "--mark-depth", "0")
     assert result.exit_code == 0, result.stderr
@@ -27,17 +27,26 @@ def test_a_hub_that_leaves_the_pinion_no_room_for_its_mark_is_refused(cli, tmp_p
     assert "carry no timing marks (mark depth 0)" in note and "marks face each other" not in note
 
 
-@pytest.mark.parametrize("args, start, remedy", [
-    (["--bore-shape", "keyway", "--key-depth", "15"], "--key-depth = 15", "a smaller --key-depth or --bore"),
-    (["--bore-shape", "hex", "--bore", "30"], "--bore = 30", "a smaller --bore"),
+@pytest.mark.parametrize("args, flag", [
+    (["--hub-d", "36.12"], "--hub-d"),          # within the hub's own wall rule, not the mark's
+    (["--bore", "40"], "--bore"),
+    (["--bore-shape", "keyway", "--key-depth", "4", "--bore", "22"], "--key-depth"),
+    (["--bore-shape", "keyway", "--bore", "30"], "--bore"),
+    (["--bore-shape", "hex", "--bore", "30"], "--bore"),
+    (["--bore-shape", "d-flat", "--bore", "34"], "--bore"),
+    (["--bore", "34", "--printer", "fdm-0.4-pla"], "--bore"),   # the printer draws the bore larger
 ])
-def test_the_mark_room_refusal_names_what_narrows_the_web(cli, tmp_path, args, start, remedy):
-    """The option the user gave that narrows the web is named, and only levers that are set
-    are offered (no --hub-d without a hub)."""
-    line = error_line(cli("gears", "--profile", "desk-demo", *args, "--dry-run", "--out", tmp_path / "out"))
-    assert line.startswith(f"wheelstep: error: {start}: with it, mark-depth = 0.5 fails: leaves the pinion "
-                           "no room for its timing mark"), line
-    assert line.endswith(f": {remedy}, or --mark-depth 0 for no marks"), line
+def test_the_mark_room_refusal_names_the_largest_value_that_leaves_room(cli, tmp_path, args, flag):
+    """The option the user gave that narrows the web is named with the largest value that
+    leaves the mark its room; that value applied, the pair is made."""
+    out = ["--dry-run", "--out", tmp_path / "out"]
+    line = error_line(cli("gears", "--profile", "desk-demo", *args, *out))
+    assert line.startswith(f"wheelstep: error: {flag} = ") and "no room for its timing mark" in line, line
+    largest = line.split(": must be <= ", 1)[1].split(" mm", 1)[0]
+    fixed = list(args)
+    fixed[fixed.index(flag) + 1] = largest
+    result = cli("gears", "--profile", "desk-demo", *fixed, *out)
+    assert result.exit_code == 0, result.stderr
 
 
 def test_the_assembly_note_of_marked_gears_on_a_round_bore_says_to_face_the_marks():

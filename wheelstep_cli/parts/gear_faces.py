@@ -80,22 +80,51 @@ def _mark_span(outline: np.ndarray, hole: np.ndarray | None, hub: float) -> tupl
 
 def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec) -> None:
     """Refuse (DesignError) a gear whose web has no room for its timing mark: the pair is
-    set in phase by its marks, and a gear left without one could not be."""
-    from wheelstep_cli.errors import DesignError
+    set in phase by its marks, and a gear left without one could not be. Each input that
+    narrows the web and would make room if smaller is stated with the value that does (mm)."""
+    from wheelstep_cli.errors import DesignError, rounded_down
 
     inner, outer = _mark_span(outline, hole, spec.hub_mm[0])
+    short = MARK_LENGTH - (outer - inner)
     around = "hub" if spec.hub_d else "bore" if hole is not None else "axis"
-    keyed = spec.bore_shape == "keyway"
-    smaller = [flag for flag, used in (("--hub-d", bool(spec.hub_d)), ("--key-depth", keyed),
-                                       ("--bore", hole is not None)) if used]
-    remedy = (f"a smaller {' or '.join(smaller)}, or " if smaller else "") + "--mark-depth 0 for no marks"
-    raise DesignError("mark_depth", spec.mark_depth,
-                      f"leaves the {name} no room for its timing mark ({max(outer - inner, 0.0):.1f} "
-                      f"mm of web between the {around} and the tooth roots, the mark needs "
-                      f"{MARK_LENGTH:.1f} mm): {remedy}"
-                      # what narrows the web, the most specific first: named when the user gave it
-                      ).tied_to({"key_depth": spec.key_depth, "key_width": spec.key_width, "hub_d": spec.hub_d,
-                                 "bore": spec.bore, "bore_shape": spec.bore_shape})
+    room = (f"leaves the {name} no room for its timing mark ({max(outer - inner, 0.0):.1f} mm of web "
+            f"between the {around} and the tooth roots, the mark needs {MARK_LENGTH:.1f} mm)")
+    reach = shapes.hole_reach(hole) if hole is not None else 0.0
+    limits = {}
+    if spec.hub_d and spec.hub_mm[0] / 2.0 >= reach and spec.hub_mm[0] - 2.0 * short > 0:
+        limits["hub_d"] = (spec.hub_d, spec.hub_mm[0] - 2.0 * short)
+    elif hole is not None and reach - short > 0:
+        for param in (["key_depth"] if spec.bore_shape == "keyway" else []) + ["bore"]:
+            largest = _largest_hole(spec, param, reach - short)
+            if largest > 0:
+                limits[param] = (getattr(spec, param), largest)
+    said = {param: (value, f"must be <= {rounded_down(largest)} mm: larger, it {room}; or --mark-depth 0 for "
+                           "no marks") for param, (value, largest) in limits.items()}
+    remedy = "".join(f"--{param.replace('_', '-')} <= {rounded_down(largest)} mm, or "
+                     for param, (_, largest) in limits.items()) + "--mark-depth 0 for no marks"
+    # what narrows the web, the most specific first: named when the user gave it
+    raise DesignError("mark_depth", spec.mark_depth, f"{room}: {remedy}", said).tied_to(
+        {"key_width": spec.key_width, "bore_shape": spec.bore_shape})
+
+
+def _largest_hole(spec, param: str, reach: float) -> float:
+    """The largest ``param`` (bore or key_depth, mm, at most the spec's) whose shaft hole
+    reaches at most ``reach`` mm from the axis, the other hole dimensions kept (smaller DIN
+    keys of a smaller bore only reach less); 0 when none does."""
+    from wheelstep_cli.errors import rounded_down
+
+    def fits(value: float) -> bool:
+        return shapes.hole_reach(shaft_hole(spec.model_copy(update={param: value}), 0.0)) <= reach
+
+    low, high = 0.0, float(getattr(spec, param))
+    for _ in range(40):
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if fits(middle) else (low, middle)
+    # as the line will print it, and checked there (the polygon's sides change with the bore)
+    shown = float(rounded_down(low))
+    while shown > 0 and not fits(shown):
+        shown = round(shown - 0.01, 2)
+    return max(shown, 0.0)
 
 
 #: Least radial room (mm) for a pocket: its two corner fillets and 3 mm between them.
@@ -160,7 +189,8 @@ def require_hub_round_hole(spec) -> None:
     if screw is not None:
         # first: its nut needs more hub round the hole than the hole's own wall
         name, _, _, flats, height = screw
-        require_screw_fits(name, reach, spec.hub_mm, float(spec.thickness), flats, height)
+        require_screw_fits(name, reach, spec.hub_mm, float(spec.thickness), flats, height,
+                           shapes.SET_SCREWS[name][0])
     if spec.hub_d is not None:
         require_hub_clears_hole(reach, float(spec.hub_d))
 
@@ -180,13 +210,14 @@ def gear_part(face: GearFace, spec):
     cut = face.holes[1 if spec.bore > 0 else 0:]
     param = {"keyway": "key_depth", "d-flat": "bore", "hex": "bore"}.get(spec.bore_shape, "bore")
     value = spec.key_depth if param == "key_depth" else spec.bore
+    if not face.marks and spec.mark_depth > 0:
+        # before the solid's own checks: with marks, their room is the binding limit on the
+        # bore and hub (the walls the solid needs are narrower)
+        _no_room_for_mark(face.name, face.outline, hole, spec)
     part = extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
                         spec.mark_depth, param, value, cut, spec.chamfer_mm, spec.hub_mm,
                         _set_screw(spec, face.direction),
                         (float(spec.bore), float(spec.key_width)) if param == "key_depth" else None)
-    # after the solid's own checks: a bore or hub too large for the gear is named as such first
-    if not face.marks and spec.mark_depth > 0:
-        _no_room_for_mark(face.name, face.outline, hole, spec)
     if spec.lighten and face.name == "wheel" and not cut:
         _no_room_for_pockets(face, spec)
     return part
