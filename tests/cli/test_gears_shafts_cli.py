@@ -110,3 +110,30 @@ def test_a_set_screw_that_does_not_fit_names_the_hub_size_that_fits_as_printed(c
     least = line.split(f"needs {limit} >= ")[1].split(" mm")[0]
     result = cli("gears", *with_remedy(design, [limit, least]), "--out", tmp_path / "fits")
     assert result.exit_code == 0, result.stderr
+
+
+@pytest.mark.parametrize("screw", ["M3", "M6"])
+def test_a_set_screws_hole_leaves_through_the_hubs_side_above_the_plate(cli, tmp_path, screw):
+    """A hub too short for the screw's hole (it would run into the plate's web, out of reach)
+    is refused with the least hub length; at that length the hole cuts nothing of the plate
+    outside the hub."""
+    import numpy as np
+    import trimesh
+
+    from wheelstep_cli.gears.bore_shapes import SET_SCREWS
+
+    out = tmp_path / "out"
+    args = ["gears", "--profile", "desk-demo", "--set-screw", screw, "--hub-d", "24", "--mark-depth", "0",
+            "--format", "stl", "--out", out, "-q"]
+    line = error_line(cli(*args, "--hub-length", "0.5"))
+    assert f"--set-screw = {screw}: does not fit the hub: its hole and nut need --hub-length >= " in line, line
+    least = line.split("--hub-length >= ")[1].split(" mm")[0]
+    assert float(least) == pytest.approx(SET_SCREWS[screw][0] + 1.0, abs=0.01)
+    assert not out.exists()
+    assert cli(*args, "--hub-length", least).exit_code == 0
+    mesh = trimesh.load(out / "pinion.stl")
+    r = np.hypot(mesh.vertices[:, 0], mesh.vertices[:, 1])
+    z = mesh.vertices[:, 2]
+    # inside the plate (6 mm), outside the hub (12 mm radius) and clear of the teeth: no vertex
+    web = (r > 12.05) & (r < 20.0) & (z > 0.05) & (z < 5.95)
+    assert not web.any(), np.column_stack([r[web], z[web]])[:5]

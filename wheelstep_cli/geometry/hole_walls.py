@@ -59,12 +59,18 @@ def require_hub_clears_hole(reach: float, diameter: float) -> None:
                           f"{MIN_HOLE_WALL:g} mm of wall round the shaft hole)")
 
 
+#: Least plastic (mm) between a set screw's hole and the plate's top face: the hole runs out
+#: through the hub's side above the plate, where a screwdriver reaches it.
+SCREW_CLEAR_OF_PLATE = 0.5
+
+
 def require_screw_fits(name: str, reach: float, hub: tuple[float, float], thickness: float,
-                       flats: float, height: float) -> None:
-    """DesignError naming set_screw ``name`` when its captive nut (``flats`` across, ``height``
-    mm, between MIN_HOLE_WALL of wall round a hole reaching ``reach`` mm and the hub's wall)
-    does not fit the hub = (diameter, length) mm on a plate ``thickness`` mm thick. The
-    limits are rounded up: applied as printed, they fit."""
+                       flats: float, height: float, diameter: float) -> None:
+    """DesignError naming set_screw ``name`` (``diameter`` mm) when its captive nut (``flats``
+    across, ``height`` mm, between MIN_HOLE_WALL of wall round a hole reaching ``reach`` mm
+    and the hub's wall) does not fit the hub = (diameter, length) mm on a plate ``thickness``
+    mm thick, or its hole (on the hub's mid-height) would run into the plate below the hub's
+    side. The limits are rounded up: applied as printed, they fit."""
     # each also stated for the hub's diameter: the rule is shared with it
     if hub[0] <= 0:
         raise DesignError("set_screw", name, "needs --hub-d (the screw goes through the hub)",
@@ -74,9 +80,12 @@ def require_screw_fits(name: str, reach: float, hub: tuple[float, float], thickn
         least = rounded_up(2 * (nut_out + MIN_HOLE_WALL))
         raise DesignError("set_screw", name, f"does not fit the hub: needs --hub-d >= {least} mm",
                           {"hub_d": (hub[0], f"must be >= {least} mm (room for the {name} set screw's nut)")})
-    if flats / np.sqrt(3.0) > hub[1] / 2.0 + thickness - 1.0:
-        raise DesignError("set_screw", name, "does not fit the hub: its nut needs --hub-length >= "
-                          f"{rounded_up(2.0 * (flats / np.sqrt(3.0) - thickness + 1.0))} mm")
+    length = max(2.0 * (flats / np.sqrt(3.0) - thickness + 1.0), diameter + 2.0 * SCREW_CLEAR_OF_PLATE)
+    if hub[1] < length - 1e-9:
+        raise DesignError("set_screw", name, f"does not fit the hub: its hole and nut need --hub-length >= "
+                          f"{rounded_up(length)} mm (the hole leaves through the hub's side, above the plate)",
+                          {"hub_length": (hub[1], f"must be >= {rounded_up(length)} mm for the {name} set screw "
+                                                  "(its hole leaves through the hub's side, above the plate)")})
 
 
 def corner_clear_of(direction: float, segments: int) -> float:
