@@ -10,7 +10,8 @@ import numpy as np
 
 from wheelstep_cli.config.names import as_flags
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.parts.mesh_bounds import OPENING_TOLERANCE, MeshBounds, opening_phrase, verified_remedy
+from wheelstep_cli.parts.mesh_bounds import (OPENING_TOLERANCE, MeshBounds, no_remedy, opening_phrase,
+                                             verified_remedy)
 
 
 def interference_phrase(record: dict) -> str:
@@ -35,7 +36,7 @@ def require_mounted_where_rolling(pair, failure: str, verify: Callable | None = 
     if verify is not None:
         remedy, tried, _ = verified_remedy(design, remedy, verify, MeshBounds())
     advice = (f"use {as_flags(remedy)} (for more play, more backlash)" if remedy else
-              f"no remedy found ({'; '.join(tried)})")
+              no_remedy(tried))
     error = DesignError("install_distance", pair.mounted_distance,
                         f"{failure}; {opening_phrase(pair)}; nothing written; {advice}")
     error.remedy = remedy

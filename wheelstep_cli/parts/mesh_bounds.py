@@ -115,6 +115,11 @@ def undercut_checked(build: Callable, design, verify: Callable):
         raise verified_undercut(err, design, verify) from None
 
 
+def no_remedy(tried: list[str]) -> str:
+    """A refusal's words for no remedy found, with what each try gave (none tried: none said)."""
+    return f"no remedy found ({'; '.join(tried)})" if tried else "no remedy found"
+
+
 def verified_undercut(err: DesignError, design, verify: Callable,
                       bounds: MeshBounds = MeshBounds()) -> DesignError:
     """The undercut refusal ``err`` of ``design`` (its ``undercut``: the options at which the
@@ -133,7 +138,7 @@ def verified_undercut(err: DesignError, design, verify: Callable,
     unchecked = err.limit[len(cause):]
     law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
     advice = "; " + (" or ".join(f"use {as_flags(remedy)}" for remedy in offered) if offered
-                     else f"no remedy found ({'; '.join(tried)}): change {law} or {_size_option(design)}")
+                     else f"{no_remedy(tried)}: change {law} or {_size_option(design)}")
     # the inputs sharing the blame state the rule with the checked remedies too
     alternatives = {name: (value, text.replace(unchecked, advice)) for name, (value, text) in err.alternatives.items()}
     checked = DesignError(err.param, err.value, cause + advice, alternatives)
