@@ -17,7 +17,7 @@ as ``mesh-check`` checks written meshes. Lengths in mm, angles in radians.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -217,6 +217,7 @@ class MeshPair:
     wheel: object
     spec: object
     files: tuple[str, str]      # the two meshes as named
+    sections: dict | None = None    # their design_sections, once taken
 
 
 def mesh_pair(pinion: str, wheel: str, spec, samples: int | None, window: float | None) -> MeshPair:
@@ -236,7 +237,7 @@ def mesh_pair(pinion: str, wheel: str, spec, samples: int | None, window: float 
                     (pinion, wheel))
     designs = design_sections(pair)
     require_written_pair(check, (designs["pinion"][0], designs["wheel"][0]), law)
-    return pair
+    return replace(pair, sections=designs)     # the read-back takes them from here
 
 
 def default_plates(gcode_files: list[Path]) -> list[str]:
@@ -274,8 +275,6 @@ def gcode_sections(gcode_files: list[Path], pair, samples: int | None, window: f
     """Read the pair back from the G-code files and check the designed pair once (its play
     is where the printed pair's poses start: generated teeth may keep their play on one
     side, where the law's own pose touches a flank)."""
-    from dataclasses import replace
-
     from wheelstep_cli.gears.meshing import MeshingSettings
     from wheelstep_cli.parts.gear_pair import design_law, generation_law, installed_distance
     from wheelstep_cli.parts.tolerance import NOMINAL, SectionedPair, check_case, mid_play
@@ -284,7 +283,7 @@ def gcode_sections(gcode_files: list[Path], pair, samples: int | None, window: f
     from wheelstep_cli.parts.mesh_check_files import require_poses_per_tooth
 
     law = design_law(pair.spec)
-    designs = design_sections(pair)
+    designs = getattr(pair, "sections", None) or design_sections(pair)
     # the designed pinion's own teeth (two meshes named with design options need not have z's)
     require_poses_per_tooth(samples, pair_teeth(designs["pinion"][0], None, law)[0], law)
     found, records = printed_pair(gcode_files, pair, designs)
