@@ -623,6 +623,18 @@ def test_batch_refuses_teeth_too_thin_for_the_entrys_printer_with_a_remedy_that_
     assert sorted(p.name for p in (out / "reports").iterdir()) == ["remedy.json", "resin.json"]
 
 
+def test_a_bounds_refusal_names_the_override_that_shares_the_blame(cli, tmp_path):
+    """The desk demonstrator with a backlash of 0.5 mm meshes outside the bounds: the entry's
+    line names the backlash it gave (as `gears` names --backlash), at its line, with the
+    remedy as the file's keys."""
+    batch = write(tmp_path / "b.yaml", VALID_ENTRY + "    overrides:\n      backlash: 0.5\n")
+    result = cli("batch", batch, "--out", tmp_path / "out", "--jobs", "1")
+    assert result.exit_code == 1, result.stderr
+    assert f"({batch}:{line_of(batch, 'backlash')}): backlash = 0.5: with it, z = 42 fails: the pair would " \
+        "mesh outside the bounds" in result.stderr, result.stderr
+    assert "use overrides {" in result.stderr
+
+
 def test_a_batch_gear_pair_whose_hub_makes_it_too_tall_is_refused_before_it_is_built(cli, tmp_path):
     """The batch's early height check is gears': the plate and the hub both gears carry."""
     from tests.helpers.files import line_of, write

@@ -13,8 +13,9 @@ from tests.helpers.meshcheck import assert_printable_stl
     (["--key-width", "3"], "--key-width = 3: needs --bore-shape keyway"),
     (["--flat-depth", "1"], "--flat-depth = 1: needs --bore-shape d-flat"),
     (["--bore-shape", "d-flat", "--flat-depth", "4"], "--flat-depth = 4: must be < half the bore"),
-    (["--bore-shape", "hex", "--bore", "76"], "--bore = 76: must be < 65.62 mm (leave 1.5 mm"),
-    (["--bore-shape", "keyway", "--bore", "70", "--key-depth", "6"], "--key-depth = 6"),
+    # the walls a hole leaves (without marks, whose room is the larger limit; test_timing_mark_room)
+    (["--bore-shape", "hex", "--bore", "76", "--mark-depth", "0"], "--bore = 76: must be < 65.62 mm (leave 1.5 mm"),
+    (["--bore-shape", "keyway", "--bore", "70", "--key-depth", "6", "--mark-depth", "0"], "--key-depth = 6"),
     (["--bore-shape", "oval"], "--bore-shape"),
     (["--key-angle", "400"], "--key-angle = 400"),
     (["--mark-depth", "3"], "--mark-depth = 3"),
@@ -30,7 +31,8 @@ from tests.helpers.meshcheck import assert_printable_stl
     (["--hub-d", "14", "--set-screw", "M3"], "--set-screw = M3: does not fit the hub"),
     (["--chamfer", "5"], "--chamfer = 5: must be < half the thickness"),
     # no key depth helps a bore that is itself too large: the bore is named, with its limit
-    (["--bore-shape", "keyway", "--bore", "76"], "--bore = 76: must be < 61.71 mm with the keyway's"),
+    (["--bore-shape", "keyway", "--bore", "76", "--mark-depth", "0"],
+     "--bore = 76: must be < 61.71 mm with the keyway's"),
     (["--bore-shape", "hex", "--bore", "0"], "--bore = 0: must be > 0 mm for a hex"),
     (["--bore", "0", "--hub-d", "20", "--set-screw", "M3"], "--set-screw = M3: needs a bore"),
     (["--key-angle", "30"], "--key-angle = 30: orients a keyed bore or a set screw"),
@@ -126,7 +128,7 @@ def test_a_set_screws_hole_leaves_through_the_hubs_side_above_the_plate(cli, tmp
     args = ["gears", "--profile", "desk-demo", "--set-screw", screw, "--hub-d", "24", "--mark-depth", "0",
             "--format", "stl", "--out", out, "-q"]
     line = error_line(cli(*args, "--hub-length", "0.5"))
-    assert f"--set-screw = {screw}: does not fit the hub: its hole and nut need --hub-length >= " in line, line
+    assert f"--set-screw = {screw}: does not fit the hub: needs --hub-length >= " in line, line
     least = line.split("--hub-length >= ")[1].split(" mm")[0]
     assert float(least) == pytest.approx(SET_SCREWS[screw][0] + 1.0, abs=0.01)
     assert not out.exists()
@@ -137,3 +139,16 @@ def test_a_set_screws_hole_leaves_through_the_hubs_side_above_the_plate(cli, tmp
     # inside the plate (6 mm), outside the hub (12 mm radius) and clear of the teeth: no vertex
     web = (r > 12.05) & (r < 20.0) & (z > 0.05) & (z < 5.95)
     assert not web.any(), np.column_stack([r[web], z[web]])[:5]
+
+
+def test_a_keyway_too_deep_for_the_root_is_said_of_the_bore_when_its_depth_is_the_default(cli, tmp_path):
+    """The key depth left to its DIN default is not the user's: the bore they gave is named,
+    with the largest that leaves the wall; applied, the pair is made."""
+    args = ["gears", "--profile", "desk-demo", "--bore-shape", "keyway", "--mark-depth", "0", "--dry-run",
+            "--out", tmp_path / "out"]
+    line = error_line(cli(*args, "--bore", "30"))
+    assert line.startswith("wheelstep: error: --bore = 30: must be < ") and "keyway's 3.3 mm depth" in line, line
+    largest = line.split("must be < ")[1].split(" mm")[0]
+    assert cli(*args, "--bore", largest).exit_code == 0
+    given = error_line(cli(*args, "--bore", "30", "--key-depth", "3.3"))
+    assert given.startswith("wheelstep: error: --key-depth = 3.3: must be < "), given

@@ -82,8 +82,9 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
             result.report["tolerance"] = band
         return EntryResult(entry.index, result.parts, result.report, mating=mating, band=band)
     except DesignError as err:
-        # raised on the printer's compensated values: said as the entry gives them
-        err = as_designed(err, entry.spec, entry.printed)
+        # raised on the printer's compensated values: said of the override that shares the
+        # blame (as the command line names the flag given), as the entry gives them
+        err = as_designed(err.for_given(entry.overrides), entry.spec, entry.printed)
         return EntryResult(entry.index, error=remedy_in_yaml(err), param=err.param)
     except Exception as err:  # an unexpected failure must not stop the other entries
         return EntryResult(entry.index, error=f"internal error: {type(err).__name__}: {err}")
@@ -180,6 +181,7 @@ def _out_of_bounds(entry: Entry, built, result: EntryResult, printer) -> EntryRe
         require_within_bounds(built, result.mating, verify=remedy_check(printer, bed=printer))
         require_printable_teeth(built, printer)
     except DesignError as err:
+        err = err.for_given(entry.overrides)     # the override that shares the blame, as gears names it
         return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
                            param=err.param, mating=result.mating)
     return None

@@ -25,15 +25,18 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
         value = float(hole_value or 0.0)
         limit = (value - (MIN_HOLE_WALL - (root - reach)) if hole_param == "key_depth"
                  else (root - MIN_HOLE_WALL) * value / reach)
-        if hole_param == "key_depth" and limit <= 0.0 and bore is not None:
-            # no key depth helps: the bore itself is too large for this gear
+        wall = f"(leave {MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)"
+        by_bore = None
+        if hole_param == "key_depth" and bore is not None:
             allowed = root - MIN_HOLE_WALL
             largest = 2.0 * (np.sqrt(max(allowed ** 2 - (bore[1] / 2.0) ** 2, 0.0)) - value)
-            raise DesignError("bore", bore[0], f"must be < {rounded_down(max(largest, 0.0))} mm with the "
-                              f"keyway's {value:g} mm depth (leave {MIN_HOLE_WALL:g} mm of wall "
-                              f"inside the {name}'s root)")
-        raise DesignError(hole_param, hole_value, f"must be < {rounded_down(limit)} mm (leave "
-                          f"{MIN_HOLE_WALL:g} mm of wall inside the {name}'s root)")
+            by_bore = (bore[0], f"must be < {rounded_down(max(largest, 0.0))} mm with the keyway's "
+                                f"{value:g} mm depth {wall}")
+            if limit <= 0.0:    # no key depth helps: the bore itself is too large for this gear
+                raise DesignError("bore", *by_bore)
+        # a key depth the user left to its DIN default is said of the bore they gave
+        raise DesignError(hole_param, hole_value, f"must be < {rounded_down(limit)} mm {wall}",
+                          {"bore": by_bore} if by_bore else None)
 
 
 def hole_reach(hole: np.ndarray | None) -> float:
@@ -82,8 +85,8 @@ def require_screw_fits(name: str, reach: float, hub: tuple[float, float], thickn
                           {"hub_d": (hub[0], f"must be >= {least} mm (room for the {name} set screw's nut)")})
     length = max(2.0 * (flats / np.sqrt(3.0) - thickness + 1.0), diameter + 2.0 * SCREW_CLEAR_OF_PLATE)
     if hub[1] < length - 1e-9:
-        raise DesignError("set_screw", name, f"does not fit the hub: its hole and nut need --hub-length >= "
-                          f"{rounded_up(length)} mm (the hole leaves through the hub's side, above the plate)",
+        raise DesignError("set_screw", name, f"does not fit the hub: needs --hub-length >= {rounded_up(length)} "
+                          "mm (for its nut, and for its hole to leave through the hub's side, above the plate)",
                           {"hub_length": (hub[1], f"must be >= {rounded_up(length)} mm for the {name} set screw "
                                                   "(its hole leaves through the hub's side, above the plate)")})
 
