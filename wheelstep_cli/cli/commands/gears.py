@@ -336,13 +336,14 @@ def _gears_lines(pair, record: dict) -> list[str]:
                         if pair.spec.module is not None else "")
                      + _opening_text(pair)
                      + f", backlash j_n = {gen.cutter.backlash:.4g} mm" + _clearance_text(pair))
+    speed = "output speed" if pair.spec.law_csv is not None else "hub speed"   # a law CSV drives no hub
     lines.append(f"meshing at {pair.mounted_distance:g} mm: backlash "
                  f"{figure_text(record['backlash_min_mm'], '.3f')}.."
                  f"{figure_text(record['backlash_max_mm'], '.3f')}"
                  f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
-                 f"hub speed ripple {record['law_hub_speed_ripple_pct']:.2f} %")
+                 f"{speed} ripple {record['law_hub_speed_ripple_pct']:.2f} %")
     own = record.get("law_hub_speed_ripple_pct", 0.0)
-    lines.extend(f"  {flank_line(side, record[side], own)}" for side in ("drive", "coast"))
+    lines.extend(f"  {flank_line(side, record[side], own, speed)}" for side in ("drive", "coast"))
     if "mounting" in record:
         lines.append(f"  {mounting_line(record['mounting'])}")
     if "tolerance" in record:
