@@ -11,11 +11,11 @@ import numpy as np
 from wheelstep_cli.formats.jsonio import csv_bytes
 
 
-def kinematics_files(design, kin, plot: Path | None) -> dict[Path, bytes]:
-    """The hub-speed plot of a ``CrankMechanism`` and its ``HubKinematics``."""
+def kinematics_files(design, kin, plot: Path | None, law: str = "the crank law") -> dict[Path, bytes]:
+    """The hub-speed plot of a ``CrankMechanism`` and its ``HubKinematics`` (gears on ``law``)."""
     from wheelstep_cli.render.mechanism_plots import kinematics_png
 
-    return {} if plot is None else {plot: kinematics_png(design, kin)}
+    return {} if plot is None else {plot: kinematics_png(design, kin, law)}
 
 
 def stairs_files(study, plot: Path | None) -> dict[Path, bytes]:

@@ -173,11 +173,13 @@ def trajectory_png(path, points: np.ndarray, pieces: np.ndarray, title: str) -> 
     return _png(fig)
 
 
-def _speed_axes(ax, kin) -> None:
-    """Hub speed (m/s) over the hub angle (deg), without and with the non-circular gears."""
+def _speed_axes(ax, kin, law: str = "the crank law") -> None:
+    """Hub speed (m/s) over the hub angle (deg), without and with the non-circular gears
+    (following ``law``, said in the legend)."""
     deg = np.degrees(kin.phi)
     ax.plot(deg, kin.speed_plain / 1000, label=f"without non-circular gears (ripple {100 * kin.ripple_plain:.1f} %)")
-    ax.plot(deg, kin.speed_geared / 1000, label=f"with non-circular gears (ripple {100 * kin.ripple_geared:.1f} %)")
+    ax.plot(deg, kin.speed_geared / 1000,
+            label=f"with non-circular gears on {law} (ripple {100 * kin.ripple_geared:.1f} %)")
     ax.set_xlabel("hub angle phi, deg (one shoe in contact)")
     ax.set_ylabel("hub speed, m/s")
     ax.set_xlim(deg[0], deg[-1])
@@ -204,12 +206,12 @@ def _sole_axes(ax, design) -> None:
     ax.legend(loc="center right", fontsize="small")
 
 
-def kinematics_png(design, kin) -> bytes:
-    """PNG: hub speed without/with the gears over one shoe cycle (a ``HubKinematics``), and the
-    sole of ``design`` (a ``CrankMechanism``) in the shoe frame."""
+def kinematics_png(design, kin, law: str = "the crank law") -> bytes:
+    """PNG: hub speed without/with the gears (following ``law``) over one shoe cycle (a
+    ``HubKinematics``), and the sole of ``design`` (a ``CrankMechanism``) in the shoe frame."""
     plt = _plt()
     fig, (ax_v, ax_s) = plt.subplots(1, 2, figsize=(11, 4.5), gridspec_kw={"width_ratios": [3, 2]})
-    _speed_axes(ax_v, kin)
+    _speed_axes(ax_v, kin, law)
     _sole_axes(ax_s, design)
     fig.tight_layout()
     return _png(fig)

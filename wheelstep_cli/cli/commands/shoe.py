@@ -110,7 +110,7 @@ def kinematics(
     kin = hub_speed_study(design, gears.get("turns", 2) if turns is None else turns, motor_rpm, points, law)
     show.parameters({"a": design.a, "b": design.b, "c": design.c, "r_min": design.r_min,
                      "turns": kin.turns, "gears_law": what}, profile)
-    files = kinematics_files(design, kin, plot)
+    files = kinematics_files(design, kin, plot, what)
     named = show.write_named("kinematics", files, dry_run, force, plot=plot)
     report = kinematics_report(design, kin, motor_rpm, what)
     show.report(report, lambda: _kinematics_lines(report, rows))
