@@ -78,9 +78,9 @@ def _mark_span(outline: np.ndarray, hole: np.ndarray | None, hub: float) -> tupl
     return inner, min_radius(outline) - MARK_GAP
 
 
-def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec) -> None:
-    """Refuse (DesignError) a gear whose web has no room for its timing mark: the pair is
-    set in phase by its marks, and a gear left without one could not be. Each input that
+def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec):
+    """The refusal (DesignError) of a gear whose web has no room for its timing mark: the pair
+    is set in phase by its marks, and a gear left without one could not be. Each input that
     narrows the web and would make room if smaller is stated with the value that does (mm)."""
     from wheelstep_cli.errors import DesignError, rounded_down
 
@@ -103,7 +103,7 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec) -> None:
     remedy = "".join(f"--{param.replace('_', '-')} <= {rounded_down(largest)} mm, or "
                      for param, (_, largest) in limits.items()) + "--mark-depth 0 for no marks"
     # what narrows the web, the most specific first: named when the user gave it
-    raise DesignError("mark_depth", spec.mark_depth, f"{room}: {remedy}", said).tied_to(
+    return DesignError("mark_depth", spec.mark_depth, f"{room}: {remedy}", said).tied_to(
         {"key_width": spec.key_width, "bore_shape": spec.bore_shape})
 
 
@@ -210,14 +210,19 @@ def gear_part(face: GearFace, spec):
     cut = face.holes[1 if spec.bore > 0 else 0:]
     param = {"keyway": "key_depth", "d-flat": "bore", "hex": "bore"}.get(spec.bore_shape, "bore")
     value = spec.key_depth if param == "key_depth" else spec.bore
-    if not face.marks and spec.mark_depth > 0:
-        # before the solid's own checks: with marks, their room is the binding limit on the
-        # bore and hub (the walls the solid needs are narrower)
-        _no_room_for_mark(face.name, face.outline, hole, spec)
+    no_mark = _no_room_for_mark(face.name, face.outline, hole, spec) if not face.marks and spec.mark_depth > 0 \
+        else None
+    if no_mark is not None and set(no_mark.alternatives) & {"hub_d", "bore", "key_depth"}:
+        # before the solid's own checks: a smaller hole or hub making room for the marks is the
+        # binding limit (the walls the solid needs are narrower); with no such limit (the gear
+        # too small for any mark) the solid's walls are said first, then the marks
+        raise no_mark
     part = extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
                         spec.mark_depth, param, value, cut, spec.chamfer_mm, spec.hub_mm,
                         _set_screw(spec, face.direction),
                         (float(spec.bore), float(spec.key_width)) if param == "key_depth" else None)
+    if no_mark is not None:
+        raise no_mark
     if spec.lighten and face.name == "wheel" and not cut:
         _no_room_for_pockets(face, spec)
     return part

@@ -61,13 +61,13 @@ def test_mesh_check_on_the_written_files_agrees_with_gears_json(paper_pair, cli,
 
 
 def test_a_pair_that_meshes_is_written_and_mesh_check_exits_0(cli, tmp_path):
-    # a small crank (b = 20) gives gentle handovers: the paper teeth then clear everywhere
-    result = cli("gears", "--b", "20", "--format", "stl", "--out", tmp_path)
+    # a small crank (b = 20, on the source's strut) gives gentle handovers: the teeth clear everywhere
+    result = cli("gears", "--b", "20", "--c", "360", "--format", "stl", "--out", tmp_path)
     assert result.exit_code == 0, result.stderr
     meshing = json.loads((tmp_path / "gears.json").read_text())["meshing"]
     assert meshing["interference"] is False and not meshing["contact_lost"]
     assert meshing["backlash_min_mm"] > 0
-    check = cli("mesh-check", tmp_path / "pinion.stl", tmp_path / "wheel.stl", "--b", "20",
+    check = cli("mesh-check", tmp_path / "pinion.stl", tmp_path / "wheel.stl", "--b", "20", "--c", "360",
                 "--samples", "384")
     assert check.exit_code == 0 and "interference: none" in check.stdout
     assert "hub speed ripple" in check.stdout
@@ -79,7 +79,7 @@ def test_a_pair_that_meshes_is_written_and_mesh_check_exits_0(cli, tmp_path):
     (["PIN", "WHEEL", "--samples", "3"], "samples ="),
     (["PIN", "WHEEL", "--distance", "-5"], "distance ="),
     (["PIN", "WHEEL", "--plot", "x.pdf"], "plot ="),
-    (["PIN", "WHEEL", "--b", "110"], "b ="),
+    (["PIN", "WHEEL", "--b", "110", "--c", "360"], "c ="),
 ])
 def test_mesh_check_bad_input_one_line_exit_2(paper_pair, cli, tmp_path, args, param):
     named = {"PIN": paper_pair / "pinion.stl", "WHEEL": paper_pair / "wheel.stl"}
