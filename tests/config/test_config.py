@@ -388,3 +388,14 @@ def test_an_empty_value_in_a_profile_is_refused_at_its_line(cli, tmp_path):
     assert result.stderr.strip().splitlines() == [
         f"wheelstep: error: {profile}:2: gears.law_csv = null: give a value, or leave the key out for the default",
         f"wheelstep: error: {profile}:5: mechanism.a = null: give a value, or leave the key out for the default"]
+
+
+@pytest.mark.parametrize("text", ["1.0e2", "1e2"])
+def test_a_number_whose_exponent_has_no_sign_is_told_how_yaml_reads_it(cli, tmp_path, text):
+    """YAML 1.1 reads 1.0e2 as text (its exponent needs a sign): said with the forms it reads."""
+    profile = write(tmp_path / "p.yaml", f"mechanism:\n  b: {text}\n")
+    line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
+    assert line.endswith(f"mechanism.b = '{text}': must be a number written with the exponent's sign (1.0e+2) "
+                         "or as plain decimal digits (100)"), line
+    write(profile, "mechanism:\n  b: 1.0e+2\n")
+    assert cli("gears", "--profile", profile, "--dry-run", "--out", tmp_path / "out").exit_code == 0

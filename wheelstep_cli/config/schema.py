@@ -8,6 +8,8 @@ for values given in code or on the command line.
 
 from __future__ import annotations
 
+import re
+
 import difflib
 
 import functools
@@ -221,12 +223,19 @@ def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) ->
     return Issue(doc.where(loc), dotted(loc), f"= {show(error['input'])}: {limit}{note}")
 
 
+#: A number whose exponent has no sign, which YAML 1.1 leaves as text.
+_UNSIGNED_EXPONENT = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)[eE]\d+")
+
+
 def _as_digits(value) -> str:
     """A note for text YAML 1.1 would read as a number other than its digits say (``010`` as
     octal 8, ``4_8`` as 48, ``1:30`` as 90, ``0x30``), which the reader keeps as text: how to
     write the number instead. Empty for anything else."""
     from wheelstep_cli.config.located_yaml import reads_otherwise
 
+    if isinstance(value, str) and _UNSIGNED_EXPONENT.fullmatch(value.strip()):
+        # YAML 1.1 reads an exponent without its sign (1e2, 1.0e2) as text
+        return " written with the exponent's sign (1.0e+2) or as plain decimal digits (100)"
     return (" written as plain decimal digits (no leading zero, underscore, base prefix or colon)"
             if isinstance(value, str) and reads_otherwise(value) else "")
 
