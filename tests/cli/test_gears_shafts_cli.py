@@ -152,3 +152,12 @@ def test_a_keyway_too_deep_for_the_root_is_said_of_the_bore_when_its_depth_is_th
     assert cli(*args, "--bore", largest).exit_code == 0
     given = error_line(cli(*args, "--bore", "30", "--key-depth", "3.3"))
     assert given.startswith("wheelstep: error: --key-depth = 3.3: must be < "), given
+
+
+def test_the_report_gives_the_hub_length_built(cli, tmp_path):
+    """A hub without --hub-length is 8 mm long: the report says so (it said null)."""
+    out = tmp_path / "out"
+    assert cli("gears", "--profile", "desk-demo", "--hub-d", "16", "--format", "stl", "--out", out, "-q").exit_code == 0
+    report = json.loads((out / "gears.json").read_text())
+    assert report["parameters"]["hub_length"] == 8.0
+    assert report["parts"]["pinion"]["bounding_box_mm"][1][2] == pytest.approx(6.0 + 8.0, abs=1e-3)

@@ -229,6 +229,8 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
     and the meshing check of the written meshes when given."""
     spec = {**pair.spec.model_dump(), **_distances(pair)}
     spec["backlash"] = pair.spec.backlash_mm
+    if pair.spec.hub_d is not None:
+        spec["hub_length"] = pair.spec.hub_mm[1]      # the length built (8 mm when none is given)
     parts = {}
     for part in (pair.pinion, pair.wheel):
         check = pair.checks[part.name]
