@@ -173,7 +173,7 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     kept = {key: value for key, value in overrides.items() if key not in faulty}
     spec, printed, problems = _every_problem(kind, design[0], kept, printer, frozenset(faulty))
     where = {key: line for key, line in override_where.items() if key in kept}
-    written = {**kept, **{key: entry.overrides[key] for key in kept if key in (entry.overrides or {})}}
+    written = {key: (entry.overrides or {}).get(key, value) for key, value in kept.items()}   # as the file has them
     for err in problems:
         issues.append(_problem(doc, path, err, where, design_name, written))
     if problems or faulty:
@@ -291,7 +291,7 @@ def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
         if problems:
             return None, None, _as_printed(kind, spec, printer, problems)
         printed = printed_spec(kind, spec, printer)
-        problems = [_as_given(err, spec, printed) for err in kind.problems(printed)]
+        problems = [as_designed(err, spec, printed, printed_beside=False) for err in kind.problems(printed)]
         if not problems:
             _require_height(kind, printed, printer)
     except DesignError as err:
@@ -307,22 +307,8 @@ def _as_printed(kind: PartKind, spec, printer: Printer, problems: list[DesignErr
         printed = printed_spec(kind, spec, printer)
     except DesignError:
         return problems
-    bound = {err.param: _as_given(err, spec, printed) for err in kind.problems(printed)}
+    bound = {err.param: as_designed(err, spec, printed, printed_beside=False) for err in kind.problems(printed)}
     return [bound.get(err.param, err) for err in problems]
-
-
-def _as_given(err: DesignError, spec, printed) -> DesignError:
-    """``err`` (of the ``printed`` spec) with its limits in the values the user gave
-    (parts.kinds.as_designed) and each value as given: the file's line shows it as written."""
-    said = as_designed(err, spec, printed)
-
-    def given(name: str, value):
-        field = name.replace("-", "_")
-        return getattr(spec, field) if field in type(spec).model_fields else value
-
-    return said._with_extras(DesignError(
-        said.param, given(said.param, err.value), said.limit,
-        {name: (given(name, value), limit) for name, (value, limit) in said.alternatives.items()}))
 
 
 def _require_height(kind: PartKind, printed, printer: Printer) -> None:

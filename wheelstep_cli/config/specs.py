@@ -314,8 +314,7 @@ def strut_default(values: dict) -> dict:
         return values   # the field checks say what is wrong with them
     from wheelstep_cli.mechanism.crank import CrankMechanism
 
-    c = CrankMechanism.from_r_min(a, b, DEFAULT_R_MIN).c   # refuses a and b no strut fits
-    return values if c == 360.0 else {**values, "c": c}
+    return {**values, "c": CrankMechanism.from_r_min(a, b, DEFAULT_R_MIN).c}   # refuses a and b no strut fits
 
 
 def bore_defaults(values: dict) -> dict:

@@ -73,11 +73,6 @@ def hex_hole(across_flats: float, angle: float) -> np.ndarray:
     return r * np.column_stack([np.cos(t), np.sin(t)])
 
 
-def hole_reach(ring: np.ndarray) -> float:
-    """Largest distance (mm) of the hole from the axis."""
-    return float(np.max(np.hypot(ring[:, 0], ring[:, 1])))
-
-
 def arrow_mark(inner: float, outer: float, angle: float, bar: bool = False) -> np.ndarray:
     """An arrow from radius ``inner`` to ``outer`` mm pointing along ``angle``; ``bar``: with a
     crossbar at its foot (the wheel's carrier reference). One simple CCW polygon (mm)."""

@@ -43,10 +43,7 @@ class HubKinematics:
     def ripple_geared(self) -> float:
         """Peak-to-peak over time-mean with them (fraction; 0 up to rounding on the crank law).
         The carrier's equal angle steps last U dphi / omega: the mean is weighted by U."""
-        weight = np.full(len(self.ratio), 1.0)
-        weight[[0, -1]] = 0.5
-        weight *= self.ratio
-        return float(np.ptp(self.speed_geared) / (np.sum(weight * self.speed_geared) / weight.sum()))
+        return speed_ripple(self.speed_geared, self.ratio)
 
     @property
     def cycle_time(self) -> float:

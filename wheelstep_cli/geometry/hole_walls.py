@@ -18,7 +18,7 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
     root; for a keyway (``hole_param`` key_depth, ``bore`` = (diameter, key width) mm) it
     names the bore when no key depth would leave the wall."""
     root = min_radius(outline)
-    reach = float(np.max(np.hypot(hole[:, 0], hole[:, 1])))
+    reach = hole_reach(hole)
     if root - reach < MIN_HOLE_WALL:
         # the largest value that leaves the wall: the hole's reach grows in proportion to
         # the bore (round, flat, hex), one for one with a key's depth
@@ -68,12 +68,13 @@ SCREW_CLEAR_OF_PLATE = 0.5
 
 
 def require_screw_fits(name: str, reach: float, hub: tuple[float, float], thickness: float,
-                       flats: float, height: float, diameter: float) -> None:
-    """DesignError naming set_screw ``name`` (``diameter`` mm) when its captive nut (``flats``
-    across, ``height`` mm, between MIN_HOLE_WALL of wall round a hole reaching ``reach`` mm
-    and the hub's wall) does not fit the hub = (diameter, length) mm on a plate ``thickness``
-    mm thick, or its hole (on the hub's mid-height) would run into the plate below the hub's
-    side. The limits are rounded up: applied as printed, they fit."""
+                       flats: float, height: float, drop: np.ndarray) -> None:
+    """DesignError naming set_screw ``name`` (its hole's teardrop section ``drop``, mm) when its
+    captive nut (``flats`` across, ``height`` mm, between MIN_HOLE_WALL of wall round a hole
+    reaching ``reach`` mm and the hub's wall) does not fit the hub = (diameter, length) mm on a
+    plate ``thickness`` mm thick, or its hole (on the hub's mid-height) would run into the
+    plate below the hub's side. The limits are rounded up: applied as printed, they fit."""
+    diameter = float(np.ptp(np.asarray(drop)[:, 0]))     # the teardrop's round part
     # each also stated for the hub's diameter: the rule is shared with it
     if hub[0] <= 0:
         raise DesignError("set_screw", name, "needs --hub-d (the screw goes through the hub)",

@@ -125,7 +125,7 @@ def _set_screw(body, volume: float, hole, hub: tuple[float, float], thickness: f
 
     name, direction, drop, flats, height = screw
     reach = hole_reach(hole)
-    require_screw_fits(name, reach, hub, thickness, flats, height, _teardrop_height(drop))
+    require_screw_fits(name, reach, hub, thickness, flats, height, drop)
     r_hub, axis_z = hub[0] / 2.0, thickness + hub[1] / 2.0
     nut_in = reach + MIN_HOLE_WALL
     # the hole: the teardrop in the (y, z) plane extruded along +x, then turned to direction
@@ -138,11 +138,6 @@ def _set_screw(body, volume: float, hole, hub: tuple[float, float], thickness: f
     cutter = (rod.translate((0.0, 0.0, axis_z)) + slot).rotate((0.0, 0.0, float(np.degrees(direction))))
     result = body - cutter
     return result, float(result.volume())
-
-
-def _teardrop_height(drop: np.ndarray) -> float:
-    """A screw's diameter (mm) from its teardrop section: the round part's width."""
-    return float(np.ptp(np.asarray(drop)[:, 0]))
 
 
 def _with_hub(body, volume: float, layers: list, outline: np.ndarray, hole: np.ndarray | None,

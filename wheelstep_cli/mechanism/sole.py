@@ -50,14 +50,18 @@ def sole_curvature_radius(design: CrankMechanism, phi):
     return design.a + design.c - design.b * (6.0 * np.cos(phi) ** 2 - 2.0)
 
 
-def speed_ripple(speed: np.ndarray) -> float:
-    """Peak-to-peak over mean of a speed sampled at equal time steps, both ends included.
+def speed_ripple(speed: np.ndarray, dwell: np.ndarray | None = None) -> float:
+    """Peak-to-peak over mean of a speed sampled at equal time steps, both ends included, or
+    at steps whose durations are in proportion to ``dwell`` (per sample).
 
     The mean is the trapezoidal time average, so the ends count half. A fraction.
     """
     speed = np.asarray(speed, dtype=float)
-    mean = (speed.sum() - 0.5 * (speed[0] + speed[-1])) / (len(speed) - 1)
-    return float((speed.max() - speed.min()) / mean)
+    weight = np.ones(len(speed))
+    weight[[0, -1]] = 0.5
+    if dwell is not None:
+        weight = weight * np.asarray(dwell, dtype=float)
+    return float((speed.max() - speed.min()) / (np.sum(weight * speed) / weight.sum()))
 
 
 def sole_table(design: CrankMechanism, count: int = 7) -> np.ndarray:

@@ -74,7 +74,7 @@ MARK_LENGTH = shapes.HEAD_LENGTH + 2.0 * shapes.MARK_WIDTH
 def _mark_span(outline: np.ndarray, hole: np.ndarray | None, hub: float) -> tuple[float, float]:
     """The radii (mm) a timing mark may run between: MARK_GAP clear of the hole or hub
     (``hub`` its diameter, mm) and of the tooth roots."""
-    inner = max(shapes.hole_reach(hole) if hole is not None else 0.0, hub / 2.0) + MARK_GAP
+    inner = max(hole_reach(hole), hub / 2.0) + MARK_GAP
     return inner, min_radius(outline) - MARK_GAP
 
 
@@ -89,7 +89,7 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec):
     around = "hub" if spec.hub_d else "bore" if hole is not None else "axis"
     room = (f"leaves the {name} no room for its timing mark ({max(outer - inner, 0.0):.1f} mm of web "
             f"between the {around} and the tooth roots, the mark needs {MARK_LENGTH:.1f} mm)")
-    reach = shapes.hole_reach(hole) if hole is not None else 0.0
+    reach = hole_reach(hole)
     limits = {}
     if spec.hub_d and spec.hub_mm[0] / 2.0 >= reach and spec.hub_mm[0] - 2.0 * short > 0:
         limits["hub_d"] = (spec.hub_d, spec.hub_mm[0] - 2.0 * short)
@@ -114,7 +114,7 @@ def _largest_hole(spec, param: str, reach: float) -> float:
     from wheelstep_cli.errors import rounded_down
 
     def fits(value: float) -> bool:
-        return shapes.hole_reach(shaft_hole(spec.model_copy(update={param: value}), 0.0)) <= reach
+        return hole_reach(shaft_hole(spec.model_copy(update={param: value}), 0.0)) <= reach
 
     low, high = 0.0, float(getattr(spec, param))
     for _ in range(40):
@@ -134,7 +134,7 @@ POCKET_ROOM = 2.0 * POCKET_FILLET + 3.0
 def pocket_span(outline: np.ndarray, hole: np.ndarray | None, spec, module: float) -> tuple[float, float]:
     """Radii (mm) a --lighten pocket may span: from a web round the hole or hub out to a rim
     of RIM_MODULES modules (``module`` mm) under the roots."""
-    r_in = max(shapes.hole_reach(hole) if hole is not None else 0.0, spec.hub_mm[0] / 2.0) + \
+    r_in = max(hole_reach(hole), spec.hub_mm[0] / 2.0) + \
         max(WEB, 0.5 * spec.bore)
     return r_in, min_radius(outline) - RIM_MODULES * module
 
@@ -188,9 +188,8 @@ def require_hub_round_hole(spec) -> None:
     screw = _set_screw(spec, 0.0)
     if screw is not None:
         # first: its nut needs more hub round the hole than the hole's own wall
-        name, _, _, flats, height = screw
-        require_screw_fits(name, reach, spec.hub_mm, float(spec.thickness), flats, height,
-                           shapes.SET_SCREWS[name][0])
+        name, _, drop, flats, height = screw
+        require_screw_fits(name, reach, spec.hub_mm, float(spec.thickness), flats, height, drop)
     if spec.hub_d is not None:
         require_hub_clears_hole(reach, float(spec.hub_d))
 

@@ -162,10 +162,11 @@ def build_for_printer(kind_name: str, spec, printer=None):
         raise as_designed(err, spec, printed) from None
 
 
-def as_designed(err: DesignError, spec, printed) -> DesignError:
+def as_designed(err: DesignError, spec, printed, printed_beside: bool = True) -> DesignError:
     """``err`` (raised on the printer-compensated ``printed`` spec) showing each value the
-    printer changed as the user gave it in ``spec``, the printed one beside it, and a limit
-    of it in mm both ways (the user's value is the one to change)."""
+    printer changed as the user gave it in ``spec``, the printed one beside it (unless not
+    ``printed_beside``: a file's line shows the value as written), and a limit of it in mm
+    both ways (the user's value is the one to change)."""
     def changed(name: str) -> tuple | None:
         field = name.replace("-", "_")
         if field not in type(spec).model_fields:
@@ -175,7 +176,9 @@ def as_designed(err: DesignError, spec, printed) -> DesignError:
 
     def shown(name: str, value):
         both = changed(name)
-        return value if both is None else f"{format_value(both[0])} ({format_value(both[1])} as printed)"
+        if both is None:
+            return value
+        return f"{format_value(both[0])} ({format_value(both[1])} as printed)" if printed_beside else both[0]
 
     def limit_of(name: str, limit: str) -> str:
         both = changed(name)
