@@ -123,3 +123,19 @@ def test_a_profiles_gears_that_cannot_be_made_are_refused_as_gears_refuses_them(
     line = error_line(cli("kinematics", "--profile", profile))
     assert line == error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
     assert f"{profile}:3: gears.blend = 10:" in line
+
+
+def test_a_profiles_turns_are_the_turns_of_its_blended_law(cli, tmp_path):
+    """`turns: 4` with a blend: the blended law is the 4-turn crank law's (it was built on 2)."""
+    import numpy as np
+
+    from wheelstep_cli.gears.laws import CrankLaw, blended_law
+    from wheelstep_cli.mechanism.crank import CrankMechanism
+
+    profile = tmp_path / "p.yaml"
+    profile.write_text("gears:\n  turns: 4\n  blend: 10\n")
+    result = cli("kinematics", "--profile", profile, "--json")
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert data["turns"] == 4
+    _speed_check(data, blended_law(CrankLaw(CrankMechanism(60, 100, 360), 4), np.radians(10)).ratio)

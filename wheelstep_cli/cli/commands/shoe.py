@@ -106,8 +106,9 @@ def kinematics(
     check_inputs(motor_rpm, points, rows)
     design = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min).design()
     gears = _profile_gears(profile)
-    law, what = kinematics_law(design, 2 if turns is None else turns, gears, turns is not None)
-    kin = hub_speed_study(design, gears.get("turns", 2) if turns is None else turns, motor_rpm, points, law)
+    used = gears.get("turns", 2) if turns is None else turns     # the command line's over the profile's
+    law, what = kinematics_law(design, used, gears, turns is not None)
+    kin = hub_speed_study(design, used, motor_rpm, points, law)
     show.parameters({"a": design.a, "b": design.b, "c": design.c, "r_min": design.r_min,
                      "turns": kin.turns, "gears_law": what}, profile)
     files = kinematics_files(design, kin, plot, what)
