@@ -116,6 +116,22 @@ def test_an_entry_mounted_so_close_that_it_interferes_names_its_distance_and_the
     assert "center_distance = 72.4: with it, install-distance = 72.125 fails: the teeth interfere at " \
         in result.stderr
     assert "use overrides {install_distance: 72.4} (for more play, more backlash)" in result.stderr
+    # no entry built: nothing is written, not even a manifest of the failure
+    assert "built none of 1 entry: nothing written to" in result.stdout
+    assert not out.exists()
+
+
+def test_a_batch_whose_every_entry_fails_leaves_an_earlier_batch_in_its_folder(cli, tmp_path):
+    out = tmp_path / "out"
+    assert cli("batch", write(tmp_path / "good.yaml", SMALL_BATCH), "--out", out, "--jobs", "1",
+               "--no-tolerance").exit_code == 0
+    before = {p: p.read_bytes() for p in out.rglob("*") if p.is_file()}
+    bad = write(tmp_path / "bad.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n"
+                "    printer: fdm-0.4-pla\n    overrides:\n      hub_d: 90\n")
+    result = cli("batch", bad, "--out", out, "--jobs", "1")
+    assert result.exit_code == 1, result.stderr
+    assert "pair (" in result.stderr and "hub_d = 90" in result.stderr
+    assert {p: p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
 
 
 def test_an_undercut_entry_is_offered_only_a_remedy_a_build_for_its_printer_passed(cli, tmp_path):

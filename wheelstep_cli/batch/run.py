@@ -30,7 +30,8 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
 
     Files of an earlier batch in ``out`` (per its manifest, verified by SHA-256) that this one
     does not write are removed; any other file in the way is refused unless ``force``
-    (DesignError, before anything is written). With ``scheduler`` the parts are built on
+    (DesignError, before anything is written). When no entry builds, nothing is written or
+    removed. With ``scheduler`` the parts are built on
     that Dask cluster instead of ``jobs`` local processes. With ``tolerance`` (the default,
     as ``batch`` runs) each gear pair is also checked over its printer's band (SPEC §11)."""
     from functools import partial
@@ -63,6 +64,10 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
             step()
         rendered = {number: (data, pictures[number]) for number, data in threemfs}
     failed, built = _sort_out(plan, results, dropped)
+    if not built:
+        # a batch with no part to print writes nothing (as a refused command does) and leaves
+        # an earlier batch's files where they are
+        return BatchOutcome([], plates, failed, built, results, [])
     files = _files(plan, out, plates, rendered, built, results, failed)
     check_folder(out, files, force)
     written = write_files_atomic(files)

@@ -120,7 +120,10 @@ def _out_of_phase_cause(summary: dict) -> str:
 
 
 def meshing_lines(summary: dict) -> list[str]:
-    """Human-readable lines of a meshing summary (``MeshingReport.to_dict()``)."""
+    """Human-readable lines of a meshing summary (``MeshingReport.to_dict()``, with the
+    ``law`` record of the pair checked when there is one)."""
+    # a law CSV's gears drive no hub: their ripple is of the output speed
+    speed = "output speed" if "csv" in (summary.get("law") or {}) else "hub speed"
     lines = []
     if summary["interference"]:
         lines.append(f"interference: YES at {summary['interfering_poses']} of {summary['samples']} "
@@ -137,14 +140,14 @@ def meshing_lines(summary: dict) -> list[str]:
                  f"({figure_text(summary['backlash_min_arcmin'], '.1f')}' .. "
                  f"{figure_text(summary['backlash_max_arcmin'], '.1f')}' at the wheel)")
     for side in ("drive", "coast"):
-        lines.append(flank_line(side, summary[side], summary.get("law_hub_speed_ripple_pct", 0.0)))
+        lines.append(flank_line(side, summary[side], summary.get("law_hub_speed_ripple_pct", 0.0), speed))
     if "mounting" in summary:
         lines.append(mounting_line(summary["mounting"]))
-    lines.append(f"diagnostic: pointwise hub speed ripple {figure_text(summary['diagnostic_pointwise_ripple_pct'], '.2f')} % "
+    lines.append(f"diagnostic: pointwise {speed} ripple {figure_text(summary['diagnostic_pointwise_ripple_pct'], '.2f')} % "
                  f"(drive side, grows with the sampling; the law alone: "
                  f"{summary['law_hub_speed_ripple_pct']:.2f} %)")
     if summary["interference"]:
-        lines.append(f"diagnostic: pointwise hub speed ripple where the teeth do not interfere "
+        lines.append(f"diagnostic: pointwise {speed} ripple where the teeth do not interfere "
                      f"({summary['clear_poses']} poses): "
                      f"{figure_text(summary['diagnostic_pointwise_ripple_clear_pct'], '.2f')} %")
     return lines

@@ -160,6 +160,11 @@ def test_law_csv_generates_a_smooth_published_style_case(cli, tmp_path):
     for side in ("drive", "coast"):
         for key in ("F_i_total_um", "f_i_tooth_um", "hub_speed_ripple_pct"):
             assert summary[side][key] == pytest.approx(written[side][key], rel=1e-6), (side, key)
+    # a law CSV's gears drive no hub: both reports word their ripple as the output speed's
+    text = cli("mesh-check", out / "pinion.stl", out / "wheel.stl", "--law-csv", csv,
+               "--distance", f"{distance:.6f}").stdout
+    assert "drive flank: F'i" in text and "output speed ripple" in text and "hub speed" not in text
+    assert "output speed ripple" in result.stdout and "hub speed" not in result.stdout
 
 
 @settings(max_examples=12, deadline=None)
