@@ -71,7 +71,25 @@ def test_a_batch_entry_with_a_law_csv_refuses_its_crank_override_at_its_line(cli
                   "      b: 90\n")
     line = error_line(cli("batch", batch, "--out", tmp_path / "out"))
     assert line.startswith(f"wheelstep: error: {batch}:{line_of(batch, 'b: 90')}: "
-                           "parts[0].overrides.b = 90: sets the crank law"), line
+                           "parts[0].overrides.b = 90: sets the crank law, which law_csv replaces"), line
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_crank_option_over_a_profiles_law_csv_names_the_profile_as_its_source(cli, tmp_path):
+    """The CSV came from the profile, not from --law-csv: the refusal says so (a batch entry
+    whose design holds it likewise names the design's)."""
+    from tests.helpers.files import write
+
+    csv = tmp_path / "law.csv"
+    csv.write_text("driving_deg,driven_deg\n" + "".join(f"{d},{d / 2:g}\n" for d in range(0, 361, 45)))
+    profile = write(tmp_path / "p.yaml", f"gears:\n  law_csv: {csv}\n")
+    line = error_line(cli("gears", "--profile", profile, "--a", "50", "--out", tmp_path / "out"))
+    assert line == ("wheelstep: error: --a = 50: sets the crank law, which the profile's gears.law_csv "
+                    "replaces (the pair follows the law read from the CSV)"), line
+    batch = write(tmp_path / "b.yaml", f"parts:\n  - kind: gear-pair\n    design: {profile}\n"
+                  "    printer: fdm-0.4-pla\n    overrides:\n      a: 50\n")
+    line = error_line(cli("batch", batch, "--out", tmp_path / "out"))
+    assert "parts[0].overrides.a = 50: sets the crank law, which the design's gears.law_csv replaces" in line, line
     assert not (tmp_path / "out").exists()
 
 

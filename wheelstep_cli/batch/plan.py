@@ -284,7 +284,8 @@ def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
     mechanism section, checked by the spec's model and the kind's domain checks."""
     spec_type = kind.spec_type()
     try:
-        spec, problems = spec_problems(spec_type, spec_values(spec_type, kind.section, design, overrides))
+        values = spec_values(spec_type, kind.section, design, overrides, on_command_line=False)
+        spec, problems = spec_problems(spec_type, values)
         if spec is None or problems:
             return None, None, problems
         problems = kind.problems(spec)

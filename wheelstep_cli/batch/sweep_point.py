@@ -89,7 +89,8 @@ def resolve_point(index: int, command: str, profile, printer_name: str | None, p
     spec_type, section = COMMANDS[command]
     spec, refusal = None, None
     try:
-        spec, problems = spec_problems(spec_type, spec_values(spec_type, section, profile, values))
+        spec, problems = spec_problems(spec_type, spec_values(spec_type, section, profile, values,
+                                                              on_command_line=False))
         if problems:
             spec, refusal = None, "; ".join(yaml_message(p) for p in problems)
     except DesignError as err:

@@ -29,8 +29,11 @@ def _generated(values: dict[str, Any], spec: type[BaseModel]) -> bool:
     return getattr(teeth, "value", teeth) == "generated"
 
 
-def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any]) -> dict[str, Any]:
+def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any],
+                on_command_line: bool = True) -> dict[str, Any]:
     """The values of a ``spec`` from the layers, higher layers winning (None: not given).
+    ``on_command_line``: ``top`` holds options (else a batch entry's overrides, its design
+    a profile), as refusals name them.
 
     A strut given in a layer (as ``c`` or ``r_min``) replaces the strut of the layers below,
     in either form. A spec without ``r_min`` (the gear pair) gets c = R_min - a + 4b.
@@ -50,7 +53,10 @@ def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any
         merged.update(given)
     fields = spec.model_fields
     if "law_csv" in fields and merged.get("law_csv") is not None:
-        _no_crank_law(top)
+        if top.get("law_csv") is not None:
+            _no_crank_law(top, "--law-csv" if on_command_line else "law_csv")
+        else:
+            _no_crank_law(top, f"the {'profile' if on_command_line else 'design'}'s {section}.law_csv")
     if "r_min" in merged and "r_min" not in fields:
         r_min = merged.pop("r_min")
         if "c" not in merged:
@@ -59,13 +65,14 @@ def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any
     return {k: v for k, v in merged.items() if k in fields}
 
 
-def _no_crank_law(top: dict[str, Any]) -> None:
+def _no_crank_law(top: dict[str, Any], law_csv: str) -> None:
     """Refuse what sets the crank law given (on the command line, or as a batch entry's
     overrides) with a law CSV, which replaces that law: it would do nothing. A profile's
-    mechanism stays (it is shared with the other parts)."""
+    mechanism stays (it is shared with the other parts). ``law_csv``: where the CSV was given,
+    as the refusal names it."""
     for key in CRANK_LAW:
         if top.get(key) is not None:
-            raise DesignError(key, top[key], "sets the crank law, which --law-csv replaces (the "
+            raise DesignError(key, top[key], f"sets the crank law, which {law_csv} replaces (the "
                                              "pair follows the law read from the CSV)")
 
 
