@@ -340,6 +340,22 @@ def test_a_parts_section_that_changes_the_profiles_mechanism_is_refused_at_its_l
     assert cli(command, "--profile", profile, *out).exit_code == 0
 
 
+def test_a_profile_with_a_bad_value_and_a_mechanism_conflict_gets_both_at_once(cli, tmp_path):
+    """Every problem of a profile at once, in its lines' order: a value out of range and a
+    part section's other mechanism; a mechanism section with a bad value has no lengths to
+    compare (nothing more said of the parts' lengths)."""
+    profile = write(tmp_path / "p.yaml", "mechanism:\n  a: 30\ngears:\n  z: 3\n  a: 31\n"
+                                         "shoe:\n  width: -1\n  b: 40\n")
+    result = cli("gears", "--profile", profile, "--dry-run")
+    assert result.exit_code == 2
+    said = [line.split(": ", 3)[2:] for line in result.stderr.strip().splitlines()]
+    assert [what.split(" =")[0] for _, what in said] == ["gears.z", "gears.a", "shoe.width", "shoe.b"], said
+    assert [where.rsplit(":", 1)[1] for where, _ in said] == ["4", "5", "7", "8"], said
+    write(profile, "mechanism:\n  a: x\ngears:\n  a: 31\n  z: 3\n")
+    lines = cli("gears", "--profile", profile, "--dry-run").stderr.strip().splitlines()
+    assert [line.split(": ", 3)[3].split(" =")[0] for line in lines] == ["mechanism.a", "gears.z"], lines
+
+
 def test_a_yaml_word_read_as_a_switch_is_said_in_yamls_words(cli, tmp_path):
     """`quantity: yes` is YAML 1.1's true: said as the file's reader sees it, with why."""
     batch = write(tmp_path / "b.yaml", "parts:\n  - name: pair\n    kind: gear-pair\n    design: desk-demo\n"

@@ -58,33 +58,39 @@ class DesignProfile(BaseModel):
         return {} if given is None else given.model_dump(exclude_none=True)
 
     def mechanism_conflicts(self) -> list[tuple[str, str, str]]:
-        """(section, key, why) of each mechanism length a part's section gives that differs
-        from the mechanism's (the ``mechanism:`` section over the source design's): the
-        gears' law and the shoe's sole come from one crank mechanism, and ``kinematics`` reads
-        it for both. A gear pair following a law CSV has no crank law: what sets one (the
-        lengths, ``turns``) is refused beside it, as on the command line."""
-        shared = self.values("mechanism")
-        base = _crank([shared])
-        conflicts = []
-        for section in ("gears", "shoe"):
-            part = self.values(section)
-            if section == "gears" and part.get("law_csv") is not None:
-                conflicts += [(section, key, "sets the crank law, which gears.law_csv replaces (the gears "
-                                             "follow the law read from the CSV)")
-                              for key in ("a", "b", "c", "turns") if key in part]
-                continue
-            keys = [k for k in MECHANISM_KEYS if k in part]
-            own = _crank([shared, part]) if keys else None
-            if base is None or own is None or all(abs(x - y) <= 1e-9 for x, y in zip(base, own)):
-                continue
-            values = dict(zip(("a", "b", "c", "r_min"), (*base, base[0] - 4 * base[1] + base[2])))
-            differing = [k for k in keys if abs(float(part[k]) - values[k]) > 1e-9] or keys
-            lengths = "a = {:g}, b = {:g}, c = {:g} mm"
-            where = "the mechanism section" if shared else "the mechanism (no mechanism section: the source design's)"
-            why = (f"gives the {section} the mechanism {lengths.format(*own)}, {where} {lengths.format(*base)}: "
-                   "a mover's parts share one mechanism; give a, b and the strut in mechanism: only")
-            conflicts += [(section, key, why) for key in differing]
-        return conflicts
+        """:func:`mechanism_conflicts` of the profile's sections."""
+        return mechanism_conflicts(self.values)
+
+
+def mechanism_conflicts(values) -> list[tuple[str, str, str]]:
+    """(section, key, why) of each mechanism length a part's section gives that differs
+    from the mechanism's (the ``mechanism:`` section over the source design's): the
+    gears' law and the shoe's sole come from one crank mechanism, and ``kinematics`` reads
+    it for both. A gear pair following a law CSV has no crank law: what sets one (the
+    lengths, ``turns``) is refused beside it, as on the command line. ``values(section)``:
+    the values a section gives (mm)."""
+    shared = values("mechanism")
+    base = _crank([shared])
+    conflicts = []
+    for section in ("gears", "shoe"):
+        part = values(section)
+        if section == "gears" and part.get("law_csv") is not None:
+            conflicts += [(section, key, "sets the crank law, which gears.law_csv replaces (the gears "
+                                         "follow the law read from the CSV)")
+                          for key in ("a", "b", "c", "turns") if key in part]
+            continue
+        keys = [k for k in MECHANISM_KEYS if k in part]
+        own = _crank([shared, part]) if keys else None
+        if base is None or own is None or all(abs(x - y) <= 1e-9 for x, y in zip(base, own)):
+            continue
+        lengths = dict(zip(("a", "b", "c", "r_min"), (*base, base[0] - 4 * base[1] + base[2])))
+        differing = [k for k in keys if abs(float(part[k]) - lengths[k]) > 1e-9] or keys
+        shown = "a = {:g}, b = {:g}, c = {:g} mm"
+        where = "the mechanism section" if shared else "the mechanism (no mechanism section: the source design's)"
+        why = (f"gives the {section} the mechanism {shown.format(*own)}, {where} {shown.format(*base)}: "
+               "a mover's parts share one mechanism; give a, b and the strut in mechanism: only")
+        conflicts += [(section, key, why) for key in differing]
+    return conflicts
 
 
 def _crank(layers: list[dict]) -> tuple[float, float, float] | None:

@@ -186,7 +186,10 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
              for key, value in values.items() if value is None and section in DesignProfile.model_fields]
     if empty:
         raise InvalidInput(empty)
-    profile = validate_file(DesignProfile, doc)
+    try:
+        profile = validate_file(DesignProfile, doc)
+    except InvalidInput as err:
+        raise InvalidInput(_with_conflicts(err.issues, doc)) from None
     gears = profile.gears
     if gears is not None and gears.law_csv is not None:
         # the profile's law CSV beside the profile, wherever the command is run from
@@ -200,6 +203,39 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
                             for section, key, why in conflicts])
     profile._shipped = Path(file).resolve().parent == shipped_profiles().resolve()
     return profile
+
+
+def _with_conflicts(issues: list, doc: LocatedYaml) -> list:
+    """``issues`` of a design profile and the mechanism conflicts among its values that are
+    plain numbers (:func:`~wheelstep_cli.config.design.mechanism_conflicts`), in the file's
+    line order: a file with several problems gets all of them at once."""
+    import math
+
+    from wheelstep_cli.config.design import DesignProfile, mechanism_conflicts
+
+    named = {issue.what for issue in issues}
+    # a section with a problem of its own has no mechanism to compare (its lengths unknown)
+    unsure = {what.split(".")[0] for what in named}
+    if "mechanism" in unsure or not any(issue.what for issue in issues):
+        return issues
+
+    def values(section: str) -> dict:
+        given = doc.data.get(section)
+        if section not in DesignProfile.model_fields or not isinstance(given, dict):
+            return {}
+        if section in unsure and any(f"{section}.{key}" in named for key in ("a", "b", "c", "r_min")):
+            return {}
+        return {key: value for key, value in given.items() if f"{section}.{key}" not in named
+                and (isinstance(value, str) if key == "law_csv" else
+                     isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value))}
+
+    more = [Issue(doc.where((section, key)), f"{section}.{key}", f"= {values(section)[key]:g}: {why}")
+            for section, key, why in mechanism_conflicts(values)]
+
+    def line(issue) -> int:
+        tail = str(issue.where).rsplit(":", 1)[-1]
+        return int(tail) if tail.isdigit() else 0
+    return sorted([*issues, *more], key=line)
 
 
 def load_design_profile(name_or_path: str):
