@@ -109,3 +109,16 @@ class Interrupted(Exception):
     """A run stopped by Ctrl-C that says what it leaves behind (the rows merged so far): the
     CLI prints this line in place of its bare 'aborted' and exits 130. Not a
     KeyboardInterrupt, which the command framework would turn into a silent exit code."""
+
+
+def file_problem(path, err: OSError | None = None) -> str:
+    """Why the file at ``path`` cannot be read, in a refusal's words: a folder, no such file,
+    or what the system said (``err``)."""
+    from pathlib import Path
+
+    path = Path(path)
+    if path.is_dir():
+        return "is a folder, not a file"
+    if not path.exists():
+        return "no such file"
+    return f"cannot be read ({err.strerror or err})" if err is not None else "cannot be read"

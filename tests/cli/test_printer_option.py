@@ -242,3 +242,18 @@ def test_a_limit_on_a_value_the_printer_changes_is_said_for_the_value_as_given(c
     assert result.exit_code == 1
     assert f"bore = 40 ({found[1]} as printed): must be < {found[2]} mm (< {found[3]} mm as printed)" \
         in result.stderr, result.stderr
+
+
+@pytest.mark.parametrize("args, said", [
+    (["mesh-check", "{d}", "{d}"], "pinion = {d}"),
+    (["mesh-check", "{d}"], "pinion = {d}"),
+    (["mesh-check", "--gcode", "{d}"], "--gcode = {d}"),
+    (["gears", "--law-csv", "{d}", "--out", "{o}"], "--law-csv = {d}"),
+    (["batch", "{d}", "--out", "{o}"], "file = {d}"),
+])
+def test_a_folder_given_for_a_file_is_said_to_be_a_folder(cli, tmp_path, args, said):
+    folder, out = tmp_path / "folder", tmp_path / "out"
+    folder.mkdir()
+    line = error_line(cli(*(a.format(d=folder, o=out) for a in args)))
+    assert line == f"wheelstep: error: {said.format(d=folder)}: is a folder, not a file", line
+    assert not out.exists()

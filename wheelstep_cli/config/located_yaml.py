@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import DesignError, file_problem
 
 PathKey = tuple
 #: Largest YAML file read, bytes (a batch of hundreds of entries is a few tens of kB).
@@ -57,7 +57,7 @@ def read_located_yaml(path: Path, label: str | None = None) -> LocatedYaml:
     try:
         data = Path(path).read_bytes()
     except OSError as err:
-        raise DesignError("file", label, f"cannot be read ({err.strerror or err})") from None
+        raise DesignError("file", label, file_problem(path, err)) from None
     if len(data) > MAX_BYTES:
         raise DesignError("file", label, f"is {len(data)} bytes; at most {MAX_BYTES} are read")
     try:

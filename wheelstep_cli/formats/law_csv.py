@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.errors import DesignError, file_problem, require
 
 
 #: A plain decimal number as a law CSV writes one (no underscores, no nan or inf).
@@ -37,7 +37,7 @@ def read_law_csv(path, param: str = "law_csv"):
     try:
         data = Path(path).read_bytes()
     except OSError as err:
-        raise DesignError(param, str(path), f"cannot be read ({err.strerror or err})") from None
+        raise DesignError(param, str(path), file_problem(path, err)) from None
     require(len(data) <= 1 << 22, param, str(path), "is larger than 4 MiB; one period of samples is enough")
     try:
         text = data.decode("utf-8-sig").replace("\x1a", "")   # a spreadsheet's BOM, an old end-of-file mark

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import DesignError, file_problem
 from wheelstep_cli.geometry.solids import section_outline
 
 _CORE_NS = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
@@ -52,7 +52,7 @@ def read_mesh(spec: str, param: str, default_name: str | None = None) -> tuple[n
     """
     path, name = split_mesh_spec(spec)
     if not path.is_file():
-        raise DesignError(param, str(spec), "no such file")
+        raise DesignError(param, str(spec), file_problem(path))
     suffix = path.suffix.lower()
     if suffix == ".3mf":
         return _read_3mf_object(path, name, default_name, param)

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import DesignError, file_problem
 from wheelstep_cli.formats.gcode import GcodeLayers, read_gcode
 from wheelstep_cli.geometry.planar import offset_outline, points_inside, prepared_polygon, signed_area
 from wheelstep_cli.geometry.registration import Registration, register
@@ -67,7 +67,7 @@ class PrintedGear:
 def read_gcode_file(path: Path) -> GcodeLayers:
     """The external perimeters of a PrusaSlicer G-code file (DesignError naming ``gcode``)."""
     if not path.is_file():
-        raise DesignError("gcode", str(path), "no such file")
+        raise DesignError("gcode", str(path), file_problem(path))
     try:
         text = path.read_text(errors="replace")
     except OSError as err:
@@ -82,7 +82,7 @@ def require_gcode_files(paths: list[Path]) -> None:
 
     for path in paths:
         if not path.is_file():
-            raise DesignError("gcode", str(path), "no such file")
+            raise DesignError("gcode", str(path), file_problem(path))
         size = path.stat().st_size
         with open(path, "rb") as handle:
             head = handle.read(2000)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from wheelstep_cli.config.schema import limit_text
 from wheelstep_cli.config.specs import GearPairSpec
-from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.errors import DesignError, file_problem, require
 from wheelstep_cli.formats.mesh_read import MeshObject, read_3mf_objects, split_mesh_spec
 from wheelstep_cli.parts.gear_laws import require_plate_law_csv
 
@@ -51,7 +51,7 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
     for file, param in zip(files, GEARS):
         path = Path(file)
         if not split_mesh_spec(file)[0].exists():       # FILE.3mf:NAME names a file too
-            raise DesignError(param, file, "no such file")
+            raise DesignError(param, file, file_problem(split_mesh_spec(file)[0]))
         if path.suffix.lower() != ".3mf" or not path.is_file():
             raise DesignError(param, file, "must be a 3MF plate written by wheelstep (or name two "
                                            "meshes, the pinion and the wheel)")

@@ -96,7 +96,7 @@ def _plates_given(pinion: str | None, wheel: str | None) -> bool:
     mesh refused as Click refuses a missing argument (the user gave none to name), a file
     named alone that does not exist as when two are named."""
     from wheelstep_cli.cli import click_errors
-    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.errors import DesignError, file_problem
     from wheelstep_cli.formats.mesh_read import split_mesh_spec
     from wheelstep_cli.parts.plate_pairs import is_plate_input
 
@@ -104,7 +104,7 @@ def _plates_given(pinion: str | None, wheel: str | None) -> bool:
         raise click_errors.UsageError("Missing argument 'PINION': give the PINION and WHEEL meshes, a "
                                       "plate, or --gcode FILE")
     if wheel is None and not split_mesh_spec(pinion)[0].is_file():
-        raise DesignError("pinion", pinion, "no such file")
+        raise DesignError("pinion", pinion, file_problem(split_mesh_spec(pinion)[0]))
     plates = is_plate_input(pinion, wheel)
     if wheel is None and not plates:
         raise click_errors.UsageError(f"Missing argument 'WHEEL': {pinion} is one gear; give the wheel "
