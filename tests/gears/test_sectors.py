@@ -42,6 +42,15 @@ def test_table_output_lists_every_sector(cli):
     assert len([l for l in result.stdout.splitlines() if l.strip()[:2].strip().isdigit()]) == 20
 
 
+def test_the_paper_tables_speak_of_the_paper_method_not_of_generated_teeth(cli):
+    """pitch and teeth take the paper's sectors: their help says so, and the common arc is
+    said to be the circular sectors' (shorter than the exact curves `gears` spaces teeth on)."""
+    for command in ("pitch", "teeth"):
+        text = " ".join(cli(command, "--help").stdout.split())
+        assert "generated" not in text and "L_p the paper's sectors roll at" in text, text
+    assert "l is the arc of the paper's circular sectors" in cli("pitch").stdout
+
+
 @settings(max_examples=40, deadline=None)
 @given(crank_laws(), center_distances(), st.integers(4, 40))
 def test_partition_properties(law, L, count):

@@ -24,6 +24,14 @@ Backlash = Annotated[Optional[float], opt("--backlash", help="Normal backlash j_
                                           shown="0.25 x module for paper teeth; for generated teeth the "
                                                 "most, up to that, whose play costs each flank at most "
                                                 "half the 1 % hub speed ripple bound")]
+# the paper method's tables (pitch, teeth): their own rules, not the generator's
+PaperDistance = Annotated[Optional[float], opt(
+    "--center-distance", help="Centre distance L_p the paper's sectors roll at, mm (SPEC §4).",
+    shown="the installed distance less the paper's 0.5 opening: 143.5 for the source design")]
+PaperModule = Annotated[Optional[float], opt("--module", "-m", help="Module of the paper's sector-involute "
+                                                                    "teeth, mm (SPEC §5).", shown="2")]
+PaperBacklash = Annotated[Optional[float], opt("--backlash", help="Normal backlash j_n of the paper's "
+                                                                  "teeth, mm.", shown="0.25 x module")]
 Plot = output_file("--plot", "Write a picture of the pair in assembly phase with its dimensions (PNG "
                             "or SVG, by the extension).", ".png", ".svg")
 Gif = output_file("--gif", "Write the pair turning through a shoe handover, with contact point, TE and "
@@ -39,7 +47,7 @@ Step = Annotated[bool, opt("--step", help="Also write pinion.step and wheel.step
 
 
 def pitch(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = None,
-          center_distance: CenterDistance = None, profile: Profile = None,
+          center_distance: PaperDistance = None, profile: Profile = None,
           json: Json = False, quiet: Quiet = False, verbose: Verbose = False) -> None:
     """Print the equal-arc sector partition of one carrier quarter (SPEC §4)."""
     from wheelstep_cli.parts.gear_tables import pitch_report
@@ -62,12 +70,15 @@ def _pitch_lines(report: dict) -> list[str]:
         lines.append(f"{row['i']:>3} {row['phi_deg']:8.2f} {row['dphi_deg']:7.2f} "
                      f"{row['r_wheel_mm']:8.2f} {row['theta_deg']:8.2f} {row['dtheta_deg']:8.2f} "
                      f"{row['r_pinion_mm']:7.2f}")
-    return lines + ["(degrees and mm)"]
+    # the paper's circular sectors are shorter than the exact pitch curve between the same
+    # angles: gears' generated teeth are spaced along the exact curve (a larger pitch)
+    return lines + ["(degrees and mm; l is the arc of the paper's circular sectors, SPEC §4: "
+                    "`gears` spaces generated teeth along the exact pitch curves, so says a larger pitch)"]
 
 
 def teeth(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = None,
-          center_distance: CenterDistance = None, module: Module = None,
-          backlash: Backlash = None, profile: Profile = None,
+          center_distance: PaperDistance = None, module: PaperModule = None,
+          backlash: PaperBacklash = None, profile: Profile = None,
           json: Json = False, quiet: Quiet = False, verbose: Verbose = False) -> None:
     """Print the sector-involute tooth points of both gears (SPEC §5)."""
     from wheelstep_cli.parts.gear_tables import teeth_report
