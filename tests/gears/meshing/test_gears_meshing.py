@@ -1,6 +1,7 @@
 """`wheelstep gears` checks what it writes (SPEC §10) and `wheelstep mesh-check` on files."""
 
 import json
+import re
 
 import pytest
 
@@ -35,6 +36,9 @@ def test_allowed_pair_stores_the_check_and_prints_the_ripple(paper_pair, cli, tm
     result = cli("gears", "--teeth", "paper", "--allow-interference", "--format", "stl",
                  "--out", tmp_path)
     assert "hub speed ripple" in result.stdout and "interfere" in result.stderr
+    # the backlash is said where it is measured, as mesh-check says it
+    assert re.search(r"meshing at 144 mm: backlash [-\d.]+\.\.[-\d.]+ mm on the wheel pitch curve",
+                     result.stdout), result.stdout
 
 
 def test_mesh_check_on_the_written_files_agrees_with_gears_json(paper_pair, cli, tmp_path):

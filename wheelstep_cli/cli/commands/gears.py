@@ -351,7 +351,7 @@ def _gears_lines(pair, record: dict) -> list[str]:
     lines.append(f"meshing at {pair.mounted_distance:g} mm: backlash "
                  f"{figure_text(record['backlash_min_mm'], '.3f')}.."
                  f"{figure_text(record['backlash_max_mm'], '.3f')}"
-                 f" mm, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
+                 f" mm on the wheel pitch curve, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
                  f"{speed} ripple {record['law_hub_speed_ripple_pct']:.2f} %")
     own = record.get("law_hub_speed_ripple_pct", 0.0)
     lines.extend(f"  {flank_line(side, record[side], own, speed)}" for side in ("drive", "coast"))
