@@ -92,7 +92,8 @@ def test_pair_outside_the_bounds_is_refused_like_gears_with_its_remedy(cli, tmp_
     line = line_of(batch, "z: 24")
     assert f"source24 ({batch}:{line}): z = 24: the pair would mesh outside the bounds ({reason})" \
         in result.stderr
-    assert f"use overrides {{{keys}}}" in result.stderr
+    # the entry is not built; the file's other entries are written
+    assert f"({reason}); not built; use overrides {{{keys}}}" in result.stderr
     assert sorted(p.name for p in (out / "reports").iterdir()) == ["pair.json", "shoes.json"]
     manifest = json.loads((out / "manifest.json").read_text())
     entries = {e["name"]: e for e in manifest["entries"]}
@@ -131,6 +132,7 @@ def test_a_batch_whose_every_entry_fails_leaves_an_earlier_batch_in_its_folder(c
     result = cli("batch", bad, "--out", out, "--jobs", "1")
     assert result.exit_code == 1, result.stderr
     assert "pair (" in result.stderr and "hub_d = 90" in result.stderr
+    assert f"nothing written to {out} (the earlier batch's files there are kept)" in result.stdout
     assert {p: p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
 
 

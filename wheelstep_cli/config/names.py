@@ -73,8 +73,11 @@ def remedy_in_yaml(err, keys=lambda options: f"overrides {{{as_keys(options)}}}"
     """A refusal with remedies (``require_within_bounds`` and ``verified_undercut`` of
     parts.mesh_bounds) as a file states it: each remedy (``use`` or, unbuilt, ``try``) and
     each failed try as ``keys(options)`` (default a batch entry's ``overrides {z: 90,
-    backlash: 0.239}``), not as flags; any other refusal as :func:`yaml_message` words it."""
+    backlash: 0.239}``), not as flags; any other refusal as :func:`yaml_message` words it. Its
+    "nothing written" is said "not built": the file's other entries are written."""
     message = yaml_message(err)   # its flags already said as keys (in_file_words)
+    # a file's other entries are written: what this one leaves out is the entry itself
+    message = re.sub(r"; nothing written(?=;|$)", "; not built", message)
     for tried in getattr(err, "tried", None) or []:
         message = _whole_words(message, in_file_words(as_flags(tried)), keys(tried))
     # every remedy offered (an undercut may offer more than one), else the one

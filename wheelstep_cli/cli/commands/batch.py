@@ -147,7 +147,10 @@ def _lines(out: Path, plan, outcome) -> list[str]:
     parts = sum(len(p.items) for p in outcome.plates)
     plates = len(outcome.plates)
     if not outcome.built:
-        return [f"built none of {_count(len(plan.entries), 'entry', 'entries')}: nothing written to {out}"]
+        from wheelstep_cli.batch.outputs import MANIFEST
+
+        kept = " (the earlier batch's files there are kept)" if (out / MANIFEST).is_file() else ""
+        return [f"built none of {_count(len(plan.entries), 'entry', 'entries')}: nothing written to {out}{kept}"]
     return [f"built {len(outcome.built)} of {_count(len(plan.entries), 'entry', 'entries')}: "
             f"{_count(parts, 'part', 'parts')} on {_count(plates, 'plate', 'plates')} in {out}",
             *(f"  {p.stem}.3mf ({p.printer.name}): {_count(len(p.items), 'part', 'parts')}"
