@@ -372,3 +372,18 @@ def test_a_mechanism_typed_in_metres_is_told_lengths_are_millimetres(cli, tmp_pa
     assert line.startswith("wheelstep: error: --a = 0.06: with it, strut-diameter = 12 fails: fits no socket: "
                            "the body is 0.17 mm across (its sole)"), line
     assert line.endswith("lengths are in millimetres") and "<= -" not in line
+
+
+def test_a_shoe_too_large_for_the_default_printers_bed_names_the_size_and_the_way_out(cli, tmp_path):
+    """A mechanism ten times the source design's makes a shoe larger than the default
+    printer's bed: said of the length given, as the size it makes, with the note that the
+    printer is the default one; --format stl, as the note says, writes it."""
+    args = ["shoe", "--a", "600", "--b", "1000"]
+    line = error_line(cli(*args, "--out", tmp_path / "big"))
+    assert line.startswith("wheelstep: error: --a = 600: makes part 'shoe' "), line
+    assert ", larger than the bed of printer 'fdm-0.4-pla' (256 x 256 mm" in line, line
+    assert line.endswith("(the default printer; --printer chooses another, --format stl writes no plate)"), line
+    assert not (tmp_path / "big").exists()
+    named = error_line(cli(*args, "--printer", "fdm-0.4-pla", "--out", tmp_path / "big"))
+    assert named.startswith("wheelstep: error: --printer = fdm-0.4-pla: part 'shoe' ") and "default" not in named
+    assert cli(*args, "--format", "stl", "--out", tmp_path / "big", "-q").exit_code == 0

@@ -23,15 +23,19 @@ def size_problem(name: str, bounds: np.ndarray, printer: Printer) -> str | None:
     from wheelstep_cli.geometry.packing import fits_bed
 
     size = bounds[1] - bounds[0]
-    edge = printer.edge_margin
-    if fits_bed((size[0], size[1]), printer.bed, edge) is None:
-        return (f"part '{name}' ({size[0]:.1f} x {size[1]:.1f} mm) does not fit the bed of printer "
-                f"'{printer.given or printer.name}' ({printer.bed[0]:g} x {printer.bed[1]:g} mm with {edge:g} mm "
-                f"margins: at most {printer.bed[0] - 2 * edge:g} x {printer.bed[1] - 2 * edge:g} mm)")
+    if fits_bed((size[0], size[1]), printer.bed, printer.edge_margin) is None:
+        return f"part '{name}' ({size[0]:.1f} x {size[1]:.1f} mm) does not fit {_bed_words(printer)}"
     if size[2] > printer.max_height:
         return (f"part '{name}' is {size[2]:.1f} mm tall; printer '{printer.given or printer.name}' prints at most "
                 f"{printer.max_height:g} mm")
     return None
+
+
+def _bed_words(printer: Printer) -> str:
+    """The printer's bed as a refusal says it (mm)."""
+    edge = printer.edge_margin
+    return (f"the bed of printer '{printer.given or printer.name}' ({printer.bed[0]:g} x {printer.bed[1]:g} mm "
+            f"with {edge:g} mm margins: at most {printer.bed[0] - 2 * edge:g} x {printer.bed[1] - 2 * edge:g} mm)")
 
 
 def require_on_bed(parts, printer: Printer, height_param: str, height: float,
@@ -39,14 +43,16 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float,
     """Refuse (DesignError) a part taller than the printer prints (named by ``height_param``,
     the option that sets it) or larger than its bed (named ``printer``); either also stated
     for the ``footprint`` inputs (name -> value) that set the part's size, so the line names
-    the one the user gave."""
+    the one the user gave (as the size it makes)."""
     for part in parts:
         size = part.bounds[1] - part.bounds[0]
         require_height(part.name, size[2], printer, height_param, height, footprint)
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
-            given = printer.given or printer.name
-            raise _beyond(DesignError("printer", given, problem), printer).tied_to(footprint or {})
+            makes = f"makes part '{part.name}' {size[0]:.1f} x {size[1]:.1f} mm, larger than {_bed_words(printer)}"
+            sizes = {name: (value, makes) for name, value in (footprint or {}).items()
+                     if value is not None and name != "printer"}
+            raise _beyond(DesignError("printer", printer.given or printer.name, problem, sizes), printer)
 
 
 def gear_pair_height(spec) -> float:
@@ -71,6 +77,15 @@ def require_height(name: str, tall: float, printer: Printer, height_param: str, 
         raise _beyond(DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall{stack}, more "
                                   f"than the {printer.max_height:g} mm printer '{printer.given or printer.name}' prints"),
                       printer).tied_to(footprint or {})
+
+
+def default_printer_said(err: DesignError, stl_only: bool = True) -> DesignError:
+    """``err`` (a part larger than the printer prints) said of the default printer, which the
+    user did not name: how to choose another, and (``stl_only``) that STL files need no bed;
+    its statements for the inputs sharing the blame carry the note too."""
+    note = " (the default printer; --printer chooses another" + (", --format stl writes no plate" if stl_only else "") + ")"
+    sizes = {name: (value, limit + note) for name, (value, limit) in err.alternatives.items()}
+    return err._with_extras(DesignError(err.param, err.value, err.limit + note, sizes))
 
 
 def _beyond(error: DesignError, printer: Printer) -> DesignError:

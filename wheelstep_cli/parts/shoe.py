@@ -16,14 +16,15 @@ from pathlib import Path
 import numpy as np
 
 from wheelstep_cli.config.specs import ShoeSpec
-from wheelstep_cli.errors import require
+from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.geometry.planar import check_outline, signed_area
 from wheelstep_cli.geometry.mesh_checks import MeshReport, Part, part_record, require_printable
 from wheelstep_cli.geometry.solids import bore_segments, circle, extrude_with_socket
 from wheelstep_cli.formats.dxf import polyline_dxf_bytes
 from wheelstep_cli.formats.jsonio import csv_bytes, json_bytes
 from wheelstep_cli.formats.stl import stl_bytes
-from wheelstep_cli.parts.plate_layout import bed_plates, design_metadata, plate_files, require_on_bed
+from wheelstep_cli.parts.plate_layout import (bed_plates, default_printer_said, design_metadata, plate_files,
+                                             require_on_bed)
 from wheelstep_cli.mechanism.crank import CrankMechanism
 from wheelstep_cli.mechanism.sole import sole_curvature_radius
 from wheelstep_cli.parts.shoe_socket import check_socket, sole_and_top
@@ -146,8 +147,13 @@ def shoe_files(shoe: Shoe, out: Path, fmt: str = "both", printer=None) -> dict[P
     part = shoe.part
     if chosen is not None or fmt in ("3mf", "both"):
         spec = shoe.spec
-        require_on_bed([part], printer, "width", spec.width, {
-            "a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min, "rim": spec.rim})
+        try:
+            require_on_bed([part], printer, "width", spec.width, {
+                "a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min, "rim": spec.rim})
+        except DesignError as err:
+            if chosen is not None:
+                raise
+            raise default_printer_said(err) from None
     files: dict[Path, bytes] = {}
     if fmt in ("stl", "both"):
         files[out / "shoe.stl"] = stl_bytes(part.vertices, part.faces, "wheelstep shoe")

@@ -101,16 +101,15 @@ def _on_the_bed(build, spec, printer, fit: bool):
     (or, without a fit, to write no plate)."""
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.gear_pair import footprint
+    from wheelstep_cli.parts.plate_layout import default_printer_said
 
     try:
         return build()
     except DesignError as err:
         if printer is not None or not getattr(err, "beyond_printer", None):
             raise
-        limit = (f"{err.limit} (the default printer; --printer chooses another"
-                 + ("" if fit else ", --format stl writes no plate") + ")")
-        # stated again for the footprint, so a size the user gave carries the note too
-        raise err._with_extras(DesignError(err.param, err.value, limit).tied_to(footprint(spec))) from None
+        # stated for the footprint too, so a size the user gave carries the note
+        raise default_printer_said(err, stl_only=not fit).tied_to(footprint(spec)) from None
 
 
 def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
