@@ -84,6 +84,10 @@ def test_mesh_check_gcode_finds_the_least_backlash_inside_the_band_prediction(sl
     assert summary["gcode"]["inside_band"] is True
     # the bores as the G-code lays them: the drawn (hole-compensated) 8.2 mm
     assert abs(summary["gcode"]["pinion"]["bore_printed_mm"] - 8.2) < 0.02
+    from wheelstep_cli.parts.gcode_check import gcode_lines
+
+    printed = gcode_lines(summary)[0]
+    assert f"bore {summary['gcode']['pinion']['bore_printed_mm']:.3f} mm across by area (drawn " in printed, printed
 
 
 def test_the_print_turned_by_a_law_period_gives_the_same_figures(sliced):

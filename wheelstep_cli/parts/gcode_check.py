@@ -371,7 +371,8 @@ def gcode_lines(summary: dict) -> list[str]:
     lines = []
     for gear in ("pinion", "wheel"):
         r = summary["gcode"][gear]
-        bore = ("" if r["bore_printed_mm"] is None else f", bore {r['bore_printed_mm']:.3f} mm"
+        # both across by area: a teardrop drawn for a printer is wider than its round size
+        bore = ("" if r["bore_printed_mm"] is None else f", bore {r['bore_printed_mm']:.3f} mm across by area"
                 + ("" if r["bore_drawn_mm"] is None else f" (drawn {r['bore_drawn_mm']:.3f})"))
         lines.append(f"printed {gear}: {Path(r['gcode']).name} layer z {r['layer_z_mm']:g} mm, "
                      f"width {r['extrusion_width_mm']:.3f} mm; outline {r['outline_offset_mm']:+.3f} mm "
