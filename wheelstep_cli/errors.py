@@ -116,9 +116,13 @@ def file_problem(path, err: OSError | None = None) -> str:
     or what the system said (``err``)."""
     from pathlib import Path
 
+    import os
+
     path = Path(path)
     if path.is_dir():
         return "is a folder, not a file"
+    if path.is_symlink() and not path.exists():
+        return f"is a link to {os.readlink(path)}, which does not exist"
     if not path.exists():
         return "no such file"
     return f"cannot be read ({err.strerror or err})" if err is not None else "cannot be read"

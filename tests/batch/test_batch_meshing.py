@@ -133,6 +133,8 @@ def test_a_batch_whose_every_entry_fails_leaves_an_earlier_batch_in_its_folder(c
     assert result.exit_code == 1, result.stderr
     assert "pair (" in result.stderr and "hub_d = 90" in result.stderr
     assert f"nothing written to {out} (the earlier batch's files there are kept)" in result.stdout
+    dry = cli("batch", bad, "--out", out, "--jobs", "1", "--dry-run")
+    assert dry.exit_code == 1 and "would remove" not in dry.stdout + dry.stderr, dry.stdout + dry.stderr
     assert {p: p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
 
 

@@ -477,6 +477,8 @@ def test_a_point_outside_the_bounds_says_its_remedy_as_a_try_in_the_files_keys()
     remedy = row["reason"].split("; try ", 1)[1]
     assert remedy.startswith("z: ") and remedy.endswith(" (from the figures; not built)"), remedy
     assert "use " not in row["reason"] and "--" not in row["reason"]
+    # the row's figures were built and kept: only its remedy is not
+    assert row["reason"].count("not built") == 1 and "); nothing written; try z: " in row["reason"], row["reason"]
 
 
 def test_a_point_with_teeth_too_thin_for_its_printer_is_refused_as_gears_refuses_it():

@@ -65,7 +65,7 @@ def test_gears_slice_writes_gcode_beside_the_plates_and_finds_the_print_meshing(
     assert stored["slice"]["backlash_min_mm"] == readback["backlash_min_mm"]
 
 
-def test_mesh_check_gcode_finds_the_least_backlash_inside_the_band_prediction(sliced):
+def test_mesh_check_gcode_finds_the_least_backlash_inside_the_band_prediction(cli, sliced):
     folder, _ = sliced
     code, summary = _run_json("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode",
                               folder / "gears-2.gcode", "--tolerance", "--samples", "256", "--json")
@@ -84,10 +84,9 @@ def test_mesh_check_gcode_finds_the_least_backlash_inside_the_band_prediction(sl
     assert summary["gcode"]["inside_band"] is True
     # the bores as the G-code lays them: the drawn (hole-compensated) 8.2 mm
     assert abs(summary["gcode"]["pinion"]["bore_printed_mm"] - 8.2) < 0.02
-    from wheelstep_cli.parts.gcode_check import gcode_lines
-
-    printed = gcode_lines(summary)[0]
-    assert f"bore {summary['gcode']['pinion']['bore_printed_mm']:.3f} mm across by area (drawn " in printed, printed
+    text = cli("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode", folder / "gears-2.gcode",
+               "--samples", "256").stdout
+    assert f"bore {summary['gcode']['pinion']['bore_printed_mm']:.3f} mm across by area (drawn " in text, text
 
 
 def test_the_print_turned_by_a_law_period_gives_the_same_figures(sliced):

@@ -247,7 +247,7 @@ def test_a_pair_too_large_for_the_default_printers_bed_says_so_and_how_to_write_
     printer's bed, saying that it is the default printer and that --format stl writes no
     plate; applied, the pair is written."""
     line = error_line(cli("gears", "--module", "3", "--out", tmp_path / "big"))
-    assert line.startswith("wheelstep: error: --module = 3: makes part 'wheel' "), line
+    assert line.startswith("wheelstep: error: --module = 3: with it, part 'wheel' is "), line
     assert ", larger than the bed of printer 'fdm-0.4-pla' (256 x 256 mm" in line, line
     assert line.endswith("(the default printer; --printer chooses another, --format stl writes no plate)"), line
     assert not (tmp_path / "big").exists()

@@ -71,7 +71,7 @@ def test_a_batch_entry_with_a_law_csv_refuses_its_crank_override_at_its_line(cli
                   "      b: 90\n")
     line = error_line(cli("batch", batch, "--out", tmp_path / "out"))
     assert line.startswith(f"wheelstep: error: {batch}:{line_of(batch, 'b: 90')}: "
-                           "parts[0].overrides.b = 90: sets the crank law, which law_csv replaces"), line
+                           "parts[0].overrides.b = 90: sets the crank law, which the entry's law_csv replaces"), line
     assert not (tmp_path / "out").exists()
 
 

@@ -257,3 +257,13 @@ def test_a_folder_given_for_a_file_is_said_to_be_a_folder(cli, tmp_path, args, s
     line = error_line(cli(*(a.format(d=folder, o=out) for a in args)))
     assert line == f"wheelstep: error: {said.format(d=folder)}: is a folder, not a file", line
     assert not out.exists()
+
+
+@pytest.mark.parametrize("args, said", [(["mesh-check", "{l}", "{l}"], "pinion = {l}"),
+                                        (["mesh-check", "--gcode", "{l}"], "--gcode = {l}")])
+def test_a_broken_link_given_for_a_file_names_where_it_points(cli, tmp_path, args, said):
+    link = tmp_path / "gone.stl"
+    link.symlink_to(tmp_path / "moved" / "pinion.stl")
+    line = error_line(cli(*(a.format(l=link) for a in args)))
+    assert line == (f"wheelstep: error: {said.format(l=link)}: is a link to {tmp_path / 'moved' / 'pinion.stl'}, "
+                    "which does not exist"), line

@@ -354,6 +354,12 @@ def test_a_profile_with_a_bad_value_and_a_mechanism_conflict_gets_both_at_once(c
     write(profile, "mechanism:\n  a: x\ngears:\n  a: 31\n  z: 3\n")
     lines = cli("gears", "--profile", profile, "--dry-run").stderr.strip().splitlines()
     assert [line.split(": ", 3)[3].split(" =")[0] for line in lines] == ["mechanism.a", "gears.z"], lines
+    # a mechanism section's other problem leaves its lengths to compare; an empty value is one
+    # problem among the others
+    write(profile, "mechanism:\n  a: 30\n  d: 5\ngears:\n  z:\n  a: 31\nshoe:\n  width: -1\n")
+    lines = cli("gears", "--profile", profile, "--dry-run").stderr.strip().splitlines()
+    assert [line.split(": ", 3)[3].split(":")[0].split(" =")[0] for line in lines] == [
+        "mechanism.d", "gears.z", "gears.a", "shoe.width"], lines
 
 
 def test_a_yaml_word_read_as_a_switch_is_said_in_yamls_words(cli, tmp_path):

@@ -380,7 +380,7 @@ def test_a_shoe_too_large_for_the_default_printers_bed_names_the_size_and_the_wa
     printer is the default one; --format stl, as the note says, writes it."""
     args = ["shoe", "--a", "600", "--b", "1000"]
     line = error_line(cli(*args, "--out", tmp_path / "big"))
-    assert line.startswith("wheelstep: error: --a = 600: makes part 'shoe' "), line
+    assert line.startswith("wheelstep: error: --a = 600: with it, part 'shoe' is "), line
     assert ", larger than the bed of printer 'fdm-0.4-pla' (256 x 256 mm" in line, line
     assert line.endswith("(the default printer; --printer chooses another, --format stl writes no plate)"), line
     assert not (tmp_path / "big").exists()

@@ -183,5 +183,5 @@ def _bounds_refusal(pair, record: dict, printer) -> dict:
         require_printable_teeth(pair, printer)
     except DesignError as err:
         # the remedy as the sweep file's keys (its grid and fixed values)
-        return {"outcome": "refused", "reason": remedy_in_yaml(err, as_keys)}
+        return {"outcome": "refused", "reason": remedy_in_yaml(err, as_keys, entry=False)}
     return {}

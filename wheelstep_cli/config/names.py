@@ -69,16 +69,18 @@ def _file_keys() -> frozenset[str]:
 _BATCH_ONLY = frozenset({"printer", "allow_interference"})
 
 
-def remedy_in_yaml(err, keys=lambda options: f"overrides {{{as_keys(options)}}}") -> str:
+def remedy_in_yaml(err, keys=lambda options: f"overrides {{{as_keys(options)}}}", entry: bool = True) -> str:
     """A refusal with remedies (``require_within_bounds`` and ``verified_undercut`` of
     parts.mesh_bounds) as a file states it: each remedy (``use`` or, unbuilt, ``try``) and
     each failed try as ``keys(options)`` (default a batch entry's ``overrides {z: 90,
-    backlash: 0.239}``), not as flags; any other refusal as :func:`yaml_message` words it. Its
-    "nothing written" is said "not built": the file's other entries are written."""
+    backlash: 0.239}``), not as flags; any other refusal as :func:`yaml_message` words it.
+    ``entry``: of a batch entry, whose "nothing written" is said "not built" (the file's other
+    entries are written; a sweep's row keeps the words)."""
     message = yaml_message(err)   # its flags already said as keys (in_file_words)
-    # a file's other entries are written: what this one leaves out is the entry itself
-    message = re.sub(r"; nothing written(?=;|$)", "; not built", message)
-    for tried in getattr(err, "tried", None) or []:
+    if entry:
+        message = re.sub(r"; nothing written(?=;|$)", "; not built", message)
+    # the longest first: a try that holds a shorter one (z 44 module 2.9 holds z 44) stays whole
+    for tried in sorted(getattr(err, "tried", None) or [], key=lambda t: -len(as_flags(t))):
         message = _whole_words(message, in_file_words(as_flags(tried)), keys(tried))
     # every remedy offered (an undercut may offer more than one), else the one
     for remedy in getattr(err, "remedies", None) or [r for r in [getattr(err, "remedy", None)] if r]:

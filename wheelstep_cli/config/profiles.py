@@ -10,6 +10,7 @@ reported at once with its ``file:line``.
 from __future__ import annotations
 
 import importlib.resources
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -185,7 +186,13 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
                    "for the default") for section, values in doc.data.items() if isinstance(values, dict)
              for key, value in values.items() if value is None and section in DesignProfile.model_fields]
     if empty:
-        raise InvalidInput(empty)
+        # said with the file's other problems, which are found without the empty keys
+        given = replace(doc, data={section: {k: v for k, v in values.items() if v is not None}
+                                   if isinstance(values, dict) and section in DesignProfile.model_fields
+                                   else values for section, values in doc.data.items()})
+        issues: list = []
+        validate_file(DesignProfile, given, issues=issues)
+        raise InvalidInput(_with_conflicts(empty + issues, given))
     try:
         profile = validate_file(DesignProfile, doc)
     except InvalidInput as err:
@@ -214,16 +221,15 @@ def _with_conflicts(issues: list, doc: LocatedYaml) -> list:
     from wheelstep_cli.config.design import DesignProfile, mechanism_conflicts
 
     named = {issue.what for issue in issues}
-    # a section with a problem of its own has no mechanism to compare (its lengths unknown)
-    unsure = {what.split(".")[0] for what in named}
+    # a section whose lengths have a problem of their own has no mechanism to compare
+    unsure = {section for section in ("mechanism", "gears", "shoe")
+              if any(f"{section}.{key}" in named for key in ("a", "b", "c", "r_min"))}
     if "mechanism" in unsure or not any(issue.what for issue in issues):
         return issues
 
     def values(section: str) -> dict:
         given = doc.data.get(section)
-        if section not in DesignProfile.model_fields or not isinstance(given, dict):
-            return {}
-        if section in unsure and any(f"{section}.{key}" in named for key in ("a", "b", "c", "r_min")):
+        if section not in DesignProfile.model_fields or not isinstance(given, dict) or section in unsure:
             return {}
         return {key: value for key, value in given.items() if f"{section}.{key}" not in named
                 and (isinstance(value, str) if key == "law_csv" else

@@ -54,7 +54,7 @@ def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any
     fields = spec.model_fields
     if "law_csv" in fields and merged.get("law_csv") is not None:
         if top.get("law_csv") is not None:
-            _no_crank_law(top, "--law-csv" if on_command_line else "law_csv")
+            _no_crank_law(top, "--law-csv" if on_command_line else "the entry's law_csv")
         else:
             _no_crank_law(top, f"the {'profile' if on_command_line else 'design'}'s {section}.law_csv")
     if "r_min" in merged and "r_min" not in fields:

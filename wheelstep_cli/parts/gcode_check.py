@@ -83,11 +83,14 @@ def require_gcode_files(paths: list[Path]) -> None:
     for path in paths:
         if not path.is_file():
             raise DesignError("gcode", str(path), file_problem(path))
-        size = path.stat().st_size
-        with open(path, "rb") as handle:
-            head = handle.read(2000)
-            handle.seek(max(0, size - 200000))
-            tail = handle.read()
+        try:
+            size = path.stat().st_size
+            with open(path, "rb") as handle:
+                head = handle.read(2000)
+                handle.seek(max(0, size - 200000))
+                tail = handle.read()
+        except OSError as err:
+            raise DesignError("gcode", str(path), file_problem(path, err)) from None
         check_prusaslicer(head.decode(errors="replace") + "\n" + tail.decode(errors="replace"), str(path))
 
 

@@ -119,7 +119,8 @@ def footprint(spec: GearPairSpec) -> dict[str, object]:
 def require_pair_on_bed(pair: GearPair, printer) -> GearPair:
     """``pair``, refused (DesignError naming the input the user gave that sizes it) when a gear
     is taller than ``printer`` prints or larger than its bed."""
-    require_on_bed([pair.pinion, pair.wheel], printer, "thickness", pair.spec.thickness, footprint(pair.spec))
+    require_on_bed([pair.pinion, pair.wheel], printer, "thickness", pair.spec.thickness, footprint(pair.spec),
+                   height_only=("hub_length",))
     return pair
 
 

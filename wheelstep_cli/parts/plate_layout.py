@@ -39,19 +39,19 @@ def _bed_words(printer: Printer) -> str:
 
 
 def require_on_bed(parts, printer: Printer, height_param: str, height: float,
-                   footprint: dict[str, object] | None = None) -> None:
+                   footprint: dict[str, object] | None = None, height_only: tuple[str, ...] = ()) -> None:
     """Refuse (DesignError) a part taller than the printer prints (named by ``height_param``,
     the option that sets it) or larger than its bed (named ``printer``); either also stated
-    for the ``footprint`` inputs (name -> value) that set the part's size, so the line names
-    the one the user gave (as the size it makes)."""
+    for the ``footprint`` inputs (name -> value) that set the part's size (a bed too small,
+    not for those of them ``height_only`` names), so the line names the one the user gave."""
     for part in parts:
         size = part.bounds[1] - part.bounds[0]
         require_height(part.name, size[2], printer, height_param, height, footprint)
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
-            makes = f"makes part '{part.name}' {size[0]:.1f} x {size[1]:.1f} mm, larger than {_bed_words(printer)}"
+            makes = f"with it, part '{part.name}' is {size[0]:.1f} x {size[1]:.1f} mm, larger than {_bed_words(printer)}"
             sizes = {name: (value, makes) for name, value in (footprint or {}).items()
-                     if value is not None and name != "printer"}
+                     if value is not None and name != "printer" and name not in height_only}
             raise _beyond(DesignError("printer", printer.given or printer.name, problem, sizes), printer)
 
 

@@ -66,7 +66,7 @@ def _meshing(built, results) -> list[str]:
         return []
     lines = ["## Gear meshing (checked on the printed meshes)", "",
              "| entry | at (mm) | interference | backlash (mm) | F'i / f'i drive (um) | "
-             "F'i / f'i coast (um) | hub speed ripple drive / coast (%) | over the printer's band |",
+             "F'i / f'i coast (um) | speed ripple drive / coast (%; hub, a law CSV's output) | over the printer's band |",
              "| --- | ---: | --- | --- | ---: | ---: | ---: | --- |"]
     for entry, m in rows:
         verdict = (f"YES at {m['interfering_poses']} of {m['samples']} poses (allowed)"

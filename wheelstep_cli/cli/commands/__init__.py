@@ -7,8 +7,10 @@ import typer
 
 def register_all(app: typer.Typer) -> None:
     """Attach every command module's commands to ``app``."""
-    from wheelstep_cli.cli.commands import batch, gears, linkage, meshcheck, shoe, stairs, sweep, trajectory
+    from wheelstep_cli.cli.commands import (batch, gears, linkage, meshcheck, paper_tables, shoe, stairs,
+                                           sweep, trajectory)
 
+    paper_tables.register(app)
     gears.register(app)
     meshcheck.register(app)
     shoe.register(app)

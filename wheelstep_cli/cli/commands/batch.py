@@ -93,8 +93,9 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, s
                 outcome = run_batch(plan, Path(scratch), workers, bars, scheduler=scheduler,
                                     tolerance=tolerance)
                 written = [out / p.relative_to(scratch) for p in outcome.written]
-                check_folder(out, written, force)   # what the real run would refuse
-                show.would_remove.extend(stale_batch_files(out, written))
+                if outcome.built:       # a run that builds nothing writes and removes nothing
+                    check_folder(out, written, force)   # what the real run would refuse
+                    show.would_remove.extend(stale_batch_files(out, written))
                 return outcome, written
     except OSError as err:
         raise DesignError("out", str(out), f"cannot be written ({err.strerror or err})") from None

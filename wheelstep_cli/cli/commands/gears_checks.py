@@ -100,7 +100,6 @@ def _on_the_bed(build, spec, printer, fit: bool):
     too large for its bed is refused saying which printer that is and how to choose another
     (or, without a fit, to write no plate)."""
     from wheelstep_cli.errors import DesignError
-    from wheelstep_cli.parts.gear_pair import footprint
     from wheelstep_cli.parts.plate_layout import default_printer_said
 
     try:
@@ -108,8 +107,8 @@ def _on_the_bed(build, spec, printer, fit: bool):
     except DesignError as err:
         if printer is not None or not getattr(err, "beyond_printer", None):
             raise
-        # stated for the footprint too, so a size the user gave carries the note
-        raise default_printer_said(err, stl_only=not fit).tied_to(footprint(spec)) from None
+        # its statements for the inputs that size the part (plate_layout) carry the note too
+        raise default_printer_said(err, stl_only=not fit) from None
 
 
 def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
@@ -144,10 +143,10 @@ def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
 MOUNTING_WARNING = 0.01
 
 
-def warn_of_the_figures(show: Output, record: dict) -> None:
+def warn_of_the_figures(show: Output, record: dict, speed: str = "hub speed") -> None:
     """Warning lines on stderr: when the law the teeth follow (blended, or from a CSV) ripples
     beyond the bound the teeth are held to (SPEC §10), when the pair tolerates next to no
-    closer mounting, and when the (allowed) teeth interfere."""
+    closer mounting, and when the (allowed) teeth interfere. ``speed``: what the ripple is of."""
     from wheelstep_cli.parts.bound_figures import MeshBounds
 
     own = record.get("law_hub_speed_ripple_pct", 0.0)
@@ -164,5 +163,5 @@ def warn_of_the_figures(show: Output, record: dict) -> None:
         from wheelstep_cli.parts.mesh_check import figure_text
 
         clear = figure_text(record["diagnostic_pointwise_ripple_clear_pct"], ".2f")
-        show.warning(f"WARNING: {interference_phrase(record)}; pointwise hub speed ripple where they "
+        show.warning(f"WARNING: {interference_phrase(record)}; pointwise {speed} ripple where they "
                      f"do not (diagnostic): {clear} %")
