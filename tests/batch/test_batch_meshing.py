@@ -173,3 +173,16 @@ def test_no_backlash_on_a_printer_without_clearance_gets_the_play_remedy_that_bu
     fixed = entry.replace("backlash: 0\n", f"backlash: {found.group(1)}\n")
     applied = cli("batch", write(tmp_path / "fixed.yaml", fixed), "--out", tmp_path / "fixed", "--jobs", "1")
     assert applied.exit_code == 0, applied.stderr
+
+
+def test_a_pair_no_bed_holds_is_refused_for_its_size_before_its_figures(cli, tmp_path):
+    """module 3 draws the desk demo's wheel 260 mm across: refused at the module's line for the
+    bed, as `gears` refuses it, before the meshing check (whose figures no remedy on that bed
+    could cure)."""
+    batch = write(tmp_path / "b.yaml", "parts:\n  - name: big\n    kind: gear-pair\n    design: desk-demo\n"
+                  "    printer: fdm-0.4-pla\n    overrides:\n      module: 3\n")
+    result = cli("batch", batch, "--out", tmp_path / "out", "--jobs", "1")
+    assert result.exit_code == 1
+    assert (f"big ({batch}:{line_of(batch, 'module: 3')}): module = 3: with it, part 'wheel' is "
+            in result.stderr), result.stderr
+    assert "larger than the bed of printer 'fdm-0.4-pla'" in result.stderr and "bounds" not in result.stderr
