@@ -76,6 +76,11 @@ def test_local_cluster_rows_and_refused_point(cli, tmp_path):
     assert len(csv_lines) == POINTS + 1 and csv_lines[0].startswith('"key"')
     assert (tmp_path / "out" / "pareto.png").read_bytes()[:4] == b"\x89PNG"
     assert json.loads(result.stdout)["computed"] == POINTS
+    # a rerun computes nothing, but its table still holds the refused rows: exit 1, said so
+    again = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1")
+    assert again.exit_code == 1, again.stderr
+    assert f"0 designs computed (0 refused or failed), {POINTS} already in " in again.stdout
+    assert "(3 of them refused or failed)" in again.stdout, again.stdout
 
 
 def without_seconds(csv: Path) -> list[str]:

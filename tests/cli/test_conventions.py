@@ -176,6 +176,8 @@ def test_verbose_never_prints_none(cli, tmp_path, args, resolved, left):
     (["stairs", "--sweep", "--sweep-radii", "0"], "--sweep-radii = 0"),
     (["mesh-check", "missing.stl", "missing.stl"], "pinion = missing.stl"),   # an argument
     (["linkage", "--l3", "100"], "--l3 = 100"),          # the solver's crank angle: the link given
+    # more local workers than the machine runs (they only queued, for minutes): refused
+    (["sweep", "missing.yaml", "--workers", "1000"], "--workers = 1000: must be 0.."),
 ])
 def test_errors_name_the_parameter_as_written(cli, tmp_path, args, shown):
     assert error_line(cli(*args)).startswith(f"wheelstep: error: {shown}")

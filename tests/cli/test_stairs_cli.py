@@ -58,6 +58,10 @@ def test_cli_bad_input_one_line_exit_2(cli, tmp_path, args, param):
     (("--sweep", "--sweep-angles", ",,,"), "--sweep-angles = ,,,: has an empty value between commas"),
     (("--sweep", "--sweep-angles", "-90,,-45"), "--sweep-angles = -90,,-45: has an empty value"),
     (("--sweep", "--sweep-radii", ","), "--sweep-radii = ,: has an empty value between commas"),
+    # each list within its 10000 values, but 100 million cells: refused, not a memory error
+    (("--sweep", "--sweep-radii", "1:10000:1", "--sweep-angles", "-179.982:0:0.018"),
+     "--sweep-radii = 1:10000:1: gives 10000 radii, 100000000 cells with the 10000 landing angles; "
+     "at most 100000 cells"),
     # -q prints no table: the step would shape nothing
     (("--step", "7", "-q"), "--step = 7: shapes the printed tables, which -q does not print (--json does)"),
 ])

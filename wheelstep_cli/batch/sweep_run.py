@@ -27,6 +27,7 @@ class SweepOutcome:
     failures: int
     results: Path
     dropped: int = 0      # rows of the results no longer of the sweep's points (other code, grid)
+    not_ok: int = 0       # rows of the sweep's points refused or failed, an earlier run's too
 
 
 def resolve_points(plan: SweepPlan) -> list[Point]:
@@ -80,7 +81,15 @@ def run_sweep(plan: SweepPlan, out: Path, client, progress: Callable[[int, int, 
         client.cancel(list(by_future))
         store.consolidate(index_of)
         raise
-    return SweepOutcome(len(points), len(points) - len(todo), finished, failures, results, store.dropped)
+    return SweepOutcome(len(points), len(points) - len(todo), finished, failures, results, store.dropped,
+                        _not_ok(results))
+
+
+def _not_ok(results: Path) -> int:
+    """Rows of a consolidated results file (the sweep's points only) not computed ok."""
+    import pyarrow.parquet as pq
+
+    return sum(outcome != "ok" for outcome in pq.read_table(results, columns=["outcome"]).column(0).to_pylist())
 
 
 def _take(iterator, count: int) -> list:

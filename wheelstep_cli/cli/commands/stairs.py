@@ -104,6 +104,10 @@ def _only_with(used: bool, **given) -> None:
             raise DesignError(name, value, f"is not used: such options {mode}")
 
 
+#: Most cells (landing angles x sole radii) of a sizing sweep.
+MAX_SWEEP_CELLS = 100_000
+
+
 def _sweep(show: Output, run: float, rise: float, angles: list[float], radii_text: str) -> None:
     """Size over every landing angle (deg) and sole radius (mm) and print the grid."""
     import numpy as np
@@ -113,6 +117,11 @@ def _sweep(show: Output, run: float, rise: float, angles: list[float], radii_tex
 
     radii = number_list(radii_text, "sweep-radii")
     require(min(radii) > 0, "sweep-radii", radii_text, "must be > 0 mm")
+    # every cell is a sizing and a row of the printed table: a grid beyond this is no table
+    # to read and takes memory by the gigabyte
+    require(len(angles) * len(radii) <= MAX_SWEEP_CELLS, "sweep-radii", radii_text,
+            f"gives {len(radii)} radii, {len(angles) * len(radii)} cells with the {len(angles)} landing angles; "
+            f"at most {MAX_SWEEP_CELLS} cells (fewer radii or angles)")
     rows = sizing_sweep(run, rise, np.radians(angles), radii)
     show.report(sweep_report(run, rise, rows), lambda: _sweep_lines(run, rise, angles, radii, rows))
 

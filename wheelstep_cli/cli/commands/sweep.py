@@ -18,6 +18,9 @@ Scheduler = Annotated[Optional[str], opt(
                         "DASK_SCHEDULER_ADDRESS, else a local cluster.")]
 Workers = Annotated[int, opt("--workers", help="Worker processes of the local cluster; 0 = one "
                                                "per CPU core (not with --scheduler).")]
+#: Most worker processes of the local cluster per CPU core: each is a Python process with
+#: the gear libraries loaded (a few hundred MB), and more than this only wait their turn.
+WORKERS_PER_CORE = 4
 #: Most designs --keep best:N writes (each is a set of mesh files).
 MAX_KEEP = 50
 
@@ -37,16 +40,18 @@ def sweep(
     """Compute every design of a sweep file (gears or shoe, meshing check included; the
     printer's tolerance band with `tolerance: true`) into OUT/results.parquet, results.csv
     (rows in point order) and pareto.png. A rerun computes only the missing designs. Exit 1
-    if some designs were refused (outside the bounds, like `gears` refuses them) or failed
-    (their rows say why), 2 if the input is invalid."""
+    if some designs of the table were refused (outside the bounds, like `gears` refuses them)
+    or failed (their rows say why), by this run or an earlier one; 2 if the input is invalid."""
     from wheelstep_cli.config.schema import InvalidInput
     from wheelstep_cli.config.sweep_file import load_sweep
     from wheelstep_cli.errors import DesignError
 
     show = Output(json, quiet, verbose)
     best = _keep_count(keep)
-    if workers < 0:
-        raise DesignError("workers", workers, "must be >= 0 (0: one per CPU core)")
+    most = WORKERS_PER_CORE * (os.cpu_count() or 1)
+    if not 0 <= workers <= most:
+        raise DesignError("workers", workers, f"must be 0..{most} ({WORKERS_PER_CORE} per CPU core of this "
+                                              "machine; 0: one per core; a larger cluster goes in --scheduler)")
     if workers and (scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")):
         raise DesignError("workers", workers, "sizes the local cluster; not with a scheduler")
     if out.exists() and not out.is_dir():
@@ -65,14 +70,25 @@ def sweep(
     outcome, written = _computed(plan, out, (scheduler, workers), (earlier, best, force), show)
     show.report({"sweep": str(file), "out": str(out), "points": outcome.total,
                  "skipped": outcome.skipped, "computed": outcome.computed,
-                 "failures": outcome.failures, "dropped": outcome.dropped,
+                 "failures": outcome.failures, "refused_or_failed_rows": outcome.not_ok,
+                 "dropped": outcome.dropped,
                  "written": [str(p) for p in written], "removed": [str(p) for p in show.removed]},
-                lambda: [f"{outcome.computed} designs computed ({outcome.failures} refused or "
+                lambda: [f"{_designs(outcome.computed)} computed ({outcome.failures} refused or "
                          f"failed), {outcome.skipped} already in {outcome.results}"
-                         + _dropped_text(outcome.dropped, "dropped")])
+                         + _earlier_not_ok(outcome) + _dropped_text(outcome.dropped, "dropped")])
     show.files(written, False)
-    if outcome.failures:
+    if outcome.not_ok:      # the sweep's table holds refused rows, this run's or an earlier one's
         raise typer.Exit(1)
+
+
+def _designs(count: int) -> str:
+    return f"{count} design" + ("" if count == 1 else "s")
+
+
+def _earlier_not_ok(outcome) -> str:
+    """What the results hold refused or failed besides this run's rows."""
+    earlier = outcome.not_ok - outcome.failures
+    return f" ({earlier} of them refused or failed)" if earlier > 0 else ""
 
 
 def _computed(plan, out: Path, cluster: tuple, run: tuple, show: Output):
