@@ -387,3 +387,11 @@ def test_a_shoe_too_large_for_the_default_printers_bed_names_the_size_and_the_wa
     named = error_line(cli(*args, "--printer", "fdm-0.4-pla", "--out", tmp_path / "big"))
     assert named.startswith("wheelstep: error: --printer = fdm-0.4-pla: part 'shoe' ") and "default" not in named
     assert cli(*args, "--format", "stl", "--out", tmp_path / "big", "-q").exit_code == 0
+
+
+def test_a_body_too_narrow_for_any_strut_names_its_width_not_the_strut(cli, tmp_path):
+    """--width 4.5 leaves 0.5 mm between the walls, less than the thinnest strut the shoe
+    takes (1 mm): the width is the input to change, even beside a strut diameter given."""
+    line = error_line(cli("shoe", "--width", "4.5", "--strut-diameter", "1", "--out", tmp_path / "o"))
+    assert line.startswith("wheelstep: error: --width = 4.5: must be >= 5.00 mm (socket wider than the body"), line
+    assert cli("shoe", "--width", "5", "--strut-diameter", "1", "--out", tmp_path / "o", "-q").exit_code == 0

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wheelstep_cli.config.specs import ShoeSpec
+from wheelstep_cli.config.specs import MIN_BORE, ShoeSpec
 from wheelstep_cli.errors import DesignError, rounded_down, rounded_up
 from wheelstep_cli.geometry.planar import polyline_box_distance
 from wheelstep_cli.mechanism.sole import contact_angles, sole_profile
@@ -34,8 +34,12 @@ def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
                 f"fits no socket: the body is {min(spec.width, length):.2g} mm across (its "
                 f"{'sole' if spec.width > length else 'width'}), less than its {MIN_WALL:g} mm walls "
                 "either side; lengths are in millimetres")
-        raise DesignError("strut_diameter", d, rule, alternatives
-                          ).tied_to({"a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min})
+        error = DesignError("strut_diameter", d, rule, alternatives)
+        if limit < MIN_BORE and alternatives:
+            # no strut the shoe takes fits: the width is the input to change, said first
+            width_rule = alternatives["width"][1]
+            error = DesignError("width", spec.width, width_rule, {"strut_diameter": (d, rule)})
+        raise error.tied_to({"a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min})
     floor = polyline_box_distance(sole_part, (-d / 2.0, top - spec.socket_depth, d / 2.0, top))
     if floor < MIN_WALL:
         # deepest socket that keeps the wall (the wall shrinks as the socket deepens): bisection
