@@ -139,3 +139,15 @@ def test_a_profiles_turns_are_the_turns_of_its_blended_law(cli, tmp_path):
     data = json.loads(result.stdout)
     assert data["turns"] == 4
     _speed_check(data, blended_law(CrankLaw(CrankMechanism(60, 100, 360), 4), np.radians(10)).ratio)
+
+
+def test_the_summary_is_the_cycles_not_the_samples_shown(cli):
+    """--points shapes the table and the curve only: 4 points miss mid-stance (phi = 0), where
+    the speed without the gears peaks, yet the ripple and the speeds' range are the cycle's."""
+    import json
+
+    few, many = (json.loads(cli("kinematics", "--points", n, "--json").stdout) for n in ("4", "361"))
+    for side in ("without_gears", "with_gears"):
+        for key in ("min_m_s", "max_m_s", "ripple_pct"):
+            assert few[side][key] == pytest.approx(many[side][key], rel=1e-9, abs=1e-12), (side, key)
+    assert max(few["curve"]["without_m_s"]) < few["without_gears"]["max_m_s"] - 0.1

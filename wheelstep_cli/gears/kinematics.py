@@ -33,17 +33,10 @@ class HubKinematics:
     ratio: np.ndarray           # U(phi) = omega / omega_H of the non-circular pair
     motor_speed: float          # rad/s
     turns: int | float          # pinion turns per carrier turn (the law's mean ratio)
-
-    @property
-    def ripple_plain(self) -> float:
-        """Peak-to-peak over time-mean without the non-circular gears (fraction)."""
-        return speed_ripple(self.speed_plain)
-
-    @property
-    def ripple_geared(self) -> float:
-        """Peak-to-peak over time-mean with them (fraction; 0 up to rounding on the crank law).
-        The carrier's equal angle steps last U dphi / omega: the mean is weighted by U."""
-        return speed_ripple(self.speed_geared, self.ratio)
+    ripple_plain: float         # peak-to-peak over time-mean without the gears (fraction)
+    ripple_geared: float        # with them (fraction; 0 up to rounding on the crank law)
+    range_plain: tuple          # (least, greatest) speed over the cycle without them, mm/s
+    range_geared: tuple         # with them, mm/s
 
     @property
     def cycle_time(self) -> float:
@@ -59,17 +52,28 @@ def hub_kinematics(design: CrankMechanism, motor_speed: float, turns: int = 2,
     if law is None:
         law = CrankLaw(design, turns)
     mean_ratio = law.theta_period / law.phi_period
+
+    def speeds(phi):
+        analogue, u_phi = design.speed_analogue(phi), law.ratio(phi)
+        return motor_speed / mean_ratio * analogue, motor_speed / u_phi * analogue, u_phi
+
     phi = contact_angles(count)
-    analogue = design.speed_analogue(phi)
-    u_phi = law.ratio(phi)
+    plain, geared, u_phi = speeds(phi)
+    # the ripples of the cycle, not of the samples shown: ``count`` samples may step over the
+    # extremes (4 miss phi = 0); the carrier's equal angle steps last U dphi / omega, so the
+    # geared mean is weighted by U
+    fine_plain, fine_geared, fine_u = speeds(contact_angles(max(count, RIPPLE_SAMPLES)))
     return HubKinematics(
-        phi=phi,
-        speed_plain=motor_speed / mean_ratio * analogue,
-        speed_geared=motor_speed / u_phi * analogue,
-        ratio=u_phi,
-        motor_speed=float(motor_speed),
+        phi=phi, speed_plain=plain, speed_geared=geared, ratio=u_phi, motor_speed=float(motor_speed),
         turns=int(round(mean_ratio)) if abs(mean_ratio - round(mean_ratio)) < 1e-9 else float(mean_ratio),
-    )
+        ripple_plain=speed_ripple(fine_plain), ripple_geared=speed_ripple(fine_geared, fine_u),
+        range_plain=(float(fine_plain.min()), float(fine_plain.max())),
+        range_geared=(float(fine_geared.min()), float(fine_geared.max())))
+
+
+#: Samples of the shoe cycle the ripples are read on (odd: mid-stance, phi = 0, is one), at
+#: least as many as shown: a cosine's peak is then within 1e-7 of its sampled maximum.
+RIPPLE_SAMPLES = 36001
 
 
 def require_shoe_cycle_period(law, param: str, value) -> None:
@@ -97,9 +101,8 @@ def hub_speed_study(design: CrankMechanism, turns: int, motor_rpm: float, points
     return hub_kinematics(design, motor_rpm * 2.0 * np.pi / 60.0, turns, points, law)
 
 
-def _speeds(speed: np.ndarray, ripple: float) -> dict:
-    return {"min_m_s": speed.min() / 1000.0, "max_m_s": speed.max() / 1000.0,
-            "ripple_pct": 100.0 * ripple}
+def _speeds(span: tuple, ripple: float) -> dict:
+    return {"min_m_s": span[0] / 1000.0, "max_m_s": span[1] / 1000.0, "ripple_pct": 100.0 * ripple}
 
 
 def kinematics_report(design: CrankMechanism, kin: HubKinematics, motor_rpm: float,
@@ -111,8 +114,8 @@ def kinematics_report(design: CrankMechanism, kin: HubKinematics, motor_rpm: flo
         "turns": kin.turns, "motor_rpm": motor_rpm, "cycle_time_s": kin.cycle_time,
         "x_cycle_mm": design.x_cycle,
         "mean_speed_m_s": design.x_cycle / kin.cycle_time / 1000.0,
-        "without_gears": _speeds(kin.speed_plain, kin.ripple_plain),
-        "with_gears": {**_speeds(kin.speed_geared, kin.ripple_geared), "law": law},
+        "without_gears": _speeds(kin.range_plain, kin.ripple_plain),
+        "with_gears": {**_speeds(kin.range_geared, kin.ripple_geared), "law": law},
         "curve": {"phi_deg": np.degrees(kin.phi), "without_m_s": kin.speed_plain / 1000.0,
                   "with_m_s": kin.speed_geared / 1000.0, "ratio_u": kin.ratio},
     }
