@@ -31,6 +31,15 @@ def test_cli_check_old_prototype(cli):
     assert "CANNOT CLIMB" in res.stdout and "advances 494.6 mm" in res.stdout
 
 
+def test_a_miss_finer_than_a_tenth_is_shown_to_the_tolerance(cli):
+    """Within 0.01 mm the stair is missed by 0.015-0.04 mm: the lengths are shown finer than
+    the tolerance (at 0.1 mm they read as the stair's own 300 x 150, a contradiction)."""
+    res = cli("stairs", "--a", "40", "--b", "20", "--y1", "150", "--y2", "70", "--tol", "0.01")
+    assert res.exit_code == 1
+    assert "(within 0.01 mm)" in res.stdout and "closest: landing -90.0 deg advances 299.985 mm" in res.stdout
+    assert "landing -0.0 deg" not in res.stdout
+
+
 def test_cli_sweep_never_prints_meaningless_numbers(cli):
     res = cli("stairs", "--sweep", "--sweep-angles", "-120:-30:15", "--sweep-radii", "70")
     assert res.exit_code == 0

@@ -181,21 +181,29 @@ def _check_lines(check, run, rise) -> list[str]:
         return [f"CLIMBS: landing at {np.degrees(check.best_landing):.2f} deg one cycle advances "
                 f"{check.best_advance:.2f} mm and rises {check.best_rise:.2f} mm (within "
                 f"{check.tolerance:g} mm)"]
+    # lengths shown finer than the tolerance, so a miss by less than 0.1 mm reads as a miss
+    places = max(1, int(np.ceil(-np.log10(check.tolerance))) + 1) if check.tolerance > 0 else 3
     return [f"CANNOT CLIMB a {run:g} x {rise:g} mm stair: no landing angle makes one cycle both "
-            f"advance {run:g} mm and rise {rise:g} mm.",
-            _section("rises", rise, "advances", check.landing_for_rise, check.advance_at_rise),
-            _section("advances", run, "rises", check.landing_for_run, check.rise_at_run),
-            f"  closest: landing {np.degrees(check.best_landing):.1f} deg advances "
-            f"{check.best_advance:.1f} mm and rises {check.best_rise:.1f} mm"]
+            f"advance {run:g} mm and rise {rise:g} mm (within {check.tolerance:g} mm).",
+            _section("rises", rise, "advances", check.landing_for_rise, check.advance_at_rise, places),
+            _section("advances", run, "rises", check.landing_for_run, check.rise_at_run, places),
+            f"  closest: landing {_deg(check.best_landing)} deg advances "
+            f"{check.best_advance:.{places}f} mm and rises {check.best_rise:.{places}f} mm"]
 
 
-def _section(given: str, amount: float, other: str, landings, values) -> str:
-    """One line of the climb check: where a cycle ``given`` ``amount`` mm, how far it ``other``."""
+def _deg(angle: float) -> str:
+    """An angle (rad) in degrees to 0.1, without a negative zero."""
     import numpy as np
 
+    return f"{float(np.degrees(angle)) + 0.0:.1f}".replace("-0.0", "0.0")
+
+
+def _section(given: str, amount: float, other: str, landings, values, places: int = 1) -> str:
+    """One line of the climb check: where a cycle ``given`` ``amount`` mm, how far it ``other``
+    (mm to ``places`` decimals)."""
     if len(landings):
         return f"  where a cycle {given} {amount:g} mm it {other} " + ", ".join(
-            f"{v:.1f} mm (landing {np.degrees(al):.1f} deg)" for al, v in zip(landings, values))
+            f"{v:.{places}f} mm (landing {_deg(al)} deg)" for al, v in zip(landings, values))
     noun = {"rises": "a rise", "advances": "an advance"}[given]
     return f"  no landing angle gives {noun} of {amount:g} mm per cycle"
 
