@@ -84,17 +84,18 @@ def evaluate(fields: dict) -> dict:
         return {"outcome": "refused", "reason": str(err), "seconds": time.perf_counter() - start}
     record = meshing_record(check_gear_pair(pair))
     broken = bound_violations(record)
-    remedy = None
+    remedy, refused = None, False
     if broken and not record["interference"]:
         try:
             # as `gears` refuses it: a remedy is offered once a build with it is within the bounds
             require_within_bounds(pair, record, verify=remedy_check(None))
         except DesignError as err:
-            remedy = remedy_fields(str(err))
+            remedy, refused = remedy_fields(str(err)), True
     outcome = "within bounds"
     if broken:
+        # "out of bounds": outside them yet not refused, which `gears` would write (a gap in the gate)
         outcome = "refused: interference" if record["interference"] else (
-            "refused: bounds" if remedy else "out of bounds")
+            "refused: bounds" if remedy else "refused: bounds, no remedy found" if refused else "out of bounds")
     row = {"outcome": outcome,
            "reason": "; ".join(broken), "remedy": remedy,
            "seconds": time.perf_counter() - start, "interfering_poses": record["interfering_poses"],
@@ -172,10 +173,12 @@ def main() -> None:
     good = sum(r["outcome"] == "within bounds" for r in written)
     remedied = [r for r in rows if r.get("remedy")]
     fixed = sum(r.get("remedy_outcome") == "within bounds" for r in remedied)
+    bare = sum(r["outcome"] == "refused: bounds, no remedy found" for r in rows)
     total = sum(r["seconds"] for r in rows)
     print(f"\n{len(rows)} designs: {len(written)} would be written ({good} within bounds), "
           f"{len(remedied)} refused for the bounds with a remedy ({fixed} of them pass with it), "
-          f"{len(rows) - len(written) - len(remedied)} refused otherwise; {total:.0f} s in all "
+          f"{bare} with no remedy found, {len(rows) - len(written) - len(remedied) - bare} refused "
+          f"otherwise; {total:.0f} s in all "
           f"({total / max(1, len(rows)):.1f} s per design, remedies not counted)")
 
 
