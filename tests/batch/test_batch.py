@@ -603,20 +603,20 @@ def test_two_profiles_of_one_file_name_are_refused_before_anything_is_written(cl
 
 
 def test_batch_refuses_teeth_too_thin_for_the_entrys_printer_with_a_remedy_that_prints(cli, tmp_path):
-    """The desk demonstrator at z 44 on the PETG printer: its pinion's tip lands are under two
+    """The desk demonstrator at z 44 on the PLA printer: its pinion's tip lands are under two
     0.4 mm lines, so the entry fails alone (exit 1) with the tooth count to use; the same
     design on the resin printer (no extrusion lines) and at the remedy's z are built."""
     entry = "  - name: {name}\n    kind: gear-pair\n    design: desk-demo\n    printer: {printer}\n" \
             "    overrides: {{z: {z}, thickness: 2}}\n"
     batch = write(tmp_path / "b.yaml", "parts:\n"
-                  + entry.format(name="fine", printer="fdm-0.4-petg", z=44)
+                  + entry.format(name="fine", printer="fdm-0.4-pla", z=44)
                   + entry.format(name="resin", printer="resin-0.05-standard", z=44)
-                  + entry.format(name="remedy", printer="fdm-0.4-petg", z=42))
+                  + entry.format(name="remedy", printer="fdm-0.4-pla", z=42))
     out = tmp_path / "out"
     result = cli("batch", batch, "--out", out, "--jobs", "1")
     assert result.exit_code == 1
     line = line_of(batch, "z: 44")
-    assert (f"fine ({batch}:{line}): z = 44: the teeth are too thin for printer 'fdm-0.4-petg' "
+    assert (f"fine ({batch}:{line}): z = 44: the teeth are too thin for printer 'fdm-0.4-pla' "
             "(tip land under two 0.4 mm extrusion lines; pinion: 12 teeth lose more than 0.2 mm") \
         in result.stderr
     assert "use overrides {z: 42}" in result.stderr

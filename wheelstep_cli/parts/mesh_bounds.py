@@ -87,10 +87,10 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     elif remedy:
         advice = f"use {as_flags(remedy)}"
     elif tried:
-        advice = f"no remedy found ({'; '.join(tried)}): change {law} or {_size_option(design)}"
+        advice = f"no remedy found ({'; '.join(tried)}): change {law} or {_size_option(design)}" + _fit_hint(pair, broken)
     else:
         advice = (f"no tooth count up to {MAX_TEETH} brings it within them: change {law} or "
-                  f"{_size_option(design)}")
+                  f"{_size_option(design)}" + _fit_hint(pair, broken))
     error = DesignError(param, value,
                         f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
                         f"written; {advice}")
@@ -102,6 +102,18 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     error.remedy = remedy   # name -> value, for a batch file to state as its keys
     error.tried = candidates  # the remedies built and found wanting, likewise
     raise error
+
+
+def _fit_hint(pair, broken: list[str]) -> str:
+    """For a ripple drawn with a printer's tooth clearance (the play it prints costs speed), where
+    a fit to the printer's band, which replaces that clearance, draws less play (not built here:
+    a fit is checked over the band, several meshing checks)."""
+    clearance = float(pair.printing.printer.tooth_clearance) if pair.printing is not None else 0.0
+    if clearance <= 0.0 or not any("ripple" in text for text in broken):
+        return ""
+    return (f"; the play of the printer's {clearance:g} mm tooth clearance costs ripple: a fit to its band "
+            "draws less (`wheelstep gears --fit auto`, or `fit: auto` in the printer profile's band "
+            "section), and says the tooth count it then needs")
 
 
 def undercut_checked(build: Callable, design, verify: Callable):
