@@ -411,10 +411,10 @@ def test_keep_best_writes_the_best_designs(cli, tmp_path):
     assert not any("best-2" in line for line in dry.stdout.splitlines() if "would write" in line)
     assert (tmp_path / "out" / "best-2" / ".wheelstep-shoe.json").exists()   # nothing removed
     again = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "--keep", "best:1", "-q")
-    assert again.exit_code == 0, again.stderr     # the refused rows were computed by the first run
+    assert again.exit_code == 1, again.stderr     # its table still holds the first run's refused rows
     assert (tmp_path / "out" / "best-1" / ".wheelstep-shoe.json").exists()
     assert [p.name for p in (tmp_path / "out" / "best-2").iterdir()] == ["notes.txt"]
-    assert cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "-q").exit_code == 0
+    assert cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "-q").exit_code == 1
     assert not (tmp_path / "out" / "best-1").exists()
 
 
