@@ -286,18 +286,3 @@ def test_a_written_pair_that_interferes_is_warned_of_with_its_overlap_in_um2(cli
     warning = next(line for line in result.stderr.splitlines() if "interfere" in line)
     assert warning.startswith("WARNING: the teeth interfere at ") and " um2); pointwise" in warning, warning
 
-
-def test_a_ripple_of_the_printers_clearance_points_to_a_fit_that_then_works(cli, tmp_path):
-    """The desk demonstrator on the PETG preset: the play of its 0.2 mm tooth clearance ripples
-    the coast flank past 1 % at every tooth count that prints; no remedy of the design's
-    options passes, so the refusal points to a fit, whose own refusal names the tooth count,
-    and that, applied, is written."""
-    args = ["gears", "--profile", "desk-demo", "--printer", "fdm-0.4-petg", "--thickness", "2"]
-    line = error_line(cli(*args, "--out", tmp_path / "o"))
-    assert "band-limited ripple" in line and "no remedy found" in line, line
-    assert line.endswith("a fit to its band draws less (`wheelstep gears --fit auto`, or `fit: auto` in the "
-                         "printer profile's band section), and says the tooth count it then needs"), line
-    fitted = error_line(cli(*args, "--fit", "auto", "--out", tmp_path / "o"))
-    z = fitted.split("; use --z ")[1].split()[0]
-    assert cli(*args, "--fit", "auto", "--z", z, "--out", tmp_path / "o", "-q").exit_code == 0
-    assert (tmp_path / "o" / "gears.json").exists()

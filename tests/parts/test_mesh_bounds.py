@@ -324,3 +324,31 @@ def test_a_scaled_module_stays_a_module_a_spec_takes():
     assert _sized(design, {"z": 72}) == {"z": 72, "module": MIN_MODULE}       # 0.067 would be refused
     assert _sized(design, {"z": 24, "module": 0.15, "backlash": 0.1}) == {"z": 24, "backlash": 0.1}
     assert _sized(GearPairSpec(z=24), {"z": 72}) == {"z": 72}                # no module given: none set
+
+
+@pytest.mark.parametrize("clearance", [0.2, 0.0])
+def test_a_ripple_no_remedy_cures_points_to_a_fit_when_a_printers_clearance_draws_the_play(clearance):
+    """A ripple that no try brings within the bound, on a pair drawn with a printer's tooth
+    clearance: the refusal points to a fit to the printer's band (which replaces the clearance
+    with less play), in the command's and the profile's words; without a clearance it does not."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+
+    spec = GearPairSpec(z=42)
+    printing = SimpleNamespace(printer=SimpleNamespace(tooth_clearance=clearance))
+    pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(spec)[1]), printing=printing,
+                           spec=spec, as_asked=spec, opening=0.0)
+    rippled = record(coast=flank(ripple=1.3))
+
+    def verify(design):
+        return SimpleNamespace(generated=pair.generated, printing=printing, spec=design, as_asked=design,
+                               opening=0.0), rippled
+
+    with pytest.raises(DesignError) as err:
+        require_within_bounds(pair, rippled, verify=verify)
+    hint = (f"the play of the printer's {clearance:g} mm tooth clearance costs ripple: a fit to its band draws "
+            "less (`wheelstep gears --fit auto`, or `fit: auto` in the printer profile's band section)")
+    assert "no remedy found" in err.value.limit or "no tooth count" in err.value.limit, err.value.limit
+    assert (hint in err.value.limit) is (clearance > 0), err.value.limit
