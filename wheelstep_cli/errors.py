@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import math
+import os
 from enum import Enum
+from pathlib import Path
 from typing import Iterable
 
 
@@ -114,10 +116,6 @@ class Interrupted(Exception):
 def file_problem(path, err: OSError | None = None) -> str:
     """Why the file at ``path`` cannot be read, in a refusal's words: a folder, no such file,
     or what the system said (``err``)."""
-    from pathlib import Path
-
-    import os
-
     path = Path(path)
     if path.is_dir():
         return "is a folder, not a file"

@@ -57,10 +57,6 @@ class DesignProfile(BaseModel):
         given = getattr(self, section)
         return {} if given is None else given.model_dump(exclude_none=True)
 
-    def mechanism_conflicts(self) -> list[tuple[str, str, str]]:
-        """:func:`mechanism_conflicts` of the profile's sections."""
-        return mechanism_conflicts(self.values)
-
 
 def mechanism_conflicts(values) -> list[tuple[str, str, str]]:
     """(section, key, why) of each mechanism length a part's section gives that differs

@@ -204,10 +204,8 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
         profile = profile.model_copy(update={"gears": gears})
     profile._where = {(section, key): doc.where((section, key)) for section in ("mechanism", "gears", "shoe")
                       for key in profile.values(section)}
-    if conflicts := profile.mechanism_conflicts():
-        raise InvalidInput([Issue(profile.where(section, key), f"{section}.{key}",
-                                  f"= {profile.values(section)[key]:g}: {why}")
-                            for section, key, why in conflicts])
+    if conflicts := _conflict_issues(profile.values, doc):
+        raise InvalidInput(conflicts)
     profile._shipped = Path(file).resolve().parent == shipped_profiles().resolve()
     return profile
 
@@ -218,7 +216,7 @@ def _with_conflicts(issues: list, doc: LocatedYaml) -> list:
     line order: a file with several problems gets all of them at once."""
     import math
 
-    from wheelstep_cli.config.design import DesignProfile, mechanism_conflicts
+    from wheelstep_cli.config.design import DesignProfile
 
     named = {issue.what for issue in issues}
     # a section whose lengths have a problem of their own has no mechanism to compare
@@ -235,13 +233,21 @@ def _with_conflicts(issues: list, doc: LocatedYaml) -> list:
                 and (isinstance(value, str) if key == "law_csv" else
                      isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value))}
 
-    more = [Issue(doc.where((section, key)), f"{section}.{key}", f"= {values(section)[key]:g}: {why}")
-            for section, key, why in mechanism_conflicts(values)]
+    more = _conflict_issues(values, doc)
 
     def line(issue) -> int:
         tail = str(issue.where).rsplit(":", 1)[-1]
         return int(tail) if tail.isdigit() else 0
     return sorted([*issues, *more], key=line)
+
+
+def _conflict_issues(values, doc: LocatedYaml) -> list:
+    """An issue at its line for each mechanism conflict among a design profile's ``values``
+    (``values(section)``: a section's values, mm; config.design.mechanism_conflicts)."""
+    from wheelstep_cli.config.design import mechanism_conflicts
+
+    return [Issue(doc.where((section, key)), f"{section}.{key}", f"= {values(section)[key]:g}: {why}")
+            for section, key, why in mechanism_conflicts(values)]
 
 
 def load_design_profile(name_or_path: str):

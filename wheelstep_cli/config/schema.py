@@ -8,11 +8,9 @@ for values given in code or on the command line.
 
 from __future__ import annotations
 
-import re
-
 import difflib
-
 import functools
+import re
 import types
 import typing
 from dataclasses import dataclass

@@ -86,11 +86,10 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
         advice = f"try {as_flags(remedy)} (from the figures; not built)"
     elif remedy:
         advice = f"use {as_flags(remedy)}"
-    elif tried:
-        advice = f"no remedy found ({'; '.join(tried)}): change {law} or {_size_option(design)}" + _fit_hint(pair, broken)
     else:
-        advice = (f"no tooth count up to {MAX_TEETH} brings it within them: change {law} or "
-                  f"{_size_option(design)}" + _fit_hint(pair, broken))
+        found = f"no remedy found ({'; '.join(tried)})" if tried else \
+            f"no tooth count up to {MAX_TEETH} brings it within them"
+        advice = f"{found}: change {law} or {_size_option(design)}" + _fit_hint(pair, broken)
     error = DesignError(param, value,
                         f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
                         f"written; {advice}")

@@ -119,11 +119,16 @@ def _out_of_phase_cause(summary: dict) -> str:
     return "it runs about a tooth pitch off the law (assembled a tooth off?)"
 
 
+def speed_words(law_csv: bool) -> str:
+    """What a pair's speed ripple is of: a law CSV's gears (``law_csv``) drive no hub, so
+    their output speed; the crank law's, the mover's hub speed."""
+    return "output speed" if law_csv else "hub speed"
+
+
 def meshing_lines(summary: dict) -> list[str]:
     """Human-readable lines of a meshing summary (``MeshingReport.to_dict()``, with the
     ``law`` record of the pair checked when there is one)."""
-    # a law CSV's gears drive no hub: their ripple is of the output speed
-    speed = "output speed" if "csv" in (summary.get("law") or {}) else "hub speed"
+    speed = speed_words("csv" in (summary.get("law") or {}))
     lines = []
     if summary["interference"]:
         lines.append(f"interference: YES at {summary['interfering_poses']} of {summary['samples']} "

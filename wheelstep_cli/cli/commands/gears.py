@@ -178,6 +178,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
+    from wheelstep_cli.parts.mesh_check import speed_words
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     collisions_first(show, out, fmt, extras, force)
@@ -203,7 +204,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
               "written": [] if dry_run else [str(p) for p in written],
               "removed": [str(p) for p in show.removed]}
     show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
-    warn_of_the_figures(show, record, _speed(pair))
+    warn_of_the_figures(show, record, speed_words(pair.spec.law_csv is not None))
     warn_band_jams(show, record.get("tolerance"), printer_given, rerun=True)
     show.files(written, dry_run, joined=True)
     if sliced is not None and not sliced["meshes"]:
@@ -260,7 +261,7 @@ def _clearance_text(pair) -> str:
 
 def _gears_lines(pair, record: dict) -> list[str]:
     """Both parts, the generated teeth and the meshing check's figures of both flanks."""
-    from wheelstep_cli.parts.mesh_check import figure_text, flank_line, mounting_line
+    from wheelstep_cli.parts.mesh_check import figure_text, flank_line, mounting_line, speed_words
 
     lines = []
     for part in (pair.pinion, pair.wheel):
@@ -277,7 +278,7 @@ def _gears_lines(pair, record: dict) -> list[str]:
                         if pair.spec.module is not None else "")
                      + _opening_text(pair)
                      + f", backlash j_n = {gen.cutter.backlash:.4g} mm" + _clearance_text(pair))
-    speed = _speed(pair)
+    speed = speed_words(pair.spec.law_csv is not None)
     lines.append(f"meshing at {pair.mounted_distance:g} mm: backlash "
                  f"{figure_text(record['backlash_min_mm'], '.3f')}.."
                  f"{figure_text(record['backlash_max_mm'], '.3f')}"
@@ -292,11 +293,6 @@ def _gears_lines(pair, record: dict) -> list[str]:
 
         lines.extend(tolerance_lines(record["tolerance"]))
     return lines + _chamfer_lines(pair) + _lighten_lines(pair)
-
-
-def _speed(pair) -> str:
-    """What the pair's speed ripple is of: a law CSV's gears drive no hub (their output speed)."""
-    return "output speed" if pair.spec.law_csv is not None else "hub speed"
 
 
 def _chamfer_lines(pair) -> list[str]:

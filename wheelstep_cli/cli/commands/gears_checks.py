@@ -30,7 +30,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         # on the band (the written pair's own figures are the inset outlines')
         chosen, design = _on_the_bed(lambda: undercut_checked(lambda: fit_design(spec, printer), spec,
                                                               remedy_check(printer, checked_remedy, bed)),
-                                     spec, printer, True)
+                                     printer, True)
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
         design_verify = remedy_check(design.printing.printer, checked_remedy, bed)
         design_record = _meshing_or_refused(show, design, design_check, allow_interference, design_verify)
@@ -46,7 +46,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
     else:
         verify = remedy_check(printer, checked_remedy, bed)
         pair, tolerance, check = _on_the_bed(lambda: undercut_checked(
-            lambda: band_pair(spec, printer, bool(band[0]), bed), spec, verify), spec, printer, False)
+            lambda: band_pair(spec, printer, bool(band[0]), bed), spec, verify), printer, False)
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
         record = _meshing_or_refused(show, pair, check, allow_interference, verify)
@@ -92,10 +92,10 @@ def require_height_first(spec, printer, fmt: str, fit: bool):
         return None
     return _on_the_bed(lambda: require_height("pinion", gear_pair_height(spec), target, "thickness",
                                               spec.thickness, footprint(spec), gear_pair_stack(spec))
-                       or target, spec, printer, fit)
+                       or target, printer, fit)
 
 
-def _on_the_bed(build, spec, printer, fit: bool):
+def _on_the_bed(build, printer, fit: bool):
     """``build()``; when the user named no printer, a part too tall for the default printer or
     too large for its bed is refused saying which printer that is and how to choose another
     (or, without a fit, to write no plate)."""

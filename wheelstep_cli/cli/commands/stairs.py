@@ -195,7 +195,8 @@ def _deg(angle: float) -> str:
     """An angle (rad) in degrees to 0.1, without a negative zero."""
     import numpy as np
 
-    return f"{float(np.degrees(angle)) + 0.0:.1f}".replace("-0.0", "0.0")
+    shown = f"{float(np.degrees(angle)):.1f}"
+    return "0.0" if shown == "-0.0" else shown
 
 
 def _section(given: str, amount: float, other: str, landings, values, places: int = 1) -> str:
