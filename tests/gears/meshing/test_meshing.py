@@ -275,8 +275,9 @@ def test_paper_pair_runs_and_reports_finite_figures(paper_pair):
     middle = np.abs(report.theta - np.pi / 2.0) > np.radians(30.0)
     assert not report.interference[middle].any()
     assert np.all(report.backlash[middle] > 0)
-    # the law itself keeps the hub speed constant (to the finite-difference error)
-    assert summary["law_hub_speed_ripple_pct"] < 3.0
+    # the crank law keeps the hub speed constant: read from the law's own rate its ripple is
+    # nil at any pose count (a difference over 96 poses read the pitch curves' corners as 2 %)
+    assert summary["law_hub_speed_ripple_pct"] < 1e-3
     for key in ("backlash_min_mm", "diagnostic_pointwise_ripple_pct"):
         assert np.isfinite(summary[key])
     for side in ("drive", "coast"):

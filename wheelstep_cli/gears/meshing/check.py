@@ -290,8 +290,10 @@ def _report(law: TransmissionLaw, theta: np.ndarray, phis: tuple[np.ndarray, np.
     f_drive = np.asarray(law.hub_speed_factor(phi_drive), dtype=float)
     f_law = np.asarray(law.hub_speed_factor(phi_law), dtype=float)
     hub_speed = f_drive * _periodic_derivative(theta, phi_drive, rise, period)
-    hub_speed_law = f_law * _periodic_derivative(theta, phi_law, rise, period)
     law_rate = _law_rate(law, theta)
+    # the law's own speed from its own rate: a difference over the pose step would read the
+    # pitch curves' corners as ripple that shrinks only with the step
+    hub_speed_law = f_law * law_rate
     # instantaneous centre on the line of centres: r_w / r_p = dtheta/dphi, r_w + r_p = D
     pitch_radius = distance / (1.0 + law_rate)
     arc, arc_total = pitch_arc(phi_law, pitch_radius, rise)
