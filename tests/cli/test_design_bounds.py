@@ -74,16 +74,17 @@ def test_teeth_too_thin_for_the_printer_are_refused_with_a_remedy_that_prints(cl
     """The desk demonstrator at z 44 meshes within the bounds, but on a 0.4 mm nozzle its
     pinion's teeth beside the handover corners keep a tip land under two lines: refused for
     that printer (not for resin, which lays no lines) with a tooth count that, applied, is
-    written for the printer within the bounds."""
+    written for the printer within the bounds (on PLA: the PETG preset's 0.2 mm tooth
+    clearance plays it past the ripple bound first)."""
     out = tmp_path / "out"
     design = ["--profile", "desk-demo", "--z", "44", "--thickness", "2", "--format", "stl"]
-    line = error_line(cli("gears", *design, "--printer", "fdm-0.4-petg", "--out", out))
+    line = error_line(cli("gears", *design, "--printer", "fdm-0.4-pla", "--out", out))
     assert line.startswith("wheelstep: error: --z = 44: the teeth are too thin for printer "
-                           "'fdm-0.4-petg' (tip land under two 0.4 mm extrusion lines; pinion: ")
+                           "'fdm-0.4-pla' (tip land under two 0.4 mm extrusion lines; pinion: ")
     assert "nothing written" in line and not out.exists()
     remedy = line.rsplit("; use ", 1)[1].split()[:2]
     assert remedy == ["--z", "42"]
-    result = cli("gears", *with_remedy(design, remedy), "--printer", "fdm-0.4-petg", "--out", out)
+    result = cli("gears", *with_remedy(design, remedy), "--printer", "fdm-0.4-pla", "--out", out)
     assert result.exit_code == 0, result.stderr
     assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
     resin = cli("gears", *design, "--printer", "resin-0.05-standard", "--out", tmp_path / "resin")
@@ -91,15 +92,15 @@ def test_teeth_too_thin_for_the_printer_are_refused_with_a_remedy_that_prints(cl
 
 
 def test_thin_teeth_far_from_printable_are_offered_the_largest_count_that_prints(cli, tmp_path):
-    """The source design at z 94 on a 0.4 mm nozzle is 17 periods of teeth above what prints:
+    """The source design at z 104 on a 0.4 mm nozzle is 22 periods of teeth above what prints:
     the remedy is found beyond the first counts below (it said `use fewer teeth`), it is the
     largest that prints (one period more is refused) and, applied, it is written."""
     out = tmp_path / "out"
-    design = ["--z", "94", "--thickness", "2", "--printer", "fdm-0.4-pla", "--format", "stl"]
+    design = ["--z", "104", "--thickness", "2", "--printer", "fdm-0.4-pla", "--format", "stl"]
     line = error_line(cli("gears", *design, "--out", out))
-    assert line.startswith("wheelstep: error: --z = 94: the teeth are too thin for printer"), line
+    assert line.startswith("wheelstep: error: --z = 104: the teeth are too thin for printer"), line
     remedy = line.rsplit("; use ", 1)[1].split()[:2]
-    assert remedy[0] == "--z" and int(remedy[1]) < 94 - 2 * 6, line
+    assert remedy[0] == "--z" and int(remedy[1]) < 104 - 2 * 6, line
     result = cli("gears", *with_remedy(design, remedy), "--out", out)
     assert result.exit_code == 0, result.stderr
     assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
@@ -267,7 +268,7 @@ def test_more_teeth_on_a_given_module_keep_the_size_asked_for_and_the_bed(cli, t
 
 @pytest.mark.parametrize("given, expect", [
     # the default backlash follows the tooth count: the remedy leaves it to follow
-    (["--z", "20"], ["--z"]),
+    (["--z", "24"], ["--z"]),
     # a backlash set far above the design's own: the play alone first, no more teeth needed
     (["--backlash", "2"], ["--backlash"]),
 ])
@@ -285,13 +286,13 @@ def test_a_remedy_changes_only_what_it_must(cli, tmp_path, given, expect):
 def test_thin_teeth_on_a_given_module_are_offered_a_larger_module_with_fewer_teeth(cli, tmp_path):
     """desk-demo at --module 0.9 --z 44 ripples past its bound, and the more teeth that
     remedy asks for (48) print too thin on the 0.4 mm nozzle; fewer teeth on that module are
-    about as thin, so the thin teeth's remedy scales the module with the count (fewer, larger
-    teeth, the try's size kept); that is offered, and applied, the pair is written."""
+    about as thin, so the thin teeth's remedy scales the module with the count: fewer, larger
+    teeth are offered, and applied, the pair is written."""
     design = ["--profile", "desk-demo", "--module", "0.9", "--z", "44", "--printer", "fdm-0.4-pla"]
     line = error_line(cli("gears", *design, "--format", "stl", "--out", tmp_path / "out"))
     assert line.startswith("wheelstep: error: --z = 44: "), line
     remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()
     options = dict(zip(remedy[::2], map(float, remedy[1::2])))
-    assert options["--z"] < 48 and options["--module"] == pytest.approx(0.9 * 48 / options["--z"], abs=1e-3)
+    assert options["--z"] < 48 and options["--module"] > 0.9, line
     written = cli("gears", *with_remedy(design, remedy), "--format", "stl", "--out", tmp_path / "fixed")
     assert written.exit_code == 0, written.stderr

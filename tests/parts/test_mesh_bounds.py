@@ -112,11 +112,11 @@ def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what
         return pair, record(drive=flank(total=18.0, tooth=6.0))
 
     error, _ = _refusal(verify)
-    assert builds == [36, 40, 44]        # each try from the last one's figures (x sqrt 1.2)
+    assert builds == [36, 40, 44, 50]    # each try from the last one's figures (x sqrt 1.2)
     assert error.remedy == {} and "; use --" not in error.limit
     assert ("no remedy found (--z 36 still gives drive flank F'i 18.00 um > 15 um; --z 40 still "
             "gives drive flank F'i 18.00 um > 15 um; --z 44 still gives drive flank F'i 18.00 um "
-            "> 15 um): change the mechanism") in error.limit
+            "> 15 um; --z 50 still gives drive flank F'i 18.00 um > 15 um): change the mechanism") in error.limit
     from wheelstep_cli.config.names import remedy_in_yaml
 
     # a batch file states the tries as its override keys
@@ -140,13 +140,13 @@ def test_when_more_teeth_do_not_do_the_settings_the_design_changed_are_set_back(
 
     error, _ = _refusal(verify, pressure_angle=15.0, addendum=0.9, dedendum=1.2)
     defaults = GearPairSpec.model_fields
-    assert builds == [(36, 15.0, 0.9), (40, 15.0, 0.9), (44, 15.0, 0.9), (32, 20.0, 1.0)]
+    assert builds == [(36, 15.0, 0.9), (40, 15.0, 0.9), (44, 15.0, 0.9), (50, 15.0, 0.9), (32, 20.0, 1.0)]
     assert error.remedy == {name: defaults[name].default for name in ("pressure_angle", "addendum", "dedendum")}
     assert error.param == "pressure_angle"
     assert error.limit.endswith("; use --pressure-angle 20 --addendum 1 --dedendum 1.25")
     builds.clear()
     error, _ = _refusal(lambda design: verify(design.model_copy(update={"pressure_angle": 15.0})))
-    assert [z for z, _, _ in builds] == [36, 40, 44] and error.remedy == {}
+    assert [z for z, _, _ in builds] == [36, 40, 44, 50] and error.remedy == {}
 
 
 def test_a_ripple_more_teeth_do_not_cure_is_offered_fewer_teeth():
@@ -171,8 +171,9 @@ def test_a_ripple_more_teeth_do_not_cure_is_offered_fewer_teeth():
                            spec=spec, as_asked=spec, opening=0.0)
     with pytest.raises(DesignError) as err:
         require_within_bounds(pair, rippling, verify=verify)
-    # the play first (less backlash), then more teeth: found wanting; then fewer teeth
-    assert len(builds) == 4 and min(builds[:-1]) >= 100 and max(builds[:-1]) > 100
+    # the play first (less backlash); the ripple it left is the teeth's: two periods more teeth,
+    # then less play for them and, left again, more teeth; all found wanting: fewer teeth
+    assert builds[:-1] == [100, 104, 104, 108]
     assert builds[-1] == ripple_teeth_remedy(rippling, 100, 2) == 56
     assert err.value.remedy == {"z": 56} and err.value.limit.endswith("; use --z 56")
 
@@ -352,3 +353,33 @@ def test_a_ripple_no_remedy_cures_points_to_a_fit_when_a_printers_clearance_draw
             "less (`wheelstep gears --fit auto`, or `fit: auto` in the printer profile's band section)")
     assert "no remedy found" in err.value.limit or "no tooth count" in err.value.limit, err.value.limit
     assert (hint in err.value.limit) is (clearance > 0), err.value.limit
+
+
+@pytest.mark.parametrize("falls, next_z", [(True, 100), (False, 104)])
+def test_less_play_that_hardly_lowers_the_ripple_is_followed_by_more_teeth(falls, next_z):
+    """A ripple the play costs (it falls with the backlash) is followed with less play again;
+    one that less play hardly lowered is the tooth form's: the next try has more teeth."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.mesh_bounds import require_within_bounds
+
+    spec = GearPairSpec(z=100)
+    start = record(drive=flank(ripple=1.6), coast=flank(ripple=1.5))
+    tries = []
+
+    def verify(design):
+        tries.append((design.z, design.backlash))
+        ripple = 1.6 * design.backlash_mm / spec.backlash_mm if falls else 1.6
+        pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
+                               spec=design, as_asked=design, opening=0.0)
+        return pair, record(drive=flank(ripple=max(ripple, 1.05)))
+
+    pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(spec)[1]), printing=None,
+                           spec=spec, as_asked=spec, opening=0.0)
+    with pytest.raises(DesignError):
+        require_within_bounds(pair, start, verify=verify)
+    (z1, first), (z2, then) = tries[:2]
+    assert z1 == 100 and first < spec.backlash_mm       # the play first
+    # fallen by more than a quarter of its excess: less play again; else two periods more teeth
+    assert z2 == next_z and (then < first if falls else True), tries

@@ -20,8 +20,10 @@ from wheelstep_cli.parts.bound_figures import (MeshBounds, backlash_remedy, boun
 
 #: Remedies tried (each a build and a meshing check) along each way of remedying a design
 #: before a refusal offers one: the figures' remedy, then (:func:`_other_ways`) fewer teeth
-#: for a ripple alone and the changed settings at their defaults; 3 ways at most.
-REMEDY_TRIES = 3
+#: for a ripple alone and the changed settings at their defaults; 3 ways at most. Four tries
+#: let a way go from more teeth to less play and, when that play was not the cause, to
+#: more teeth again.
+REMEDY_TRIES = 4
 
 
 def remedy_check(printer, wrap: Callable | None = None, bed=None) -> Callable:
@@ -73,7 +75,8 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
         remedy = _remedy_of(pair, design, record, bounds, built=verify is not None)
         if verify is not None and remedy:
             # the play alone first only where a build follows it up (a sweep's row keeps the count)
-            remedy, tried, candidates = verified_remedy(design, _play_first(design, remedy), verify, bounds)
+            remedy, tried, candidates = verified_remedy(design, _play_first(design, remedy), verify, bounds,
+                                                        measured=record)
         if verify is not None and not remedy:
             remedy, tried, candidates = _other_ways(pair, design, record, verify, bounds, (tried, candidates))
         remedy = dict(sorted(remedy.items(), key=lambda option: option[0] != "z"))   # the count first
@@ -170,9 +173,11 @@ def _broken(record: dict, bounds: MeshBounds) -> list[str]:
     return [text for text in bound_violations(record, bounds) if "interfere" not in text]
 
 
-def _remedy_of(pair, design, record: dict, bounds: MeshBounds, built: bool = True) -> dict:
+def _remedy_of(pair, design, record: dict, bounds: MeshBounds, built: bool = True,
+               teeth: bool = False) -> dict:
     """The options (name -> value) the figures of ``record`` point to for ``design``; ``built``:
-    the remedy is built and checked before it is offered (else, a sweep's row, said as a try)."""
+    the remedy is built and checked before it is offered (else, a sweep's row, said as a try);
+    ``teeth``: a ripple is remedied by more teeth, not less play (less play was tried)."""
     broken, remedy = _broken(record, bounds), {}
     periods = pair.generated.law.pinion_periods
     if any("F'i" in text or "f'i" in text for text in broken):
@@ -183,7 +188,7 @@ def _remedy_of(pair, design, record: dict, bounds: MeshBounds, built: bool = Tru
         if remedy["z"] > MAX_TEETH and not _changed_settings(design):
             remedy["z"] = periods * (MAX_TEETH // periods)     # nothing to set back: that count to try
     if any("ripple" in text for text in broken):
-        remedy.update(_ripple_remedy(pair, design, record, remedy, bounds))
+        remedy.update(_ripple_remedy(pair, design, record, remedy, bounds, teeth))
     return _within_the_tooth_limit(design, remedy)
 
 
@@ -213,16 +218,22 @@ def _sized(design, remedy: dict) -> dict:
     return kept if z == design.z else {**kept, **sized_teeth(design, z)}
 
 
-def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, known: list[dict] = ()
-                    ) -> tuple[dict, list[str], list[dict]]:
+def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, known: list[dict] = (),
+                    measured: dict | None = None) -> tuple[dict, list[str], list[dict]]:
     """(the first remedy whose build is within the bounds, or {}; what each failed try gave;
     the failed remedies, ``known`` ones first: remedies an earlier search found wanting, not
     built again). Each try follows from the last one's figures (or from its refusal's own
     remedy); a try that leads back to the design as it is, or to a remedy already tried, or
-    beyond the tooth limit ends the search. REMEDY_TRIES tries, besides the one a module the
-    user gave outgrew the printer with (the same remedy then keeps the size asked for)."""
+    beyond the tooth limit ends the search. A ripple that a try of less play alone hardly
+    lowered (from the try before, or from ``measured``, the design's own meshing record) is
+    followed with more teeth. REMEDY_TRIES tries, besides the mounting
+    at the rolling distance and the one a module the user gave outgrew the printer with (the
+    same remedy then keeps the size asked for)."""
     tried, candidate, failed, sized = [], dict(remedy), list(known), False
-    while len(tried) - sized < REMEDY_TRIES:
+    # mounting the pair where its pitch curves roll is no try of the teeth: those follow it
+    mounting = "install_distance" in remedy
+    before: tuple[dict, dict | None] = ({}, measured)     # the last try and its record
+    while len(tried) - sized - mounting < REMEDY_TRIES:
         if sized:       # undercut options and followed remedies too
             candidate = _sized(design, candidate)
         if (all(getattr(design, name) == value for name, value in candidate.items())
@@ -249,9 +260,32 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
         failed.append(candidate)
         tried.append(f"{as_flags(candidate)} still gives {broken[0]}"
                      + (f" and {len(broken) - 1} more" if len(broken) > 1 else ""))
-        following = _remedy_of(pair, trial, record, bounds) if pair.generated is not None else {}
-        candidate = {**candidate, **following}
+        teeth = _play_not_the_cause(candidate, record, before, bounds)
+        following = _remedy_of(pair, trial, record, bounds, teeth=teeth) if pair.generated is not None else {}
+        before, candidate = (candidate, record), {**candidate, **following}
     return {}, tried, failed
+
+
+def _play_not_the_cause(candidate: dict, record: dict, before: tuple[dict, dict | None],
+                        bounds: MeshBounds) -> bool:
+    """Whether the try ``candidate`` (meshing ``record``) changed only the backlash from the
+    try ``before`` (its remedy and record) and took less than a quarter of the worst flank's
+    ripple excess over the bound off: the ripple left is the tooth form's, not the play's."""
+    remedy, earlier = before
+    if earlier is None or {name for name in candidate if candidate[name] != remedy.get(name)} != {"backlash"}:
+        return False
+    was, now = _worst_ripple(earlier), _worst_ripple(record)
+    if was is None or now is None or was <= bounds.ripple_pct:
+        return False
+    return was - now < 0.25 * (was - bounds.ripple_pct)
+
+
+def _worst_ripple(record: dict) -> float | None:
+    """The worst flank's band-limited ripple beyond the law's own (%), None if unmeasured."""
+    ripples = [record[side]["hub_speed_ripple_pct"] for side in ("drive", "coast")]
+    if any(value is None for value in ripples):
+        return None
+    return max(ripples) - record.get("law_hub_speed_ripple_pct", 0.0)
 
 
 def _within_the_tooth_limit(design, remedy: dict) -> dict:
@@ -310,17 +344,19 @@ def opening_phrase(pair) -> str:
             f"pitch curves roll ({pair.design_distance:g} mm), where they do not follow the law")
 
 
-def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds) -> dict:
+def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds,
+                   teeth: bool = False) -> dict:
     """Options (name -> value) that should bring the ripple within the bound. Other teeth
     ripple otherwise: with a new --z the backlash is the default for that design (what its
-    play may cost, gears.generation.play), else it is scaled from the measured play."""
+    play may cost, gears.generation.play), else it is scaled from the measured play, unless
+    ``teeth`` (less play was tried and the ripple stayed: two periods more teeth)."""
     from wheelstep_cli.parts.gear_laws import design_backlash
 
     law = pair.generated.law
     # a backlash the design sets is printed with the printer's tooth clearance added on top;
     # the default backlash follows the tooth count, the clearance taken out of it
     clearance = float(pair.printing.printer.tooth_clearance) if pair.printing is not None else 0.0
-    if "z" not in remedy:
+    if "z" not in remedy and not teeth:
         backlash = backlash_remedy(law, record, pair.spec.backlash_mm, bounds) - clearance
         # teeth need some play: the printer's clearance gives it, else the design's own; a
         # backlash no smaller than the design's is no remedy (the ripple is not the play's)
