@@ -53,12 +53,27 @@ class DesignError(ValueError):
                 alternatives.setdefault(name, (value, context))
         return self._with_extras(DesignError(self.param, self.value, self.limit, alternatives))
 
+    def with_advice(self, advice: str, remedy: dict) -> "DesignError":
+        """This refusal ("...; nothing written; <advice>") with another advice and its
+        ``remedy`` (name -> value), also in each input's statement of it."""
+        def advised(text: str) -> str:
+            return f"{text.split(WRITTEN_NOTHING)[0]}{WRITTEN_NOTHING}{advice}"
+
+        other = DesignError(self.param, self.value, advised(self.limit),
+                            {name: (value, advised(text)) for name, (value, text) in self.alternatives.items()})
+        other.remedy, other.tried = remedy, getattr(self, "tried", [])
+        return self._with_extras(other)
+
     def _with_extras(self, other: "DesignError") -> "DesignError":
         """``other`` carrying what this error carries besides its line (e.g. a remedy)."""
         for key, value in vars(self).items():
             if key not in vars(other):
                 setattr(other, key, value)
         return other
+
+
+#: Where a refusal's advice starts.
+WRITTEN_NOTHING = "; nothing written; "
 
 
 class MeshDefect(Exception):

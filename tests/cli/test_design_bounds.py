@@ -56,6 +56,24 @@ def test_a_pair_mounted_off_its_rolling_distance_gets_a_remedy_that_passes(cli, 
     assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
 
 
+def test_a_ripple_a_printers_clearance_costs_is_offered_a_fit_that_is_written(cli, tmp_path):
+    """The desk demonstrator on the PETG preset: the play of the printer's 0.2 mm tooth
+    clearance ripples past the bound, less backlash cannot lower it and more teeth print too
+    thin; the refusal offers the fit to the printer's band (which replaces the clearance) with
+    the tooth count the fitted teeth then need, and applied, the pair is fitted and written."""
+    out = tmp_path / "out"
+    design = ["--profile", "desk-demo", "--printer", "fdm-0.4-petg", "--format", "stl"]
+    line = error_line(cli("gears", *design, "--out", out))
+    assert line.startswith("wheelstep: error: --z = 42: the pair would mesh outside the bounds ("), line
+    assert "ripple" in line and "nothing written; use --fit auto" in line and not out.exists()
+    assert "replaces its 0.2 mm tooth clearance" in line, line
+    remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()
+    result = cli("gears", *with_remedy(design, remedy), "-q", "--out", out)
+    assert result.exit_code == 0, result.stderr
+    meshing = json.loads((out / "gears.json").read_text())["meshing"]
+    assert meshing["tolerance"]["fit"]["inset_mm"] > 0.0 and not meshing["tolerance"]["jams"]
+
+
 def test_default_pair_meets_the_bounds_on_both_flanks(cli, tmp_path):
     result = cli("gears", "--format", "stl", "--out", tmp_path)
     assert result.exit_code == 0, result.stderr

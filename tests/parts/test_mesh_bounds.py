@@ -338,7 +338,7 @@ def test_a_ripple_no_remedy_cures_points_to_a_fit_when_a_printers_clearance_draw
     from wheelstep_cli.parts.mesh_bounds import require_within_bounds
 
     spec = GearPairSpec(z=42)
-    printing = SimpleNamespace(printer=SimpleNamespace(tooth_clearance=clearance))
+    printing = SimpleNamespace(printer=SimpleNamespace(tooth_clearance=clearance, band=object()))
     pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(spec)[1]), printing=printing,
                            spec=spec, as_asked=spec, opening=0.0)
     rippled = record(coast=flank(ripple=1.3))

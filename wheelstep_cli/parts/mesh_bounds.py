@@ -106,13 +106,23 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     raise error
 
 
+def fit_may_cure(pair, broken: str | list[str]) -> bool:
+    """Whether a fit to the printer's band may cure the bounds ``broken`` (a refusal's words or
+    its phrases): a ripple drawn with the tooth clearance of a printer that states a band (the
+    clearance's play costs speed; a fit replaces the clearance)."""
+    printer = pair.printing.printer if pair.printing is not None else None
+    if printer is None or float(printer.tooth_clearance) <= 0.0 or printer.band is None:
+        return False
+    return any("ripple" in text for text in ([broken] if isinstance(broken, str) else broken))
+
+
 def _fit_hint(pair, broken: list[str]) -> str:
     """For a ripple drawn with a printer's tooth clearance (the play it prints costs speed), where
     a fit to the printer's band, which replaces that clearance, draws less play (not built here:
-    a fit is checked over the band, several meshing checks)."""
-    clearance = float(pair.printing.printer.tooth_clearance) if pair.printing is not None else 0.0
-    if clearance <= 0.0 or not any("ripple" in text for text in broken):
+    a fit is checked over the band, several meshing checks; ``gears`` tries it)."""
+    if not fit_may_cure(pair, broken):
         return ""
+    clearance = float(pair.printing.printer.tooth_clearance)
     return (f"; the play of the printer's {clearance:g} mm tooth clearance costs ripple: a fit to its band "
             "draws less (`wheelstep gears --fit auto`, or `fit: auto` in the printer profile's band "
             "section), and says the tooth count it then needs")

@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from wheelstep_cli.cli.output import Output
+from wheelstep_cli.errors import DesignError
 
 
 def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tuple, bed=None):
@@ -50,8 +51,47 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
         record = _meshing_or_refused(show, pair, check, allow_interference, verify)
-        require_within_bounds(pair, record, verify=verify)
+        try:
+            require_within_bounds(pair, record, verify=verify)
+        except DesignError as err:
+            raise _fit_offered(err, spec, pair, printer, show, bed) from None
     return pair, record, tolerance, check
+
+
+#: Builds of a fit (each a fit search over the printer's band) a ripple refusal tries: the
+#: fit, then the fit with the remedy its own refusal names (thinner teeth after the inset).
+FIT_TRIES = 2
+
+
+def _fit_offered(err, spec, pair, printer, show: Output, bed):
+    """``err``, a bounds refusal of ``pair`` (``spec`` built for ``printer``), or, when it found
+    no remedy for a ripple drawn with the printer's tooth clearance, the same refusal offering
+    ``--fit auto`` (with the options its own refusal then asks for) once the fitted pair passes
+    as ``gears --fit auto`` checks it: a fit replaces the clearance, whose play the ripple pays
+    and which no backlash can lower."""
+    from wheelstep_cli.config.names import as_flags
+    from wheelstep_cli.parts.mesh_bounds import fit_may_cure
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
+
+    if err.remedy or not fit_may_cure(pair, err.limit):
+        return err
+    trial, extra = spec, {}
+    for _ in range(FIT_TRIES):
+        try:
+            fitted, *_ = checked_pair(trial, printer, show, False, (True, "auto", "--fit"), bed)
+            require_printable_teeth(fitted)
+        except DesignError as refusal:
+            if not getattr(refusal, "remedy", None) or "fit" in refusal.remedy:
+                return err
+            extra = {**extra, **refusal.remedy}
+            trial = spec.model_copy(update=extra)
+            continue
+        remedy = {"fit": "auto", **extra}
+        advice = (f"use {as_flags(remedy)} (the fit to the band of printer {printer.name} "
+                  f"replaces its {printer.tooth_clearance:g} mm tooth clearance, whose play costs "
+                  "the ripple)")
+        return err.with_advice(advice, remedy)
+    return err
 
 
 def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, verify=None) -> dict:
@@ -99,7 +139,6 @@ def _on_the_bed(build, printer, fit: bool):
     """``build()``; when the user named no printer, a part too tall for the default printer or
     too large for its bed is refused saying which printer that is and how to choose another
     (or, without a fit, to write no plate)."""
-    from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.plate_layout import default_printer_said
 
     try:
@@ -116,8 +155,6 @@ def collisions_first(show, out: Path, fmt: str, extras, force: bool) -> None:
     where a named picture (``extras``: parts.gear_exports.GearExtras) or a file of certain
     name (gears.json, the STLs, DXF, SVG, STEP asked for) would go. The plates' names depend
     on the layout: they are checked, with everything, when the files are written."""
-    from wheelstep_cli.errors import DesignError
-
     if out.exists() and not out.is_dir():
         raise DesignError("out", str(out), "cannot be written (is a file, not a folder)")
     named = {"plot": extras.plot, "gif": extras.gif}
