@@ -223,3 +223,22 @@ def test_verbose_says_which_file_a_profile_name_was_read_from(cli, tmp_path, mon
     monkeypatch.chdir(tmp_path)
     local = cli("shoe", "--profile", "desk-demo", "-v", "--dry-run", "--out", tmp_path / "b")
     assert f"  profile = desk-demo ({Path.cwd() / 'profiles' / 'desk-demo.yaml'})\n" in local.stderr
+
+
+@pytest.mark.parametrize("args, option, remedy", [
+    (["kinematics", "--a", "-5"], "--a", {}),                          # a value's own limit
+    (["stairs", "--rise", "abc"], None, None),                           # not a number at all
+    (["gears", "--z", "30", "--format", "stl", "--dry-run"], "--z", {"--z": 46}),  # the bounds, a remedy
+])
+def test_a_refusal_asked_for_json_is_json_on_stdout_too(cli, args, option, remedy):
+    """A script reading a --json command's stdout gets the refusal there too: its exit code, the
+    line said on stderr and, for bad input, the option, the value and the remedy (options)."""
+    result = cli(*args, "--json")
+    line = error_line(result)
+    error = json.loads(result.stdout)["error"]
+    assert error["exit_code"] == 2 and error["message"] == line
+    assert error.get("option") == option and error.get("remedy") == remedy
+    if option is not None:
+        assert error["value"] == float(args[args.index(option) + 1])
+    plain = cli(*args)
+    assert plain.stdout == "" and error_line(plain) == line            # without --json: stderr only

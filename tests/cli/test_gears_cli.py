@@ -286,3 +286,15 @@ def test_a_written_pair_that_interferes_is_warned_of_with_its_overlap_in_um2(cli
     warning = next(line for line in result.stderr.splitlines() if "interfere" in line)
     assert warning.startswith("WARNING: the teeth interfere at ") and " um2); pointwise" in warning, warning
 
+
+
+def test_the_tip_clearance_said_is_the_shallower_gears_spaces(cli, tmp_path):
+    """A longer addendum leaves the pinion's spaces shallower below the wheel's tips than the
+    wheel's below the pinion's: the mounting line gives that smaller clearance, the one that
+    bounds how much closer the pair may be mounted."""
+    result = cli("gears", "--addendum", "1.2", "--format", "stl", "--dry-run", "--json", "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    report = json.loads(result.stdout)
+    spaces = report["generated"]["tip_clearance"]
+    assert spaces["pinion_spaces_mm"] < spaces["wheel_spaces_mm"]
+    assert report["meshing"]["mounting"]["tip_clearance_mm"] == pytest.approx(spaces["pinion_spaces_mm"])

@@ -217,7 +217,8 @@ def test_a_band_that_jams_is_warned_of_on_stderr(desk_pair, cli, printer):
         f"WARNING: over the band of {printer or 'fdm-0.4-pla'} the pair jams in {len(jammed)} of 4 cases "
         f"({'; '.join(jammed)}): printed there it may not turn; `wheelstep gears"
         f"{' --printer ' + printer if printer else ''} --fit auto` with the pair's design options draws the "
-        "teeth to clear the band")
+        "teeth to clear the band (if the inset leaves the teeth too thin, its refusal names the tooth count "
+        "that prints)")
     # a jammed case predicts no backlash at all (its figure is an estimate where teeth cannot go)
     from wheelstep_cli.parts.gcode_check import least_backlash_range
 

@@ -91,7 +91,8 @@ def test_a_jam_over_the_band_suggests_the_same_command_with_a_fit(cli, tmp_path)
     assert result.exit_code == 0, result.stderr
     warning = result.stderr.strip().splitlines()[-1]
     assert warning.startswith("WARNING: over the band of fdm-0.4-pla the pair jams in "), warning
-    assert warning.endswith("; the same command with --fit auto draws the teeth to clear the band")
+    assert warning.endswith("; the same command with --fit auto draws the teeth to clear the band (if the "
+                            "inset leaves the teeth too thin, its refusal names the tooth count that prints)")
 
 
 def test_fit_auto_insets_the_default_pair_until_the_fdm_band_no_longer_jams(cli, tmp_path):

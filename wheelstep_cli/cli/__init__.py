@@ -22,6 +22,7 @@ except ImportError:  # pragma: no cover - older typer uses click itself
 
 from wheelstep_cli.batch.interrupts import (caused_by_interrupt, exit_now, exit_unless_threads_end,
                                             interrupts_not_lost)
+from wheelstep_cli.cli.refusal import said
 from wheelstep_cli.config.names import flag_name
 from wheelstep_cli.config.schema import InvalidInput
 from wheelstep_cli.errors import DesignError, Interrupted, MeshDefect
@@ -301,45 +302,35 @@ def run(argv: list[str] | None = None) -> int:
         return _aborted()
     misread = misread_value_text(command, args)
     if misread is not None:
-        typer.echo(f"wheelstep: error: {misread}", err=True)
-        return 2
+        return said([f"wheelstep: error: {misread}"], 2, args)
     try:
         result = _invoke(command, args)
     except InvalidInput as err:               # a file's problems, each with its file:line
-        for line in err.lines():
-            typer.echo(f"wheelstep: error: {line}", err=True)
-        return 2
+        return said([f"wheelstep: error: {line}" for line in err.lines()], 2, args)
     except MeshDefect as err:              # wheelstep's own check failed: no input to blame
-        typer.echo(f"wheelstep: error: {err}", err=True)
-        return 1
+        return said([f"wheelstep: error: {err}"], 1, args)
     except DesignError as err:
         options = _command_options(command, args)
         given = _given(options, args)
         err = err.for_given(given)
         located = None if err.param.replace("-", "_") in given else _in_design_profile(err, command, args)
-        for line in located.lines() if located is not None else [error_text(err, options, args)]:
-            typer.echo(f"wheelstep: error: {line}", err=True)
-        return 2
+        lines = located.lines() if located is not None else [error_text(err, options, args)]
+        return said([f"wheelstep: error: {line}" for line in lines], 2, args, err)
     except click_errors.NoArgsIsHelpError as err:
         typer.echo(err.format_message(), err=True)
         return 2
     except click_errors.UsageError as err:
         number = bad_number_text(err, args)
         if number is not None:
-            typer.echo(f"wheelstep: error: {number}", err=True)
-            return 2
+            return said([f"wheelstep: error: {number}"], 2, args)
         where = f" ({err.ctx.command_path})" if err.ctx is not None else ""
         # a choice option's check is pydantic's: its "Value error, " tag is no news to a user
         message = err.format_message().replace("Value error, ", "")
-        typer.echo(f"wheelstep: error{where}: {message}", err=True)
-        return 2
+        return said([f"wheelstep: error{where}: {message}"], 2, args)
     except click_errors.ClickException as err:
-        typer.echo(f"wheelstep: error: {err.format_message()}", err=True)
-        return err.exit_code
+        return said([f"wheelstep: error: {err.format_message()}"], err.exit_code, args)
     except OSError as err:
-        typer.echo(f"wheelstep: error: {os_error_text(err, _command_options(command, args), args)}",
-                   err=True)
-        return 2
+        return said([f"wheelstep: error: {os_error_text(err, _command_options(command, args), args)}"], 2, args)
     return result if isinstance(result, int) else 0
 
 

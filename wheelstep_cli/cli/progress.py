@@ -51,3 +51,13 @@ def with_progress(enabled: bool, description: str, check, *args, **kwargs):
     """Run ``check(*args, progress=callback, **kwargs)`` under one transient bar."""
     with Progress(enabled) as bars:
         return check(*args, progress=bars.counter(description), **kwargs)
+
+
+def terminal_note(enabled: bool, text: str) -> None:
+    """``text`` on stderr for a person at a terminal (why the wait that follows), as the bars
+    are: redirected, stderr keeps only what the command says (a refusal's one line)."""
+    from rich.console import Console
+
+    console = Console(stderr=True, highlight=False)
+    if enabled and console.is_terminal:
+        console.print(text, markup=False)

@@ -21,8 +21,8 @@ from wheelstep_cli.parts.bound_figures import (MeshBounds, backlash_remedy, boun
 #: Remedies tried (each a build and a meshing check) along each way of remedying a design
 #: before a refusal offers one: the figures' remedy, then (:func:`_other_ways`) fewer teeth
 #: for a ripple alone and the changed settings at their defaults; 3 ways at most. Four tries
-#: let a way go from more teeth to less play and, when that play was not the cause, to
-#: more teeth again.
+#: let a way alternate less play and more teeth twice (less play, then, where it hardly
+#: lowered the ripple, more teeth, less play for them, more teeth).
 REMEDY_TRIES = 4
 
 
@@ -103,6 +103,7 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     error = error.tied_to({"backlash": design_backlash(design), **shaping})
     error.remedy = remedy   # name -> value, for a batch file to state as its keys
     error.tried = candidates  # the remedies built and found wanting, likewise
+    error.tried_words, error.broken = tried, broken   # what they gave; the bounds broken
     raise error
 
 
@@ -359,7 +360,8 @@ def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds,
     """Options (name -> value) that should bring the ripple within the bound. Other teeth
     ripple otherwise: with a new --z the backlash is the default for that design (what its
     play may cost, gears.generation.play), else it is scaled from the measured play, unless
-    ``teeth`` (less play was tried and the ripple stayed: two periods more teeth)."""
+    ``teeth`` (less play was tried and the ripple stayed: two periods more teeth, the backlash
+    the design sets kept where the new count's default is larger)."""
     from wheelstep_cli.parts.gear_laws import design_backlash
 
     law = pair.generated.law

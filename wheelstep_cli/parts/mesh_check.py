@@ -51,7 +51,8 @@ def mounting_record(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw,
                     generated=None, inset: float = 0.0) -> dict:
     """How much closer than ``distance`` (mm) the outlines (mm, own frames) may be mounted:
     their least separation over the law's poses (a wheel moved that little toward the
-    pinion cannot reach it), and for generated teeth the tip clearance cut for it (mm),
+    pinion cannot reach it), and for generated teeth the tip clearance cut for it (mm): the
+    smaller of the wheel's spaces below the pinion's tips and the pinion's below the wheel's,
     grown by 2 ``inset`` for outlines a fit drew ``inset`` mm smaller (each tip moves in by
     it, each space deepens by it)."""
     from wheelstep_cli.gears.meshing.mounting import least_separation
@@ -62,7 +63,9 @@ def mounting_record(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw,
               "how": "least separation of the two outlines over the law's poses: mounted up to "
                      "that much closer, no point of one can reach the other"}
     if generated is not None:
-        record["tip_clearance_mm"] = float(generated.cutter.clearance * generated.module) + 2.0 * inset
+        cutter = generated.cutter
+        spaces = min(cutter.clearance, cutter.dedendum - cutter.addendum)
+        record["tip_clearance_mm"] = float(spaces * generated.module) + 2.0 * inset
     return record
 
 
@@ -78,7 +81,7 @@ def mounting_line(mounting: dict) -> str:
         line = (f"mounting: clear when mounted up to {mounting['closer_mm']:.3f} mm closer (least gap "
                 f"between the outlines, at pinion angle {mounting['at_pinion_deg']:.1f} deg)")
     if "tip_clearance_mm" in mounting:
-        line += f"; tip clearance {mounting['tip_clearance_mm']:.3f} mm"
+        line += f"; tip clearance {mounting['tip_clearance_mm']:.3f} mm (the shallower gear's spaces)"
     return line
 
 

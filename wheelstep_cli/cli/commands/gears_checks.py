@@ -9,12 +9,14 @@ from wheelstep_cli.cli.output import Output
 from wheelstep_cli.errors import DesignError
 
 
-def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tuple, bed=None):
+def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tuple, bed=None,
+                 trying: bool = False):
     """(pair, meshing record, band record or None, meshing report) of ``spec`` built for
     ``printer``, refused (DesignError, or exit 1 for interference) as ``gears`` refuses it;
     ``band`` = (check over the printer's band, the fit or None[, where the fit comes from]);
     ``bed``: the printer whose bed the written plate needs (None: none), checked as soon as
-    the gears are built, before any meshing check."""
+    the gears are built, before any meshing check; ``trying``: a remedy's build, whose
+    interfering teeth are its refusal (DesignError), not the command's."""
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
     from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
@@ -34,12 +36,13 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
                                      printer, True)
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
         design_verify = remedy_check(design.printing.printer, checked_remedy, bed)
-        design_record = _meshing_or_refused(show, design, design_check, allow_interference, design_verify)
-        require_within_bounds(design, design_record, verify=design_verify)
+        design_record = _meshing_or_refused(show, design, design_check, allow_interference, design_verify, trying)
+        # a remedy's try needs no remedy search of its own: outside the bounds, it is no remedy
+        require_within_bounds(design, design_record, verify=None if trying else design_verify)
         require_printable_teeth(design)
         pair, tolerance, check = with_progress(not show.quiet, f"fitting to the band of {chosen.name}",
                                                fitted_pair, spec, chosen, band[1], design, design_check)
-        record = _meshing_or_refused(show, pair, check, allow_interference)
+        record = _meshing_or_refused(show, pair, check, allow_interference, trying=trying)
         if len(band) > 2 and band[2]:
             tolerance["fit"]["from"] = band[2]
         require_fit_met(tolerance, **({} if tolerance["fit"].get("from", "--fit") == "--fit" else
@@ -59,45 +62,57 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
 
 
 #: Builds of a fit (each a fit search over the printer's band) a ripple refusal tries: the
-#: fit, then the fit with the remedy its own refusal names (thinner teeth after the inset).
-FIT_TRIES = 2
+#: fit, then the fit with the remedies its own refusals name (a backlash that clears without
+#: the printer's clearance, teeth thick enough after the inset).
+FIT_TRIES = 3
 
 
 def _fit_offered(err, spec, pair, printer, show: Output, bed):
     """``err``, a bounds refusal of ``pair`` (``spec`` built for ``printer``), or, when it found
     no remedy for a ripple drawn with the printer's tooth clearance, the same refusal offering
-    ``--fit auto`` (with the options its own refusal then asks for) once the fitted pair passes
+    ``--fit auto`` (with the options its own refusals then ask for) once the fitted pair passes
     as ``gears --fit auto`` checks it: a fit replaces the clearance, whose play the ripple pays
-    and which no backlash can lower."""
+    and which no backlash can lower. A fit that does not pass is said as tried."""
+    from wheelstep_cli.cli.progress import terminal_note
     from wheelstep_cli.config.names import as_flags
-    from wheelstep_cli.parts.mesh_bounds import fit_may_cure
+    from wheelstep_cli.parts.mesh_bounds import fit_may_cure, no_remedy
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
-    if err.remedy or not fit_may_cure(pair, err.limit):
+    if err.remedy or not fit_may_cure(pair, getattr(err, "broken", [])):
         return err
-    trial, extra = spec, {}
-    for _ in range(FIT_TRIES):
+    terminal_note(not show.quiet, f"the ripple is the play of printer {printer.name}'s "
+                                  f"{printer.tooth_clearance:g} mm tooth clearance: trying a fit to its "
+                                  "band (--fit auto) instead")
+    remedy, why = {"fit": "auto"}, []
+    while len(why) < FIT_TRIES:
         try:
-            fitted, *_ = checked_pair(trial, printer, show, False, (True, "auto", "--fit"), bed)
+            fitted, *_ = checked_pair(spec.model_copy(update=remedy), printer, show, False,
+                                      (True, "auto", "--fit"), bed, trying=True)
             require_printable_teeth(fitted)
         except DesignError as refusal:
-            if not getattr(refusal, "remedy", None) or "fit" in refusal.remedy:
-                return err
-            extra = {**extra, **refusal.remedy}
-            trial = spec.model_copy(update=extra)
+            why.append(f"{as_flags(remedy)} is refused: {refusal.limit.split('; nothing written')[0]}")
+            # the design outside the bounds without the clearance: no fit cures what its teeth do
+            own = {} if getattr(refusal, "broken", None) else getattr(refusal, "remedy", None) or {}
+            following = {**remedy, **own}
+            if following == remedy:     # no remedy of its own, or one already applied
+                break
+            remedy = following
             continue
-        remedy = {"fit": "auto", **extra}
-        advice = (f"use {as_flags(remedy)} (the fit to the band of printer {printer.name} "
-                  f"replaces its {printer.tooth_clearance:g} mm tooth clearance, whose play costs "
-                  "the ripple)")
-        return err.with_advice(advice, remedy)
-    return err
+        return err.with_advice(f"use {as_flags(remedy)} (the fit to the band of printer {printer.name} "
+                               f"replaces its {printer.tooth_clearance:g} mm tooth clearance, whose "
+                               "play costs the ripple)", remedy)
+    tried = [*getattr(err, "tried_words", []), *why]
+    law = "the law (--law-csv)" if spec.law_csv is not None else "the mechanism (--a, --b, --c)"
+    size = "the centre distance" if spec.module is None else "--module"
+    return err.with_advice(f"{no_remedy(tried)}: change {law} or {size}", {})
 
 
-def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, verify=None) -> dict:
+def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, verify=None,
+                        trying: bool = False) -> dict:
     """The meshing record of ``check`` (of ``pair``), refused (exit 1, nothing written) when
     the teeth interfere and that is not allowed; as bad input (exit 2, with a remedy checked
-    by ``verify`` when given) when the mounted distance or a backlash set too small is the cause."""
+    by ``verify`` when given) when the mounted distance or a backlash set too small is the cause;
+    ``trying``: a remedy's build, refused by a DesignError with nothing said."""
     import typer
 
     from wheelstep_cli.parts.interference_refusals import (interference_phrase, require_mounted_where_rolling,
@@ -112,6 +127,8 @@ def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, ver
         require_mounted_where_rolling(pair, interfere, verify)
         if verify is not None:
             require_play_that_clears(pair, record, interfere, verify)
+        if trying:
+            raise DesignError("allow_interference", "off", f"{interfere}; nothing written")
         show.error(f"wheelstep: refused: {interfere}; nothing written (--allow-interference "
                    "writes them anyway)")
         raise typer.Exit(1)

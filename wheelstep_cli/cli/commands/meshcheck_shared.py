@@ -123,5 +123,7 @@ def warn_band_jams(show, band: dict | None, printer: str | None = None, rerun: b
     fit = ("the same command with --fit auto draws the teeth to clear the band" if rerun else
            f"`wheelstep gears{option} --fit auto` with the pair's design options draws the teeth "
            "to clear the band")
+    # the fit's inset thins the teeth: its own refusal may ask for fewer, which is no news then
+    fit += " (if the inset leaves the teeth too thin, its refusal names the tooth count that prints)"
     show.warning(f"WARNING: over the band of {band['printer']} the pair jams in {len(jammed)} of "
                  f"{len(band['cases'])} cases ({'; '.join(jammed)}): printed there it may not turn; {fit}")
