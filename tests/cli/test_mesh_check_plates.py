@@ -363,3 +363,16 @@ def test_a_gear_moved_off_its_axis_is_told_to_give_it_in_its_own_frame(desk_pair
                           "--profile", "desk-demo"))
     assert line.startswith(f"wheelstep: error: pinion = {tmp_path / 'pinion_on_bed.stl'}: does not surround "
                            "(0, 0), where the check takes its axis (its section is centred near (30.0, 0.0) mm)")
+
+
+def test_meshes_out_of_phase_with_the_law_given_are_told_to_give_the_options_they_were_made_with(desk_pair, cli):
+    """Two meshes carry no law: the desk pair checked with a blend it was not cut for runs off
+    that law, and the check says it was the law of the options given (a user who forgot
+    --blend read only OUT OF PHASE); checked with its own design there is no such line."""
+    meshes = [desk_pair / "pinion.stl", desk_pair / "wheel.stl"]
+    wrong = cli("mesh-check", *meshes, "--profile", "desk-demo", "--blend", "10", "--samples", "384")
+    assert wrong.exit_code == 1 and "phase: OUT OF PHASE" in wrong.stdout, wrong.stdout
+    assert wrong.stderr.strip().splitlines()[-1].startswith(
+        "WARNING: checked against the law of the options given (mechanism, --turns, --blend, --law-csv)")
+    right = cli("mesh-check", *meshes, "--profile", "desk-demo", "--samples", "384")
+    assert right.exit_code == 0 and "in phase with the law" in right.stdout and "WARNING" not in right.stderr

@@ -150,6 +150,11 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     files = written_pair_files(check, report)
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report(summary, lambda: pair_lines(summary, installed_distance(spec)))
+    if not summary["in_phase"]:
+        # two meshes carry no law: a pair made with other options is checked against the wrong one
+        show.warning("WARNING: checked against the law of the options given (mechanism, --turns, "
+                     "--blend, --law-csv): if the pair was made with others, give them as it was "
+                     "made, or its design's --profile")
     warn_band_jams(show, summary.get("tolerance"), band[1])
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
