@@ -144,6 +144,9 @@ def test_blend_10_is_checked_against_the_blended_law_and_written(cli, tmp_path):
     assert result.stderr == (f"WARNING: the law the teeth follow itself ripples "
                              f"{meshing['law_hub_speed_ripple_pct']:.2f} % (however exact the teeth, "
                              "the output speed varies that much; the teeth add the figures above)\n")
+    as_json = cli("gears", "--z", z, "--blend", "10", "--format", "stl", "--dry-run", "--json", "--out", tmp_path)
+    assert as_json.stderr.splitlines()[0].endswith("the teeth add the report's meshing.drive and meshing.coast)")
+    assert json.loads(as_json.stdout)["meshing"]["law_hub_speed_ripple_pct"] > 5.0
     # each flank's line says what the teeth add beyond it, the figure the bound is on
     for side in ("drive", "coast"):
         own, whole = meshing["law_hub_speed_ripple_pct"], meshing[side]["hub_speed_ripple_pct"]

@@ -205,8 +205,10 @@ def warn_of_the_figures(show: Output, record: dict, speed: str = "hub speed") ->
 
     own = record.get("law_hub_speed_ripple_pct", 0.0)
     if own > MeshBounds().ripple_pct:
+        # with --json the figures are not printed above the warning but in the report
+        where = "the report's meshing.drive and meshing.coast" if show.json else "the figures above"
         show.warning(f"WARNING: the law the teeth follow itself ripples {own:.2f} % (however exact "
-                     "the teeth, the output speed varies that much; the teeth add the figures above)")
+                     f"the teeth, the output speed varies that much; the teeth add {where})")
     closer = record.get("mounting", {}).get("closer_mm")
     if closer is not None and closer < MOUNTING_WARNING and not record["interference"]:
         show.warning(f"WARNING: mounted {max(closer, 0.0):.3f} mm closer than designed the teeth meet "
