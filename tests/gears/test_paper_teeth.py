@@ -22,6 +22,7 @@ def test_reference_points(cli):
     result = cli("teeth", "--json")
     assert result.exit_code == 0, result.stderr
     data = json.loads(result.stdout)
+    assert data["parameters"]["z"] == 48 and data["parameters"]["module"] > 0
     p1 = data["pinion"][0]["points"]
     assert [round(p["theta_deg"], 2) for p in p1] == [-88.76, -88.64, -88.43, -88.16, -87.84]
     assert [round(p["theta_s_deg"], 2) for p in p1] == [-85.44, -85.55, -85.77, -86.04, -86.36]

@@ -23,6 +23,8 @@ def test_reference_rows_at_printed_precision(cli):
     result = cli("pitch", "--json")
     assert result.exit_code == 0, result.stderr
     data = json.loads(result.stdout)
+    # the report says what it was computed for: the source design, at the distance its sectors roll at
+    assert data["parameters"] == {"a": 60.0, "b": 100.0, "c": 360.0, "z": 48, "turns": 2, "center_distance": 143.5}
     assert round(data["arc_mm"], 4) == 6.2123
     assert round(data["u"], 5) == 1.25248
     assert len(data["sectors"]) == 24

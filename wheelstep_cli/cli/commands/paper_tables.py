@@ -27,9 +27,11 @@ def pitch(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
     out = Output(json, quiet, verbose)
     # the sector partition of SPEC §4 is the paper method's, at the distance its sectors roll at
     spec = paper_table_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
-    out.parameters({"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
-                    "center_distance": spec.center_distance})
-    report = pitch_report(spec)
+    parameters = {"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
+                  "center_distance": spec.center_distance}
+    out.parameters(parameters)
+    # the report says what it was computed for, as the part commands' reports do
+    report = {"tool": "wheelstep pitch", "parameters": parameters, **pitch_report(spec)}
     out.report(report, lambda: _pitch_lines(report))
 
 
@@ -59,10 +61,11 @@ def teeth(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
     # the sector-involute teeth of SPEC §5 are the paper's: their rules, not the generator's
     spec = paper_table_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                             module=module, backlash=backlash)
-    out.parameters({"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
-                    "center_distance": spec.center_distance, "module": spec.paper_module,
-                    "backlash": spec.backlash_mm})
-    report = teeth_report(spec)
+    parameters = {"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
+                  "center_distance": spec.center_distance, "module": spec.paper_module,
+                  "backlash": spec.backlash_mm}
+    out.parameters(parameters)
+    report = {"tool": "wheelstep teeth", "parameters": parameters, **teeth_report(spec)}
     out.report(report, lambda: _teeth_lines(report))
 
 
