@@ -53,15 +53,20 @@ class DesignError(ValueError):
                 alternatives.setdefault(name, (value, context))
         return self._with_extras(DesignError(self.param, self.value, self.limit, alternatives))
 
+    @property
+    def cause(self) -> str:
+        """What the refusal found, without what it says was written and its advice."""
+        return self.limit.split(NOTHING_WRITTEN)[0]
+
     def with_advice(self, advice: str, remedy: dict) -> "DesignError":
         """This refusal ("...; nothing written; <advice>") with another advice and its
         ``remedy`` (name -> value), also in each input's statement of it."""
         def advised(text: str) -> str:
-            return f"{text.split(WRITTEN_NOTHING)[0]}{WRITTEN_NOTHING}{advice}"
+            return f"{text.split(NOTHING_WRITTEN)[0]}{NOTHING_WRITTEN}; {advice}"
 
         other = DesignError(self.param, self.value, advised(self.limit),
                             {name: (value, advised(text)) for name, (value, text) in self.alternatives.items()})
-        other.remedy, other.tried = remedy, getattr(self, "tried", [])
+        other.remedy = remedy
         return self._with_extras(other)
 
     def _with_extras(self, other: "DesignError") -> "DesignError":
@@ -72,8 +77,8 @@ class DesignError(ValueError):
         return other
 
 
-#: Where a refusal's advice starts.
-WRITTEN_NOTHING = "; nothing written; "
+#: Where a refusal's cause ends (its advice follows).
+NOTHING_WRITTEN = "; nothing written"
 
 
 class MeshDefect(Exception):

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import typer
 
+from wheelstep_cli.config.names import flag_name
 from wheelstep_cli.formats.jsonio import json_text
 
 
@@ -19,25 +20,8 @@ def said(lines: list[str], code: int, args: list[str], err: Exception | None = N
         record = {"exit_code": code, "message": "\n".join(lines)}
         if err is not None and hasattr(err, "param"):
             remedy = getattr(err, "remedy", None) or {}
-            record.update(option=flag_of(err.param), value=getattr(err, "value", None),
-                          remedy={flag_of(name): value for name, value in remedy.items()})
-        typer.echo(json_text({"error": _plain(record)}), nl=False)
+            record.update(option=flag_name(err.param), value=getattr(err, "value", None),
+                          remedy={flag_name(name): value for name, value in remedy.items()})
+        typer.echo(json_text({"error": record}), nl=False)
     return code
 
-
-def flag_of(param: str) -> str:
-    """The option a parameter is given as (``--install-distance``)."""
-    from wheelstep_cli.config.names import flag_name
-
-    return flag_name(param)
-
-
-def _plain(value):
-    """``value`` with what JSON cannot hold (paths, enums) as text."""
-    if isinstance(value, dict):
-        return {str(key): _plain(item) for key, item in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_plain(item) for item in value]
-    if value is None or isinstance(value, (bool, int, float, str)):
-        return value
-    return str(getattr(value, "value", value))

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import io
 import json
+import os
+from enum import Enum
 
 import numpy as np
 
@@ -21,6 +23,10 @@ def _plain(value):
         return int(value)
     if isinstance(value, (np.bool_,)):
         return bool(value)
+    if isinstance(value, Enum):
+        return _plain(value.value)
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
     return value
 
 

@@ -101,10 +101,17 @@ def ripple_teeth_remedy(record: dict, z: int, periods: int, bounds: MeshBounds =
     the steeper the TE those microns make, so their ripple grows about as z. z is scaled down
     by the worst flank's ratio (beyond the law's own ripple), in whole law periods, by at least
     a period, to no fewer than 6 teeth; two periods more when the ripple was not measured."""
-    own = record.get("law_hub_speed_ripple_pct", 0.0)
-    ripples = [record[side]["hub_speed_ripple_pct"] for side in ("drive", "coast")]
-    if any(value is None for value in ripples):
+    beyond = worst_ripple(record)
+    if beyond is None:
         return z + 2 * periods
-    worst = max(value - own for value in ripples) / (margin * bounds.ripple_pct)
+    worst = beyond / (margin * bounds.ripple_pct)
     fewer = min(z - periods, int(periods * np.floor(z / max(worst, 1.0) / periods)))
     return max(fewer, periods * -(-6 // periods))
+
+
+def worst_ripple(record: dict) -> float | None:
+    """The worst flank's band-limited ripple beyond the law's own (%), None if unmeasured."""
+    ripples = [record[side]["hub_speed_ripple_pct"] for side in ("drive", "coast")]
+    if any(value is None for value in ripples):
+        return None
+    return max(ripples) - record.get("law_hub_speed_ripple_pct", 0.0)

@@ -340,7 +340,7 @@ def generated_report(pair: GearPair) -> dict:
                     "so the meshing check at the installed distance decides",
         },
         "tip_clearance": {
-            "pinion_spaces_mm": (gen.cutter.dedendum - gen.cutter.addendum) * gen.module,
+            "pinion_spaces_mm": gen.cutter.pinion_clearance * gen.module,
             "wheel_spaces_mm": gen.cutter.clearance * gen.module,
             "note": "below the other gear's tips on the line of centres; the wheel is carved by "
                     "the pinion's shaper (its teeth cut by the same rack the clearance taller) and "

@@ -15,7 +15,7 @@ from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH
 from wheelstep_cli.errors import DesignError
 # the figures' side re-exported: callers name the bounds and their remedies from here
 from wheelstep_cli.parts.bound_figures import (MeshBounds, backlash_remedy, bound_violations,  # noqa: F401
-                                               ripple_teeth_remedy, teeth_remedy)
+                                               ripple_teeth_remedy, teeth_remedy, worst_ripple)
 
 
 #: Remedies tried (each a build and a meshing check) along each way of remedying a design
@@ -82,17 +82,14 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
         remedy = dict(sorted(remedy.items(), key=lambda option: option[0] != "z"))   # the count first
     param = next(iter(remedy), "z")
     value = design_backlash(design) if param == "backlash" else getattr(design, param)
-    # a CSV law replaces the crank mechanism (whose options are then refused)
-    law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
     if remedy and verify is None and "install_distance" not in remedy:
         # a sweep's row: no build per refused point, so the remedy is what the figures point to
         advice = f"try {as_flags(remedy)} (from the figures; not built)"
     elif remedy:
         advice = f"use {as_flags(remedy)}"
     else:
-        found = f"no remedy found ({'; '.join(tried)})" if tried else \
-            f"no tooth count up to {MAX_TEETH} brings it within them"
-        advice = f"{found}: change {law} or {_size_option(design)}" + _fit_hint(pair, broken)
+        found = no_remedy(tried) if tried else f"no tooth count up to {MAX_TEETH} brings it within them"
+        advice = change_advice(design, found) + _fit_hint(pair, broken)
     error = DesignError(param, value,
                         f"the pair would mesh outside the bounds ({'; '.join(broken)}); nothing "
                         f"written; {advice}")
@@ -107,14 +104,14 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
     raise error
 
 
-def fit_may_cure(pair, broken: str | list[str]) -> bool:
-    """Whether a fit to the printer's band may cure the bounds ``broken`` (a refusal's words or
-    its phrases): a ripple drawn with the tooth clearance of a printer that states a band (the
-    clearance's play costs speed; a fit replaces the clearance)."""
+def fit_may_cure(pair, broken: list[str]) -> bool:
+    """Whether a fit to the printer's band may cure the bounds ``broken`` (a refusal's phrases):
+    a ripple drawn with the tooth clearance of a printer that states a band (the clearance's
+    play costs speed; a fit replaces the clearance)."""
     printer = pair.printing.printer if pair.printing is not None else None
     if printer is None or float(printer.tooth_clearance) <= 0.0 or printer.band is None:
         return False
-    return any("ripple" in text for text in ([broken] if isinstance(broken, str) else broken))
+    return any("ripple" in text for text in broken)
 
 
 def _fit_hint(pair, broken: list[str]) -> str:
@@ -161,9 +158,8 @@ def verified_undercut(err: DesignError, design, verify: Callable,
             tried.extend(why)
     cause = err.limit.split("; use pinion z")[0]
     unchecked = err.limit[len(cause):]
-    law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
     advice = "; " + (" or ".join(f"use {as_flags(remedy)}" for remedy in offered) if offered
-                     else f"{no_remedy(tried)}: change {law} or {_size_option(design)}")
+                     else change_advice(design, no_remedy(tried)))
     # the inputs sharing the blame state the rule with the checked remedies too
     alternatives = {name: (value, text.replace(unchecked, advice)) for name, (value, text) in err.alternatives.items()}
     checked = DesignError(err.param, err.value, cause + advice, alternatives)
@@ -171,6 +167,13 @@ def verified_undercut(err: DesignError, design, verify: Callable,
     checked.remedies = offered
     checked.tried = failed    # the remedies built and found wanting, for a batch file's keys
     return checked
+
+
+def change_advice(design, found: str) -> str:
+    """A refusal's advice when no remedy was found (``found`` says so): what must change, the
+    law (a CSV law replaces the crank mechanism, whose options are then refused) or the size."""
+    law = "the law (--law-csv)" if design.law_csv is not None else "the mechanism (--a, --b, --c)"
+    return f"{found}: change {law} or {_size_option(design)}"
 
 
 def _size_option(design) -> str:
@@ -254,7 +257,7 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
         try:
             pair, record = verify(trial)
         except DesignError as err:
-            why = err.limit.split("; nothing written")[0]
+            why = err.cause
             # the rule's own option, when the remedy does not set it (a thin tooth is the count's)
             rule = "" if err.param in candidate else f"--{err.param.replace('_', '-')} = {err.shown_value}: "
             tried.append(f"{as_flags(candidate)} is refused: {rule}{why}")
@@ -285,18 +288,11 @@ def _play_not_the_cause(candidate: dict, record: dict, before: tuple[dict, dict 
     remedy, earlier = before
     if earlier is None or {name for name in candidate if candidate[name] != remedy.get(name)} != {"backlash"}:
         return False
-    was, now = _worst_ripple(earlier), _worst_ripple(record)
+    was, now = worst_ripple(earlier), worst_ripple(record)
     if was is None or now is None or was <= bounds.ripple_pct:
         return False
     return was - now < 0.25 * (was - bounds.ripple_pct)
 
-
-def _worst_ripple(record: dict) -> float | None:
-    """The worst flank's band-limited ripple beyond the law's own (%), None if unmeasured."""
-    ripples = [record[side]["hub_speed_ripple_pct"] for side in ("drive", "coast")]
-    if any(value is None for value in ripples):
-        return None
-    return max(ripples) - record.get("law_hub_speed_ripple_pct", 0.0)
 
 
 def _within_the_tooth_limit(design, remedy: dict) -> dict:

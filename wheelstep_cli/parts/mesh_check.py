@@ -63,8 +63,7 @@ def mounting_record(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw,
               "how": "least separation of the two outlines over the law's poses: mounted up to "
                      "that much closer, no point of one can reach the other"}
     if generated is not None:
-        cutter = generated.cutter
-        spaces = min(cutter.clearance, cutter.dedendum - cutter.addendum)
+        spaces = min(generated.cutter.clearance, generated.cutter.pinion_clearance)
         record["tip_clearance_mm"] = float(spaces * generated.module) + 2.0 * inset
     return record
 

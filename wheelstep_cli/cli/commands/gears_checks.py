@@ -75,7 +75,7 @@ def _fit_offered(err, spec, pair, printer, show: Output, bed):
     and which no backlash can lower. A fit that does not pass is said as tried."""
     from wheelstep_cli.cli.progress import terminal_note
     from wheelstep_cli.config.names import as_flags
-    from wheelstep_cli.parts.mesh_bounds import fit_may_cure, no_remedy
+    from wheelstep_cli.parts.mesh_bounds import change_advice, fit_may_cure, no_remedy
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     if err.remedy or not fit_may_cure(pair, getattr(err, "broken", [])):
@@ -90,7 +90,7 @@ def _fit_offered(err, spec, pair, printer, show: Output, bed):
                                       (True, "auto", "--fit"), bed, trying=True)
             require_printable_teeth(fitted)
         except DesignError as refusal:
-            why.append(f"{as_flags(remedy)} is refused: {refusal.limit.split('; nothing written')[0]}")
+            why.append(f"{as_flags(remedy)} is refused: {refusal.cause}")
             # the design outside the bounds without the clearance: no fit cures what its teeth do
             own = {} if getattr(refusal, "broken", None) else getattr(refusal, "remedy", None) or {}
             following = {**remedy, **own}
@@ -101,10 +101,7 @@ def _fit_offered(err, spec, pair, printer, show: Output, bed):
         return err.with_advice(f"use {as_flags(remedy)} (the fit to the band of printer {printer.name} "
                                f"replaces its {printer.tooth_clearance:g} mm tooth clearance, whose "
                                "play costs the ripple)", remedy)
-    tried = [*getattr(err, "tried_words", []), *why]
-    law = "the law (--law-csv)" if spec.law_csv is not None else "the mechanism (--a, --b, --c)"
-    size = "the centre distance" if spec.module is None else "--module"
-    return err.with_advice(f"{no_remedy(tried)}: change {law} or {size}", {})
+    return err.with_advice(change_advice(spec, no_remedy([*getattr(err, "tried_words", []), *why])), {})
 
 
 def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, verify=None,

@@ -56,6 +56,11 @@ class RackCutter:
         require(CLEARANCE[0] <= self.clearance <= CLEARANCE[1], "clearance", self.clearance,
                 range_text(CLEARANCE, "x module"))
 
+    @property
+    def pinion_clearance(self) -> float:
+        """Tip clearance (x m) of the pinion's spaces below the wheel's tips."""
+        return self.dedendum - self.addendum
+
 
 @dataclass(frozen=True)
 class RackRolling:
