@@ -186,3 +186,21 @@ def test_a_pair_no_bed_holds_is_refused_for_its_size_before_its_figures(cli, tmp
     assert (f"big ({batch}:{line_of(batch, 'module: 3')}): module = 3: with it, part 'wheel' is "
             in result.stderr), result.stderr
     assert "larger than the bed of printer 'fdm-0.4-pla'" in result.stderr and "bounds" not in result.stderr
+
+
+def test_a_pair_too_large_for_its_bed_is_offered_the_pair_drawn_smaller_that_the_bed_holds(cli, tmp_path):
+    """The source pair (its wheel 208 mm across) on the resin printer's 115 mm deep bed:
+    refused for the bed with the same pair at a smaller installed distance as the entry's
+    override; applied, that entry is written on one plate."""
+    entry = ("parts:\n  - name: big\n    kind: gear-pair\n    design: bntu-2024\n"
+             "    printer: resin-0.05-standard\n")
+    batch = write(tmp_path / "big.yaml", entry)
+    result = cli("batch", batch, "--out", tmp_path / "out", "--jobs", "1")
+    assert result.exit_code == 1
+    assert "does not fit the bed of printer 'resin-0.05-standard'" in result.stderr, result.stderr
+    found = re.search(r"; not built; use overrides \{install_distance: ([0-9.]+)\} \(the pair at", result.stderr)
+    assert found, result.stderr
+    fixed = write(tmp_path / "fixed.yaml", entry + f"    overrides: {{install_distance: {found.group(1)}}}\n")
+    applied = cli("batch", fixed, "--out", tmp_path / "fixed", "--jobs", "1")
+    assert applied.exit_code == 0, applied.stderr
+    assert [p.name for p in (tmp_path / "fixed").glob("plate-*.3mf")] == ["plate-1.3mf"]

@@ -17,7 +17,7 @@ from pathlib import Path
 import pyarrow.parquet as pq
 import pytest
 
-from tests.helpers.clicheck import error_line
+from tests.helpers.clicheck import error_line, remedy_in
 from tests.helpers.files import SMALL_BATCH, write
 from tests.helpers.sweeps import POINTS, SHOES, rows
 from wheelstep_cli.cli.commands.sweep import _BEST_FILES
@@ -186,7 +186,8 @@ def test_tolerance_band_columns_are_the_gears_commands(cli, tmp_path):
 
 def test_a_point_too_large_for_its_printers_bed_is_refused_as_gears_refuses_it(cli, tmp_path, monkeypatch):
     """The default pair's 208 mm wheel does not go on the resin bed: the point is refused with
-    the line `gears --printer` gives, before its meshing check."""
+    the line `gears --printer` gives, before its meshing check; the smaller pair `gears` builds
+    and offers is the row's try (a sweep builds no remedy)."""
     import wheelstep_cli.parts.mesh_check as mesh_check
     from wheelstep_cli.batch.sweep_point import evaluate, resolve_point, versions
     from wheelstep_cli.config.profiles import load_printer_profile
@@ -199,9 +200,13 @@ def test_a_point_too_large_for_its_printers_bed_is_refused_as_gears_refuses_it(c
     monkeypatch.setattr(mesh_check, "check_gear_pair", no_check)
     row = evaluate(point)           # a crash in it (the check reached) would be a failed row
     assert row["outcome"] == "refused", row
+    monkeypatch.undo()      # gears checks the remedy it offers
     line = error_line(cli("gears", "--printer", printer, "--out", tmp_path / "g"))
-    assert line == f"wheelstep: error: --printer = {printer}: {row['reason'].split(': ', 1)[1]}", row["reason"]
+    cause, remedy = row["reason"].split(": ", 1)[1].split("; nothing written; ")
+    assert line.startswith(f"wheelstep: error: --printer = {printer}: {cause}; nothing written; use "), row["reason"]
     assert "does not fit the bed of printer 'resin-0.05-standard'" in line
+    distance = remedy_in(line)
+    assert distance[0] == "--install-distance" and remedy.startswith(f"try install_distance: {distance[1]} ("), remedy
 
 
 def test_tolerance_is_refused_for_shoes(cli, tmp_path):

@@ -7,7 +7,7 @@ import sys
 import numpy as np
 import pytest
 
-from tests.helpers.clicheck import error_line
+from tests.helpers.clicheck import error_line, remedy_in, with_remedy
 from tests.helpers.meshcheck import assert_printable_stl, read_3mf_strict
 
 
@@ -244,15 +244,18 @@ def test_a_pair_taller_than_the_printer_is_refused_before_any_tooth_is_cut(cli, 
 
 def test_a_pair_too_large_for_the_default_printers_bed_says_so_and_how_to_write_it(cli, tmp_path):
     """--module 3 draws a 296 mm wheel: with no --printer it is refused for the default
-    printer's bed, saying that it is the default printer and that --format stl writes no
-    plate; applied, the pair is written."""
+    printer's bed, saying that it is the default printer, that --format stl writes no plate,
+    and the smaller pair the bed holds; each way applied, the pair is written."""
     line = error_line(cli("gears", "--module", "3", "--out", tmp_path / "big"))
     assert line.startswith("wheelstep: error: --module = 3: with it, part 'wheel' is "), line
     assert ", larger than the bed of printer 'fdm-0.4-pla' (256 x 256 mm" in line, line
-    assert line.endswith("(the default printer; --printer chooses another, --format stl writes no plate)"), line
+    assert "(the default printer; --printer chooses another, --format stl writes no plate); nothing written; use " in line
     assert not (tmp_path / "big").exists()
     written = cli("gears", "--module", "3", "--format", "stl", "--out", tmp_path / "big")
     assert written.exit_code == 0, written.stderr
+    smaller = cli(*with_remedy(["gears", "--module", "3"], remedy_in(line)), "--out", tmp_path / "smaller")
+    assert smaller.exit_code == 0, smaller.stderr
+    assert sorted(p.name for p in (tmp_path / "smaller").glob("*.3mf")) == ["gears-1.3mf", "gears-2.3mf"]
 
 
 def test_a_pair_exactly_as_tall_as_the_printer_prints_is_not_refused_early(cli, tmp_path):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests.helpers.clicheck import error_line
+from tests.helpers.clicheck import error_line, remedy_in, with_remedy
 from tests.helpers.files import printer_profile_without_band
 
 
@@ -145,20 +145,36 @@ def test_fit_auto_insets_the_default_pair_until_the_fdm_band_no_longer_jams(cli,
 def test_a_pair_too_big_for_the_printer_is_refused_before_the_band(cli, tmp_path, monkeypatch, option):
     """The default wheel (208 mm) on the resin printer's 218 x 123 mm bed: the bed refuses it
     as soon as the gears are built, before the meshing check, a fit search or a band that the
-    written files could never use."""
+    written files could never use; the only pair checked is the remedy's, smaller, which the
+    bed holds, and applied, the remedy writes the pair on that bed."""
     import wheelstep_cli.parts.fit as fit
     import wheelstep_cli.parts.mesh_check as mesh_check
     import wheelstep_cli.parts.tolerance_cli as tolerance_cli
+    from wheelstep_cli.config.profiles import load_printer
+
+    room = min(load_printer("resin-0.05-standard").bed) - 2 * load_printer("resin-0.05-standard").edge_margin
+    checked, check = [], mesh_check.check_gear_pair
 
     def no_check(*args, **kwargs):
         raise AssertionError("the pair was checked before the bed refused the part")
 
+    def on_the_bed_only(pair, *args, **kwargs):
+        checked.append(float(np.ptp(pair.wheel.vertices[:, :2], axis=0).max()))
+        assert checked[-1] <= room, "a pair larger than the bed was checked"
+        return check(pair, *args, **kwargs)
+
     monkeypatch.setattr(fit, "check_case", no_check)
     monkeypatch.setattr(tolerance_cli, "check_case", no_check)
-    monkeypatch.setattr(mesh_check, "check_gear_pair", no_check)
-    line = error_line(cli("gears", "--printer", "resin-0.05-standard", *option, "--out", tmp_path / "o"))
+    monkeypatch.setattr(mesh_check, "check_gear_pair", on_the_bed_only)
+    args = ["gears", "--printer", "resin-0.05-standard", *option]
+    line = error_line(cli(*args, "--out", tmp_path / "o"))
     assert line.startswith("wheelstep: error: --printer = resin-0.05-standard: part 'wheel'")
     assert "does not fit the bed" in line and not (tmp_path / "o").exists()
+    assert checked, "the remedy was not built and checked"
+    monkeypatch.undo()
+    applied = cli(*with_remedy(args, remedy_in(line)), "--out", tmp_path / "o")
+    assert applied.exit_code == 0, applied.stderr
+    assert (tmp_path / "o" / "gears.3mf").exists()
 
 
 def test_fit_auto_meets_the_petg_band_with_the_default_pair(cli, tmp_path):

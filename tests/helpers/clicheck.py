@@ -22,3 +22,9 @@ def with_remedy(args, remedy: list[str]) -> list[str]:
         else:
             line += [flag, value]
     return line
+
+
+def remedy_in(line: str) -> list[str]:
+    """A refusal's remedy: the options after its final ``use``, up to what it says of them
+    in brackets (``["--z", "54", ...]``)."""
+    return line.rsplit("; use ", 1)[1].split(" (", 1)[0].split()

@@ -15,6 +15,7 @@ from wheelstep_cli.config.names import remedy_in_yaml
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.interference_refusals import (interference_phrase, require_mounted_where_rolling,
                                                        require_play_that_clears)
+from wheelstep_cli.parts.bed_remedy import scaled_to_bed
 from wheelstep_cli.parts.gear_pair import require_pair_on_bed
 from wheelstep_cli.parts.kinds import KINDS, as_designed, for_printer
 from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
@@ -74,7 +75,9 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
         if kind.mating_check is not None:
             # on its bed before the minutes of checks, as gears checks it: a pair that no plate
             # holds is refused for its size, not for figures its remedies could not cure
-            require_pair_on_bed(built, entry.printer)
+            # with the pair drawn smaller as the remedy when that one fits and meshes
+            scaled_to_bed(lambda: require_pair_on_bed(built, entry.printer), entry.spec,
+                          remedy_check(printer, bed=printer))
         mating = kind.mating_check(built) if kind.mating_check is not None else None
         result = EntryResult(entry.index, _parts(kind, built), _report(kind, built, mating), mating=mating)
         refused = _refused(entry, built, result, printer) or _out_of_bounds(entry, built, result, printer)

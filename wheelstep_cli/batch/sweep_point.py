@@ -114,7 +114,7 @@ def evaluate(point: Point) -> dict:
             row.update(outcome="refused", reason="the teeth interfere (allow_interference: true "
                                                  "keeps such designs)")
     except DesignError as err:
-        reason = err.limit if err.param == "design" else yaml_message(err)
+        reason = err.limit if err.param == "design" else remedy_in_yaml(err, as_keys, entry=False)
         row.update(outcome="refused", reason=reason)
     except Exception as err:  # a crash of one design must not stop the sweep
         row.update(outcome="failed", reason=f"internal error: {type(err).__name__}: {err}")
@@ -132,7 +132,10 @@ def build_point(point: Point):
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
     from wheelstep_cli.parts.tolerance_cli import band_pair
 
-    built, band, nominal = band_pair(point.spec, point.printer, point.tolerance, point.printer)
+    from wheelstep_cli.parts.bed_remedy import scaled_to_bed
+
+    built, band, nominal = scaled_to_bed(lambda: band_pair(point.spec, point.printer, point.tolerance, point.printer),
+                                         point.spec, None)
     record = meshing_record(nominal if nominal is not None else check_gear_pair(built))
     if band is not None:
         record["tolerance"] = band

@@ -52,7 +52,18 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float,
             makes = f"with it, part '{part.name}' is {size[0]:.1f} x {size[1]:.1f} mm, larger than {_bed_words(printer)}"
             sizes = {name: (value, makes) for name, value in (footprint or {}).items()
                      if value is not None and name != "printer" and name not in height_only}
-            raise _beyond(DesignError("printer", printer.given or printer.name, problem, sizes), printer)
+            error = _beyond(DesignError("printer", printer.given or printer.name, problem, sizes), printer)
+            error.bed_scale = min(bed_scale(p.bounds[1, :2] - p.bounds[0, :2], printer) for p in parts)
+            raise error
+
+
+def bed_scale(size, printer: Printer) -> float:
+    """The largest factor (at most 1) a footprint of ``size`` (X, Y mm) may be scaled by
+    and still fit the printer's bed inside its margins, upright or turned a quarter."""
+    room = np.asarray(printer.bed, dtype=float) - 2 * printer.edge_margin
+    w, h = (float(v) for v in size)
+    upright, turned = min(room[0] / w, room[1] / h), min(room[0] / h, room[1] / w)
+    return min(1.0, max(upright, turned))
 
 
 def gear_pair_height(spec) -> float:

@@ -18,6 +18,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
     the gears are built, before any meshing check; ``trying``: a remedy's build, whose
     interfering teeth are its refusal (DesignError), not the command's."""
     from wheelstep_cli.cli.progress import with_progress
+    from wheelstep_cli.parts.bed_remedy import scaled_to_bed
     from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
     from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
     from wheelstep_cli.parts.mesh_check import check_gear_pair
@@ -31,9 +32,9 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         # the design is checked, bounded and refused as without a fit before the search
         # spends a dozen meshing checks on it; the fit's inset is print compensation, judged
         # on the band (the written pair's own figures are the inset outlines')
-        chosen, design = _on_the_bed(lambda: undercut_checked(lambda: fit_design(spec, printer), spec,
-                                                              remedy_check(printer, checked_remedy, bed)),
-                                     printer, True)
+        plain = remedy_check(printer, checked_remedy, bed)
+        chosen, design = scaled_to_bed(lambda: _on_the_bed(lambda: undercut_checked(
+            lambda: fit_design(spec, printer), spec, plain), printer, True), spec, plain)
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
         design_verify = remedy_check(design.printing.printer, checked_remedy, bed)
         design_record = _meshing_or_refused(show, design, design_check, allow_interference, design_verify, trying)
@@ -49,8 +50,8 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
                                       {"remedy": PROFILE_FIT_REMEDY}))
     else:
         verify = remedy_check(printer, checked_remedy, bed)
-        pair, tolerance, check = _on_the_bed(lambda: undercut_checked(
-            lambda: band_pair(spec, printer, bool(band[0]), bed), spec, verify), printer, False)
+        pair, tolerance, check = scaled_to_bed(lambda: _on_the_bed(lambda: undercut_checked(
+            lambda: band_pair(spec, printer, bool(band[0]), bed), spec, verify), printer, False), spec, verify)
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
         record = _meshing_or_refused(show, pair, check, allow_interference, verify)

@@ -1,0 +1,83 @@
+"""A generated gear pair too large for the printer's bed, remedied by the same pair drawn
+smaller. The law depends on the mechanism's proportions only and the pitch curves scale
+with the distance they roll at (SPEC §3); with the tooth count kept, the module follows the
+pitch, so the whole footprint scales with that distance. Lengths in mm."""
+
+from __future__ import annotations
+
+import math
+from typing import Callable
+
+from wheelstep_cli.config.names import as_flags
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.parts.mesh_bounds import no_remedy
+
+
+def scaled_options(design, scale: float) -> tuple[dict, float]:
+    """(options, factor): the options (name -> value) that draw ``design``'s generated pair
+    at most ``scale`` times its size, and the factor they scale it by. The input that sizes
+    the pair (a module given, else the rolling distance given, else the installed distance)
+    is rounded down (0.001 mm of module, 0.1 mm of distance); the other lengths the user gave
+    (the other distance, the backlash) follow by the same factor, so the opening and the
+    play keep their share of the teeth."""
+    if design.module is not None:
+        sizing, step = "module", 0.001
+    elif design.center_distance is not None:
+        sizing, step = "center_distance", 0.1
+    else:
+        sizing, step = "install_distance", 0.1
+    given = getattr(design, sizing)
+    size = float(given if given is not None else design.paper_distances[1])
+    smaller = math.floor(size * scale / step + 1e-9) * step
+    factor = smaller / size
+    options = {sizing: round(smaller, 3)}
+    for name in ("center_distance", "install_distance", "backlash"):
+        value = getattr(design, name)
+        if name != sizing and value is not None:
+            options[name] = round(float(value) * factor, 3)
+    return options, factor
+
+
+def scaled_to_bed(build: Callable, design, verify: Callable | None):
+    """``build()``, or when a gear of ``design`` (generated teeth) is too large for the bed
+    (its refusal carries ``bed_scale``), that refusal with the pair drawn smaller as its
+    remedy once ``verify`` (mesh_bounds.remedy_check) builds that pair on the bed and within
+    the bounds, or with the remedy the smaller pair's own refusal offers (its teeth at that
+    size: the search keeps the size); else what the tries gave. Without ``verify`` (a sweep's
+    row) the smaller pair is said as a try, not built."""
+    from wheelstep_cli.config.specs import Teeth
+
+    try:
+        return build()
+    except DesignError as err:
+        scale = getattr(err, "bed_scale", None)
+        if scale is None or design.teeth != Teeth.generated or getattr(err, "remedy", None):
+            raise
+        options, factor = scaled_options(design, scale)
+        if verify is None:
+            raise err.with_advice(f"try {as_flags(options)} (the pair at {factor:.0%} of its size; not built)",
+                                  options) from None
+        found, tried = _smaller_pair(design, options, verify)
+        if found is None:
+            raise err.with_advice(f"{no_remedy(tried)}: a printer with a larger bed (--printer)", {}) from None
+        raise err.with_advice(f"use {as_flags(found)} (the pair at {factor:.0%} of its size, which the bed "
+                              "holds)", found) from None
+
+
+def _smaller_pair(design, options: dict, verify: Callable) -> tuple[dict | None, list[str]]:
+    """(the options that draw ``design`` smaller, with the remedy a refusal of that pair offers
+    (its bounds' remedy is built and checked by its own search), or None; what the tries gave)."""
+    from wheelstep_cli.parts.mesh_bounds import MeshBounds, require_within_bounds, verified_remedy
+
+    smaller = design.model_copy(update=options)
+    try:
+        require_within_bounds(*verify(smaller), verify=verify)
+        return options, []
+    except DesignError as refusal:
+        own = getattr(refusal, "remedy", None) or {}
+        tried = [f"{as_flags(options)} is refused: {refusal.cause}", *getattr(refusal, "tried_words", [])]
+        if own and getattr(refusal, "broken", None) is not None:
+            return {**options, **own}, tried      # the bounds' search built it
+        # a refusal of the build (teeth too thin) with a remedy of its own: built here
+        found, more, _ = verified_remedy(smaller, own, verify, MeshBounds()) if own else ({}, [], [])
+        return ({**options, **found} if found else None), [*tried, *more]
