@@ -8,7 +8,7 @@ import json
 import pytest
 from hypothesis import HealthCheck, given, seed, settings
 
-from tests.helpers.clicheck import error_line, with_remedy
+from tests.helpers.clicheck import error_line, remedy_in, with_remedy
 from tests.helpers.strategies import generated_gear_options
 from wheelstep_cli.parts.mesh_bounds import bound_violations
 
@@ -140,6 +140,24 @@ def test_thin_teeth_under_a_fit_are_refused_with_a_tooth_count_that_keeps_its_ti
     result = cli("gears", *with_remedy(design, remedy), "--json", "-q", "--out", out)
     assert result.exit_code == 0, result.stderr
     assert json.loads((out / "gears.json").read_text())["meshing"]["tolerance"]["fit"]["inset_mm"] > 0.0
+
+
+def test_a_fits_remedies_are_built_with_the_fit_and_do_not_go_round(cli, tmp_path):
+    """The desk demo at z 34 fitted loose to the PETG band ripples past the bound; the tooth
+    count its figures point to (z 40) meshes within them, but the fit's inset thins its teeth
+    past what the nozzle prints, whose own remedy is z 34 again: a remedy is offered only once
+    the pair it names is fitted and passes, so no try is offered twice and a remedy offered,
+    applied, is written."""
+    design = ["--profile", "desk-demo", "--printer", "fdm-0.4-petg", "--fit", "loose", "--z", "34",
+              "--format", "stl"]
+    line = error_line(cli("gears", *design, "--out", tmp_path / "out"))
+    assert line.startswith("wheelstep: error: --z = 34: the pair would mesh outside the bounds"), line
+    if "; use " not in line:
+        tries = line.split("no remedy found (", 1)[1]
+        assert "the teeth are too thin for printer 'fdm-0.4-petg'" in tries     # the fit was built
+        return
+    result = cli("gears", *with_remedy(design, remedy_in(line)), "--out", tmp_path / "out")
+    assert result.exit_code == 0, result.stderr
 
 
 @seed(13)

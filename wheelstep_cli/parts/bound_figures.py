@@ -115,3 +115,27 @@ def worst_ripple(record: dict) -> float | None:
     if any(value is None for value in ripples):
         return None
     return max(ripples) - record.get("law_hub_speed_ripple_pct", 0.0)
+
+
+def fit_design_record(record: dict, fit: dict) -> dict:
+    """The meshing record the bounds judge a fitted pair by: its design's figures before the
+    inset (``fit["design"]``, parts.fit; the inset is print compensation, judged over the
+    band) with the law's own ripple and the poses of ``record``, the inset pair's."""
+    design = fit["design"]
+    return {"interference": bool(design["interference"]), "interfering_poses": "some",
+            "samples": record["samples"], "contact_lost": False, "drive": design["drive"],
+            "coast": design["coast"], "law_hub_speed_ripple_pct": record.get("law_hub_speed_ripple_pct", 0.0)}
+
+
+def bounds_verdict(record: dict, fit: dict | None = None, bounds: MeshBounds = MeshBounds()) -> dict:
+    """What a report says of the bounds for a meshing ``record``: the bounds, whether the pair
+    is within them and each bound it breaks, judged on the meshes checked or, for a pair a
+    fit inset (``fit``, parts.fit, with an inset), on its design before the inset."""
+    inset = fit is not None and bool(fit.get("inset_mm"))
+    broken = bound_violations(fit_design_record(record, fit) if inset else record, bounds)
+    return {"F_i_total_um": bounds.total_um, "f_i_tooth_um": bounds.tooth_um,
+            "hub_speed_ripple_pct": bounds.ripple_pct,
+            "ripple_of": "each flank's band-limited ripple beyond the law's own (law_hub_speed_ripple_pct)",
+            "judged_on": ("the design before the fit's inset (tolerance.fit.design): the inset is print "
+                          "compensation, judged over the printer's band" if inset else "the meshes checked"),
+            "within": not broken, "broken": broken}

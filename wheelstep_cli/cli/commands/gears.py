@@ -173,18 +173,17 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     ``slice_``: slice the plates and check the G-code; ``printer_given``: --printer as given."""
     import typer
 
-    from wheelstep_cli.cli.commands.gears_checks import (checked_pair, collisions_first, require_height_first,
-                                                         warn_of_the_figures)
+    from wheelstep_cli.cli.commands.gears_checks import (checked_pair, collisions_first, printable_or_remedied,
+                                                         require_height_first, warn_of_the_figures)
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.mesh_check import speed_words
-    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
 
     collisions_first(show, out, fmt, extras, force)
     bed = require_height_first(spec, printer, fmt, band[1] is not None)
     pair, record, tolerance, check = checked_pair(spec, printer, show, allow_interference, band, bed)
-    require_printable_teeth(pair)
+    printable_or_remedied(pair, spec, printer, show, band, bed)
     if tolerance is not None:
         record["tolerance"] = tolerance
     files = {**gear_pair_files(pair, out, fmt, record),

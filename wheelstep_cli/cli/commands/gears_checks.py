@@ -4,6 +4,7 @@ bounds and, with a fit, the design before the search and the fit itself (SPEC §
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Callable
 
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.errors import DesignError
@@ -38,8 +39,10 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
         design_verify = remedy_check(design.printing.printer, checked_remedy, bed)
         design_record = _meshing_or_refused(show, design, design_check, allow_interference, design_verify, trying)
-        # a remedy's try needs no remedy search of its own: outside the bounds, it is no remedy
-        require_within_bounds(design, design_record, verify=None if trying else design_verify)
+        # a remedy's try needs no remedy search of its own: outside the bounds, it is no remedy;
+        # a remedy is built with its fit: the inset thins the teeth the design's check passed
+        require_within_bounds(design, design_record,
+                              verify=None if trying else whole_check(printer, show, band, bed))
         require_printable_teeth(design)
         pair, tolerance, check = with_progress(not show.quiet, f"fitting to the band of {chosen.name}",
                                                fitted_pair, spec, chosen, band[1], design, design_check)
@@ -54,12 +57,52 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
             lambda: band_pair(spec, printer, bool(band[0]), bed), spec, verify), printer, False), spec, verify)
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
-        record = _meshing_or_refused(show, pair, check, allow_interference, verify)
+        record = _meshing_or_refused(show, pair, check, allow_interference, verify, trying)
         try:
-            require_within_bounds(pair, record, verify=verify)
+            require_within_bounds(pair, record, verify=None if trying else verify)
         except DesignError as err:
-            raise _fit_offered(err, spec, pair, printer, show, bed) from None
+            raise err if trying else _fit_offered(err, spec, pair, printer, show, bed) from None
     return pair, record, tolerance, check
+
+
+def whole_check(printer, show: Output, band: tuple, bed) -> Callable:
+    """``verify(design)`` -> (pair, meshing record within the bounds) for a remedy of ``gears``
+    (``band``, ``bed`` as :func:`checked_pair` takes them): the pair built, fitted and checked
+    as `gears` checks what it writes, its teeth wide enough for the printer, refused
+    (DesignError, with the remedy the figures point to, unbuilt) where `gears` refuses it. A
+    fitted pair's record is its design's, as the bounds judge it (bound_figures)."""
+    from wheelstep_cli.parts.bound_figures import fit_design_record
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
+
+    def verify(design):
+        # the band's check refuses nothing (it warns): a fit's search is the band's part that does
+        pair, record, tolerance, _ = checked_pair(design, printer, show, False, (False, *band[1:]), bed,
+                                                  trying=True)
+        require_printable_teeth(pair)
+        return pair, fit_design_record(record, tolerance["fit"]) if pair.inset else record
+    return verify
+
+
+def printable_or_remedied(pair, spec, printer, show: Output, band: tuple, bed) -> None:
+    """Refuse (DesignError) ``pair`` (``spec`` as `gears` built it) when its teeth are too thin
+    for the printer, offering the fewer teeth the refusal names only once that pair passes all
+    `gears` checks (:func:`whole_check`: its bounds, its fit), following each try's own remedy;
+    else saying what the tries gave."""
+    from wheelstep_cli.config.names import as_flags
+    from wheelstep_cli.parts.mesh_bounds import MeshBounds, change_advice, no_remedy, verified_remedy
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
+
+    try:
+        require_printable_teeth(pair)
+    except DesignError as err:
+        if not getattr(err, "remedy", None):
+            raise
+        found, tried, _ = verified_remedy(spec, err.remedy, whole_check(printer, show, band, bed), MeshBounds())
+        if found:
+            raise err.with_advice(f"use {as_flags(found)} (fewer, larger teeth), or a printer with a finer "
+                                  "nozzle", found) from None
+        raise err.with_advice(change_advice(spec, no_remedy(tried)) + ", or a printer with a finer nozzle",
+                              {}) from None
 
 
 #: Builds of a fit (each a fit search over the printer's band) a ripple refusal tries: the
