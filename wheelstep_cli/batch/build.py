@@ -106,10 +106,14 @@ def _parts(kind, built) -> list[BuiltPart]:
             for part, check in ((p, built.checks[p.name]) for p in kind.parts(built))]
 
 
-def _report(kind, built, mating: dict | None) -> dict:
+def _report(kind, built, mating: dict | None, fit: dict | None = None) -> dict:
+    """The entry's report: its kind's, with a gear pair's meshing record and what it says of
+    the bounds (``fit``: the fit that inset the pair, judged on its design)."""
+    from wheelstep_cli.parts.bound_figures import bounds_verdict
+
     report = kind.report_of(built)
     if mating is not None:
-        report["meshing"] = mating
+        report["meshing"] = {**mating, "bounds": bounds_verdict(mating, fit)}
     return report
 
 
@@ -130,7 +134,7 @@ def _fitted(entry: Entry, kind, design, fit: str) -> EntryResult:
     built, band, nominal = fitted_pair(entry.spec, entry.printer, fit, design, None)
     mating = meshing_record(nominal)
     band = {"checked": True, "tooth_clearance_mm": 0.0, **band}
-    report = {**_report(kind, built, mating), "tolerance": band}
+    report = {**_report(kind, built, mating, band.get("fit")), "tolerance": band}
     try:
         require_fit_met(band, remedy=PROFILE_FIT_REMEDY)
         require_printable_teeth(built)    # on the printer it was drawn for: no tooth clearance

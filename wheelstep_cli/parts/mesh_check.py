@@ -150,6 +150,10 @@ def meshing_lines(summary: dict) -> list[str]:
         lines.append(flank_line(side, summary[side], summary.get("law_hub_speed_ripple_pct", 0.0), speed))
     if "mounting" in summary:
         lines.append(mounting_line(summary["mounting"]))
+    if "bounds" in summary:
+        from wheelstep_cli.parts.bound_figures import bounds_line
+
+        lines.append(bounds_line(summary["bounds"]))
     lines.append(f"diagnostic: pointwise {speed} ripple {figure_text(summary['diagnostic_pointwise_ripple_pct'], '.2f')} % "
                  f"(drive side, grows with the sampling; the law alone: "
                  f"{summary['law_hub_speed_ripple_pct']:.2f} %)")

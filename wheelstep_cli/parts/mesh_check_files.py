@@ -12,6 +12,7 @@ import numpy as np
 
 from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.gears.meshing import MeshingReport
+from wheelstep_cli.parts.bound_figures import bounds_verdict
 from wheelstep_cli.parts.gear_pair import (GearPairSpec, design_law, generation_law, installed_distance,
                                           law_record)
 
@@ -228,6 +229,7 @@ def run_written_pair_check(check: WrittenPairCheck, outlines: tuple[np.ndarray, 
     record = {**law_record(check.spec, law), "blend_deg": check.spec.blend}
     summary = {"pinion": str(check.pinion), "wheel": str(check.wheel), "law": record,
                **report.to_dict()}
+    summary["bounds"] = bounds_verdict(summary)
     return report, summary
 
 
@@ -260,4 +262,7 @@ def run_plate_pair_check(pair, samples: int | None, window: float | None,
     check.validate()
     require_poses_per_tooth(samples, int(pair.spec.z), design_law(pair.spec))
     report, summary = run_written_pair_check(check, plate_pair_outlines(pair), progress)
+    if pair.inset:
+        summary["outline_inset_mm"] = pair.inset
+        summary["bounds"] = bounds_verdict(summary, inset=pair.inset)
     return report, {"pair": pair.pair, "distance_mm": installed_distance(pair.spec), **summary}

@@ -25,6 +25,7 @@ class PlatePair:
     wheel: MeshObject
     files: tuple[str, str]     # the files holding the pinion and the wheel
     spec: GearPairSpec
+    inset: float = 0.0         # mm a fit drew both tooth outlines smaller (metadata outline_inset)
 
 
 def is_plate_input(pinion: str, wheel: str | None) -> bool:
@@ -104,7 +105,18 @@ def _plate_pair(pair: str, group: dict[str, tuple[str, MeshObject]]) -> PlatePai
         raise DesignError("wheel", w_file, f"carries another design than the pinion of pair '{pair}'")
     spec = spec_from_metadata(design, p_file)
     require_plate_law_csv(spec, pinion.metadata, p_file)
-    return PlatePair(pair, pinion, wheel, (p_file, w_file), spec)
+    return PlatePair(pair, pinion, wheel, (p_file, w_file), spec, _inset(pinion.metadata, p_file))
+
+
+def _inset(metadata: dict[str, str], file: str) -> float:
+    """The fit's inset (mm) a gear's metadata states, 0 when none."""
+    text = metadata.get("outline_inset", "0")
+    try:
+        inset = float(text)
+    except ValueError:
+        inset = -1.0
+    require(inset >= 0.0, "pinion", file, f"metadata outline_inset = {text}: must be a length >= 0 mm")
+    return inset
 
 
 def spec_from_metadata(values: dict[str, str], file: str) -> GearPairSpec:

@@ -176,6 +176,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     from wheelstep_cli.cli.commands.gears_checks import (checked_pair, collisions_first, printable_or_remedied,
                                                          require_height_first, warn_of_the_figures)
     from wheelstep_cli.cli.progress import with_progress
+    from wheelstep_cli.parts.bound_figures import bounds_verdict
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
     from wheelstep_cli.parts.mesh_check import speed_words
@@ -186,6 +187,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     printable_or_remedied(pair, spec, printer, show, band, bed)
     if tolerance is not None:
         record["tolerance"] = tolerance
+    record["bounds"] = bounds_verdict(record, (tolerance or {}).get("fit"))
     files = {**gear_pair_files(pair, out, fmt, record),
              **with_progress(extras.step and not show.quiet, "STEP solids", export_files, pair,
                              extras, out)}
@@ -260,6 +262,7 @@ def _clearance_text(pair) -> str:
 
 def _gears_lines(pair, record: dict) -> list[str]:
     """Both parts, the generated teeth and the meshing check's figures of both flanks."""
+    from wheelstep_cli.parts.bound_figures import bounds_line
     from wheelstep_cli.parts.mesh_check import figure_text, flank_line, mounting_line, speed_words
 
     lines = []
@@ -287,6 +290,8 @@ def _gears_lines(pair, record: dict) -> list[str]:
     lines.extend(f"  {flank_line(side, record[side], own, speed)}" for side in ("drive", "coast"))
     if "mounting" in record:
         lines.append(f"  {mounting_line(record['mounting'])}")
+    if "bounds" in record:
+        lines.append(f"  {bounds_line(record['bounds'])}")
     if "tolerance" in record:
         from wheelstep_cli.parts.tolerance_cli import tolerance_lines
 
