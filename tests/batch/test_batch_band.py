@@ -42,6 +42,9 @@ def test_batch_records_the_band_per_case_and_names_a_printer_without_one(cli, tm
     assert "least backlash -" not in warning and "insets the tooth outlines until the band clears" in warning
     # the advice does not promise what --fit auto may refuse
     assert "says so when none within its limits does" in warning
+    assert "`gears --slice` checks the pair as PrusaSlicer prints it" in warning
+    # each pair's report says it meshes within the bounds, judged on the meshes written
+    assert report["meshing"]["bounds"]["within"] is True and report["meshing"]["bounds"]["broken"] == []
     assert "has no dimensional band: add a `band:` section" in result.stderr
     # the bare printer's pair alone: nothing jams, but it was never checked over a band
     alone = write(tmp_path / "alone.yaml", "parts:\n"
@@ -124,3 +127,14 @@ def test_a_printer_band_with_a_fit_has_batch_inset_its_gear_pairs_to_the_band(cl
     written = [meta for plate in sorted((tmp_path / "g").glob("*.3mf")) for meta in object_metadata(plate).values()]
     assert written and all(abs(float(meta["wheelstep:outline_inset"]) - band["fit"]["inset_mm"]) < 1e-9
                            for meta in written)
+
+
+def test_a_resin_pair_jamming_over_its_band_is_not_sent_to_the_fdm_read_back(cli, tmp_path):
+    """`gears --slice` reads back FDM G-code and refuses a resin printer: a resin pair's jam
+    warning offers the fit alone."""
+    batch = write(tmp_path / "resin.yaml", "parts:\n  - name: rgears\n    kind: gear-pair\n"
+                  "    design: desk-demo\n    printer: resin-0.05-standard\n")
+    result = cli("batch", batch, "--out", tmp_path / "out", "--jobs", "1")
+    assert result.exit_code == 0, result.stderr
+    warning = next(l for l in result.stderr.splitlines() if "rgears jams over the band" in l)
+    assert "--slice" not in warning and "`fit: auto` in the printer profile's band section" in warning

@@ -286,3 +286,39 @@ def test_a_sampling_that_cannot_work_is_refused_before_the_gcode_is_read(cli, sl
     folder, _ = sliced
     line = error_line(cli("mesh-check", "--gcode", folder / "gears-1.gcode", option, value))
     assert line.startswith(f"wheelstep: error: {option} = {value}: {limit}"), line
+
+
+def _plates_for_printer(folder: Path, into: Path, printer: str) -> Path:
+    """A copy of the sliced folder whose plates say they were written for ``printer``."""
+    import shutil
+    import zipfile
+
+    shutil.copytree(folder, into)
+    for plate in into.glob("*.3mf"):
+        with zipfile.ZipFile(plate) as zf:
+            parts = {info: zf.read(info.filename) for info in zf.infolist()}
+        with zipfile.ZipFile(plate, "w", zipfile.ZIP_DEFLATED) as zf:
+            for info, data in parts.items():
+                if info.filename.endswith(".model"):
+                    data = data.replace(b'name="wheelstep:printer">fdm-0.4-pla<',
+                                        f'name="wheelstep:printer">{printer}<'.encode())
+                    assert printer.encode() in data
+                zf.writestr(info, data)
+    return into
+
+
+def test_the_band_checked_is_the_one_of_the_printer_the_plates_were_written_for(cli, sliced, tmp_path):
+    """Without --printer, --tolerance checks the band of the printer the plates name (it took
+    the default printer's band for a PETG plate); a plate printer whose profile is not found
+    is refused naming --printer; --printer given still chooses."""
+    folder = _plates_for_printer(sliced[0], tmp_path / "petg", "fdm-0.4-petg")
+    gcode = ["--gcode", folder / "gears-1.gcode", "--gcode", folder / "gears-2.gcode"]
+    code, summary = _run_json("mesh-check", *gcode, "--tolerance", "--samples", "256", "--json")
+    assert code == 0 and summary["tolerance"]["printer"] == "fdm-0.4-petg", summary
+    code, summary = _run_json("mesh-check", *gcode, "--tolerance", "--printer", "fdm-0.4-pla",
+                              "--samples", "256", "--json")
+    assert code == 0 and summary["tolerance"]["printer"] == "fdm-0.4-pla", summary
+    lost = _plates_for_printer(sliced[0], tmp_path / "lost", "my-printer")
+    line = error_line(cli("mesh-check", "--gcode", lost / "gears-1.gcode", "--gcode", lost / "gears-2.gcode",
+                          "--tolerance"))
+    assert "the plates were written for printer 'my-printer'" in line and "(--printer PROFILE)" in line, line

@@ -27,7 +27,7 @@ _UNITS_MM = {"micron": 1e-3, "millimeter": 1.0, "centimeter": 10.0, "inch": 25.4
 class MeshObject:
     """One build item of a 3MF: the object's mesh in its own frame (mm), the item's transform
     (4 x 3, row vectors: placed = [x y z 1] @ transform) and the object's metadata (names
-    without the ``wheelstep:`` prefix)."""
+    without the ``wheelstep:`` prefix; ``printer``: the plate's, unless the object names one)."""
 
     name: str
     vertices: np.ndarray
@@ -115,12 +115,15 @@ def _objects_of(root) -> list[MeshObject]:
     if scale is None:
         raise ValueError(f"unknown unit {root.get('unit')!r}")
     ns = {"m": _CORE_NS}
+    # the printer a plate was laid out for is the model's: each object carries it too
+    model = {m.get("name", ""): (m.text or "") for m in root.iterfind("m:metadata", ns)}
+    plate = {"printer": model["wheelstep:printer"]} if model.get("wheelstep:printer") else {}
     meshes = {}
     for obj in root.iterfind("m:resources/m:object", ns):
         mesh = obj.find("m:mesh", ns)
         if mesh is not None:
-            meta = {m.get("name", "").removeprefix("wheelstep:"): (m.text or "")
-                    for m in obj.iterfind("m:metadatagroup/m:metadata", ns)}
+            meta = {**plate, **{m.get("name", "").removeprefix("wheelstep:"): (m.text or "")
+                                for m in obj.iterfind("m:metadatagroup/m:metadata", ns)}}
             meshes[obj.get("id")] = (obj.get("name") or f"object {obj.get('id')}", mesh, meta)
     items = [(i.get("objectid"), i.get("transform")) for i in root.iterfind("m:build/m:item", ns)]
     items = [i for i in items if i[0] in meshes] or [(oid, None) for oid in meshes]

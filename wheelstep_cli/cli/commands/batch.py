@@ -128,7 +128,10 @@ def _bands(outcome) -> list[dict]:
 
 def _band_warnings(show: Output, outcome) -> None:
     """One stderr line per gear pair that jams over its band or whose printer has none."""
+    # PrusaSlicer's read-back is of FDM G-code: a resin printer's pair is not offered it
+    resin = {e.name for e in outcome.built if getattr(e.printer, "technology", None) == "resin"}
     for band in _bands(outcome):
+        slice_words = "" if band["entry"] in resin else "`gears --slice` checks the pair as PrusaSlicer prints it, and "
         if not band["checked"]:
             show.warning(f"{band['entry']}: {band['note']}")
         elif band["jams"]:
@@ -136,8 +139,7 @@ def _band_warnings(show: Output, outcome) -> None:
             # a jammed case's backlash is an estimate where rigid teeth cannot go
             shown = "" if least is None or least <= 0.0 else f" (least backlash {least:.3f} mm)"
             show.warning(f"WARNING: {band['entry']} jams over the band of {band['printer']}{shown}: "
-                         "its report's tolerance section says in which case and how deep; "
-                         "`gears --slice` checks the pair as PrusaSlicer prints it, and "
+                         f"its report's tolerance section says in which case and how deep; {slice_words}"
                          "`fit: auto` in the printer profile's band section insets the tooth "
                          "outlines until the band clears (it says so when none within its limits does)")
 

@@ -17,7 +17,8 @@ from wheelstep_cli.cli.output import Output
 Plot = plot_option("the transfer function, the position error of both flanks and hub speed")
 BandPrinter = Annotated[Optional[str], opt(
     "--printer", help="Printer profile (a name in profiles/ or a YAML path) whose dimensional "
-                      "band --tolerance checks.", shown="the default printer")]
+                      "band --tolerance checks.",
+    shown="with --gcode, the printer its plates were written for; else the default printer")]
 Gcode = Annotated[Optional[List[Path]], opt(
     "--gcode", help="Check the pair as PrusaSlicer prints it: G-code of the pair (one plate, or "
                     "repeat --gcode for the files of both plates). The external perimeter of the "

@@ -31,6 +31,8 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     found = _designs(plates, gcode, pair, design, (samples, window))
     require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID), "
                                              "one of " + ", ".join(f"'{p.pair}'" for p in found))
+    if band[0] and band[1] is None:
+        chosen = _plate_printer(found[0], chosen)
     report, summary, read = with_progress(not quiet, "G-code read-back", run_gcode_check, gcode,
                                           found[0], samples, window)
     if chosen is not None:
@@ -93,3 +95,21 @@ def _rest(summary: dict, tolerance_lines) -> list[str]:
 
     return meshing_lines(summary) + (tolerance_lines(summary["tolerance"]) if "tolerance" in summary
                                      else [])
+
+
+def _plate_printer(pair, default):
+    """The printer whose band --tolerance checks when --printer is not given: the one the
+    plates were written for (their ``printer`` metadata), else ``default``; a plate's printer
+    whose profile is not found is refused (its band is not the default printer's)."""
+    from wheelstep_cli.config.profiles import load_printer_profile
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.tolerance_cli import band_printer
+
+    name = pair.pinion.metadata.get("printer")
+    if not name:
+        return default
+    try:
+        return band_printer(load_printer_profile(name))
+    except DesignError as err:
+        raise DesignError("printer", "none", f"the plates were written for printer '{name}', whose profile "
+                                             f"is not found ({err.limit}): name it (--printer PROFILE)") from None
