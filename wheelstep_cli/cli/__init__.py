@@ -9,6 +9,7 @@ a report, ``--json``; where it writes files, ``--dry-run``.
 from __future__ import annotations
 
 import atexit
+import re
 import signal
 import sys
 import warnings
@@ -166,19 +167,23 @@ _NUMBER_KINDS = (("valid integer", "must be a whole number"), ("valid number", "
 
 
 def bad_number_text(err: click_errors.UsageError, argv: list[str]) -> str | None:
-    """One line for a number option whose value is not a number of its kind: the flag as
-    typed, the value and what it must be, with the option's limit when the models state one
-    (``--z = 1e9: must be a whole number, 6..240 (pinion teeth)``); None for other errors."""
+    """One line for a number option whose value is not a number of its kind, or a choice
+    option's value not among its choices: the flag as typed, the value and what it must be,
+    with a number's limit when the models state one (``--z = 1e9: must be a whole number,
+    6..240 (pinion teeth)``); None for other errors."""
     param = getattr(err, "param", None)
     message = err.format_message()
     kind = next((words for said, words in _NUMBER_KINDS if said in message), None)
+    choices = re.search(r"is not one of (.+?)\.?$", message)      # a choice option's words
+    if kind is None and choices:
+        kind = "must be one of " + choices.group(1).replace("'", "")
     if param is None or kind is None or not getattr(param, "opts", None):
         return None
     given = _flag_values(set(param.opts) | set(getattr(param, "secondary_opts", [])), argv)
     if not given:
         return None
     typed = given[-1]
-    return f"{typed[0]} = {typed[1] or repr('')}: {_with_limit(kind, param.name or '')}"
+    return f"{typed[0]} = {typed[1] or repr('')}: {kind if choices else _with_limit(kind, param.name or '')}"
 
 
 def _number_kind(param) -> str | None:

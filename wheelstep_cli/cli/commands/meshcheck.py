@@ -106,6 +106,10 @@ def _plates_given(pinion: str | None, wheel: str | None) -> bool:
                                       "plate, or --gcode FILE")
     if wheel is None and not split_mesh_spec(pinion)[0].is_file():
         raise DesignError("pinion", pinion, file_problem(split_mesh_spec(pinion)[0]))
+    for given in (pinion, wheel):
+        if given is not None and str(given).lower().endswith(".gcode"):
+            raise DesignError("pinion" if given == pinion else "wheel", given,
+                              "is G-code, not a mesh: read it back with --gcode FILE.gcode")
     plates = is_plate_input(pinion, wheel)
     if wheel is None and not plates:
         raise click_errors.UsageError(f"Missing argument 'WHEEL': {pinion} is one gear; give the wheel "
