@@ -55,6 +55,8 @@ def test_gears_slice_writes_gcode_beside_the_plates_and_finds_the_print_meshing(
 
     assert "as printed the pair meshes over one wheel turn, 4 law periods: every printed tooth meets " \
            "all it will meet; backlash" in slice_lines(readback)[0]
+    # the G-code names no machine: it is not to be sent to a printer as it is
+    assert "print the 3MF plate with your printer's own PrusaSlicer profile" in slice_lines(readback)[1]
     assert readback["backlash_min_mm"] > 0
     # the wheel (208 mm) has a plate of its own; each printed gear lies on its drawn outline
     assert readback["gcode"]["wheel"]["gcode"] == "gears-1.gcode"

@@ -109,6 +109,8 @@ def slice_lines(record: dict) -> list[str]:
     verdict = "meshes" if record["meshes"] else "DOES NOT MESH (interference or lost contact)"
     return [f"sliced ({record['slicer']}): {', '.join(record['gcode_files'])}; as printed the pair {verdict} "
             f"over {cycle_words(record['cycle'])}; backlash {_mm(record['backlash_min_mm'])}..{_mm(record['backlash_max_mm'])} mm",
+            "  the G-code is sliced with the printer profile's settings, with no machine's start G-code: it is "
+            "for this check; print the 3MF plate with your printer's own PrusaSlicer profile",
             *(f"  {line}" for line in gcode_lines(record)),
             *(f"  printed {flank_line(side, record[side], record.get('law_hub_speed_ripple_pct', 0.0))}"
               for side in ("drive", "coast"))]
