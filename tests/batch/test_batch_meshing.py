@@ -198,7 +198,7 @@ def test_a_pair_too_large_for_its_bed_is_offered_the_pair_drawn_smaller_that_the
     result = cli("batch", batch, "--out", tmp_path / "out", "--jobs", "1")
     assert result.exit_code == 1
     assert "does not fit the bed of printer 'resin-0.05-standard'" in result.stderr, result.stderr
-    found = re.search(r"; not built; use overrides \{install_distance: ([0-9.]+)\} \(the pair at", result.stderr)
+    found = re.search(r"; not built; use overrides \{install_distance: ([0-9.]+)\} \(the pair drawn at", result.stderr)
     assert found, result.stderr
     fixed = write(tmp_path / "fixed.yaml", entry + f"    overrides: {{install_distance: {found.group(1)}}}\n")
     applied = cli("batch", fixed, "--out", tmp_path / "fixed", "--jobs", "1")

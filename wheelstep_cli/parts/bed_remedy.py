@@ -55,12 +55,12 @@ def scaled_to_bed(build: Callable, design, verify: Callable | None):
             raise
         options, factor = scaled_options(design, scale)
         if verify is None:
-            raise err.with_advice(f"try {as_flags(options)} (the pair at {factor:.0%} of its size; not built)",
+            raise err.with_advice(f"try {as_flags(options)} (the pair drawn at {_percent(factor)} of its size; not built)",
                                   options) from None
         found, tried = _smaller_pair(design, options, verify)
         if found is None:
             raise err.with_advice(f"{no_remedy(tried)}: a printer with a larger bed (--printer)", {}) from None
-        raise err.with_advice(f"use {as_flags(found)} (the pair at {factor:.0%} of its size, which the bed "
+        raise err.with_advice(f"use {as_flags(found)} (the pair drawn at {_percent(factor)} of its size, which the bed "
                               "holds)", found) from None
 
 
@@ -81,3 +81,8 @@ def _smaller_pair(design, options: dict, verify: Callable) -> tuple[dict | None,
         # a refusal of the build (teeth too thin) with a remedy of its own: built here
         found, more, _ = verified_remedy(smaller, own, verify, MeshBounds()) if own else ({}, [], [])
         return ({**options, **found} if found else None), [*tried, *more]
+
+
+def _percent(factor: float) -> str:
+    """A size factor as a refusal says it: whole per cent, or tenths when that would say 100 %."""
+    return f"{100 * factor:.0f} %" if factor < 0.995 else f"{100 * factor:.1f} %"
