@@ -15,7 +15,7 @@ from wheelstep_cli.parts.mesh_bounds import bound_violations
 
 def remedy_options(line: str) -> list[str]:
     """The options after the refusal's final ``use``."""
-    return line.rsplit("; use ", 1)[1].split()
+    return line.rsplit("; use ", 1)[1].split(" (")[0].split()
 
 
 # the desk demonstrator as it was (z 24, j_n 0.375 mm), the source design with z = 32, and with
@@ -100,7 +100,7 @@ def test_teeth_too_thin_for_the_printer_are_refused_with_a_remedy_that_prints(cl
     assert line.startswith("wheelstep: error: --z = 44: the teeth are too thin for printer "
                            "'fdm-0.4-pla' (tip land under two 0.4 mm extrusion lines; pinion: ")
     assert "nothing written" in line and not out.exists()
-    remedy = line.rsplit("; use ", 1)[1].split()[:2]
+    remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()[:2]
     assert remedy == ["--z", "42"]
     result = cli("gears", *with_remedy(design, remedy), "--printer", "fdm-0.4-pla", "--out", out)
     assert result.exit_code == 0, result.stderr
@@ -117,7 +117,7 @@ def test_thin_teeth_far_from_printable_are_offered_the_largest_count_that_prints
     design = ["--z", "104", "--thickness", "2", "--printer", "fdm-0.4-pla", "--format", "stl"]
     line = error_line(cli("gears", *design, "--out", out))
     assert line.startswith("wheelstep: error: --z = 104: the teeth are too thin for printer"), line
-    remedy = line.rsplit("; use ", 1)[1].split()[:2]
+    remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()[:2]
     assert remedy[0] == "--z" and int(remedy[1]) < 104 - 2 * 6, line
     result = cli("gears", *with_remedy(design, remedy), "--out", out)
     assert result.exit_code == 0, result.stderr
@@ -135,7 +135,7 @@ def test_thin_teeth_under_a_fit_are_refused_with_a_tooth_count_that_keeps_its_ti
     line = error_line(cli("gears", *design, "--out", out))
     assert line.startswith("wheelstep: error: --z = 42: the teeth are too thin for printer 'fdm-0.4-pla'")
     assert "nothing written" in line and not out.exists()
-    remedy = line.rsplit("; use ", 1)[1].split()[:2]
+    remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()[:2]
     assert remedy[0] == "--z" and int(remedy[1]) < 42
     result = cli("gears", *with_remedy(design, remedy), "--json", "-q", "--out", out)
     assert result.exit_code == 0, result.stderr
@@ -291,7 +291,7 @@ def test_more_teeth_on_a_given_module_keep_the_size_asked_for_and_the_bed(cli, t
     line = error_line(result)
     assert result.exit_code == 2 and line.startswith("wheelstep: error: --z = 24: the pair would mesh "
                                                      "outside the bounds"), line
-    remedy = line.rsplit("; use ", 1)[1].split()
+    remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()
     options = dict(zip(remedy[::2], map(float, remedy[1::2])))
     assert options["--z"] > 24 and options["--module"] == pytest.approx(4 * 24 / options["--z"], abs=1e-3)
     out = tmp_path / "fixed"
@@ -312,7 +312,7 @@ def test_a_remedy_changes_only_what_it_must(cli, tmp_path, given, expect):
     result = cli("gears", *given, "--format", "stl", "--out", tmp_path / "out")
     line = error_line(result)
     assert result.exit_code == 2 and "the pair would mesh outside the bounds" in line, line
-    remedy = line.rsplit("; use ", 1)[1].split()
+    remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()
     assert remedy[::2] == expect, line
     written = cli("gears", *with_remedy(given, remedy), "--format", "stl", "--out", tmp_path / "fixed")
     assert written.exit_code == 0, written.stderr

@@ -86,7 +86,8 @@ def require_within_bounds(pair, record: dict, bounds: MeshBounds = MeshBounds(),
         # a sweep's row: no build per refused point, so the remedy is what the figures point to
         advice = f"try {as_flags(remedy)} (from the figures; not built)"
     elif remedy:
-        advice = f"use {as_flags(remedy)}"
+        # a remedy found after refused tries says why it is not the first one
+        advice = f"use {as_flags(remedy)}" + (f" (tried first: {'; '.join(tried)})" if tried else "")
     else:
         found = no_remedy(tried) if tried else f"no tooth count up to {MAX_TEETH} brings it within them"
         advice = change_advice(design, found) + _fit_hint(pair, broken)
@@ -265,8 +266,12 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
             if getattr(err, "beyond_printer", None) and design.module is not None and not sized:
                 sized = True    # the module given outgrows the printer: the size asked for is kept
                 continue
-            # a refusal with a remedy of its own (teeth too thin: fewer teeth) is followed too
-            candidate = {**candidate, **(getattr(err, "remedy", None) or {})}
+            # a refusal with a remedy of its own (teeth too thin: fewer teeth) is followed too;
+            # the play chosen for the count it leaves goes with that count
+            own = getattr(err, "remedy", None) or {}
+            if own.get("z", candidate.get("z")) != candidate.get("z"):
+                candidate = {name: value for name, value in candidate.items() if name != "backlash"}
+            candidate = {**candidate, **own}
             continue
         broken = bound_violations(record, bounds)
         if not broken:

@@ -85,7 +85,7 @@ def test_module_solves_the_centre_distance_and_changes_the_teeth(cli, tmp_path):
     # at z = 48 the module's pair meshes outside the bounds: refused with more teeth as the
     # remedy, which is applied as given
     refused = cli("gears", "--module", "2.5", "--format", "stl", "--out", tmp_path)
-    remedy = error_line(refused).rsplit("; use ", 1)[1].split()
+    remedy = error_line(refused).rsplit("; use ", 1)[1].split(" (")[0].split()
     assert remedy[0] == "--z"
     result = cli("gears", "--module", "2.5", *remedy, "--format", "stl", "--out", tmp_path)
     assert result.exit_code == 0, result.stderr
