@@ -160,6 +160,20 @@ def test_a_fits_remedies_are_built_with_the_fit_and_do_not_go_round(cli, tmp_pat
     assert result.exit_code == 0, result.stderr
 
 
+def test_a_count_a_tries_refusal_changes_keeps_no_play_chosen_for_the_old_count(cli, tmp_path):
+    """z 112 on PLA ripples 1.04 %: less play is the first try, refused as teeth too thin for
+    the nozzle with fewer teeth as its remedy; the play chosen for 112 teeth does not follow
+    the count (it offered `--z 62 --backlash 0.011`), the line says what was tried first, and
+    the remedy, applied, is written."""
+    design = ["--z", "112", "--printer", "fdm-0.4-pla", "--format", "stl"]
+    line = error_line(cli("gears", *design, "--out", tmp_path / "out"))
+    assert "; use --z " in line and "(tried first: --backlash " in line, line
+    remedy = remedy_in(line)
+    assert remedy[0] == "--z" and "--backlash" not in remedy, line
+    result = cli("gears", *with_remedy(design, remedy), "--out", tmp_path / "out")
+    assert result.exit_code == 0, result.stderr
+
+
 @seed(13)
 @settings(max_examples=3, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
