@@ -153,18 +153,19 @@ def test_a_pair_too_big_for_the_printer_is_refused_before_the_band(cli, tmp_path
     from wheelstep_cli.config.profiles import load_printer
 
     room = min(load_printer("resin-0.05-standard").bed) - 2 * load_printer("resin-0.05-standard").edge_margin
-    checked, check = [], mesh_check.check_gear_pair
-
-    def no_check(*args, **kwargs):
-        raise AssertionError("the pair was checked before the bed refused the part")
+    checked, check, case = [], mesh_check.check_gear_pair, fit.check_case
 
     def on_the_bed_only(pair, *args, **kwargs):
         checked.append(float(np.ptp(pair.wheel.vertices[:, :2], axis=0).max()))
         assert checked[-1] <= room, "a pair larger than the bed was checked"
         return check(pair, *args, **kwargs)
 
-    monkeypatch.setattr(fit, "check_case", no_check)
-    monkeypatch.setattr(tolerance_cli, "check_case", no_check)
+    def case_on_the_bed_only(sections, *args, **kwargs):    # a fit's or a band's case (the remedy's)
+        assert float(np.ptp(sections.wheel, axis=0).max()) <= room, "a band of a pair larger than the bed was checked"
+        return case(sections, *args, **kwargs)
+
+    monkeypatch.setattr(fit, "check_case", case_on_the_bed_only)
+    monkeypatch.setattr(tolerance_cli, "check_case", case_on_the_bed_only)
     monkeypatch.setattr(mesh_check, "check_gear_pair", on_the_bed_only)
     args = ["gears", "--printer", "resin-0.05-standard", *option]
     line = error_line(cli(*args, "--out", tmp_path / "o"))

@@ -77,7 +77,7 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
             # holds is refused for its size, not for figures its remedies could not cure
             # with the pair drawn smaller as the remedy when that one fits and meshes
             scaled_to_bed(lambda: require_pair_on_bed(built, entry.printer), entry.spec,
-                          remedy_check(printer, bed=printer))
+                          remedy_check(printer, bed=printer) if fit is None else _fit_check(entry, fit, printer))
         mating = kind.mating_check(built) if kind.mating_check is not None else None
         result = EntryResult(entry.index, _parts(kind, built), _report(kind, built, mating), mating=mating)
         refused = _refused(entry, built, result, printer) or _out_of_bounds(entry, built, result, printer)
@@ -115,6 +115,26 @@ def _report(kind, built, mating: dict | None, fit: dict | None = None) -> dict:
     if mating is not None:
         report["meshing"] = {**mating, "bounds": bounds_verdict(mating, fit)}
     return report
+
+
+def _fit_check(entry: Entry, fit: str, printer):
+    """``verify(design)`` -> (design pair, its meshing record) for a remedy of an entry whose
+    printer's band names a ``fit``: the design built for ``printer`` (without the tooth
+    clearance) on the entry printer's bed, then fitted as :func:`_fitted` fits it, refused
+    (DesignError) where that refuses it (the fit not met, teeth the inset left too thin)."""
+    from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
+    from wheelstep_cli.parts.printed_teeth import require_printable_teeth
+    from wheelstep_cli.parts.tolerance_cli import fitted_pair
+
+    design_check = remedy_check(printer, bed=entry.printer)
+
+    def verify(design):
+        pair, record = design_check(design)
+        fitted, band, _ = fitted_pair(design, entry.printer, fit, pair, None)
+        require_fit_met(band, remedy=PROFILE_FIT_REMEDY)
+        require_printable_teeth(fitted)
+        return pair, record
+    return verify
 
 
 def _printer_fit(entry: Entry) -> str | None:

@@ -135,7 +135,7 @@ def build_point(point: Point):
     from wheelstep_cli.parts.bed_remedy import scaled_to_bed
 
     built, band, nominal = scaled_to_bed(lambda: band_pair(point.spec, point.printer, point.tolerance, point.printer),
-                                         point.spec, None)
+                                         point.spec, None, unbuilt=True)
     record = meshing_record(nominal if nominal is not None else check_gear_pair(built))
     if band is not None:
         record["tolerance"] = band

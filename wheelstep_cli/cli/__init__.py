@@ -174,7 +174,7 @@ def bad_number_text(err: click_errors.UsageError, argv: list[str]) -> str | None
     param = getattr(err, "param", None)
     message = err.format_message()
     kind = next((words for said, words in _NUMBER_KINDS if said in message), None)
-    choices = re.search(r"is not one of (.+?)\.?$", message)      # a choice option's words
+    choices = re.search(r"is not (?:one of )?('.+?)\.?$", message)      # a choice option's words
     if kind is None and choices:
         kind = "must be one of " + choices.group(1).replace("'", "")
     if param is None or kind is None or not getattr(param, "opts", None):

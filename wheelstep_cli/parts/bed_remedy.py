@@ -38,49 +38,69 @@ def scaled_options(design, scale: float) -> tuple[dict, float]:
     return options, factor
 
 
-def scaled_to_bed(build: Callable, design, verify: Callable | None):
+def scaled_to_bed(build: Callable, design, verify: Callable | None, unbuilt: bool = False):
     """``build()``, or when a gear of ``design`` (generated teeth) is too large for the bed
     (its refusal carries ``bed_scale``), that refusal with the pair drawn smaller as its
-    remedy once ``verify`` (mesh_bounds.remedy_check) builds that pair on the bed and within
-    the bounds, or with the remedy the smaller pair's own refusal offers (its teeth at that
-    size: the search keeps the size); else what the tries gave. Without ``verify`` (a sweep's
-    row) the smaller pair is said as a try, not built."""
+    remedy once ``verify(design)`` -> (pair, meshing record) (mesh_bounds.remedy_check, or a
+    command's whole check, which refuses what it does not write) finds that pair on the bed,
+    meshing and within the bounds, or with the remedy the smaller pair's own refusal offers,
+    built the same way (its teeth at that size: the search keeps the size); else what the
+    tries gave. ``unbuilt`` (a sweep's row): the smaller pair said as a try, not built;
+    without ``verify`` (a remedy's own try) the refusal as it is."""
     from wheelstep_cli.config.specs import Teeth
 
     try:
         return build()
     except DesignError as err:
         scale = getattr(err, "bed_scale", None)
-        if scale is None or design.teeth != Teeth.generated or getattr(err, "remedy", None):
+        if (scale is None or design.teeth != Teeth.generated or getattr(err, "remedy", None)
+                or (verify is None and not unbuilt)):
             raise
         options, factor = scaled_options(design, scale)
-        if verify is None:
-            raise err.with_advice(f"try {as_flags(options)} (the pair drawn at {_percent(factor)} of its size; not built)",
-                                  options) from None
-        found, tried = _smaller_pair(design, options, verify)
+        if unbuilt:
+            raise err.with_advice(f"try {as_flags(options)} (the pair drawn at {_percent(factor)} of its size; "
+                                  "not built)", options) from None
+        found, tried, factor = _smaller_pair(design, options, factor, verify)
         if found is None:
             raise err.with_advice(f"{no_remedy(tried)}: a printer with a larger bed (--printer)", {}) from None
-        raise err.with_advice(f"use {as_flags(found)} (the pair drawn at {_percent(factor)} of its size, which the bed "
-                              "holds)", found) from None
+        raise err.with_advice(f"use {as_flags(found)} (the pair drawn at {_percent(factor)} of its size, which "
+                              "the bed holds)", found) from None
 
 
-def _smaller_pair(design, options: dict, verify: Callable) -> tuple[dict | None, list[str]]:
-    """(the options that draw ``design`` smaller, with the remedy a refusal of that pair offers
-    (its bounds' remedy is built and checked by its own search), or None; what the tries gave)."""
-    from wheelstep_cli.parts.mesh_bounds import MeshBounds, require_within_bounds, verified_remedy
+def _smaller_pair(design, options: dict, factor: float, verify: Callable
+                  ) -> tuple[dict | None, list[str], float]:
+    """(the options that draw ``design`` smaller, with the remedy its refusal offers, or None;
+    what the tries gave; the size factor). A smaller pair still off the bed (the printer's
+    fixed compensations do not scale) is drawn smaller once more by its own refusal's scale."""
+    from wheelstep_cli.config.schema import build
+    from wheelstep_cli.parts.mesh_bounds import MeshBounds, bound_violations, require_within_bounds, verified_remedy
 
-    smaller = design.model_copy(update=options)
+    for attempt in range(2):
+        try:
+            smaller = build(type(design), {**design.model_dump(), **options})
+            pair, record = verify(smaller)
+            break
+        except DesignError as refusal:
+            tried = [f"{as_flags(options)} is refused: {refusal.cause}"]
+            if getattr(refusal, "bed_scale", None) and attempt == 0:
+                options, factor = scaled_options(design, factor * refusal.bed_scale)
+                continue
+            own = getattr(refusal, "remedy", None) or {}
+            # a refusal's own remedy (fewer teeth, less play) is built before it is offered
+            found, more, _ = verified_remedy(smaller, own, verify, MeshBounds()) if own else ({}, [], [])
+            return ({**options, **found} if found else None), [*tried, *more], factor
+    broken = bound_violations(record)
+    if not broken:
+        return options, [], factor
+    if record["interference"]:
+        return None, [f"{as_flags(options)} is refused: {broken[0]}"], factor
     try:
-        require_within_bounds(*verify(smaller), verify=verify)
-        return options, []
+        require_within_bounds(pair, record, verify=verify)     # its remedy is built by its search
     except DesignError as refusal:
-        own = getattr(refusal, "remedy", None) or {}
         tried = [f"{as_flags(options)} is refused: {refusal.cause}", *getattr(refusal, "tried_words", [])]
-        if own and getattr(refusal, "broken", None) is not None:
-            return {**options, **own}, tried      # the bounds' search built it
-        # a refusal of the build (teeth too thin) with a remedy of its own: built here
-        found, more, _ = verified_remedy(smaller, own, verify, MeshBounds()) if own else ({}, [], [])
-        return ({**options, **found} if found else None), [*tried, *more]
+        own = getattr(refusal, "remedy", None) or {}
+        return ({**options, **own} if own else None), tried, factor
+    return options, [], factor
 
 
 def _percent(factor: float) -> str:

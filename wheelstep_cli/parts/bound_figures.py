@@ -130,28 +130,33 @@ def fit_design_record(record: dict, fit: dict) -> dict:
 def bounds_verdict(record: dict, fit: dict | None = None, bounds: MeshBounds = MeshBounds(),
                    inset: float = 0.0) -> dict:
     """What a report says of the bounds for a meshing ``record``: the bounds, whether the pair
-    is within them and each bound it breaks, judged on the meshes checked or, for a pair a
-    fit inset (``fit``, parts.fit, with an inset), on its design before the inset; ``inset``
-    (mm): meshes a fit drew smaller whose design figures are not at hand (a plate's)."""
+    is within them (``within``) and each bound it breaks, judged on the meshes checked or, for
+    a pair a fit inset (``fit``, parts.fit, with an inset), on its design before the inset.
+    Meshes a fit drew ``inset`` mm smaller whose design figures are not at hand (a plate's) are
+    not judged (``within`` None): their figures carry the print compensation; ``broken`` then
+    lists what those figures break."""
     fitted = fit is not None and bool(fit.get("inset_mm"))
     broken = bound_violations(fit_design_record(record, fit) if fitted else record, bounds)
+    within: bool | None = not broken
     if fitted:
         judged = ("the design before the fit's inset (tolerance.fit.design): the inset is print "
                   "compensation, judged over the printer's band")
     elif inset:
-        judged = (f"the meshes checked, drawn {inset:.3f} mm smaller by a fit (print compensation, "
-                  "in their figures): gears judged the design before the inset")
+        judged, within = (f"not judged: the meshes were drawn {inset:.3f} mm smaller by a fit (print "
+                          "compensation, in their figures); gears judged the design before the inset"), None
     else:
         judged = "the meshes checked"
     return {"F_i_total_um": bounds.total_um, "f_i_tooth_um": bounds.tooth_um,
             "hub_speed_ripple_pct": bounds.ripple_pct,
             "ripple_of": "each flank's band-limited ripple beyond the law's own (law_hub_speed_ripple_pct)",
-            "judged_on": judged, "within": not broken, "broken": broken}
+            "judged_on": judged, "within": within, "broken": broken}
 
 
 def bounds_line(verdict: dict) -> str:
     """One line of a report saying whether the pair meshes within the bounds (:func:`bounds_verdict`)."""
     limits = (f"F'i <= {verdict['F_i_total_um']:g} um, f'i <= {verdict['f_i_tooth_um']:g} um, ripple <= "
               f"{verdict['hub_speed_ripple_pct']:g} % beyond the law's own, both flanks, no interference")
+    if verdict["within"] is None:
+        return f"bounds ({limits}): {verdict['judged_on']}"
     found = "within" if verdict["within"] else f"OUTSIDE ({'; '.join(verdict['broken'])})"
     return f"bounds: {found} ({limits}; judged on {verdict['judged_on']})"

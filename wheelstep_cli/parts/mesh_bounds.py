@@ -127,13 +127,14 @@ def _fit_hint(pair, broken: list[str]) -> str:
             "section), and says the tooth count it then needs")
 
 
-def undercut_checked(build: Callable, design, verify: Callable):
+def undercut_checked(build: Callable, design, verify: Callable | None):
     """``build()``; an undercut refusal (a DesignError with ``undercut`` options) is raised as
-    :func:`verified_undercut` says it: with the remedies ``verify`` built within the bounds."""
+    :func:`verified_undercut` says it: with the remedies ``verify`` built within the bounds
+    (without ``verify``, a remedy's own try, as it is)."""
     try:
         return build()
     except DesignError as err:
-        if not getattr(err, "undercut", None):
+        if not getattr(err, "undercut", None) or verify is None:     # None: a remedy's own try
             raise
         raise verified_undercut(err, design, verify) from None
 

@@ -29,20 +29,20 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
     def checked_remedy(check, trial):
         return with_progress(not show.quiet, "checking the remedy", check, trial)
 
+    # a remedy's try (trying) runs no remedy search of its own: refused, it is no remedy
+    plain = None if trying else remedy_check(printer, checked_remedy, bed)
+    whole = None if trying else whole_check(printer, show, band, bed)
     if band[1] is not None:
         # the design is checked, bounded and refused as without a fit before the search
         # spends a dozen meshing checks on it; the fit's inset is print compensation, judged
         # on the band (the written pair's own figures are the inset outlines')
-        plain = remedy_check(printer, checked_remedy, bed)
         chosen, design = scaled_to_bed(lambda: _on_the_bed(lambda: undercut_checked(
-            lambda: fit_design(spec, printer), spec, plain), printer, True), spec, plain)
+            lambda: fit_design(spec, printer), spec, plain), printer, True), spec, whole)
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
-        design_verify = remedy_check(design.printing.printer, checked_remedy, bed)
+        design_verify = None if trying else remedy_check(design.printing.printer, checked_remedy, bed)
         design_record = _meshing_or_refused(show, design, design_check, allow_interference, design_verify, trying)
-        # a remedy's try needs no remedy search of its own: outside the bounds, it is no remedy;
-        # a remedy is built with its fit: the inset thins the teeth the design's check passed
-        require_within_bounds(design, design_record,
-                              verify=None if trying else whole_check(printer, show, band, bed))
+        # a bounds remedy is built with its fit: the inset thins the teeth the design's check passed
+        require_within_bounds(design, design_record, verify=whole)
         require_printable_teeth(design)
         pair, tolerance, check = with_progress(not show.quiet, f"fitting to the band of {chosen.name}",
                                                fitted_pair, spec, chosen, band[1], design, design_check)
@@ -52,14 +52,13 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         require_fit_met(tolerance, **({} if tolerance["fit"].get("from", "--fit") == "--fit" else
                                       {"remedy": PROFILE_FIT_REMEDY}))
     else:
-        verify = remedy_check(printer, checked_remedy, bed)
         pair, tolerance, check = scaled_to_bed(lambda: _on_the_bed(lambda: undercut_checked(
-            lambda: band_pair(spec, printer, bool(band[0]), bed), spec, verify), printer, False), spec, verify)
+            lambda: band_pair(spec, printer, bool(band[0]), bed), spec, plain), printer, False), spec, whole)
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
-        record = _meshing_or_refused(show, pair, check, allow_interference, verify, trying)
+        record = _meshing_or_refused(show, pair, check, allow_interference, plain, trying)
         try:
-            require_within_bounds(pair, record, verify=None if trying else verify)
+            require_within_bounds(pair, record, verify=plain)
         except DesignError as err:
             raise err if trying else _fit_offered(err, spec, pair, printer, show, bed) from None
     return pair, record, tolerance, check

@@ -107,7 +107,7 @@ def _plates_given(pinion: str | None, wheel: str | None) -> bool:
     if wheel is None and not split_mesh_spec(pinion)[0].is_file():
         raise DesignError("pinion", pinion, file_problem(split_mesh_spec(pinion)[0]))
     for given in (pinion, wheel):
-        if given is not None and str(given).lower().endswith(".gcode"):
+        if given is not None and str(given).lower().endswith((".gcode", ".gco", ".bgcode")):
             raise DesignError("pinion" if given == pinion else "wheel", given,
                               "is G-code, not a mesh: read it back with --gcode FILE.gcode")
     plates = is_plate_input(pinion, wheel)

@@ -43,7 +43,8 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report(summary, lambda: pair_lines(summary, summary["distance_mm"])[:1]
                 + gcode_lines(summary) + _rest(summary, tolerance_lines))
-    warn_band_jams(show, summary.get("tolerance"), band[1])
+    # the fit the warning suggests is to the band checked: the plates' printer when they chose it
+    warn_band_jams(show, summary.get("tolerance"), band[1] or (chosen.given or chosen.name if chosen else None))
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
 
@@ -100,7 +101,7 @@ def _rest(summary: dict, tolerance_lines) -> list[str]:
 def _plate_printer(pair, default):
     """The printer whose band --tolerance checks when --printer is not given: the one the
     plates were written for (their ``printer`` metadata), else ``default``; a plate's printer
-    whose profile is not found is refused (its band is not the default printer's)."""
+    whose profile cannot be used here is refused (its band is not the default printer's)."""
     from wheelstep_cli.config.profiles import load_printer_profile
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.parts.tolerance_cli import band_printer
@@ -109,7 +110,9 @@ def _plate_printer(pair, default):
     if not name:
         return default
     try:
-        return band_printer(load_printer_profile(name))
-    except DesignError as err:
-        raise DesignError("printer", "none", f"the plates were written for printer '{name}', whose profile "
-                                             f"is not found ({err.limit}): name it (--printer PROFILE)") from None
+        profile = load_printer_profile(name)
+    except DesignError as err:      # not found, or a file's problems (config.schema.InvalidInput)
+        why = "; ".join(err.lines()) if hasattr(err, "lines") else err.limit
+        raise DesignError("printer", "none", f"the plates were written for printer '{name}', whose profile cannot "
+                                             f"be loaded here ({why}): name it (--printer PROFILE)") from None
+    return band_printer(profile)    # a profile without a band is told to add one
