@@ -82,7 +82,8 @@ def entry_report_bytes(entry: Entry, result: EntryResult) -> bytes:
                                                   "printed_parameters"),
         "printer_geometry": printer_geometry(entry, result),
         "printed_parts": {p.name: part_summary(p, entry.printer) for p in result.parts},
-        **({"meshing": result.mating} if result.mating is not None else {}),
+        # the meshing record with what the report says of the bounds (as in the design report)
+        **({"meshing": result.report.get("meshing", result.mating)} if result.mating is not None else {}),
         **({"tolerance": result.band} if result.band is not None else {}),
         "design_report": result.report,
     })
