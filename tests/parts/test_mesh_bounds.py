@@ -8,7 +8,7 @@ import pytest
 from wheelstep_cli.gears.generation.play import largest_play, play_angle, play_ripple
 from wheelstep_cli.gears.pitch_curves import pitch_curves
 from wheelstep_cli.parts.gear_pair import GearPairSpec, design_backlash, generation_law, installed_distance
-from wheelstep_cli.parts.mesh_bounds import bound_violations, ripple_teeth_remedy, teeth_remedy
+from wheelstep_cli.parts.mesh_bounds import MeshBounds, bound_violations, ripple_teeth_remedy, teeth_remedy
 
 
 def flank(total=5.0, tooth=4.0, ripple=0.5):
@@ -29,7 +29,44 @@ def test_within_bounds_on_both_flanks_has_no_violation():
 def test_each_flank_and_figure_is_held_to_its_bound(side):
     broken = bound_violations(record(**{side: flank(total=15.5, tooth=10.2, ripple=1.3)}))
     assert len(broken) == 3 and all(text.startswith(f"{side} flank") for text in broken)
-    assert bound_violations(record(**{side: flank(total=None)})) == [f"{side} flank F'i not measured > 15 um"]
+    assert bound_violations(record(**{side: flank(total=None)})) == [f"{side} flank F'i not measured (bound 15 um)"]
+
+
+def test_a_figure_just_over_its_bound_is_shown_over_it():
+    """1.0042 % was shown "1.00 % > 1 %": the decimals that show it over the bound are kept."""
+    assert bound_violations(record(drive=flank(ripple=1.0042))) == ["drive flank band-limited ripple 1.004 % > 1 %"]
+    assert bound_violations(record(coast=flank(total=16.134))) == ["coast flank F'i 16.13 um > 15 um"]
+
+
+@pytest.mark.parametrize("found, passes_from, failed, expect", [
+    (96, 60, [], 60),           # 48 fails, 96 passes: halves to 72 (pass), 60 (pass), 54 (fail)
+    (96, 91, [], 96),           # 72, 84, 90 fail: only the count found passes
+    (96, 50, [{"z": 52}], 56),  # a failed try at 52 is the lower end (figures not monotone in z)
+    (68, 60, [], 60),           # 58 is refused (no count), 62 and 60 pass
+])
+def test_fewest_teeth_halves_the_gap_and_returns_only_a_count_built_within(found, passes_from, failed, expect):
+    """A remedy that adds teeth is followed down to fewer teeth, each count built; a count is
+    returned only if its build was within the bounds (the stub passes from ``passes_from``,
+    except a count a failed try had, and refuses 58)."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.fewest_teeth import fewest_teeth
+
+    built = []
+
+    def verify(trial):
+        built.append(trial.z)
+        if trial.z == 58:
+            raise DesignError("z", 58, "teeth too thin")      # a refused build is no count
+        within = trial.z >= passes_from and trial.z not in [c["z"] for c in failed]
+        return None, record() if within else record(drive=flank(total=20.0))
+
+    design = GearPairSpec(z=48)
+    assert fewest_teeth(design, {"z": found, "backlash": 0.1}, failed, 2, verify, MeshBounds()) == \
+        {"z": expect, "backlash": 0.1}
+    assert len(built) <= 3 and all(z % 2 == 0 for z in built)
+    # nothing to halve: fewer teeth, or a module that sizes the pair with the count
+    assert fewest_teeth(design, {"z": 40}, [], 2, verify, MeshBounds()) == {"z": 40}
+    assert fewest_teeth(GearPairSpec(z=48, module=2.0), {"z": 96}, [], 2, verify, MeshBounds()) == {"z": 96}
 
 
 def test_ripple_bound_is_on_what_the_teeth_add_to_the_laws_own():
@@ -96,8 +133,9 @@ def test_a_remedy_is_offered_once_its_build_is_within_the_bounds():
         return None, record()
 
     error, _ = _refusal(verify)
-    # F'i 18 um against 15: z 32 x sqrt(1.2) (the deviations fall about as 1/z^2), whole periods
-    assert builds == [36] and error.remedy == {"z": 36} and error.limit.endswith("; use --z 36")
+    # F'i 18 um against 15: z 32 x sqrt(1.2) (the deviations fall about as 1/z^2), whole periods;
+    # within, the gap down to the design's count is halved: 34 is built and within too
+    assert builds == [36, 34] and error.remedy == {"z": 34} and error.limit.endswith("; use --z 34")
 
 
 def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what_was_tried():

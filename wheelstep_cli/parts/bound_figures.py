@@ -48,10 +48,20 @@ def bound_violations(record: dict, bounds: MeshBounds = MeshBounds()) -> list[st
             value, limit, beyond = record[side][key], getattr(bounds, field_name), ""
             if key == "hub_speed_ripple_pct" and value is not None and own > 0.01:
                 value, beyond = max(0.0, value - own), f" beyond the law's own {own:.2f} %"
-            if value is None or value > limit:
-                shown = "not measured" if value is None else f"{value:.2f} {unit}{beyond}"
-                found.append(f"{side} flank {name} {shown} > {limit:g} {unit}")
+            if value is None:
+                found.append(f"{side} flank {name} not measured (bound {limit:g} {unit})")
+            elif value > limit:
+                found.append(f"{side} flank {name} {_beyond_limit(value, limit)} {unit}{beyond} > {limit:g} {unit}")
     return found
+
+
+def _beyond_limit(value: float, limit: float) -> str:
+    """A figure over its bound with the decimals (2 at least) that show it over: 1.004 %, not 1.00 %."""
+    for places in range(2, 7):
+        shown = f"{value:.{places}f}"
+        if float(shown) > limit:
+            return shown
+    return f"{value:.6g}"
 
 
 def _side_offsets(record: dict) -> dict[str, float]:

@@ -13,6 +13,7 @@ from typing import Callable
 from wheelstep_cli.config.names import as_flags
 from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH
 from wheelstep_cli.errors import DesignError
+from wheelstep_cli.parts.fewest_teeth import fewest_teeth
 # the figures' side re-exported: callers name the bounds and their remedies from here
 from wheelstep_cli.parts.bound_figures import (MeshBounds, backlash_remedy, bound_violations,  # noqa: F401
                                                ripple_teeth_remedy, teeth_remedy, worst_ripple)
@@ -276,7 +277,9 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
             continue
         broken = bound_violations(record, bounds)
         if not broken:
-            return candidate, tried, failed
+            generated = getattr(pair, "generated", None)
+            periods = generated.law.pinion_periods if generated is not None else 2
+            return fewest_teeth(design, candidate, failed, periods, verify, bounds), tried, failed
         failed.append(candidate)
         tried.append(f"{as_flags(candidate)} still gives {broken[0]}"
                      + (f" and {len(broken) - 1} more" if len(broken) > 1 else ""))
