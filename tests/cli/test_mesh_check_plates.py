@@ -376,3 +376,8 @@ def test_meshes_out_of_phase_with_the_law_given_are_told_to_give_the_options_the
         "WARNING: checked against the law of the options given (mechanism, --turns, --blend, --law-csv)")
     right = cli("mesh-check", *meshes, "--profile", "desk-demo", "--samples", "384")
     assert right.exit_code == 0 and "in phase with the law" in right.stdout and "WARNING" not in right.stderr
+    # mounted 0.1 mm closer the teeth interfere, and the warning names the distance as a cause
+    closer = cli("mesh-check", *meshes, "--profile", "desk-demo", "--distance", "72.025", "--samples", "384")
+    assert closer.exit_code == 1 and "phase: OUT OF PHASE" in closer.stdout, closer.stdout
+    assert closer.stderr.strip().splitlines()[-1].endswith(
+        "; teeth that interfere may also be mounted closer than the pair was made for (--distance 72.025 mm)")

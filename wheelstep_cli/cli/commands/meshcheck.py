@@ -157,9 +157,12 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
     show.report(summary, lambda: pair_lines(summary, installed_distance(spec)))
     if not summary["in_phase"]:
         # two meshes carry no law: a pair made with other options is checked against the wrong one
+        # and teeth that interfere may only be mounted closer than the pair was made for
+        closer = (f"; teeth that interfere may also be mounted closer than the pair was made for "
+                  f"(--distance {installed_distance(spec):g} mm)" if summary["interference"] else "")
         show.warning("WARNING: checked against the law of the options given (mechanism, --turns, "
                      "--blend, --law-csv): if the pair was made with others, give them as it was "
-                     "made, or its design's --profile")
+                     f"made, or its design's --profile{closer}")
     warn_band_jams(show, summary.get("tolerance"), band[1])
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
