@@ -269,9 +269,10 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
                 sized = True    # the module given outgrows the printer: the size asked for is kept
                 continue
             # a refusal with a remedy of its own (teeth too thin: fewer teeth) is followed too;
-            # the play chosen for the count it leaves goes with that count
+            # with no backlash given, the play chosen for the count it leaves goes with that
+            # count (the default follows the new one); a backlash given stays replaced
             own = getattr(err, "remedy", None) or {}
-            if own.get("z", candidate.get("z")) != candidate.get("z"):
+            if design.backlash is None and own.get("z", candidate.get("z")) != candidate.get("z"):
                 candidate = {name: value for name, value in candidate.items() if name != "backlash"}
             candidate = {**candidate, **own}
             continue
