@@ -107,9 +107,10 @@ def evaluate(fields: dict) -> dict:
 
 def remedy_fields(message: str) -> dict:
     """The options a refusal's remedy names (``use --z 56 --backlash 0.2``) as spec fields."""
-    if "use --" not in message:          # no remedy found
+    if "; nothing written; use --" not in message:          # no remedy found
         return {}
-    words = message.rsplit("use ", 1)[1].split()
+    # the options up to what the line says of them in brackets (what was tried first)
+    words = message.split("; nothing written; use ", 1)[1].split(" (", 1)[0].split()
     return {flag[2:].replace("-", "_"): _value(v) for flag, v in zip(words[::2], words[1::2])}
 
 
