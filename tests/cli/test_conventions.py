@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.helpers.clicheck import error_line
+from tests.helpers.clicheck import error_line, remedy_in
 
 COMMANDS = ["pitch", "teeth", "gears", "mesh-check", "shoe", "kinematics", "stairs", "linkage",
             "trajectory", "batch", "sweep"]
@@ -231,15 +231,20 @@ def test_verbose_says_which_file_a_profile_name_was_read_from(cli, tmp_path, mon
 @pytest.mark.parametrize("args, option, remedy", [
     (["kinematics", "--a", "-5"], "--a", {}),                          # a value's own limit
     (["stairs", "--rise", "abc"], None, None),                           # not a number at all
-    (["gears", "--z", "30", "--format", "stl", "--dry-run"], "--z", {"--z": 46}),  # the bounds, a remedy
+    (["gears", "--z", "30", "--format", "stl", "--dry-run"], "--z", "said"),  # the bounds, the remedy said
 ])
 def test_a_refusal_asked_for_json_is_json_on_stdout_too(cli, args, option, remedy):
     """A script reading a --json command's stdout gets the refusal there too: its exit code, the
-    line said on stderr and, for bad input, the option, the value and the remedy (options)."""
+    line said on stderr and, for bad input, the option, the value and the remedy (options: those
+    the line says to use)."""
     result = cli(*args, "--json")
     line = error_line(result)
     error = json.loads(result.stdout)["error"]
     assert error["exit_code"] == 2 and error["message"] == line
+    if remedy == "said":
+        words = remedy_in(line)
+        remedy = {flag: float(value) for flag, value in zip(words[::2], words[1::2])}
+        assert remedy.get("--z", 30) > 30, line
     assert error.get("option") == option and error.get("remedy") == remedy
     if option is not None:
         assert error["value"] == float(args[args.index(option) + 1])
