@@ -304,7 +304,6 @@ def _play_not_the_cause(candidate: dict, record: dict, before: tuple[dict, dict 
     return was - now < 0.25 * (was - bounds.ripple_pct)
 
 
-
 def _within_the_tooth_limit(design, remedy: dict) -> dict:
     """``remedy``, or, when its tooth count is more than a design may have, the generator
     settings the design changed set back to their defaults (those teeth are the cause);

@@ -217,10 +217,11 @@ def _teeth(count: int) -> str:
 
 
 def run_written_pair_check(check: WrittenPairCheck, outlines: tuple[np.ndarray, np.ndarray],
-                           progress: Callable[[int, int], None] | None = None
+                           progress: Callable[[int, int], None] | None = None, inset: float = 0.0
                            ) -> tuple[MeshingReport, dict]:
     """Check both outlines over one period of the law (blended by the spec's ``blend``, as
-    the teeth were cut); returns the report and its summary (files, law, figures)."""
+    the teeth were cut); returns the report and its summary (files, law, figures, what it says
+    of the bounds: ``inset`` mm, the fit's inset a plate's meshes carry, leaves them unjudged)."""
     from wheelstep_cli.parts.mesh_check import check_outlines
 
     law, blended = generation_law(check.spec)
@@ -229,7 +230,9 @@ def run_written_pair_check(check: WrittenPairCheck, outlines: tuple[np.ndarray, 
     record = {**law_record(check.spec, law), "blend_deg": check.spec.blend}
     summary = {"pinion": str(check.pinion), "wheel": str(check.wheel), "law": record,
                **report.to_dict()}
-    summary["bounds"] = bounds_verdict(summary)
+    summary["bounds"] = bounds_verdict(summary, inset=inset)
+    if inset:
+        summary["outline_inset_mm"] = inset
     return report, summary
 
 
@@ -261,8 +264,5 @@ def run_plate_pair_check(pair, samples: int | None, window: float | None,
                              pair.spec, samples, window)
     check.validate()
     require_poses_per_tooth(samples, int(pair.spec.z), design_law(pair.spec))
-    report, summary = run_written_pair_check(check, plate_pair_outlines(pair), progress)
-    if pair.inset:
-        summary["outline_inset_mm"] = pair.inset
-        summary["bounds"] = bounds_verdict(summary, inset=pair.inset)
+    report, summary = run_written_pair_check(check, plate_pair_outlines(pair), progress, pair.inset)
     return report, {"pair": pair.pair, "distance_mm": installed_distance(pair.spec), **summary}
