@@ -16,7 +16,8 @@ class DesignError(ValueError):
     it as the flag the user typed), ``value`` what was given, ``limit`` what it must
     satisfy. A rule that ties several parameters (R_min = a - 4b + c > 0) states itself
     for each of them in ``alternatives`` (name -> (value, limit)), so the error can name
-    the one the user gave (:meth:`for_given`).
+    the one the user gave (:meth:`for_given`); a statement with remedies of its own has them
+    in ``remedies_of`` (name -> remedies, each name -> value), set after construction.
     """
 
     def __init__(self, param: str, value: object, limit: str,
@@ -39,7 +40,11 @@ class DesignError(ValueError):
             return self
         for name, (value, limit) in self.alternatives.items():
             if name.replace("-", "_") in given:
-                return self._with_extras(DesignError(name, value, limit))
+                restated = DesignError(name, value, limit)
+                own = getattr(self, "remedies_of", {}).get(name)
+                if own is not None:     # the remedies this statement's line says
+                    restated.remedy, restated.remedies = (own[0] if own else {}), list(own)
+                return self._with_extras(restated)
         return self
 
     def tied_to(self, inputs: dict[str, object]) -> "DesignError":
@@ -67,6 +72,7 @@ class DesignError(ValueError):
         other = DesignError(self.param, self.value, advised(self.limit),
                             {name: (value, advised(text)) for name, (value, text) in self.alternatives.items()})
         other.remedy = remedy
+        other.remedies = [remedy] if remedy else []   # the old advice's alternatives went with it
         return self._with_extras(other)
 
     def _with_extras(self, other: "DesignError") -> "DesignError":
@@ -75,6 +81,15 @@ class DesignError(ValueError):
             if key not in vars(other):
                 setattr(other, key, value)
         return other
+
+
+def offered_remedies(err: Exception) -> list[dict]:
+    """Every remedy (name -> value) a refusal offers, in the order its line says them: its
+    ``remedies`` when it offers more than one, else its ``remedy``; none for a refusal without."""
+    remedy, remedies = getattr(err, "remedy", None), list(getattr(err, "remedies", None) or [])
+    if remedy and remedies[:1] != [remedy]:
+        return [remedy]     # a remedy set since the alternatives were: the line says that one
+    return remedies or [r for r in [remedy] if r]
 
 
 #: Where a refusal's cause ends (its advice follows).

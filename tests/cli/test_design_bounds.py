@@ -226,9 +226,15 @@ def test_an_undercut_pinion_is_offered_only_remedies_that_pass(cli, tmp_path):
     assert "pinion z >=" not in line and not out.exists()
     offered = line.rsplit("; ", 1)[1].split(" or ")
     assert offered and all(choice.startswith("use --") for choice in offered), line
-    # under a fit the design is refused before the fit, with the same checked remedies
-    fitted = error_line(cli("gears", "--z", "12", "--fit", "auto", "--format", "stl", "--out", out))
-    assert fitted == line, fitted
+    # an option that changes the pressure angle is offered only to keep fewer teeth
+    counts = [int(choice.split("--z ")[1].split()[0]) for choice in offered if "--z " in choice]
+    assert counts == sorted(counts, reverse=True), line
+    # under a fit the design is refused before the fit, with the same checked remedies, which
+    # --json carries, each as the line says it
+    fitted = cli("gears", "--z", "12", "--fit", "auto", "--format", "stl", "--json", "--out", out)
+    assert error_line(fitted) == line, fitted.stderr
+    said = [dict(zip(choice.split()[1::2], map(float, choice.split()[2::2]))) for choice in offered]
+    assert json.loads(fitted.stdout)["error"]["remedies"] == said
     for n, choice in enumerate(offered):
         written = tmp_path / f"remedy-{n}"
         result = cli("gears", *with_remedy(["--z", "12"], choice[len("use "):].split()), "--format", "stl",
@@ -284,15 +290,24 @@ def test_a_backlash_too_large_for_a_printer_with_tooth_clearance_is_offered_less
 @pytest.mark.parametrize("given, named", [
     (["--pressure-angle", "30"], "--pressure-angle"),                  # the fillet left at its default
     (["--pressure-angle", "30", "--fillet", "0.2"], "--fillet"),
+    (["--dedendum", "1.9"], "--dedendum"),                             # deeper, the flanks meet sooner
 ])
 def test_a_cutter_tip_with_no_land_names_the_option_given_and_a_limit_that_applied_cuts(cli, tmp_path, given, named):
     """The rack's tip fillets meet when the flanks lean far: the refusal names the option the
     user gave with the largest value that keeps a land (it blamed --fillet, not given, with
-    no limit); applied, the teeth are cut."""
-    line = error_line(cli("gears", *given, "--format", "stl", "--out", tmp_path / "out"))
+    no limit), --json carries it as the remedy; applied, the teeth are cut (the deeper tooth
+    then meshes outside the bounds: that refusal's remedy, applied, passes)."""
+    result = cli("gears", *given, "--format", "stl", "--json", "--out", tmp_path / "out")
+    line = error_line(result)
     assert line.startswith(f"wheelstep: error: {named} = ") and "no flat land" in line, line
     most = line.split("must be <= ")[1].split(" ")[0]
-    result = cli("gears", *with_remedy(given, [named, most]), "--format", "stl", "--dry-run")
+    assert json.loads(result.stdout)["error"]["remedy"] == {named: float(most)}
+    fixed = with_remedy(given, [named, most])
+    result = cli("gears", *fixed, "--format", "stl", "--dry-run")
+    if named == "--dedendum":
+        line = error_line(result)
+        assert "no flat land" not in line and "outside the bounds" in line, line
+        result = cli("gears", *with_remedy(fixed, remedy_in(line)), "--format", "stl", "--dry-run")
     assert result.exit_code == 0, result.stderr
 
 

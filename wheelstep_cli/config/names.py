@@ -76,6 +76,8 @@ def remedy_in_yaml(err, keys=lambda options: f"overrides {{{as_keys(options)}}}"
     backlash: 0.239}``), not as flags; any other refusal as :func:`yaml_message` words it.
     ``entry``: of a batch entry, whose "nothing written" is said "not built" (the file's other
     entries are written; a sweep's row keeps the words)."""
+    from wheelstep_cli.errors import offered_remedies
+
     message = yaml_message(err)   # its flags already said as keys (in_file_words)
     if entry:
         message = re.sub(r"; nothing written(?=;|$)", "; not built", message)
@@ -83,7 +85,7 @@ def remedy_in_yaml(err, keys=lambda options: f"overrides {{{as_keys(options)}}}"
     for tried in sorted(getattr(err, "tried", None) or [], key=lambda t: -len(as_flags(t))):
         message = _whole_words(message, in_file_words(as_flags(tried)), keys(tried))
     # every remedy offered (an undercut may offer more than one), else the one
-    for remedy in getattr(err, "remedies", None) or [r for r in [getattr(err, "remedy", None)] if r]:
+    for remedy in offered_remedies(err):
         for verb in ("use", "try"):
             message = _whole_words(message, in_file_words(f"{verb} {as_flags(remedy)}"), f"{verb} {keys(remedy)}")
     return message

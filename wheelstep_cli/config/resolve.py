@@ -12,7 +12,7 @@ from pydantic import BaseModel, ValidationError
 
 from wheelstep_cli.config.schema import InvalidInput, build, design_errors
 from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import DesignError, offered_remedies
 
 STRUT = ("c", "r_min")
 #: What sets the crank law of a gear pair, which a law CSV replaces.
@@ -196,7 +196,7 @@ def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
     from wheelstep_cli.config.names import as_flags, as_keys, in_file_words
     from wheelstep_cli.config.schema import Issue, show
 
-    remedies = getattr(err, "remedies", None) or [r for r in [getattr(err, "remedy", None)] if r]
+    remedies = offered_remedies(err)
     # the rule's own parameter when the profile gives it, else the first key it gives (its part's
     # section first) that the rule is stated for
     own, keys = err.param.replace("-", "_"), _profile_keys(loaded, section)

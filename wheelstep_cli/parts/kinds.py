@@ -186,9 +186,27 @@ def as_designed(err: DesignError, spec, printed, printed_beside: bool = True) ->
             return limit
         return given_limit(limit, float(both[1]) - float(both[0]))
 
-    return err._with_extras(DesignError(
+    def remedy_of(remedy: dict) -> dict:
+        # a value the remedy lowers is a most, rounded down, as the line's bound is; else up
+        shifted = {}
+        for name, value in remedy.items():
+            both = changed(name)
+            if both is None or not isinstance(value, float) or not isinstance(both[1], (int, float)):
+                shifted[name] = value
+                continue
+            rounding = rounded_down if value <= both[1] else rounded_up
+            shifted[name] = float(rounding(value - (float(both[1]) - float(both[0]))))
+        return shifted
+
+    restated = DesignError(
         err.param, shown(err.param, err.value), limit_of(err.param, err.limit),
-        {name: (shown(name, value), limit_of(name, limit)) for name, (value, limit) in err.alternatives.items()}))
+        {name: (shown(name, value), limit_of(name, limit)) for name, (value, limit) in err.alternatives.items()})
+    # the remedies, too, as values the user gives (the printer changes them again)
+    restated.remedy = remedy_of(getattr(err, "remedy", None) or {})
+    restated.remedies = [remedy_of(remedy) for remedy in getattr(err, "remedies", None) or []]
+    restated.remedies_of = {name: [remedy_of(remedy) for remedy in remedies]
+                            for name, remedies in getattr(err, "remedies_of", {}).items()}
+    return err._with_extras(restated)
 
 
 _BOUND = re.compile(r"must be (<=|<|>=|>) (-?\d+(?:\.\d+)?) mm")

@@ -159,6 +159,7 @@ def verified_undercut(err: DesignError, design, verify: Callable,
             offered.append(remedy)
         else:
             tried.extend(why)
+    offered = _undominated(offered)
     cause = err.limit.split("; use pinion z")[0]
     unchecked = err.limit[len(cause):]
     advice = "; " + (" or ".join(f"use {as_flags(remedy)}" for remedy in offered) if offered
@@ -170,6 +171,18 @@ def verified_undercut(err: DesignError, design, verify: Callable,
     checked.remedies = offered
     checked.tried = failed    # the remedies built and found wanting, for a batch file's keys
     return checked
+
+
+def _undominated(offered: list[dict]) -> list[dict]:
+    """``offered`` without a remedy that changes everything another one changes and more, with
+    no fewer teeth (a pressure angle that needs z 52 besides, when z 38 alone does it): the
+    angle is worth offering only as a way to keep fewer teeth."""
+    def dominated(remedy: dict, other: dict) -> bool:
+        changes = lambda options: set(options) - {"backlash"}    # the play follows the count
+        return ("z" in remedy and "z" in other and changes(other) < changes(remedy)
+                and other["z"] <= remedy["z"])
+
+    return [remedy for remedy in offered if not any(dominated(remedy, other) for other in offered)]
 
 
 def change_advice(design, found: str) -> str:

@@ -188,9 +188,22 @@ def _no_tip_land(cutter: RackCutter, module: float, pitch: float) -> DesignError
                            "smaller pressure angle or dedendum", alternatives={"dedendum": (
                                cutter.dedendum, f"{why} at pressure angle {np.degrees(a):g} deg even "
                                "without a fillet; use a smaller dedendum or pressure angle")})
-    return DesignError("fillet", cutter.fillet,
-                       f"{why}; must be <= {most:g} x module at pressure angle {np.degrees(a):g} deg",
-                       alternatives={"pressure_angle": (float(np.degrees(a)), angle_text)})
+    # the dedendum's x is linear too: the deepest tooth that keeps a land at this fillet
+    deepest = (_fillet_centre_x(cutter, module, pitch, a, rho) / (module * np.sin(a) / np.cos(a))
+               + cutter.dedendum)
+    deepest = np.floor(1000.0 * deepest) / 1000.0
+    error = DesignError("fillet", cutter.fillet,
+                        f"{why}; must be <= {most:g} x module at pressure angle {np.degrees(a):g} deg",
+                        alternatives={"pressure_angle": (float(np.degrees(a)), angle_text)})
+    error.remedy, error.remedies = {"fillet": float(most)}, [{"fillet": float(most)}]
+    error.remedies_of = {"pressure_angle": [{"pressure_angle": float(most_angle)}] if most_angle is not None
+                         else [{"fillet": float(most)}]}
+    if deepest > cutter.addendum:
+        error.alternatives["dedendum"] = (cutter.dedendum, f"{why} with fillet {cutter.fillet:g} x module at "
+                                          f"pressure angle {np.degrees(a):g} deg; must be <= {deepest:g} x "
+                                          f"module, or use --fillet {most:g}")
+        error.remedies_of["dedendum"] = [{"dedendum": float(deepest)}, {"fillet": float(most)}]
+    return error
 
 
 def rack_tooth_polygons(cutter: RackCutter, module: float, pitch: float, teeth: int = 5,
