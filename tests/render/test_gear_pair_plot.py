@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from wheelstep_cli.config.resolve import gear_pair_spec
-from wheelstep_cli.render.gear_pair_gif import handover_poses
+from wheelstep_cli.render.gear_pair_gif import _readout, handover_poses, turning_through
 from wheelstep_cli.render.gear_pair_plot import assembly_phase, handover_angle, pitch_curve, posed
 
 D = 144.0
@@ -50,3 +50,18 @@ def test_handover_poses_span_one_tooth_pitch_each_side_in_order(law):
     assert np.all(np.diff(span) > 0)
     assert span[0] == pytest.approx(-2 * np.pi / teeth, abs=0.01)
     assert span[-1] == pytest.approx(2 * np.pi / teeth, abs=0.01)
+
+
+def test_the_animation_says_what_it_turns_through_and_whose_speed_it_reads(law):
+    """The crank law's corners are shoe handovers and its speed the hub's; a law CSV's gears
+    carry no shoes and drive no hub: the GIF says the law's corner (or the period's start,
+    without one) and the output speed."""
+    assert turning_through(law) == "a shoe handover"
+    assert turning_through(law, "output speed") == "the law's first corner"
+    assert turning_through(SimpleNamespace(corners=()), "output speed") == "the start of the law's period"
+    report = SimpleNamespace(drive=SimpleNamespace(error_um=np.array([1.5])), hub_speed=np.array([1.01]),
+                             hub_speed_law=np.array([1.0]), theta=np.array([0.1]), phi_law=np.array([0.05]),
+                             interference=np.array([False]))
+    assert "output speed +1.00 % of the mean" in _readout(report, 0, "output speed")
+    assert "hub speed" not in _readout(report, 0, "output speed")
+    assert "carrier" not in _readout(report, 0, "output speed") and "carrier" in _readout(report, 0)

@@ -238,12 +238,13 @@ def run_written_pair_check(check: WrittenPairCheck, outlines: tuple[np.ndarray, 
 
 def written_pair_files(check: WrittenPairCheck, report: MeshingReport) -> dict[Path, bytes]:
     """The plot asked for (``--plot``), if any: path -> PNG bytes."""
+    from wheelstep_cli.parts.mesh_check import speed_words
     from wheelstep_cli.render.meshing_plot import meshing_plot_png
 
     if check.plot is None:
         return {}
     title = f"{Path(check.pinion).name} + {Path(check.wheel).name} at {installed_distance(check.spec):g} mm"
-    return {check.plot: meshing_plot_png(report, title)}
+    return {check.plot: meshing_plot_png(report, title, speed_words(check.spec.law_csv is not None))}
 
 
 def plate_pair_outlines(pair) -> tuple[np.ndarray, np.ndarray]:

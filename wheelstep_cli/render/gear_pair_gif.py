@@ -48,24 +48,37 @@ def contact_point(drawing: PairDrawing, theta: float, phi: float, reach: float) 
     return 0.5 * (p[i] + w[j])
 
 
-def _readout(report, k: int) -> str:
-    """The text of pose ``k``: angles, the drive flank's TE and the hub speed."""
+def turning_through(law, speed: str = "hub speed") -> str:
+    """What the animation turns the pair through (:func:`handover_poses`): a shoe handover for
+    the crank law (``speed`` "hub speed"), a law CSV's first corner (its gears carry no shoes),
+    the start of the period of a law without corners."""
+    if not (tuple(law.corners) or tuple(getattr(law, "blended_corners", ()))):
+        return "the start of the law's period"
+    return "a shoe handover" if speed == "hub speed" else "the law's first corner"
+
+
+def _readout(report, k: int, speed: str = "hub speed") -> str:
+    """The text of pose ``k``: angles, the drive flank's TE and the output speed (``speed``:
+    what it is, "hub speed" for the crank law)."""
     error = report.drive.error_um[k]
     mean = float(np.mean(report.hub_speed_law))
-    speed = 100.0 * (report.hub_speed[k] / mean - 1.0)
+    change = 100.0 * (report.hub_speed[k] / mean - 1.0)
     law_speed = 100.0 * (report.hub_speed_law[k] / mean - 1.0)
     te = "no contact" if not np.isfinite(error) else f"{error:+.1f} um"
-    hub = "n/a" if not np.isfinite(speed) else f"{speed:+.2f} %"
-    return (f"pinion {np.degrees(report.theta[k]):7.2f} deg   carrier {np.degrees(report.phi_law[k]):7.2f} deg\n"
+    hub = "n/a" if not np.isfinite(change) else f"{change:+.2f} %"
+    driven = "carrier" if speed == "hub speed" else "wheel"     # a law CSV drives no carrier
+    return (f"pinion {np.degrees(report.theta[k]):7.2f} deg   {driven} {np.degrees(report.phi_law[k]):7.2f} deg\n"
             f"TE (drive flank, on the wheel pitch curve) {te}\n"
-            f"hub speed {hub} of the mean (law {law_speed:+.2f} %)"
+            f"{speed} {hub} of the mean (law {law_speed:+.2f} %)"
             + ("   INTERFERENCE" if report.interference[k] else ""))
 
 
 def pair_gif(drawing: PairDrawing, report, frames: int = GIF_FRAMES,
-             progress: Callable[[int, int], None] | None = None) -> bytes:
-    """GIF bytes of the pair turning through the first shoe handover over the poses of
-    :func:`handover_poses`, ``progress(done, total)`` after each frame."""
+             progress: Callable[[int, int], None] | None = None, speed: str = "hub speed") -> bytes:
+    """GIF bytes of the pair turning through the first shoe handover (a law CSV's first
+    corner; a law without one: the start of its period) over the poses of
+    :func:`handover_poses`, ``progress(done, total)`` after each frame; ``speed``: what the
+    readout's speed is ("hub speed": the crank law's, whose corners are shoe handovers)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -81,7 +94,7 @@ def pair_gif(drawing: PairDrawing, report, frames: int = GIF_FRAMES,
     pair_limits(whole, drawing)
     whole.set_aspect("equal")
     close.set_aspect("equal")
-    whole.set_title("pair turning through a shoe handover", fontsize=9)
+    whole.set_title(f"pair turning through {turning_through(drawing.law, speed)}", fontsize=9)
     close.set_title("mesh close-up: red = drive contact", fontsize=9)
     text = fig.text(0.02, 0.97, "", fontsize=9, family="monospace", va="top")
 
@@ -97,7 +110,7 @@ def pair_gif(drawing: PairDrawing, report, frames: int = GIF_FRAMES,
         centre = drawing.distance / (1.0 + float(np.asarray(drawing.law.ratio(np.array([phi])))[0]))
         close.set_xlim(centre - reach, centre + reach)
         close.set_ylim(-reach, reach)
-        text.set_text(_readout(report, k))
+        text.set_text(_readout(report, k, speed))
         if progress is not None:
             progress(n + 1, len(poses))
         return []

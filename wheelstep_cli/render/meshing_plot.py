@@ -1,5 +1,5 @@
 """The meshing check's plot (SPEC §10): transfer function, its rate, the position error
-e(theta) of both flanks (um) and the hub speed, as PNG.
+e(theta) of both flanks (um) and the output (hub) speed, as PNG.
 
 matplotlib (Agg) is imported lazily. Angles in the report in radians; degrees on the axes,
 position errors in micrometres.
@@ -15,9 +15,10 @@ if TYPE_CHECKING:
     from wheelstep_cli.gears.meshing import MeshingReport
 
 
-def meshing_plot_png(report: MeshingReport, title: str) -> bytes:
+def meshing_plot_png(report: MeshingReport, title: str, speed: str = "hub speed") -> bytes:
     """A PNG for people: transfer function (law vs drive contact), its rate, e(theta) of both
-    flanks (um, SPEC §10) and the pointwise hub speed (a diagnostic)."""
+    flanks (um, SPEC §10) and the pointwise output speed (a diagnostic). ``speed``: what that
+    speed is, as the text reports say it (a law CSV's gears drive no hub: "output speed")."""
     import io
 
     import matplotlib
@@ -64,7 +65,7 @@ def meshing_plot_png(report: MeshingReport, title: str) -> bytes:
         pad = max(hi - lo, 1.0)
         ax.set_ylim(lo - pad, hi + pad)
         ax.set_title("spikes where the teeth interfere are clipped", fontsize=9)
-    ax.set_ylabel("hub speed - mean (% of mean)")
+    ax.set_ylabel(f"{speed} - mean (% of mean)")
     ax.set_xlabel("pinion angle theta (deg)")
     ax.legend(loc="upper left")
     for ax in axes:
