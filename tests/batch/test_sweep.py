@@ -59,7 +59,12 @@ def cluster():
             _stop(proc)
 
 
-def test_local_cluster_rows_and_refused_point(cli, tmp_path):
+def test_local_cluster_rows_and_refused_point(cli, tmp_path, monkeypatch):
+    from wheelstep_cli.render import sweep_plot
+
+    plotted = []
+    drawn = sweep_plot.pareto_png
+    monkeypatch.setattr(sweep_plot, "pareto_png", lambda *args: plotted.append(args) or drawn(*args))
     sweep = write(tmp_path / "shoes.yaml", SHOES)
     result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "2", "-q", "--json")
     assert result.exit_code == 1, result.stderr      # some points refused
@@ -75,6 +80,11 @@ def test_local_cluster_rows_and_refused_point(cli, tmp_path):
     csv_lines = (tmp_path / "out" / "results.csv").read_text().splitlines()
     assert len(csv_lines) == POINTS + 1 and csv_lines[0].startswith('"key"')
     assert (tmp_path / "out" / "pareto.png").read_bytes()[:4] == b"\x89PNG"
+    # each design plotted is named by the values the sweep varied
+    first, second, _, _, _, labels = plotted[0]
+    assert sorted(labels) == sorted(f"socket_depth 10 rim {r['p_rim']:g}" for r in ok)
+    assert sorted(zip(first, labels)) == sorted((r["volume_mm3"], f"socket_depth 10 rim {r['p_rim']:g}")
+                                                for r in ok)
     assert json.loads(result.stdout)["computed"] == POINTS
     # a rerun computes nothing, but its table still holds the refused rows: exit 1, said so
     again = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1")

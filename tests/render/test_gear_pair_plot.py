@@ -65,3 +65,12 @@ def test_the_animation_says_what_it_turns_through_and_whose_speed_it_reads(law):
     assert "output speed +1.00 % of the mean" in _readout(report, 0, "output speed")
     assert "hub speed" not in _readout(report, 0, "output speed")
     assert "carrier" not in _readout(report, 0, "output speed") and "carrier" in _readout(report, 0)
+
+
+@pytest.mark.parametrize("points, expect", [(3, [0, 1, 2]), (12, list(range(12))),
+                                            (23, [0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22])])
+def test_a_pareto_front_names_its_points_or_twelve_spread_along_it_with_both_ends(points, expect):
+    from wheelstep_cli.render.sweep_plot import labelled
+
+    best = [(float(k), float(-k), f"z {k}") for k in range(points)]
+    assert [name for _, _, name in labelled(best)] == [f"z {k}" for k in expect]

@@ -212,17 +212,22 @@ def _plot(plan, results: Path, out: Path) -> Path:
     import pyarrow.parquet as pq
 
     from wheelstep_cli.batch.sweep_store import PLOT, pareto_order, record_outputs
+    from wheelstep_cli.errors import format_value
     from wheelstep_cli.formats.atomic import write_bytes_atomic
     from wheelstep_cli.render.sweep_plot import pareto_png
 
     first, second = plan.objectives
-    rows = pq.read_table(results, columns=["outcome", first, second]).to_pylist()
+    table = pq.read_table(results)
+    varied = [name for name in table.column_names if name.startswith("p_")]
+    rows = table.select(["outcome", first, second, *varied]).to_pylist()
     ok = [r for r in rows if r["outcome"] == "ok" and r[first] is not None and r[second] is not None]
     a, b = [r[first] for r in ok], [r[second] for r in ok]
+    # each design named by the values the sweep varied, as its file's keys
+    labels = [" ".join(f"{name[2:]} {format_value(r[name])}" for name in varied) for r in ok]
     _, front = pareto_order(a, b)
     path = out / PLOT
     write_bytes_atomic(path, pareto_png(a, b, front, (first, second),
-                                        f"{Path(plan.label).name}: {len(ok)} of {len(rows)} designs"))
+                                        f"{Path(plan.label).name}: {len(ok)} of {len(rows)} designs", labels))
     record_outputs(out, (PLOT,))
     return path
 
