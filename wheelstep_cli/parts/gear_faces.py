@@ -106,6 +106,7 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec):
     remedies.append({"mark_depth": 0.0})
     error = DesignError("mark_depth", spec.mark_depth, f"{room}: {remedy}", said)
     error.remedy, error.remedies = remedies[0], remedies
+    error.drawn_remedies = True      # of the spec as drawn: a printer's compensation is in them
     error.remedies_of = {param: [{param: float(rounded_down(largest))}, {"mark_depth": 0.0}]
                          for param, (_, largest) in limits.items()}
     # what narrows the web, the most specific first: named when the user gave it

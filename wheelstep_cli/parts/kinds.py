@@ -201,7 +201,11 @@ def as_designed(err: DesignError, spec, printed, printed_beside: bool = True) ->
     restated = DesignError(
         err.param, shown(err.param, err.value), limit_of(err.param, err.limit),
         {name: (shown(name, value), limit_of(name, limit)) for name, (value, limit) in err.alternatives.items()})
-    # the remedies, too, as values the user gives (the printer changes them again)
+    if not getattr(err, "drawn_remedies", False):
+        return err._with_extras(restated)
+    # remedies found on the values drawn, too, as values the user gives (the printer changes
+    # them again); other remedies are built from the design as asked and stay
+    restated.drawn_remedies = False
     restated.remedy = remedy_of(getattr(err, "remedy", None) or {})
     restated.remedies = [remedy_of(remedy) for remedy in getattr(err, "remedies", None) or []]
     restated.remedies_of = {name: [remedy_of(remedy) for remedy in remedies]
