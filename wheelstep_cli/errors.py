@@ -96,6 +96,16 @@ def offered_remedies(err: Exception) -> list[dict]:
 NOTHING_WRITTEN = "; nothing written"
 
 
+class CheckRefused(Exception):
+    """A check of good input that refuses to write its result (the CLI exits 1: a failed
+    check, not bad input), e.g. teeth that interfere; ``remedy`` (name -> value) what writes it
+    anyway or fixes it, for a script to read."""
+
+    def __init__(self, text: str, remedy: dict | None = None):
+        self.remedy = dict(remedy or {})
+        super().__init__(text)
+
+
 class MeshDefect(Exception):
     """A solid wheelstep built that fails its own check before writing (manifold, watertight,
     volume): wheelstep's defect, not the input's. Not a :class:`DesignError`: no input is

@@ -230,7 +230,7 @@ def test_verbose_says_which_file_a_profile_name_was_read_from(cli, tmp_path, mon
 
 @pytest.mark.parametrize("args, option, remedy", [
     (["kinematics", "--a", "-5"], "--a", {}),                          # a value's own limit
-    (["stairs", "--rise", "abc"], None, None),                           # not a number at all
+    (["stairs", "--rise", "abc"], None, {}),                             # not a number at all
     (["gears", "--z", "30", "--format", "stl", "--dry-run"], "--z", "said"),  # the bounds, the remedy said
 ])
 def test_a_refusal_asked_for_json_is_json_on_stdout_too(cli, args, option, remedy):
@@ -245,8 +245,48 @@ def test_a_refusal_asked_for_json_is_json_on_stdout_too(cli, args, option, remed
         words = remedy_in(line)
         remedy = {flag: float(value) for flag, value in zip(words[::2], words[1::2])}
         assert remedy.get("--z", 30) > 30, line
-    assert error.get("option") == option and error.get("remedy") == remedy
+    assert error["option"] == option and error["remedy"] == remedy
+    assert error["remedies"] == ([remedy] if remedy else []) and error["problems"] == []
     if option is not None:
         assert error["value"] == float(args[args.index(option) + 1])
     plain = cli(*args)
     assert plain.stdout == "" and error_line(plain) == line            # without --json: stderr only
+
+
+JSON_ERROR_KEYS = {"exit_code", "message", "option", "value", "remedy", "remedies", "problems"}
+
+
+@pytest.mark.parametrize("command", ["batch", "sweep"])
+def test_a_file_s_problems_asked_for_json_are_json_too_each_at_its_line(cli, tmp_path, command):
+    """An invalid batch or sweep file is refused with every problem at its file:line on stderr
+    and, asked for --json, the same object as any refusal, each problem with its line and key
+    (it printed nothing on stdout)."""
+    text = ("parts:\n  - name: thin\n    kind: shoe\n    design: desk-demo\n    overrides:\n"
+            "      width: 0.2\n      widht: 3\n" if command == "batch" else
+            "command: gears\ndesign: desk-demo\ngrid:\n  pressure_angle: [20, 200]\n  backlsh: [0.1]\n")
+    path = tmp_path / "in.yaml"
+    path.write_text(text)
+    result = cli(command, path, "--out", tmp_path / "out", "--json")
+    assert result.exit_code == 2 and not (tmp_path / "out").exists()
+    error = json.loads(result.stdout)["error"]
+    assert set(error) == JSON_ERROR_KEYS and error["message"] == result.stderr.strip()
+    lines = result.stderr.strip().splitlines()
+    assert len(error["problems"]) == len(lines) == 2
+    for problem, line in zip(error["problems"], lines):
+        assert line == f"wheelstep: error: {problem['where']}: {problem['message']}"
+        assert problem["where"].startswith(f"{path}:") and problem["message"].startswith(problem["key"])
+
+
+def test_an_interfering_pair_refused_asked_for_json_is_json_with_the_switch_that_writes_it(cli, tmp_path):
+    """Paper teeth that interfere are a failed check (exit 1), not bad input: asked for --json
+    the refusal is the same object, its remedy the switch that writes them anyway; applied,
+    they are written."""
+    args = ["gears", "--profile", "desk-demo", "--teeth", "paper", "--module", "1.48", "--format", "stl",
+            "--out", tmp_path / "out"]
+    result = cli(*args, "--json")
+    line = error_line(result, code=1)
+    assert line.startswith("wheelstep: refused: the teeth interfere at ") and not (tmp_path / "out").exists()
+    error = json.loads(result.stdout)["error"]
+    assert set(error) == JSON_ERROR_KEYS and error["exit_code"] == 1 and error["message"] == line
+    assert error["remedy"] == {"--allow-interference": True} and error["option"] is None
+    assert cli(*args, *error["remedy"]).exit_code == 0

@@ -26,7 +26,7 @@ from wheelstep_cli.batch.interrupts import (caused_by_interrupt, exit_now, exit_
 from wheelstep_cli.cli.refusal import said
 from wheelstep_cli.config.names import flag_name
 from wheelstep_cli.config.schema import InvalidInput
-from wheelstep_cli.errors import DesignError, Interrupted, MeshDefect
+from wheelstep_cli.errors import CheckRefused, DesignError, Interrupted, MeshDefect
 
 app = typer.Typer(
     name="wheelstep",
@@ -92,13 +92,19 @@ def _given(options: dict[str, list[str]], argv: list[str]) -> list[str]:
 
 def error_text(err: DesignError, options: dict[str, list[str]], argv: list[str]) -> str:
     """One line: the parameter as the user wrote it, the value and the limit."""
+    name = typed_name(err, options, argv)
+    return f"{name} = {_typed_value(name, err, argv)}: {err.limit}"
+
+
+def typed_name(err: DesignError, options: dict[str, list[str]], argv: list[str]) -> str:
+    """``err``'s parameter as the user wrote it (its flag as typed, an argument by its name)."""
     name = _as_typed(err.param, options, argv)
     if name == err.param and isinstance(err.value, str):
         # a file's problem named by the reader ("file"): the option that gave that file
         found = _path_option(err.value, options, argv)
         if found is not None and found[1] == err.value:
             name = found[0]
-    return f"{name} = {_typed_value(name, err, argv)}: {err.limit}"
+    return name
 
 
 def _typed_value(flag: str, err: DesignError, argv: list[str]) -> str:
@@ -311,16 +317,17 @@ def run(argv: list[str] | None = None) -> int:
     try:
         result = _invoke(command, args)
     except InvalidInput as err:               # a file's problems, each with its file:line
-        return said([f"wheelstep: error: {line}" for line in err.lines()], 2, args)
-    except MeshDefect as err:              # wheelstep's own check failed: no input to blame
-        return said([f"wheelstep: error: {err}"], 1, args)
+        return said([f"wheelstep: error: {line}" for line in err.lines()], 2, args, err)
+    except (MeshDefect, CheckRefused) as err:  # a failed check (wheelstep's own, or of the result)
+        return said([f"wheelstep: {'refused' if isinstance(err, CheckRefused) else 'error'}: {err}"], 1, args, err)
     except DesignError as err:
         options = _command_options(command, args)
         given = _given(options, args)
         err = err.for_given(given)
         located = None if err.param.replace("-", "_") in given else _in_design_profile(err, command, args)
         lines = located.lines() if located is not None else [error_text(err, options, args)]
-        return said([f"wheelstep: error: {line}" for line in lines], 2, args, err)
+        return said([f"wheelstep: error: {line}" for line in lines], 2, args, err,
+                    None if located is not None else typed_name(err, options, args))
     except click_errors.NoArgsIsHelpError as err:
         typer.echo(err.format_message(), err=True)
         return 2

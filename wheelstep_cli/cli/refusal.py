@@ -1,6 +1,7 @@
 """How a run that fails says so: its lines on stderr and, when the command was asked for
 ``--json``, the same as one JSON object on stdout, so that a script reading stdout gets the
-refusal, its exit code and, for bad input, the option, value and remedy."""
+refusal, its exit code and, for bad input, the option, value and remedies, for a file's
+problems each problem."""
 
 from __future__ import annotations
 
@@ -11,20 +12,31 @@ from wheelstep_cli.errors import offered_remedies
 from wheelstep_cli.formats.jsonio import json_text
 
 
-def said(lines: list[str], code: int, args: list[str], err: Exception | None = None) -> int:
+def said(lines: list[str], code: int, args: list[str], err: Exception | None = None,
+         option: str | None = None) -> int:
     """Print ``lines`` (each a whole line, ``wheelstep: error: ...``) on stderr and, with
-    ``--json`` among ``args``, ``{"error": {...}}`` on stdout (the exit code, the lines and, for
-    bad input, the option, its value, the remedy as options -> values and, as ``remedies``,
-    every remedy the line offers, the first being ``remedy``); return ``code``."""
+    ``--json`` among ``args``, ``{"error": {...}}`` on stdout; return ``code``.
+
+    The object has the same keys for every refusal: the exit code, the lines (``message``),
+    and for bad input the ``option`` (as the line names it: ``option``, else the parameter's
+    flag), its ``value``, the ``remedy`` as options -> values and, as ``remedies``, every
+    remedy the line offers, the first being ``remedy`` (None, None, {} and [] where the refusal
+    names no option; a failed check's remedy without them); a file's problems (``issues``) also each as ``{where, key, message}``
+    in ``problems`` ([] for any other refusal)."""
     for line in lines:
         typer.echo(line, err=True)
     if "--json" in args:
-        record = {"exit_code": code, "message": "\n".join(lines)}
-        if err is not None and hasattr(err, "param"):
+        record = {"exit_code": code, "message": "\n".join(lines), "option": None, "value": None,
+                  "remedy": {}, "remedies": [], "problems": []}
+        issues = getattr(err, "issues", None)
+        if issues is not None:
+            record["problems"] = [{"where": issue.where, "key": issue.what or None,
+                                   "message": str(issue)[len(issue.where) + 2:]} for issue in issues]
+        elif err is not None:
             remedies = [{flag_name(name): value for name, value in remedy.items()}
                         for remedy in offered_remedies(err)]
-            record.update(option=flag_name(err.param), value=getattr(err, "value", None),
-                          remedy=remedies[0] if remedies else {}, remedies=remedies)
+            record.update(remedy=remedies[0] if remedies else {}, remedies=remedies)
+            if hasattr(err, "param"):
+                record.update(option=option or flag_name(err.param), value=getattr(err, "value", None))
         typer.echo(json_text({"error": record}), nl=False)
     return code
-

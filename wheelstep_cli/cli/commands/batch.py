@@ -32,7 +32,6 @@ def batch(
     """Build every part of a batch file into packed 3MF plates with PNG previews,
     manifest.json and print-sheet.md. Exit 1 if some parts failed, 2 if the file is invalid."""
     from wheelstep_cli.batch import load_batch
-    from wheelstep_cli.config.schema import InvalidInput
     from wheelstep_cli.errors import DesignError
 
     show = Output(json, quiet, verbose)
@@ -42,12 +41,8 @@ def batch(
         raise DesignError("jobs", jobs, "must not be given with --scheduler (the cluster's workers build)")
     if out.exists() and not out.is_dir():
         raise DesignError("out", str(out), "is a file; give a folder")
-    try:
-        plan = load_batch(file, str(file))
-    except InvalidInput as err:
-        for line in err.lines():
-            show.error(f"wheelstep: error: {line}")
-        raise typer.Exit(2)
+    # a file's problems (InvalidInput) are said by the CLI's runner, with --json's object too
+    plan = load_batch(file, str(file))
     for entry in plan.entries:      # -v: what each entry resolved to, before any build
         values = ", ".join(f"{k} = {v}" for k, v in entry.spec.model_dump().items() if v is not None)
         show.detail(f"  {entry.name}: {entry.kind} x {entry.quantity} from {entry.design_label} for printer "

@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Callable
 
 from wheelstep_cli.cli.output import Output
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import CheckRefused, DesignError
 
 
 def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tuple, bed=None,
@@ -40,13 +40,13 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
             lambda: fit_design(spec, printer), spec, plain), printer, True), spec, whole)
         design_check = with_progress(not show.quiet, "meshing check", check_gear_pair, design)
         design_verify = None if trying else remedy_check(design.printing.printer, checked_remedy, bed)
-        design_record = _meshing_or_refused(show, design, design_check, allow_interference, design_verify, trying)
+        design_record = _meshing_or_refused(design, design_check, allow_interference, design_verify, trying)
         # a bounds remedy is built with its fit: the inset thins the teeth the design's check passed
         require_within_bounds(design, design_record, verify=whole)
         require_printable_teeth(design)
         pair, tolerance, check = with_progress(not show.quiet, f"fitting to the band of {chosen.name}",
                                                fitted_pair, spec, chosen, band[1], design, design_check)
-        record = _meshing_or_refused(show, pair, check, allow_interference, trying=trying)
+        record = _meshing_or_refused(pair, check, allow_interference, trying=trying)
         if len(band) > 2 and band[2]:
             tolerance["fit"]["from"] = band[2]
         require_fit_met(tolerance, **({} if tolerance["fit"].get("from", "--fit") == "--fit" else
@@ -56,7 +56,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
             lambda: band_pair(spec, printer, bool(band[0]), bed), spec, plain), printer, False), spec, whole)
         if check is None:
             check = with_progress(not show.quiet, "meshing check", check_gear_pair, pair)
-        record = _meshing_or_refused(show, pair, check, allow_interference, plain, trying)
+        record = _meshing_or_refused(pair, check, allow_interference, plain, trying)
         try:
             require_within_bounds(pair, record, verify=plain)
         except DesignError as err:
@@ -147,14 +147,12 @@ def _fit_offered(err, spec, pair, printer, show: Output, bed):
     return err.with_advice(change_advice(spec, no_remedy([*getattr(err, "tried_words", []), *why])), {})
 
 
-def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, verify=None,
+def _meshing_or_refused(pair, check, allow_interference: bool, verify=None,
                         trying: bool = False) -> dict:
-    """The meshing record of ``check`` (of ``pair``), refused (exit 1, nothing written) when
+    """The meshing record of ``check`` (of ``pair``), refused (CheckRefused: exit 1, nothing written) when
     the teeth interfere and that is not allowed; as bad input (exit 2, with a remedy checked
     by ``verify`` when given) when the mounted distance or a backlash set too small is the cause;
     ``trying``: a remedy's build, refused by a DesignError with nothing said."""
-    import typer
-
     from wheelstep_cli.parts.interference_refusals import (interference_phrase, require_mounted_where_rolling,
                                                            require_play_that_clears)
     from wheelstep_cli.parts.mesh_check import meshing_record
@@ -169,9 +167,8 @@ def _meshing_or_refused(show: Output, pair, check, allow_interference: bool, ver
             require_play_that_clears(pair, record, interfere, verify)
         if trying:
             raise DesignError("allow_interference", "off", f"{interfere}; nothing written")
-        show.error(f"wheelstep: refused: {interfere}; nothing written (--allow-interference "
-                   "writes them anyway)")
-        raise typer.Exit(1)
+        raise CheckRefused(f"{interfere}; nothing written (--allow-interference writes them anyway)",
+                           {"allow_interference": True})
     return record
 
 

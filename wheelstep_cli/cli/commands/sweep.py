@@ -42,7 +42,6 @@ def sweep(
     (rows in point order) and pareto.png. A rerun computes only the missing designs. Exit 1
     if some designs of the table were refused (outside the bounds, like `gears` refuses them)
     or failed (their rows say why), by this run or an earlier one; 2 if the input is invalid."""
-    from wheelstep_cli.config.schema import InvalidInput
     from wheelstep_cli.config.sweep_file import load_sweep
     from wheelstep_cli.errors import DesignError
 
@@ -56,12 +55,8 @@ def sweep(
         raise DesignError("workers", workers, "sizes the local cluster; not with a scheduler")
     if out.exists() and not out.is_dir():
         raise DesignError("out", str(out), "is a file; give a folder")
-    try:
-        plan = load_sweep(file, str(file))
-    except InvalidInput as err:
-        for line in err.lines():
-            show.error(f"wheelstep: error: {line}")
-        raise typer.Exit(2)
+    # a file's problems (InvalidInput) are said by the CLI's runner, with --json's object too
+    plan = load_sweep(file, str(file))
     earlier = _owned_outputs(out, plan.command, best, show, force)
     _require_ranking(best, plan, show)      # (after it: a refused run prints its one line only)
     if dry_run:
