@@ -253,6 +253,14 @@ def test_a_refusal_asked_for_json_is_json_on_stdout_too(cli, args, option, remed
     assert plain.stdout == "" and error_line(plain) == line            # without --json: stderr only
 
 
+def test_an_argument_refused_asked_for_json_is_named_as_its_line_names_it(cli, tmp_path):
+    """A refused argument (mesh-check's PINION) is no option: --json names it as the line does."""
+    result = cli("mesh-check", tmp_path / "nope.stl", tmp_path / "nope2.stl", "--json")
+    line = error_line(result)
+    assert line.startswith("wheelstep: error: pinion = ")
+    assert json.loads(result.stdout)["error"]["option"] == "pinion"
+
+
 JSON_ERROR_KEYS = {"exit_code", "message", "option", "value", "remedy", "remedies", "problems"}
 
 
