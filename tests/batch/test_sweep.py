@@ -170,10 +170,11 @@ def test_outputs_are_owned(cli, tmp_path):
 
 
 def test_tolerance_band_columns_are_the_gears_commands(cli, tmp_path):
-    """``tolerance: true``: each pair's band check as ``gears --tolerance`` reports it."""
+    """``tolerance: true``: each pair's band check as ``gears --tolerance`` reports it; the best
+    design kept has the report `gears` writes, the bounds' verdict included."""
     sweep = write(tmp_path / "band.yaml", "command: gears\ndesign: desk-demo\ntolerance: true\n"
                                           "printers: [fdm-0.4-pla]\n")      # one point
-    result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "-q")
+    result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "-q", "--keep", "best:1")
     assert result.exit_code == 0, result.stderr
     (row,) = rows(tmp_path / "out").values()
     assert row["outcome"] == "ok", row["reason"]
@@ -192,6 +193,8 @@ def test_tolerance_band_columns_are_the_gears_commands(cli, tmp_path):
         assert row[f"{prefix}_backlash_min_mm"] == pytest.approx(case["backlash_min_mm"], abs=1e-9)
         assert row[f"{prefix}_drive_f_i_um"] == pytest.approx(case["drive"]["f_i_tooth_um"], abs=1e-9)
     assert row["band_least_backlash_mm"] < row["backlash_min_mm"]   # the band takes play away
+    kept = json.loads((tmp_path / "out" / "best-1" / "gears.json").read_text())["meshing"]
+    assert kept["bounds"] == json.loads(gears.stdout)["meshing"]["bounds"] and kept["bounds"]["within"]
 
 
 def test_a_point_too_large_for_its_printers_bed_is_refused_as_gears_refuses_it(cli, tmp_path, monkeypatch):

@@ -133,12 +133,15 @@ def build_point(point: Point):
     from wheelstep_cli.parts.tolerance_cli import band_pair
 
     from wheelstep_cli.parts.bed_remedy import scaled_to_bed
+    from wheelstep_cli.parts.bound_figures import bounds_verdict
 
     built, band, nominal = scaled_to_bed(lambda: band_pair(point.spec, point.printer, point.tolerance, point.printer),
                                          point.spec, None, unbuilt=True)
     record = meshing_record(nominal if nominal is not None else check_gear_pair(built))
     if band is not None:
         record["tolerance"] = band
+    # whether it is within the bounds, as `gears` reports it (a best design's gears.json too)
+    record["bounds"] = bounds_verdict(record, (band or {}).get("fit"))
     return built, record
 
 
