@@ -52,14 +52,32 @@ def test_mesh_check_printer_without_tolerance_is_refused(cli, tmp_path):
     assert "--printer = fdm-0.4-pla: names the band --tolerance checks" in error_line(result)
 
 
-def test_mesh_check_tolerance_on_plates_is_refused(cli, tmp_path):
-    plate = tmp_path / "plate.3mf"      # refused for the option before the file is read
-    plate.write_bytes(b"not read")
-    result = cli("mesh-check", plate, "--tolerance")
-    assert "checks two named meshes (PINION WHEEL), not plates" in error_line(result)
-    # the switch is named with its own value, not the printer's
-    line = error_line(cli("mesh-check", plate, "--tolerance", "--printer", "fdm-0.4-pla"))
-    assert line.startswith("wheelstep: error: --tolerance = on: checks two named meshes")
+def test_mesh_check_tolerance_on_a_plate_checks_the_band_of_the_printer_it_was_written_for(cli, tmp_path):
+    """A batch user holds plates, not two meshes: --tolerance on a plate checks its pair over
+    the band of the printer the plate was written for (it was refused), case by case as
+    `gears --tolerance` found it when it wrote the plate, and warns of the jam naming that
+    printer; --printer names another band."""
+    import json
+
+    out = tmp_path / "out"
+    written = cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--tolerance", "-q",
+                  "--out", out)
+    assert written.exit_code == 0, written.stderr
+    drawn = json.loads((out / "gears.json").read_text())["meshing"]["tolerance"]
+    result = cli("mesh-check", out / "gears.3mf", "--tolerance", "--json")
+    assert result.exit_code == 0, result.stderr
+    (pair,) = json.loads(result.stdout)["pairs"]
+    band = pair["tolerance"]
+    assert band["printer"] == "fdm-0.4-pla" and band["jams"] is drawn["jams"]
+    for case, before in zip(band["cases"], drawn["cases"], strict=True):
+        assert (case["case"], case["jams"]) == (before["case"], before["jams"])
+        if not case["jams"]:    # the plate's section against the outline drawn: to a micrometre
+            assert case["backlash_min_mm"] == pytest.approx(before["backlash_min_mm"], abs=1e-3)
+    if band["jams"]:
+        assert "WARNING: over the band of fdm-0.4-pla the pair jams" in result.stderr
+        assert "`wheelstep gears --printer fdm-0.4-pla --fit auto`" in result.stderr
+    resin = cli("mesh-check", out / "gears.3mf", "--tolerance", "--printer", "resin-0.05-standard", "--json")
+    assert json.loads(resin.stdout)["pairs"][0]["tolerance"]["printer"] == "resin-0.05-standard"
 
 
 def test_gears_tolerance_reports_every_case_and_the_loose_corner_has_more_play(cli, tmp_path):

@@ -82,9 +82,8 @@ def mesh_check(
         failed = check_gcode(show, gcode, [a for a in (pinion, wheel) if a], pair, design,
                              (samples, window, plot), band, (dry_run, quiet, force))
     elif _plates_given(pinion, wheel):
-        _no_band_on_plates(tolerance, printer)
         failed = _check_plates(show, [pinion] + ([wheel] if wheel else []), pair, design, samples,
-                               window, plot, dry_run, quiet, force)
+                               window, plot, dry_run, quiet, force, band)
     else:
         failed = _check_meshes(show, pinion, wheel, pair, design, samples, window, plot, dry_run, quiet,
                                force, band)
@@ -115,15 +114,6 @@ def _plates_given(pinion: str | None, wheel: str | None) -> bool:
         raise click_errors.UsageError(f"Missing argument 'WHEEL': {pinion} is one gear; give the wheel "
                                       "mesh after it (PINION WHEEL), or a plate (3MF) holding the pair")
     return plates
-
-
-def _no_band_on_plates(tolerance: bool, printer) -> None:
-    from wheelstep_cli.errors import DesignError
-
-    if tolerance or printer is not None:
-        # named as given: --tolerance (a switch) is "on", --printer its profile
-        raise DesignError("tolerance" if tolerance else "printer", "on" if tolerance else printer,
-                          "checks two named meshes (PINION WHEEL), not plates")
 
 
 def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, samples: int | None, window,
@@ -169,14 +159,18 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
 
 
 def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: int | None, window, plot,
-                  dry_run: bool, quiet: bool, force: bool) -> bool:
-    """Every gear pair of the plates (or the one --pair names), designs from their metadata."""
+                  dry_run: bool, quiet: bool, force: bool, band: tuple = (False, None)) -> bool:
+    """Every gear pair of the plates (or the one --pair names), designs from their metadata;
+    with ``band`` = (--tolerance, --printer) also over a printer's band: the one named, else
+    the one each pair's plates were written for (SPEC §11)."""
+    from wheelstep_cli.cli.commands.meshcheck_gcode import plate_printer
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.errors import require
     from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, run_plate_pair_check, written_pair_files
     from wheelstep_cli.parts.plate_pairs import find_plate_pairs
 
     no_design_options(design)
+    chosen = band_printer_of(*band)
     pairs = find_plate_pairs(plates, pair)
     require(plot is None or len(pairs) == 1, "plot", str(plot),
             "draws one pair: add --pair ID, one of " + ", ".join(f"'{p.pair}'" for p in pairs))
@@ -184,15 +178,30 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
     for found in pairs:
         report, summary = with_progress(not quiet, f"meshing check {found.pair}", run_plate_pair_check,
                                         found, samples, window)
+        check = WrittenPairCheck(*summary_files(summary), found.spec, samples, window, plot)
+        printer = plate_printer(found, chosen) if band[0] and band[1] is None else chosen
+        if printer is not None:
+            summary["tolerance"] = with_progress(not quiet, f"band check {found.pair}", _plate_band,
+                                                 found, check, report, printer)
         summaries.append(summary)
         failed = failed or report.interferes or report.contact_lost
-        files.update(written_pair_files(WrittenPairCheck(*summary_files(summary), found.spec, samples,
-                                                         window, plot), report))
+        files.update(written_pair_files(check, report))
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report({"pairs": summaries}, lambda: [line for s in summaries
                                                for line in pair_lines(s, s["distance_mm"])])
+    for summary in (s for s in summaries if "tolerance" in s):
+        warn_band_jams(show, summary["tolerance"], band[1] or summary["tolerance"]["printer"])
     show.files(named, dry_run)
     return failed
+
+
+def _plate_band(found, check, report, printer, progress=None) -> dict:
+    """The band record of a pair found on plates: its outlines as written (any fit's inset in
+    them) grown and shrunk by ``printer``'s band."""
+    from wheelstep_cli.parts.mesh_check_files import plate_pair_outlines
+    from wheelstep_cli.parts.tolerance_cli import outline_band
+
+    return outline_band(plate_pair_outlines(found), check, report, printer)
 
 
 

@@ -32,7 +32,7 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     require(len(found) == 1, "pair", "none", "the plates hold several pairs: name one (--pair ID), "
                                              "one of " + ", ".join(f"'{p.pair}'" for p in found))
     if band[0] and band[1] is None:
-        chosen = _plate_printer(found[0], chosen)
+        chosen = plate_printer(found[0], chosen)
     report, summary, read = with_progress(not quiet, "G-code read-back", run_gcode_check, gcode,
                                           found[0], samples, window)
     if chosen is not None:
@@ -98,7 +98,7 @@ def _rest(summary: dict, tolerance_lines) -> list[str]:
                                      else [])
 
 
-def _plate_printer(pair, default):
+def plate_printer(pair, default):
     """The printer whose band --tolerance checks when --printer is not given: the one the
     plates were written for (their ``printer`` metadata), else ``default``; a plate's printer
     whose profile cannot be used here is refused (its band is not the default printer's)."""
