@@ -174,9 +174,8 @@ def verified_undercut(err: DesignError, design, verify: Callable,
 
 
 def _undominated(offered: list[dict]) -> list[dict]:
-    """``offered`` without a remedy that changes everything another one changes and more, with
-    no fewer teeth (a pressure angle that needs z 52 besides, when z 38 alone does it): the
-    angle is worth offering only as a way to keep fewer teeth."""
+    """``offered`` without a remedy that changes all another one does and more, with no fewer
+    teeth (a pressure angle needing z 52 besides, when z 38 alone does it)."""
     def dominated(remedy: dict, other: dict) -> bool:
         changes = lambda options: set(options) - {"backlash"}    # the play follows the count
         return ("z" in remedy and "z" in other and changes(other) < changes(remedy)
@@ -397,4 +396,5 @@ def _ripple_remedy(pair, design, record: dict, remedy: dict, bounds: MeshBounds,
     if design.backlash is None:
         return teeth
     default = design_backlash(design.model_copy(update={"z": z, "backlash": None}))
-    return {**teeth, "backlash": round(min(design.backlash_mm, default), 3)}
+    backlash = round(min(design.backlash_mm, default), 3)    # the one given, kept: no option to set
+    return {**teeth, "backlash": backlash} if backlash != round(design.backlash_mm, 3) else teeth
