@@ -87,9 +87,12 @@ def test_pair_outside_the_bounds_is_refused_like_gears_with_its_remedy(cli, tmp_
     keys = ", ".join(f"{flag[2:]}: {value}" for flag, value in zip(flags[::2], flags[1::2]))
     batch = write(tmp_path / "b.yaml", SMALL_BATCH + SOURCE_Z24)
     out = tmp_path / "out"
-    result = cli("batch", batch, "--out", out, "--jobs", "1")
+    result = cli("batch", batch, "--out", out, "--jobs", "1", "--json")
     assert result.exit_code == 1
     line = line_of(batch, "z: 24")
+    # --json gives the remedy as data too: the entry's keys and values the line says
+    (failed,) = json.loads(result.stdout)["failed"]
+    assert failed["remedies"] == [{flag[2:]: float(value) for flag, value in zip(flags[::2], flags[1::2])}]
     assert f"source24 ({batch}:{line}): z = 24: the pair would mesh outside the bounds ({reason})" \
         in result.stderr
     # the entry is not built; the file's other entries are written

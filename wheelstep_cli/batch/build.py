@@ -12,7 +12,7 @@ import numpy as np
 from wheelstep_cli.batch.interrupts import interrupts_kept_from_children
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.names import remedy_in_yaml
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import DesignError, offered_remedies
 from wheelstep_cli.parts.interference_refusals import (interference_phrase, require_mounted_where_rolling,
                                                        require_play_that_clears)
 from wheelstep_cli.parts.bed_remedy import scaled_to_bed
@@ -56,6 +56,14 @@ class EntryResult:
     param: str | None = None
     mating: dict | None = None   # a gear pair's meshing record (parts.mesh_check.meshing_record)
     band: dict | None = None     # its band record when the band is checked (parts.tolerance_cli)
+    remedies: list = field(default_factory=list)   # a refusal's remedies, the entry's keys -> values
+
+
+def refused_by(index: int, err: DesignError, **found) -> EntryResult:
+    """Entry ``index`` refused by ``err``: its line with the remedies as the file's keys, and
+    those remedies as data (for the batch's JSON report); ``found``: what was built before."""
+    return EntryResult(index, error=remedy_in_yaml(err), param=err.param, remedies=offered_remedies(err),
+                       **found)
 
 
 def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
@@ -93,7 +101,7 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
         # raised on the printer's compensated values: said of the override that shares the
         # blame (as the command line names the flag given), as the entry gives them
         err = as_designed(err.for_given(entry.overrides), entry.spec, entry.printed)
-        return EntryResult(entry.index, error=remedy_in_yaml(err), param=err.param)
+        return refused_by(entry.index, err)
     except Exception as err:  # an unexpected failure must not stop the other entries
         return EntryResult(entry.index, error=f"internal error: {type(err).__name__}: {err}")
 
@@ -159,7 +167,7 @@ def _fitted(entry: Entry, kind, design, fit: str) -> EntryResult:
         require_fit_met(band, remedy=PROFILE_FIT_REMEDY)
         require_printable_teeth(built)    # on the printer it was drawn for: no tooth clearance
     except DesignError as err:   # its remedy as the entry's override keys, as without a fit
-        return EntryResult(entry.index, report=report, error=remedy_in_yaml(err), param=err.param, mating=mating)
+        return refused_by(entry.index, err, report=report, mating=mating)
     return EntryResult(entry.index, _parts(kind, built), report, mating=mating, band=band)
 
 
@@ -192,12 +200,12 @@ def _refused(entry: Entry, built, result: EntryResult, printer) -> EntryResult |
         require_play_that_clears(built, mating, interfere, verify)
     except DesignError as err:
         err = err.for_given(entry.overrides)     # the override that moved the distance or the play
-        return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
-                           param=err.param, mating=mating)
+        return refused_by(entry.index, err, report=result.report, mating=mating)
     printed = entry.printed
     teeth = getattr(printed.teeth, "value", printed.teeth)
     reason = f"teeth = {teeth}: {interfere}; allow_interference: true builds it anyway"
-    return EntryResult(entry.index, report=result.report, error=reason, param="teeth", mating=mating)
+    return EntryResult(entry.index, report=result.report, error=reason, param="teeth", mating=mating,
+                       remedies=[{"allow_interference": True}])
 
 
 def _out_of_bounds(entry: Entry, built, result: EntryResult, printer) -> EntryResult | None:
@@ -214,8 +222,7 @@ def _out_of_bounds(entry: Entry, built, result: EntryResult, printer) -> EntryRe
         require_printable_teeth(built, printer)
     except DesignError as err:
         err = err.for_given(entry.overrides)     # the override that shares the blame, as gears names it
-        return EntryResult(entry.index, report=result.report, error=remedy_in_yaml(err),
-                           param=err.param, mating=result.mating)
+        return refused_by(entry.index, err, report=result.report, mating=result.mating)
     return None
 
 

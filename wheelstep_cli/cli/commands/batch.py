@@ -104,7 +104,9 @@ def _summary(file: Path, out: Path, plan, outcome, written: list[Path]) -> dict:
         "parts": sum(len(p.items) for p in outcome.plates),
         "plates": [{"file": f"{p.stem}.3mf", "printer_profile": p.printer.name,
                     "parts": len(p.items)} for p in outcome.plates],
-        "failed": [{"entry": entry.name, "where": where, "reason": reason}
+        # each with the remedies its reason offers, as the entry's keys (none: [])
+        "failed": [{"entry": entry.name, "where": where, "reason": reason,
+                    "remedies": outcome.results[entry.index].remedies if entry.index in outcome.results else []}
                    for entry, where, reason in outcome.failed],
         "written": [str(p) for p in written], "removed": [str(p) for p in outcome.removed],
         **({"tolerance": bands} if (bands := _bands(outcome)) else {}),
