@@ -16,8 +16,7 @@ class DesignError(ValueError):
     it as the flag the user typed), ``value`` what was given, ``limit`` what it must
     satisfy. A rule that ties several parameters (R_min = a - 4b + c > 0) states itself
     for each of them in ``alternatives`` (name -> (value, limit)), so the error can name
-    the one the user gave (:meth:`for_given`); a statement with remedies of its own has them
-    in ``remedies_of`` (name -> remedies, each name -> value), set after construction.
+    the one the user gave (:meth:`for_given`).
     """
 
     def __init__(self, param: str, value: object, limit: str,
@@ -40,11 +39,7 @@ class DesignError(ValueError):
             return self
         for name, (value, limit) in self.alternatives.items():
             if name.replace("-", "_") in given:
-                restated = DesignError(name, value, limit)
-                own = getattr(self, "remedies_of", {}).get(name)
-                if own is not None:     # the remedies this statement's line says
-                    restated.remedy, restated.remedies = (own[0] if own else {}), list(own)
-                return self._with_extras(restated)
+                return self._with_extras(DesignError(name, value, limit))
         return self
 
     def tied_to(self, inputs: dict[str, object]) -> "DesignError":

@@ -261,6 +261,20 @@ def test_an_argument_refused_asked_for_json_is_named_as_its_line_names_it(cli, t
     assert json.loads(result.stdout)["error"]["option"] == "pinion"
 
 
+def test_a_refusal_said_at_a_profile_s_line_is_that_problem_in_json_too(cli, tmp_path):
+    """A design profile's value refused by a rule (the cutter's tip land) is said at its line;
+    --json says the same problem there (it named --fillet, the rule's own option, and no line)."""
+    profile = tmp_path / "mine.yaml"
+    profile.write_text("gears:\n  z: 48\n  dedendum: 1.9\n")
+    result = cli("gears", "--profile", profile, "--dry-run", "--json", "--out", tmp_path / "out")
+    line = error_line(result)
+    assert line.startswith(f"wheelstep: error: {profile}:3: gears.dedendum = 1.9: leaves the cutter tip"), line
+    error = json.loads(result.stdout)["error"]
+    assert error["option"] is None and error["message"] == line
+    assert error["problems"] == [{"where": f"{profile}:3", "key": "gears.dedendum",
+                                  "message": line.split(f"{profile}:3: ", 1)[1]}]
+
+
 JSON_ERROR_KEYS = {"exit_code", "message", "option", "value", "remedy", "remedies", "problems"}
 
 

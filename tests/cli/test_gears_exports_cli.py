@@ -3,6 +3,7 @@ outlines as built; bad paths and a missing extra refused in one line, nothing wr
 
 import io
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -204,6 +205,10 @@ def test_pictures_are_the_same_bytes_on_rerun(faces):
     assert svg.tag == "{http://www.w3.org/2000/svg}svg"
     assert "assembly phase" in pair_picture(drawing, "svg").decode()   # text kept as text
     assert json.dumps(sorted(drawing.teeth.items())) == '[["pinion", 48], ["wheel", 96]]'
+    # the crank law's zero is a shoe in mid-stance, its corners handovers; a law CSV has no shoes
+    assert drawing.crank and "shoe handovers" in pair_picture(drawing, "svg").decode()
+    csv_words = pair_picture(replace(drawing, crank=False), "svg").decode()
+    assert "shoe" not in csv_words and "the law's driven angle at 0" in csv_words
 
 
 def test_paper_pair_is_drawn_with_its_tooth_module():

@@ -8,7 +8,7 @@ import json
 import numpy as np
 import pytest
 
-from tests.helpers.clicheck import error_line
+from tests.helpers.clicheck import error_line, with_remedy
 
 
 def test_a_hub_that_leaves_the_pinion_no_room_for_its_mark_is_refused(cli, tmp_path):
@@ -40,15 +40,26 @@ def test_the_mark_room_refusal_names_the_largest_value_that_leaves_room(cli, tmp
     """The option the user gave that narrows the web is named with the largest value that
     leaves the mark its room; that value applied, the pair is made."""
     out = ["--dry-run", "--out", tmp_path / "out"]
-    result = cli("gears", "--profile", "desk-demo", *args, *out, "--json")
-    line = error_line(result)
+    line = error_line(cli("gears", "--profile", "desk-demo", *args, *out))
     assert line.startswith(f"wheelstep: error: {flag} = ") and "no room for its timing mark" in line, line
     largest = line.split(": must be <= ", 1)[1].split(" mm", 1)[0]
-    # --json carries both remedies the line says, in its order
-    assert json.loads(result.stdout)["error"]["remedies"] == [{flag: float(largest)}, {"--mark-depth": 0.0}]
     fixed = list(args)
     fixed[fixed.index(flag) + 1] = largest
     result = cli("gears", "--profile", "desk-demo", *fixed, *out)
+    assert result.exit_code == 0, result.stderr
+
+
+def test_the_mark_depth_given_names_the_bore_as_given_to_a_printer_that_draws_it_larger(cli, tmp_path):
+    """With --mark-depth given, the refusal is stated for it and names the largest bore that
+    leaves room: said as the bore the user gives (the printer draws it larger, the printed
+    bound beside it); applied, the pair is made (said as printed, it was refused again)."""
+    args = ["gears", "--profile", "desk-demo", "--bore", "34", "--printer", "fdm-0.4-pla", "--mark-depth", "0.5",
+            "--dry-run", "--out", tmp_path / "out"]
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --mark-depth = 0.5: leaves the pinion no room"), line
+    largest, printed = line.split("--bore <= ", 1)[1].split(" mm (<= ", 1)
+    assert float(largest) < float(printed.split(" mm as printed)")[0]) < 34
+    result = cli(*with_remedy(args, ["--bore", largest]))
     assert result.exit_code == 0, result.stderr
 
 

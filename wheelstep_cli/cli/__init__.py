@@ -90,9 +90,8 @@ def _given(options: dict[str, list[str]], argv: list[str]) -> list[str]:
     return [name for name, opts in options.items() if typed.intersection(opts)]
 
 
-def error_text(err: DesignError, options: dict[str, list[str]], argv: list[str]) -> str:
-    """One line: the parameter as the user wrote it, the value and the limit."""
-    name = typed_name(err, options, argv)
+def error_text(err: DesignError, name: str, argv: list[str]) -> str:
+    """One line: the parameter as the user wrote it (``name``), the value and the limit."""
     return f"{name} = {_typed_value(name, err, argv)}: {err.limit}"
 
 
@@ -325,9 +324,10 @@ def run(argv: list[str] | None = None) -> int:
         given = _given(options, args)
         err = err.for_given(given)
         located = None if err.param.replace("-", "_") in given else _in_design_profile(err, command, args)
-        lines = located.lines() if located is not None else [error_text(err, options, args)]
-        return said([f"wheelstep: error: {line}" for line in lines], 2, args, err,
-                    None if located is not None else typed_name(err, options, args))
+        if located is not None:     # said at the profile's line: its problem, the remedies the line's
+            return said([f"wheelstep: error: {line}" for line in located.lines()], 2, args, located)
+        name = typed_name(err, options, args)
+        return said([f"wheelstep: error: {error_text(err, name, args)}"], 2, args, err, name)
     except click_errors.NoArgsIsHelpError as err:
         typer.echo(err.format_message(), err=True)
         return 2

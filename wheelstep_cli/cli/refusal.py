@@ -18,25 +18,25 @@ def said(lines: list[str], code: int, args: list[str], err: Exception | None = N
     ``--json`` among ``args``, ``{"error": {...}}`` on stdout; return ``code``.
 
     The object has the same keys for every refusal: the exit code, the lines (``message``),
-    and for bad input the ``option`` (as the line names it: ``option``, else the parameter's
-    flag), its ``value``, the ``remedy`` as options -> values and, as ``remedies``, every
-    remedy the line offers, the first being ``remedy`` (None, None, {} and [] where the refusal
-    names no option; a failed check's remedy without them); a file's problems (``issues``) also each as ``{where, key, message}``
-    in ``problems`` ([] for any other refusal)."""
+    for bad input the ``option`` (as the line names it: ``option``, else the parameter's
+    flag) and its ``value``, the ``remedy`` as options -> values and, as ``remedies``, every
+    remedy the line offers, the first being ``remedy`` (None, None, {} and [] where there is
+    none); a file's problems (``issues``) each as ``{where, key, message}`` in ``problems``
+    ([] for any other refusal), with no option named."""
     for line in lines:
         typer.echo(line, err=True)
     if "--json" in args:
         record = {"exit_code": code, "message": "\n".join(lines), "option": None, "value": None,
                   "remedy": {}, "remedies": [], "problems": []}
-        issues = getattr(err, "issues", None)
-        if issues is not None:
-            record["problems"] = [{"where": issue.where, "key": issue.what or None,
-                                   "message": str(issue)[len(issue.where) + 2:]} for issue in issues]
-        elif err is not None:
+        if err is not None:
             remedies = [{flag_name(name): value for name, value in remedy.items()}
                         for remedy in offered_remedies(err)]
             record.update(remedy=remedies[0] if remedies else {}, remedies=remedies)
-            if hasattr(err, "param"):
-                record.update(option=option or flag_name(err.param), value=getattr(err, "value", None))
+        issues = getattr(err, "issues", None)
+        if issues is not None:     # a file's lines: each names its key, none an option
+            record["problems"] = [{"where": issue.where, "key": issue.what or None,
+                                   "message": str(issue)[len(issue.where) + 2:]} for issue in issues]
+        elif hasattr(err, "param"):
+            record.update(option=option or flag_name(err.param), value=getattr(err, "value", None))
         typer.echo(json_text({"error": record}), nl=False)
     return code

@@ -196,15 +196,15 @@ def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
     from wheelstep_cli.config.names import as_flags, as_keys, in_file_words
     from wheelstep_cli.config.schema import Issue, show
 
-    remedies = offered_remedies(err)
-    # the rule's own parameter when the profile gives it, else the first key it gives (its part's
-    # section first) that the rule is stated for
+    # the rule's own parameter when the profile gives it, else the first it is stated for that
+    # the profile gives: its own statements (a dedendum's limit) come before the inputs tied on
     own, keys = err.param.replace("-", "_"), _profile_keys(loaded, section)
-    named = {own, *(name.replace("-", "_") for name in err.alternatives)}
-    key = own if own in keys else next((k for k in keys if k in named), None)
+    named = [own, *(name.replace("-", "_") for name in err.alternatives)]
+    key = next((k for k in named if k in keys), None)
     if key is None:
         return None
     err = err.for_given([key])
+    remedies = offered_remedies(err)    # those of the statement the line makes
     limit = err.limit
     for remedy in remedies:
         # a remedy as the profile's keys (z: 74, backlash: 0.239), not as flags
@@ -214,7 +214,9 @@ def in_profile(err: DesignError, loaded, section: str) -> InvalidInput | None:
         # only where the profile's value is the one the rule met (a command line's --r-min
         # replaces the profile's c, and a table's distance is derived from the profile's)
         if key in given and given[key] == err.value:
-            return InvalidInput([Issue(loaded.where(part, key), f"{part}.{key}",
-                                       f"= {show(err.value)}: {in_file_words(limit, batch=False)}")])
+            located = InvalidInput([Issue(loaded.where(part, key), f"{part}.{key}",
+                                          f"= {show(err.value)}: {in_file_words(limit, batch=False)}")])
+            located.remedy, located.remedies = (remedies[0] if remedies else {}), remedies
+            return located
     return None
 

@@ -50,7 +50,7 @@ def pair_drawing(pair):
         law, module = pair.law, pair.spec.tooth_form().module
         teeth = {"pinion": pair.spec.z, "wheel": pair.wheel_teeth}
     return PairDrawing(gear_faces(pair), law, pair.mounted_distance, float(module), teeth,
-                       float(pair.spec.thickness))
+                       float(pair.spec.thickness), crank=pair.spec.law_csv is None)
 
 
 def picture_files(pair, extras: GearExtras, report,

@@ -102,15 +102,9 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec):
                            "no marks") for param, (value, largest) in limits.items()}
     remedy = "".join(f"--{param.replace('_', '-')} <= {rounded_down(largest)} mm, or "
                      for param, (_, largest) in limits.items()) + "--mark-depth 0 for no marks"
-    remedies = [{param: float(rounded_down(largest))} for param, (_, largest) in limits.items()]
-    remedies.append({"mark_depth": 0.0})
-    error = DesignError("mark_depth", spec.mark_depth, f"{room}: {remedy}", said)
-    error.remedy, error.remedies = remedies[0], remedies
-    error.drawn_remedies = True      # of the spec as drawn: a printer's compensation is in them
-    error.remedies_of = {param: [{param: float(rounded_down(largest))}, {"mark_depth": 0.0}]
-                         for param, (_, largest) in limits.items()}
     # what narrows the web, the most specific first: named when the user gave it
-    return error.tied_to({"key_width": spec.key_width, "bore_shape": spec.bore_shape})
+    return DesignError("mark_depth", spec.mark_depth, f"{room}: {remedy}", said).tied_to(
+        {"key_width": spec.key_width, "bore_shape": spec.bore_shape})
 
 
 def _largest_hole(spec, param: str, reach: float) -> float:

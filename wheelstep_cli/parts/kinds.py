@@ -180,40 +180,39 @@ def as_designed(err: DesignError, spec, printed, printed_beside: bool = True) ->
             return value
         return f"{format_value(both[0])} ({format_value(both[1])} as printed)" if printed_beside else both[0]
 
-    def limit_of(name: str, limit: str) -> str:
+    def shift_of(name: str) -> float | None:
         both = changed(name)
         if both is None or not all(isinstance(v, (int, float)) for v in both):
-            return limit
-        return given_limit(limit, float(both[1]) - float(both[0]))
+            return None
+        return float(both[1]) - float(both[0])
 
-    def remedy_of(remedy: dict) -> dict:
-        # a value the remedy lowers is a most, rounded down, as the line's bound is; else up
-        shifted = {}
-        for name, value in remedy.items():
-            both = changed(name)
-            if both is None or not isinstance(value, float) or not isinstance(both[1], (int, float)):
-                shifted[name] = value
-                continue
-            rounding = rounded_down if value <= both[1] else rounded_up
-            shifted[name] = float(rounding(value - (float(both[1]) - float(both[0]))))
-        return shifted
+    def limit_of(name: str, limit: str) -> str:
+        shift = shift_of(name)
+        return flags_as_given(limit if shift is None else given_limit(limit, shift), shift_of)
 
-    restated = DesignError(
+    return err._with_extras(DesignError(
         err.param, shown(err.param, err.value), limit_of(err.param, err.limit),
-        {name: (shown(name, value), limit_of(name, limit)) for name, (value, limit) in err.alternatives.items()})
-    if not getattr(err, "drawn_remedies", False):
-        return err._with_extras(restated)
-    # remedies found on the values drawn, too, as values the user gives (the printer changes
-    # them again); other remedies are built from the design as asked and stay
-    restated.drawn_remedies = False
-    restated.remedy = remedy_of(getattr(err, "remedy", None) or {})
-    restated.remedies = [remedy_of(remedy) for remedy in getattr(err, "remedies", None) or []]
-    restated.remedies_of = {name: [remedy_of(remedy) for remedy in remedies]
-                            for name, remedies in getattr(err, "remedies_of", {}).items()}
-    return err._with_extras(restated)
+        {name: (shown(name, value), limit_of(name, limit)) for name, (value, limit) in err.alternatives.items()}))
+
+
+def flags_as_given(text: str, shift_of) -> str:
+    """``text`` with each bound it names another input by ("--bore <= 27.89 mm", the mark's
+    room) said for the value as given, when ``shift_of(name)`` (mm the printer drew it larger;
+    None: unchanged) says the printer changed it, the printed bound beside it."""
+    def said(found) -> str:
+        shift = shift_of(found.group(1).replace("-", "_"))
+        if shift is None:
+            return found.group(0)
+        op, bound = found.group(2), found.group(3)
+        as_given = (rounded_down if op.startswith("<") else rounded_up)(float(bound) - shift)
+        return f"--{found.group(1)} {op} {as_given} mm ({op} {bound} mm as printed)"
+
+    return _FLAG_BOUND.sub(said, text)
 
 
 _BOUND = re.compile(r"must be (<=|<|>=|>) (-?\d+(?:\.\d+)?) mm")
+#: Another input's bound a limit names by its flag: "--bore <= 27.89 mm".
+_FLAG_BOUND = re.compile(r"--([a-z][a-z-]*) (<=|<|>=|>) (-?\d+(?:\.\d+)?) mm(?! \()")
 
 
 def given_limit(limit: str, shift: float) -> str:

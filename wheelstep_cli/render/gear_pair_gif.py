@@ -1,6 +1,6 @@
-"""Animation of the gear pair turning through a shoe handover (GIF): the whole pair and a
-close-up of the mesh, the drive contact point, and the meshing check's transmission error
-(um) and hub speed on every frame.
+"""Animation of the gear pair turning through a shoe handover (a law CSV's first corner)
+as a GIF: the whole pair and a close-up of the mesh, the drive contact point, and the
+meshing check's transmission error (um) and output (hub) speed on every frame.
 
 The poses are the meshing check's own (SPEC §10): the wheel stands where the drive flank
 touches (phi_drive). mm and radians inside; degrees, um and % only in the labels.

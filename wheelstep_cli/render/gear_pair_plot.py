@@ -30,6 +30,7 @@ class PairDrawing:
     module: float
     teeth: dict
     thickness: float
+    crank: bool = True      # the mover's crank law (its corners are shoe handovers), not a law CSV
 
 
 def assembly_phase(law) -> tuple[float, float]:
@@ -172,7 +173,8 @@ def _dimensions(ax, drawing: PairDrawing) -> None:
         rows.append(f"{name}: {drawing.teeth[name]} teeth, tip R {tip:.2f} / root R {root:.2f} mm"
                     f" (diameter {2 * tip:.1f} / {2 * root:.1f})")
     rows.append("dashed: tip circles, dotted: root circles, dash-dot: pitch curves, "
-                "circles: shoe handovers")
+                + ("circles: shoe handovers" if drawing.crank else
+                   "circles: one per law period (its first corner, else its start)"))
     ax.text(0.01, 0.99, "\n".join(rows), transform=ax.transAxes, va="top", ha="left", fontsize=7,
             bbox={"facecolor": "white", "alpha": 0.85, "lw": 0.5})
 
@@ -197,7 +199,8 @@ def pair_picture(drawing: PairDrawing, fmt: str) -> bytes:
             ax.set_xlabel("mm")
             ax.set_ylabel("mm")
             ax.legend(loc="lower right", fontsize=8)
-            ax.set_title("gear pair in assembly phase: carrier at 0 (a shoe in mid-stance), "
+            zero = "carrier at 0 (a shoe in mid-stance)" if drawing.crank else "the law's driven angle at 0"
+            ax.set_title(f"gear pair in assembly phase: {zero}, "
                          f"pinion {np.degrees(theta):.1f} deg, wheel {np.degrees(phi):.1f} deg",
                          fontsize=10)
             fig.tight_layout()

@@ -18,7 +18,7 @@ Plot = plot_option("the transfer function, the position error of both flanks and
 BandPrinter = Annotated[Optional[str], opt(
     "--printer", help="Printer profile (a name in profiles/ or a YAML path) whose dimensional "
                       "band --tolerance checks.",
-    shown="with --gcode, the printer its plates were written for; else the default printer")]
+    shown="with plates or --gcode, the printer the plates were written for; else the default printer")]
 Gcode = Annotated[Optional[List[Path]], opt(
     "--gcode", help="Check the pair as PrusaSlicer prints it: G-code of the pair (one plate, or "
                     "repeat --gcode for the files of both plates). The external perimeter of the "
@@ -174,36 +174,35 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
     pairs = find_plate_pairs(plates, pair)
     require(plot is None or len(pairs) == 1, "plot", str(plot),
             "draws one pair: add --pair ID, one of " + ", ".join(f"'{p.pair}'" for p in pairs))
-    summaries, failed, files = [], False, {}
+    summaries, failed, files, warned = [], False, {}, []
     for found in pairs:
         report, summary = with_progress(not quiet, f"meshing check {found.pair}", run_plate_pair_check,
                                         found, samples, window)
         check = WrittenPairCheck(*summary_files(summary), found.spec, samples, window, plot)
         printer = plate_printer(found, chosen) if band[0] and band[1] is None else chosen
         if printer is not None:
-            summary["tolerance"] = with_progress(not quiet, f"band check {found.pair}", _plate_band,
-                                                 found, check, report, printer)
+            summary["tolerance"] = _plate_band(found, check, report, printer)
+            # the fit the warning suggests is to the band checked, its printer as it was loaded
+            warned.append((summary["tolerance"], band[1] or printer.given or printer.name))
         summaries.append(summary)
         failed = failed or report.interferes or report.contact_lost
         files.update(written_pair_files(check, report))
     named = show.write_named("mesh-check", files, dry_run, force, plot=plot)
     show.report({"pairs": summaries}, lambda: [line for s in summaries
                                                for line in pair_lines(s, s["distance_mm"])])
-    for summary in (s for s in summaries if "tolerance" in s):
-        warn_band_jams(show, summary["tolerance"], band[1] or summary["tolerance"]["printer"])
+    for record, name in warned:
+        warn_band_jams(show, record, name)
     show.files(named, dry_run)
     return failed
 
 
-def _plate_band(found, check, report, printer, progress=None) -> dict:
+def _plate_band(found, check, report, printer) -> dict:
     """The band record of a pair found on plates: its outlines as written (any fit's inset in
     them) grown and shrunk by ``printer``'s band."""
     from wheelstep_cli.parts.mesh_check_files import plate_pair_outlines
     from wheelstep_cli.parts.tolerance_cli import outline_band
 
     return outline_band(plate_pair_outlines(found), check, report, printer)
-
-
 
 
 def summary_files(summary: dict) -> tuple[str, str]:

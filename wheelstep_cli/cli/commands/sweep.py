@@ -214,11 +214,14 @@ def _plot(plan, results: Path, out: Path) -> Path:
     first, second = plan.objectives
     table = pq.read_table(results)
     varied = [name for name in table.column_names if name.startswith("p_")]
-    rows = table.select(["outcome", first, second, *varied]).to_pylist()
+    rows = table.select(["outcome", "printer", first, second, *varied]).to_pylist()
     ok = [r for r in rows if r["outcome"] == "ok" and r[first] is not None and r[second] is not None]
     a, b = [r[first] for r in ok], [r[second] for r in ok]
-    # each design named by the values the sweep varied, as its file's keys
-    labels = [" ".join(f"{name[2:]} {format_value(r[name])}" for name in varied) for r in ok]
+    # each design named by the values the sweep varied, as its file's keys (and its printer when
+    # it sweeps several: the same values on two printers are two designs)
+    printers = len({r["printer"] for r in rows}) > 1
+    labels = [" ".join([f"{name[2:]} {format_value(r[name])}" for name in varied]
+                       + ([f"on {r['printer']}"] if printers else [])) for r in ok]
     _, front = pareto_order(a, b)
     path = out / PLOT
     write_bytes_atomic(path, pareto_png(a, b, front, (first, second),

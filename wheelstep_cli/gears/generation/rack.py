@@ -195,14 +195,11 @@ def _no_tip_land(cutter: RackCutter, module: float, pitch: float) -> DesignError
     error = DesignError("fillet", cutter.fillet,
                         f"{why}; must be <= {most:g} x module at pressure angle {np.degrees(a):g} deg",
                         alternatives={"pressure_angle": (float(np.degrees(a)), angle_text)})
-    error.remedy, error.remedies = {"fillet": float(most)}, [{"fillet": float(most)}]
-    error.remedies_of = {"pressure_angle": [{"pressure_angle": float(most_angle)}] if most_angle is not None
-                         else [{"fillet": float(most)}]}
     if deepest > cutter.addendum:
+        # limits, not remedies: a deeper tooth cut may still mesh outside the bounds
         error.alternatives["dedendum"] = (cutter.dedendum, f"{why} with fillet {cutter.fillet:g} x module at "
                                           f"pressure angle {np.degrees(a):g} deg; must be <= {deepest:g} x "
-                                          f"module, or use --fillet {most:g}")
-        error.remedies_of["dedendum"] = [{"dedendum": float(deepest)}, {"fillet": float(most)}]
+                                          f"module (or the fillet <= {most:g} x module)")
     return error
 
 
