@@ -4,6 +4,7 @@ with a remedy that, applied literally, passes."""
 from __future__ import annotations
 
 import json
+import math
 import re
 
 import pytest
@@ -358,3 +359,19 @@ def test_thin_teeth_on_a_given_module_are_offered_a_larger_module_with_fewer_tee
     assert options["--z"] < 48 and options["--module"] > 0.9, line
     written = cli("gears", *with_remedy(design, remedy), "--format", "stl", "--out", tmp_path / "fixed")
     assert written.exit_code == 0, written.stderr
+
+
+def test_a_pitch_curve_too_tight_for_the_cutter_says_more_teeth_and_more_teeth_cut_it(cli, tmp_path):
+    """A law CSV whose ratio swings 0.13..1.87 bends the pinion's pitch curve into a near cusp
+    (0.39 mm radius) that the default count's rack leaves gaps at: refused naming more teeth,
+    which cut it (the finer pair then meets the bore's wall rule, a later refusal)."""
+    turns = [5.0 * k for k in range(73)]
+    law = tmp_path / "law.csv"
+    law.write_text("driving_deg,driven_deg\n" + "".join(
+        f"{a:.4f},{a + 25.0 * math.sin(math.radians(2.0 * a)):.6f}\n" for a in turns))
+    args = ["gears", "--law-csv", law, "--center-distance", "80", "--mark-depth", "0", "--format", "stl",
+            "--dry-run", "--out", tmp_path / "out"]
+    line = error_line(cli(*args))
+    assert "the generated outline has gaps" in line and "more teeth (--z)" in line, line
+    finer = error_line(cli(*args, "--z", "96"))
+    assert "gaps" not in finer, finer

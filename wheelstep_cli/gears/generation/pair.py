@@ -202,7 +202,8 @@ def contact_window(curves: PitchCurves, distance: float, addendum: float) -> flo
 def _require_no_gaps(radii: np.ndarray, pinion_teeth: int) -> None:
     """Refuse a ray map (mm) some ray of which no cut crossed."""
     require(np.all(np.isfinite(radii)), "z", pinion_teeth,
-            "the generated outline has gaps (pitch curve too tight for the cutter)")
+            "the generated outline has gaps (pitch curve too tight for the cutter); more teeth "
+            "(--z) make the cutter smaller")
 
 
 #: Longest segment (mm) of the pinion's cut outline when its ray map is taken: the map's
