@@ -40,9 +40,12 @@ def test_the_mark_room_refusal_names_the_largest_value_that_leaves_room(cli, tmp
     """The option the user gave that narrows the web is named with the largest value that
     leaves the mark its room; that value applied, the pair is made."""
     out = ["--dry-run", "--out", tmp_path / "out"]
-    line = error_line(cli("gears", "--profile", "desk-demo", *args, *out))
+    result = cli("gears", "--profile", "desk-demo", *args, *out, "--json")
+    line = error_line(result)
     assert line.startswith(f"wheelstep: error: {flag} = ") and "no room for its timing mark" in line, line
     largest = line.split(": must be <= ", 1)[1].split(" mm", 1)[0]
+    # --json: the number given (the line may show what the printer drew beside it)
+    assert json.loads(result.stdout)["error"]["value"] == float(args[args.index(flag) + 1])
     fixed = list(args)
     fixed[fixed.index(flag) + 1] = largest
     result = cli("gears", "--profile", "desk-demo", *fixed, *out)

@@ -37,6 +37,8 @@ def said(lines: list[str], code: int, args: list[str], err: Exception | None = N
             record["problems"] = [{"where": issue.where, "key": issue.what or None,
                                    "message": str(issue)[len(issue.where) + 2:]} for issue in issues]
         elif hasattr(err, "param"):
-            record.update(option=option or flag_name(err.param), value=getattr(err, "value", None))
+            # the value as given: a line may show it with what a printer drew beside it
+            value = getattr(err, "given_values", {}).get(err.param.replace("-", "_"), getattr(err, "value", None))
+            record.update(option=option or flag_name(err.param), value=value)
         typer.echo(json_text({"error": record}), nl=False)
     return code

@@ -190,9 +190,12 @@ def as_designed(err: DesignError, spec, printed, printed_beside: bool = True) ->
         shift = shift_of(name)
         return flags_as_given(limit if shift is None else given_limit(limit, shift), shift_of)
 
-    return err._with_extras(DesignError(
+    restated = DesignError(
         err.param, shown(err.param, err.value), limit_of(err.param, err.limit),
-        {name: (shown(name, value), limit_of(name, limit)) for name, (value, limit) in err.alternatives.items()}))
+        {name: (shown(name, value), limit_of(name, limit)) for name, (value, limit) in err.alternatives.items()})
+    # the values as given, by name, whichever statement is made (a script reads the number)
+    restated.given_values = {name: both[0] for name in type(spec).model_fields if (both := changed(name))}
+    return err._with_extras(restated)
 
 
 def flags_as_given(text: str, shift_of) -> str:
