@@ -67,11 +67,9 @@ def picture_files(pair, extras: GearExtras, report,
 
         files[extras.plot] = pair_picture(drawing, extras.plot.suffix.lower()[1:])
     if extras.gif is not None:
-        from wheelstep_cli.parts.mesh_check import speed_words
         from wheelstep_cli.render.gear_pair_gif import pair_gif
 
-        files[extras.gif] = pair_gif(drawing, report, progress=progress,
-                                     speed=speed_words(pair.spec.law_csv is not None))
+        files[extras.gif] = pair_gif(drawing, report, progress=progress)
     return files
 
 

@@ -206,9 +206,7 @@ def flags_as_given(text: str, shift_of) -> str:
         shift = shift_of(found.group(1).replace("-", "_"))
         if shift is None:
             return found.group(0)
-        op, bound = found.group(2), found.group(3)
-        as_given = (rounded_down if op.startswith("<") else rounded_up)(float(bound) - shift)
-        return f"--{found.group(1)} {op} {as_given} mm ({op} {bound} mm as printed)"
+        return f"--{found.group(1)} {_bound_as_given(found.group(2), found.group(3), shift)}"
 
     return _FLAG_BOUND.sub(said, text)
 
@@ -225,10 +223,15 @@ def given_limit(limit: str, shift: float) -> str:
     found = _BOUND.search(limit)
     if found is None:
         return limit
-    op, bound = found.group(1), float(found.group(2))
-    as_given = (rounded_down if op.startswith("<") else rounded_up)(bound - shift)
-    return limit[:found.start()] + f"must be {op} {as_given} mm ({op} {found.group(2)} mm as printed)" \
+    return limit[:found.start()] + f"must be {_bound_as_given(found.group(1), found.group(2), shift)}" \
         + limit[found.end():]
+
+
+def _bound_as_given(op: str, bound: str, shift: float) -> str:
+    """A bound ``op`` ``bound`` mm on a value the printer drew ``shift`` mm larger, said for
+    the value as given (rounded the safe way) with the printed bound beside it."""
+    as_given = (rounded_down if op.startswith("<") else rounded_up)(float(bound) - shift)
+    return f"{op} {as_given} mm ({op} {bound} mm as printed)"
 
 
 def printing_record(printing: Printing | None, printed) -> dict:

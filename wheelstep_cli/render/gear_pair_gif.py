@@ -74,16 +74,17 @@ def _readout(report, k: int, speed: str = "hub speed") -> str:
 
 
 def pair_gif(drawing: PairDrawing, report, frames: int = GIF_FRAMES,
-             progress: Callable[[int, int], None] | None = None, speed: str = "hub speed") -> bytes:
+             progress: Callable[[int, int], None] | None = None) -> bytes:
     """GIF bytes of the pair turning through the first shoe handover (a law CSV's first
     corner; a law without one: the start of its period) over the poses of
-    :func:`handover_poses`, ``progress(done, total)`` after each frame; ``speed``: what the
-    readout's speed is ("hub speed": the crank law's, whose corners are shoe handovers)."""
+    :func:`handover_poses`, ``progress(done, total)`` after each frame. The readout's speed
+    is the hub's for the crank law (``drawing.crank``), else the law's output speed."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    speed = "hub speed" if drawing.crank else "output speed"
     poses = handover_poses(report, drawing.law, frames)
     reach = 4.0 * drawing.module
     fig, (whole, close) = plt.subplots(1, 2, figsize=(10, 5), dpi=72,

@@ -166,8 +166,10 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
     from wheelstep_cli.cli.commands.meshcheck_gcode import plate_printer
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.errors import require
-    from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, run_plate_pair_check, written_pair_files
+    from wheelstep_cli.parts.mesh_check_files import (WrittenPairCheck, plate_pair_outlines, run_plate_pair_check,
+                                                      written_pair_files)
     from wheelstep_cli.parts.plate_pairs import find_plate_pairs
+    from wheelstep_cli.parts.tolerance_cli import outline_band
 
     no_design_options(design)
     chosen = band_printer_of(*band)
@@ -180,8 +182,8 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
                                         found, samples, window)
         check = WrittenPairCheck(*summary_files(summary), found.spec, samples, window, plot)
         printer = plate_printer(found, chosen) if band[0] and band[1] is None else chosen
-        if printer is not None:
-            summary["tolerance"] = _plate_band(found, check, report, printer)
+        if printer is not None:     # the outlines as written, any fit's inset in them
+            summary["tolerance"] = outline_band(plate_pair_outlines(found), check, report, printer)
             # the fit the warning suggests is to the band checked, its printer as it was loaded
             warned.append((summary["tolerance"], band[1] or printer.given or printer.name))
         summaries.append(summary)
@@ -194,15 +196,6 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
         warn_band_jams(show, record, name)
     show.files(named, dry_run)
     return failed
-
-
-def _plate_band(found, check, report, printer) -> dict:
-    """The band record of a pair found on plates: its outlines as written (any fit's inset in
-    them) grown and shrunk by ``printer``'s band."""
-    from wheelstep_cli.parts.mesh_check_files import plate_pair_outlines
-    from wheelstep_cli.parts.tolerance_cli import outline_band
-
-    return outline_band(plate_pair_outlines(found), check, report, printer)
 
 
 def summary_files(summary: dict) -> tuple[str, str]:

@@ -212,9 +212,8 @@ def _plot(plan, results: Path, out: Path) -> Path:
     from wheelstep_cli.render.sweep_plot import pareto_png
 
     first, second = plan.objectives
-    table = pq.read_table(results)
-    varied = [name for name in table.column_names if name.startswith("p_")]
-    rows = table.select(["outcome", "printer", first, second, *varied]).to_pylist()
+    varied = [name for name in pq.read_schema(results).names if name.startswith("p_")]
+    rows = pq.read_table(results, columns=["outcome", "printer", first, second, *varied]).to_pylist()
     ok = [r for r in rows if r["outcome"] == "ok" and r[first] is not None and r[second] is not None]
     a, b = [r[first] for r in ok], [r[second] for r in ok]
     # each design named by the values the sweep varied, as its file's keys (and its printer when
