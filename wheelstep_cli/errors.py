@@ -46,12 +46,16 @@ class DesignError(ValueError):
         """This error, also stated for each of ``inputs`` (name -> value, None: not set) that
         shares the blame, so :meth:`for_given` can name the one the user gave."""
         # the rule is the other parameter's: said as what this input leads to, not as its limit
-        context = f"with it, {self.param.replace('_', '-')} = {self.shown_value} fails: {self.limit}"
+        context = f"{tie_context(self.param, self.shown_value)}: {self.limit}"
         alternatives = dict(self.alternatives)
         for name, value in inputs.items():
             if value is not None and name.replace("-", "_") != self.param.replace("-", "_"):
                 alternatives.setdefault(name, (value, context))
         return self._with_extras(DesignError(self.param, self.value, self.limit, alternatives))
+
+    def restated(self, limit: str) -> "DesignError":
+        """This error with another ``limit`` text, carrying what it carries besides."""
+        return self._with_extras(DesignError(self.param, self.value, limit, self.alternatives))
 
     @property
     def cause(self) -> str:
@@ -76,6 +80,12 @@ class DesignError(ValueError):
             if key not in vars(other):
                 setattr(other, key, value)
         return other
+
+
+def tie_context(param: str, shown_value: str) -> str:
+    """How an error restated for another input names the parameter its rule is about
+    (:meth:`DesignError.tied_to`): ``with it, backlash = 0.239 fails``."""
+    return f"with it, {param.replace('_', '-')} = {shown_value} fails"
 
 
 def offered_remedies(err: Exception) -> list[dict]:

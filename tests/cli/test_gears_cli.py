@@ -236,7 +236,7 @@ def test_a_pair_taller_than_the_printer_is_refused_before_any_tooth_is_cut(cli, 
         assert not (tmp_path / "tall").exists()
     # only the hub made it too tall: the line names the hub length, with the same note
     line = error_line(cli("gears", "--hub-d", "40", "--hub-length", "300", "--out", tmp_path / "tall"))
-    assert line.startswith("wheelstep: error: --hub-length = 300: with it, thickness = 10 fails: makes "
+    assert line.startswith("wheelstep: error: --hub-length = 300: with it, thickness = 10 (the default) fails: makes "
                            "part 'pinion' 310.0 mm tall"), line
     assert line.endswith("(the default printer; --printer chooses another, --format stl writes no plate)")
     assert not (tmp_path / "tall").exists()

@@ -77,10 +77,10 @@ def test_the_clearance_rule_names_the_arc_given_not_the_support_length(cli):
     """h_max > 2 max(r1, r2) does not involve H, yet `--r1 1e6 -H 300` was blamed on -H; of two
     arcs given, the larger is the one at fault (`--r1 40` alone passes)."""
     assert error_line(cli("trajectory", "--r1", "1e6", "-H", "300")) == (
-        "wheelstep: error: --r1 = 1e6: with it, h-max = 100 fails: must be > 2 max(r1, r2) = "
+        "wheelstep: error: --r1 = 1e6: with it, h-max = 100 (the default) fails: must be > 2 max(r1, r2) = "
         "2e+06 mm for the top arc to touch both arcs from outside")
     assert error_line(cli("trajectory", "--r1", "40", "--r2", "70")) == (
-        "wheelstep: error: --r2 = 70: with it, h-max = 100 fails: must be > 2 max(r1, r2) = "
+        "wheelstep: error: --r2 = 70: with it, h-max = 100 (the default) fails: must be > 2 max(r1, r2) = "
         "140 mm for the top arc to touch both arcs from outside")
     assert cli("trajectory", "--r1", "40", "-q").exit_code == 0
 
@@ -90,12 +90,12 @@ def test_a_path_hundreds_of_metres_long_is_not_refused_for_the_rounding_of_its_s
     'they turn 360.0 deg instead of 360'. The sampling's limit is what remains, said of a size
     the user gave (the spacing was not given) with the spacing that serves, which passes."""
     result = cli("trajectory", "-H", "1e6", "--r1", "0.01", "--h-max", "1e6")
-    assert error_line(result) == ("wheelstep: error: -H = 1e6: with it, spacing = 1 fails: gives over "
+    assert error_line(result) == ("wheelstep: error: -H = 1e6: with it, spacing = 1 (the default) fails: gives over "
                                   "a million points along the 3.768e+06 mm path; must be >= 3.77 mm")
     assert cli("trajectory", "-H", "1e6", "--r1", "0.01", "--h-max", "1e6", "--spacing", "3.77",
                "-q").exit_code == 0
     assert error_line(cli("trajectory", "--h-max", "1e6")).startswith(
-        "wheelstep: error: --h-max = 1e6: with it, spacing = 1 fails: gives over a million points")
+        "wheelstep: error: --h-max = 1e6: with it, spacing = 1 (the default) fails: gives over a million points")
     # the least spacing to three digits, rounded up: it passes (0.01 was said for 0.000803)
     assert error_line(cli("trajectory", "--spacing", "0.0001")) == (
         "wheelstep: error: --spacing = 0.0001: gives over a million points along the 802.5 mm path; "

@@ -109,7 +109,7 @@ def test_a_tooth_count_the_laws_periods_do_not_divide_is_said_of_the_csv_with_co
     the user gave (not a --z they did not) and the nearest counts; one applied is built."""
     path = _write(tmp_path, _seventh(6))
     line = error_line(cli("gears", "--law-csv", path, "--dry-run", "--out", tmp_path / "out"))
-    assert line == (f"wheelstep: error: --law-csv = {path}: with it, z = 48 fails: must be a multiple of 7 "
+    assert line == (f"wheelstep: error: --law-csv = {path}: with it, z = 48 (the default) fails: must be a multiple of 7 "
                     "(law periods per pinion turn) and >= 6; use --z 42 or use --z 49")
     # near the tooth limit (240) only the counts a design may have
     top = error_line(cli("gears", "--law-csv", path, "--z", "240", "--dry-run", "--out", tmp_path / "out"))

@@ -46,11 +46,11 @@ CASES = [  # (args, files, text the line must hold)
     (["mesh-check", "h.stl", "p.stl", "--distance", "-1"], {"h.stl": HUGE, "p.stl": PNG}, "--distance = -1"),
     # found by the runner's check that a refusal names a parameter the user gave
     (["linkage", "--l3", "5e-324"], {}, "--l3 = 5e-324"),
-    (["stairs", "--run", "0.5"], {}, "--run = 0.5: with it, landing-angle = -90 fails: gives crank b"),
+    (["stairs", "--run", "0.5"], {}, "--run = 0.5: with it, landing-angle = -90 (the default) fails: gives crank b"),
     (["trajectory", "--r2", "1e-300"], {}, "--r2 = 1e-300"),
     (["kinematics", "--b", "5e-324"], {}, "--b = 5e-324"),
     (["teeth", "--b", "0.5", "--c", "3", "--z", "144"], {}, "--z = 144"),
-    (["teeth", "--backlash", "144"], {}, "--backlash = 144: with it, module = 2 fails: the paper teeth's default module (none given): too large"),
+    (["teeth", "--backlash", "144"], {}, "--backlash = 144: with it, module = 2 (the default) fails: the paper teeth's default module (none given): too large"),
     (["gears", "--tilt", "-0.0"], {}, "--tilt = -0"),   # its remedy: tests/cli/test_design_bounds.py
     # found by a scan of every numeric option with every fuzz value, one at a time
     (["pitch", "--center-distance", "5e-324"], {}, "--center-distance = 5e-324"),
@@ -67,8 +67,8 @@ CASES = [  # (args, files, text the line must hold)
      "--backlash = 3 (3.15 as printed): "),
     (["gears", "--install-distance", "10000"], {}, "--install-distance = 10000"),
     (["gears", "--thickness", "1e-300"], {}, "--thickness = 1e-300: must be >= 0.5 mm"),
-    (["gears", "--install-distance", "3"], {}, "--install-distance = 3: with it, addendum = 1 fails: "),
-    (["gears", "--install-distance", "20"], {}, "--install-distance = 20: with it, bore = 8 fails: must be <"),
+    (["gears", "--install-distance", "3"], {}, "--install-distance = 3: with it, addendum = 1 (the default) fails: "),
+    (["gears", "--install-distance", "20"], {}, "--install-distance = 20: with it, bore = 8 (the default) fails: must be <"),
     (["mesh-check", "h.stl", "p.stl", "--samples", "2147483648"], {"h.stl": HUGE, "p.stl": PNG},
      "--samples"),
     (["mesh-check", "h.stl", "h2.stl"], {"h.stl": HUGE, "h2.stl": HUGE.replace(b"1e30", b"2e30")},

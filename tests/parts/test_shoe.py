@@ -340,7 +340,7 @@ def test_deepest_socket_keeps_two_mm_of_plastic_to_the_sole(cli, tmp_path):
 
 
 @pytest.mark.parametrize("args, named", [
-    (["--a", "0.001", "--b", "5"], "--a = 0.001: with it, socket-depth = 25 fails: "),
+    (["--a", "0.001", "--b", "5"], "--a = 0.001: with it, socket-depth = 25 (the default) fails: "),
     (["--socket-depth", "80"], "--socket-depth = 80: "),
 ])
 def test_a_socket_deeper_than_the_body_names_what_the_user_gave(cli, tmp_path, args, named):
@@ -357,7 +357,7 @@ def test_a_socket_deeper_than_the_body_names_what_the_user_gave(cli, tmp_path, a
 
 def test_a_strut_wider_than_a_small_mechanisms_body_names_what_the_user_gave(cli, tmp_path):
     line = error_line(cli("shoe", "--rmin", "0.5", "--a", "5", "--b", "5", "--out", tmp_path / "out"))
-    assert line.startswith("wheelstep: error: --a = 5: with it, strut-diameter = 12 fails: must be <= "), line
+    assert line.startswith("wheelstep: error: --a = 5: with it, strut-diameter = 12 (the default) fails: must be <= "), line
     limit = line.split("must be <= ")[1].split(" mm")[0]
     assert cli("shoe", "--rmin", "0.5", "--a", "5", "--b", "5", "--strut-diameter", limit, "--socket-depth",
                "1", "--rim", "30", "--out", tmp_path / "ok", "-q").exit_code == 0
@@ -369,7 +369,7 @@ def test_a_mechanism_typed_in_metres_is_told_lengths_are_millimetres(cli, tmp_pa
     from tests.helpers.clicheck import error_line
 
     line = error_line(cli("shoe", "--a", "0.06", "--b", "0.1", "--rmin", "0.02", "--out", tmp_path / "o"))
-    assert line.startswith("wheelstep: error: --a = 0.06: with it, strut-diameter = 12 fails: fits no socket: "
+    assert line.startswith("wheelstep: error: --a = 0.06: with it, strut-diameter = 12 (the default) fails: fits no socket: "
                            "the body is 0.17 mm across (its sole)"), line
     assert line.endswith("lengths are in millimetres") and "<= -" not in line
 

@@ -23,8 +23,8 @@ except ImportError:  # pragma: no cover - older typer uses click itself
 
 from wheelstep_cli.batch.interrupts import (caused_by_interrupt, exit_now, exit_unless_threads_end,
                                             interrupts_not_lost)
+from wheelstep_cli.cli.naming import command_options, flag_values, given_names, os_error_text, refusal_line
 from wheelstep_cli.cli.refusal import said
-from wheelstep_cli.config.names import flag_name
 from wheelstep_cli.config.schema import InvalidInput
 from wheelstep_cli.errors import CheckRefused, DesignError, Interrupted, MeshDefect
 
@@ -63,110 +63,6 @@ def _register_commands() -> None:
 _register_commands()
 
 
-def _command_options(group, argv: list[str]) -> dict[str, list[str]]:
-    """Parameter name -> option strings of the subcommand named in ``argv`` (empty if none is)."""
-    name = next((arg for arg in argv if arg in group.commands), None)
-    if name is None:
-        return {}
-    return {param.name: [*param.opts, *param.secondary_opts] for param in group.commands[name].params
-            if param.param_type_name == "option"}
-
-
-def _as_typed(param: str, options: dict[str, list[str]], argv: list[str]) -> str:
-    """The parameter as the user wrote it: the spelling of its flag found in ``argv``, else
-    its first long flag; a name the command has no option for (an argument, a derived
-    quantity such as a crank angle, a profile key) stays as it is."""
-    opts = options.get(param) or options.get(param.replace("-", "_"))
-    if not opts:
-        return param
-    typed = {arg.split("=", 1)[0] for arg in argv if arg.startswith("-")}
-    used = [o for o in opts if o in typed]
-    return (used or [o for o in opts if o == flag_name(param)] or opts)[0]
-
-
-def _given(options: dict[str, list[str]], argv: list[str]) -> list[str]:
-    """Names of the parameters whose flags appear in ``argv``."""
-    typed = {arg.split("=", 1)[0] for arg in argv if arg.startswith("-")}
-    return [name for name, opts in options.items() if typed.intersection(opts)]
-
-
-def error_text(err: DesignError, name: str, argv: list[str]) -> str:
-    """One line: the parameter as the user wrote it (``name``), the value and the limit."""
-    return f"{name} = {_typed_value(name, err, argv)}: {err.limit}"
-
-
-def typed_name(err: DesignError, options: dict[str, list[str]], argv: list[str]) -> str:
-    """``err``'s parameter as the user wrote it (its flag as typed, an argument by its name)."""
-    name = _as_typed(err.param, options, argv)
-    if name == err.param and isinstance(err.value, str):
-        # a file's problem named by the reader ("file"): the option that gave that file
-        found = _path_option(err.value, options, argv)
-        if found is not None and found[1] == err.value:
-            name = found[0]
-    return name
-
-
-def _typed_value(flag: str, err: DesignError, argv: list[str]) -> str:
-    """The value as the user typed it after ``flag`` (``1e9``, not ``1e+09``) when it is the
-    number the error is about; else as the messages print it."""
-    number = err.value if isinstance(err.value, (int, float)) and not isinstance(err.value, bool) else None
-    for _, text in _flag_values({flag}, argv):
-        try:
-            same = number is not None and float(text) == float(number)
-        except ValueError:
-            same = False
-        if same:
-            return text
-    return err.shown_value
-
-
-def _flag_values(flags: set[str], argv: list[str]) -> list[tuple[str, str]]:
-    """(flag as typed, its value) of every one of ``flags`` given in ``argv``, as
-    ``--flag value`` or ``--flag=value``, in order."""
-    pairs = []
-    for i, arg in enumerate(argv):
-        flag, eq, value = arg.partition("=")
-        if flag in flags and (eq or i + 1 < len(argv)):
-            pairs.append((flag, value if eq else argv[i + 1]))
-    return pairs
-
-
-def _path_option(filename: str, options: dict[str, list[str]], argv: list[str]) -> tuple[str, str] | None:
-    """(flag as typed, its value) of the option in ``argv`` whose path is ``filename``, a
-    folder holding it or inside it, else None."""
-    from pathlib import Path
-
-    pairs = _flag_values({o for opts in options.values() for o in opts}, argv)
-    file = Path(filename)
-    # the option given that very path first, whatever the order (--out . --profile p.yaml)
-    for flag, value in pairs:
-        if value and file == Path(value):
-            return flag, value
-    for flag, value in pairs:
-        given = Path(value)
-        if value and (given in file.parents or file in given.parents):
-            return flag, value
-    return None
-
-
-def os_error_text(err: OSError, options: dict[str, list[str]], argv: list[str]) -> str:
-    """One line for a file that cannot be written: naming the option whose path it is (as the
-    user typed it), the value and why (with the name-length limit when that is why)."""
-    import errno
-    import os
-    from pathlib import Path
-
-    why = err.strerror or str(err)
-    if err.errno == errno.ENAMETOOLONG:
-        why += f"; a file or folder name holds at most {os.pathconf('/', 'PC_NAME_MAX')} bytes"
-    filename = getattr(err, "filename", None)
-    found = _path_option(str(filename), options, argv) if filename else None
-    if found is not None:
-        where = "" if Path(filename) == Path(found[1]) else f"{filename}: "
-        return f"{found[0]} = {found[1]}: cannot be written ({where}{why})"
-    return f"cannot write{f' {filename}' if filename else ''}: {why}"
-
-
 #: What a number option's value must be, by the parser's complaint about it.
 _NUMBER_KINDS = (("valid integer", "must be a whole number"), ("valid number", "must be a number"))
 
@@ -184,7 +80,7 @@ def bad_number_text(err: click_errors.UsageError, argv: list[str]) -> str | None
         kind = "must be one of " + choices.group(1).replace("'", "")
     if param is None or kind is None or not getattr(param, "opts", None):
         return None
-    given = _flag_values(set(param.opts) | set(getattr(param, "secondary_opts", [])), argv)
+    given = flag_values(set(param.opts) | set(getattr(param, "secondary_opts", [])), argv)
     if not given:
         return None
     typed = given[-1]
@@ -320,14 +216,13 @@ def run(argv: list[str] | None = None) -> int:
     except (MeshDefect, CheckRefused) as err:  # a failed check (wheelstep's own, or of the result)
         return said([f"wheelstep: {'refused' if isinstance(err, CheckRefused) else 'error'}: {err}"], 1, args, err)
     except DesignError as err:
-        options = _command_options(command, args)
-        given = _given(options, args)
-        err = err.for_given(given)
-        located = None if err.param.replace("-", "_") in given else _in_design_profile(err, command, args)
+        given = given_names(command_options(command, args), args)
+        stated = err.for_given(given)
+        located = None if stated.param.replace("-", "_") in given else _in_design_profile(stated, command, args)
         if located is not None:     # said at the profile's line: its problem, the remedies the line's
             return said([f"wheelstep: error: {line}" for line in located.lines()], 2, args, located)
-        name = typed_name(err, options, args)
-        return said([f"wheelstep: error: {error_text(err, name, args)}"], 2, args, err, name)
+        line, name = refusal_line(err, stated, command, args)
+        return said([f"wheelstep: error: {line}"], 2, args, stated, name)
     except click_errors.NoArgsIsHelpError as err:
         typer.echo(err.format_message(), err=True)
         return 2
@@ -342,7 +237,7 @@ def run(argv: list[str] | None = None) -> int:
     except click_errors.ClickException as err:
         return said([f"wheelstep: error: {err.format_message()}"], err.exit_code, args)
     except OSError as err:
-        return said([f"wheelstep: error: {os_error_text(err, _command_options(command, args), args)}"], 2, args)
+        return said([f"wheelstep: error: {os_error_text(err, command_options(command, args), args)}"], 2, args)
     return result if isinstance(result, int) else 0
 
 
