@@ -64,3 +64,16 @@ def test_a_table_step_between_the_sampled_crank_angles_is_refused_with_the_ones_
     above = line.rsplit(" or ", 1)[1]
     assert above == "10.28571429"
     assert cli("linkage", "--samples", "700", "--step", above, "--json").exit_code == 0
+
+
+def test_a_support_band_as_deep_as_the_lift_or_none_at_all_is_refused(cli, tmp_path):
+    """--ground-tol is how near its lowest level the foot counts as on the ground: at the lift
+    or beyond, every crank angle would be support (duty factor 1); at 0, hardly one. Both are
+    refused naming the lift; just under the lift the support is most of the turn, not all."""
+    lift = json.loads(cli("linkage", "--json").stdout)["lift_mm"]
+    for value, limit in ((f"{lift + 1:g}", f"must be < the foot's lift {lift:.1f} mm"), ("0", "must be > 0 mm")):
+        line = error_line(cli("linkage", "--ground-tol", value, "--csv", tmp_path / "leg.csv"))
+        assert line.startswith(f"wheelstep: error: --ground-tol = {value}: {limit}"), line
+        assert not (tmp_path / "leg.csv").exists()
+    near = json.loads(cli("linkage", "--ground-tol", f"{0.99 * lift:g}", "--json").stdout)
+    assert 0.5 < near["duty_factor"] < 1

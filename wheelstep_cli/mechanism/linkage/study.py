@@ -92,13 +92,16 @@ def linkage_study(request: LinkageRequest) -> LinkageStudy:
     rpm = leg.rpm if request.rpm is None else request.rpm
     require(rpm > 0, "rpm", rpm, "must be > 0")
     if request.ground_tol is not None:
-        require(request.ground_tol >= 0, "ground-tol", request.ground_tol, "must be >= 0 mm")
+        require(request.ground_tol > 0, "ground-tol", request.ground_tol, "must be > 0 mm")
     theta = cycle_angles(request.samples)
     try:
         sol = solve(leg, theta)
     except DesignError as err:
         raise _for_the_inputs(err, request) from None
     probe = gait(leg, sol, rpm)
+    # a band as deep as the lift holds the whole path: every crank angle would be support
+    require(request.ground_tol is None or request.ground_tol < probe.lift, "ground-tol", request.ground_tol,
+            f"must be < the foot's lift {probe.lift:.1f} mm (within the lift the whole path is support)")
     tol = 0.02 * probe.lift if request.ground_tol is None else request.ground_tol
     return LinkageStudy(request, leg, rpm, sol, gait(leg, sol, rpm, tol))
 
