@@ -229,3 +229,21 @@ def test_the_extension_is_read_in_any_case(cli, tmp_path, monkeypatch):
     assert cli("trajectory", "--plot", "path.PNG", "--csv", "path.CSV").exit_code == 0
     assert (tmp_path / "path.PNG").read_bytes().startswith(b"\x89PNG")
     assert (tmp_path / "path.CSV").read_text().splitlines()[0].startswith("x")
+
+
+@pytest.mark.parametrize("command", ["pitch", "teeth"])
+@pytest.mark.parametrize("key, value", [("blend", "10"), ("law_csv", "law.csv")])
+def test_the_paper_tables_refuse_a_profile_whose_gears_follow_another_law(cli, tmp_path, command, key, value):
+    """pitch and teeth tabulate the paper's sectors of the crank law: a profile whose gears
+    follow a blend or a law CSV would get the crank law's table, not its own pitch curves
+    (they printed it, the key unread). Refused at the profile's line; a blend of 0 is the
+    crank law and is tabulated."""
+    (tmp_path / "law.csv").write_text("driving_deg,driven_deg\n" + "".join(
+        f"{d},{d / 2}\n" for d in range(0, 361, 10)))
+    profile = tmp_path / "p.yaml"
+    profile.write_text(f"gears:\n  {key}: {value}\n")
+    line = error_line(cli(command, "--profile", profile))
+    assert line.startswith(f"wheelstep: error: {profile}:2: gears.{key} = "), line
+    assert "changes the gear law: the paper tables (pitch, teeth) are the crank law's sectors" in line
+    profile.write_text("gears:\n  blend: 0\n")
+    assert cli(command, "--profile", profile).stdout == cli(command).stdout

@@ -133,6 +133,21 @@ class _TableValues:
         return found if section == "mechanism" else {k: v for k, v in found.items() if k in PAPER_TABLE_KEYS}
 
 
+def _crank_law_only(loaded, profile) -> None:
+    """Refuse a design profile whose gear pair follows another law than the crank law (a
+    blend, a law CSV): the paper's sectors and teeth are the crank law's, and a table of them
+    would not be its pitch curves."""
+    for key in ("blend", "law_csv"):
+        value = loaded.values("gears").get(key)
+        if value:       # a blend of 0 is the crank law
+            err = DesignError(key, value, "changes the gear law: the paper tables (pitch, teeth) are "
+                                          "the crank law's sectors (SPEC §4, §5); `gears` writes and reports "
+                                          "the teeth generated for this law")
+            located = in_profile(err, loaded, "gears")
+            raise located if located is not None else DesignError(
+                "profile", profile, f"gives gears.{key} = {value}: {err.limit}")
+
+
 def paper_table_spec(profile, **cli) -> GearPairSpec:
     """The spec of the paper method's tables (SPEC §4, §5): command line over the profile's
     mechanism and :data:`PAPER_TABLE_KEYS`, paper teeth at their design distance L_p (the
@@ -141,6 +156,8 @@ def paper_table_spec(profile, **cli) -> GearPairSpec:
     from wheelstep_cli.config.specs import paper_design_distance
 
     loaded = _profile(profile)
+    if loaded is not None:
+        _crank_law_only(loaded, profile)
     values = spec_values(GearPairSpec, "gears", None if loaded is None else _TableValues(loaded),
                          {**cli, "teeth": "paper", "bore": 0.0})
     # the profile's values were checked when it was read, the command line's are numbers
