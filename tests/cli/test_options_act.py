@@ -232,18 +232,19 @@ def test_the_extension_is_read_in_any_case(cli, tmp_path, monkeypatch):
 
 
 @pytest.mark.parametrize("command", ["pitch", "teeth"])
-@pytest.mark.parametrize("key, value", [("blend", "10"), ("law_csv", "law.csv")])
-def test_the_paper_tables_refuse_a_profile_whose_gears_follow_another_law(cli, tmp_path, command, key, value):
+def test_the_paper_tables_refuse_a_law_csv_profile_and_say_they_leave_its_blend_out(cli, tmp_path, command):
     """pitch and teeth tabulate the paper's sectors of the crank law: a profile whose gears
-    follow a blend or a law CSV would get the crank law's table, not its own pitch curves
-    (they printed it, the key unread). Refused at the profile's line; a blend of 0 is the
-    crank law and is tabulated."""
+    follow a law CSV is refused at its line (the crank law's table was printed, the key
+    unread); a profile's blend, which smooths only the generated teeth's law, is said to be
+    left out (the table is the same as without it)."""
     (tmp_path / "law.csv").write_text("driving_deg,driven_deg\n" + "".join(
         f"{d},{d / 2}\n" for d in range(0, 361, 10)))
     profile = tmp_path / "p.yaml"
-    profile.write_text(f"gears:\n  {key}: {value}\n")
+    profile.write_text("gears:\n  law_csv: law.csv\n")
     line = error_line(cli(command, "--profile", profile))
-    assert line.startswith(f"wheelstep: error: {profile}:2: gears.{key} = "), line
-    assert "changes the gear law: the paper tables (pitch, teeth) are the crank law's sectors" in line
-    profile.write_text("gears:\n  blend: 0\n")
-    assert cli(command, "--profile", profile).stdout == cli(command).stdout
+    assert line.startswith(f"wheelstep: error: {profile}:2: gears.law_csv = "), line
+    assert "replaces the crank law: the paper tables (pitch, teeth) are the crank law's sectors" in line
+    profile.write_text("gears:\n  blend: 10\n")
+    blended = cli(command, "--profile", profile)
+    assert blended.exit_code == 0 and blended.stdout == cli(command).stdout
+    assert "the profile's gears.blend = 10 deg smooths the law that generated teeth follow" in blended.stderr

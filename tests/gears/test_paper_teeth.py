@@ -78,6 +78,20 @@ def test_a_module_too_large_names_one_that_works(cli):
     assert cli("teeth", "--profile", "desk-demo", "--module", above, "--backlash", "0.5").exit_code == 2
 
 
+def test_the_module_named_is_the_largest_with_its_own_default_backlash_whatever_was_given(cli):
+    """With no --backlash the backlash follows the module (0.25 m): the largest module named
+    is the same for every too-large module given (it kept the given module's backlash: 2.83
+    for -m 3, 2.13 for -m 10), it is accepted, and 0.01 mm more is refused."""
+    named = set()
+    for module in ("3", "5", "10"):
+        found = re.search(r"use --module ([0-9.]+) or less", error_line(cli("teeth", "-m", module)))
+        named.add(found.group(1))
+    assert len(named) == 1, named
+    largest = float(named.pop())
+    assert cli("teeth", "-m", f"{largest:g}", "-q").exit_code == 0
+    assert cli("teeth", "-m", f"{largest + 0.01:.2f}", "-q").exit_code == 2
+
+
 def test_involute_polar_angle_matches_definition():
     alpha = np.radians(20.0)
     assert involute_polar_angle(np.cos(alpha), 1.0) == pytest.approx(np.tan(alpha) - alpha)

@@ -134,18 +134,28 @@ class _TableValues:
 
 
 def _crank_law_only(loaded, profile) -> None:
-    """Refuse a design profile whose gear pair follows another law than the crank law (a
-    blend, a law CSV): the paper's sectors and teeth are the crank law's, and a table of them
-    would not be its pitch curves."""
-    for key in ("blend", "law_csv"):
-        value = loaded.values("gears").get(key)
-        if value:       # a blend of 0 is the crank law
-            err = DesignError(key, value, "changes the gear law: the paper tables (pitch, teeth) are "
-                                          "the crank law's sectors (SPEC §4, §5); `gears` writes and reports "
-                                          "the teeth generated for this law")
-            located = in_profile(err, loaded, "gears")
-            raise located if located is not None else DesignError(
-                "profile", profile, f"gives gears.{key} = {value}: {err.limit}")
+    """Refuse a design profile whose gear pair follows a law CSV: the paper's sectors and teeth
+    are the crank law's, and a table of them would not be its pitch curves at all."""
+    value = loaded.values("gears").get("law_csv")
+    if value:
+        err = DesignError("law_csv", value, "replaces the crank law: the paper tables (pitch, teeth) are "
+                                            "the crank law's sectors (SPEC §4, §5); `gears` writes and "
+                                            "reports the teeth generated for this law")
+        located = in_profile(err, loaded, "gears")
+        raise located if located is not None else DesignError(
+            "profile", profile, f"gives gears.law_csv = {value}: {err.limit}")
+
+
+def paper_table_note(profile) -> str | None:
+    """What the paper tables leave out of a design profile that a reader could expect in them:
+    the blend its generated teeth's law is smoothed over (the paper method follows the crank
+    law itself); None when there is nothing to say."""
+    loaded = _profile(profile)
+    blend = None if loaded is None else loaded.values("gears").get("blend")
+    if not blend:
+        return None
+    return (f"the profile's gears.blend = {blend:g} deg smooths the law that generated teeth follow "
+            "(gears, kinematics); the paper tables are the crank law's own sectors")
 
 
 def paper_table_spec(profile, **cli) -> GearPairSpec:

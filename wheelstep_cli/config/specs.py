@@ -31,6 +31,8 @@ MAX_LENGTH = 10_000.0
 #: Installed centre distance when none is given (the source's, mm), and how much closer the
 #: source's paper sectors roll (its L_p = 143.5 mm, installed 0.5 mm apart for backlash).
 DEFAULT_INSTALL, PAPER_OPENING = 144.0, 0.5
+#: The paper teeth's backlash when none is given, per mm of module (SPEC §5: j_n = 0.25 m).
+PAPER_BACKLASH_PER_MODULE = 0.25
 #: Pinion tooth counts taken: the generator's floor, and a ceiling that bounds its work.
 MIN_TEETH, MAX_TEETH = 6, 240
 #: Least centre distance (mm): a pair closer than this cannot be printed, and far below it the
@@ -272,7 +274,7 @@ class GearPairSpec(BaseModel):
 
     @property
     def backlash_mm(self) -> float:
-        return 0.25 * self.paper_module if self.backlash is None else self.backlash
+        return PAPER_BACKLASH_PER_MODULE * self.paper_module if self.backlash is None else self.backlash
 
     @property
     def paper_module(self) -> float:

@@ -94,10 +94,12 @@ def wheel_flanks(part: SectorPartition, form: ToothForm, points: int = 5) -> Fla
     return _sector_flanks(part.phi, part.dphi, part.r_wheel, form, points, -1.0, np.pi / 2.0)
 
 
-def check_tooth_form(part: SectorPartition, form: ToothForm, least_module: float = 0.0) -> None:
+def check_tooth_form(part: SectorPartition, form: ToothForm, least_module: float = 0.0,
+                     backlash_per_module: float | None = None) -> None:
     """Reject modules the sectors cannot carry: negative radii, pointed or overlapping teeth;
     a refusal names the largest module that can, when that is at least ``least_module`` mm
-    (the smallest a spec takes), else only the other remedies."""
+    (the smallest a spec takes), else only the other remedies. ``backlash_per_module``: the
+    backlash follows the module at this ratio (a default backlash), else it stays ``form``'s."""
     m = form.module
     smallest = float(min(part.r_pinion.min(), part.r_wheel.min()))
     require(smallest - 1.25 * m > 0, "module", m,
@@ -105,7 +107,7 @@ def check_tooth_form(part: SectorPartition, form: ToothForm, least_module: float
     worst, gap = _tip_land_and_gap(part, form)
     if worst >= MIN_TIP_LAND and gap > 0:
         return
-    largest = _largest_module(part, form)
+    largest = _largest_module(part, form, backlash_per_module)
     smaller = [f"--module {largest:g} or less"] if largest >= max(least_module, 0.01) else []
     if worst < MIN_TIP_LAND:
         remedies = [*smaller, "less backlash (--backlash)", "fewer teeth (--z: fewer teeth, longer pitch)"]
@@ -131,14 +133,16 @@ def _tip_land_and_gap(part: SectorPartition, form: ToothForm) -> tuple[float, fl
     return float(min(pinion_tip.min(), wheel_tip.min())), float(min(pinion_gap.min(), wheel_gap.min()))
 
 
-def _largest_module(part: SectorPartition, form: ToothForm) -> float:
+def _largest_module(part: SectorPartition, form: ToothForm, backlash_per_module: float | None) -> float:
     """The largest module (mm, rounded down to 0.01) below ``form``'s whose teeth keep their
-    tip lands and space bottoms, with ``form``'s backlash: a smaller module's own default
-    backlash (0.25 module) is smaller still, so the remedy holds either way."""
+    tip lands and space bottoms, with ``form``'s backlash, or with ``backlash_per_module`` x
+    the module when the backlash follows the module (so the module named is the same
+    whichever too-large module was given)."""
     lo, hi = 0.0, form.module
     for _ in range(40):
         mid = 0.5 * (lo + hi)
-        worst, gap = _tip_land_and_gap(part, replace(form, module=mid))
+        backlash = form.backlash if backlash_per_module is None else backlash_per_module * mid
+        worst, gap = _tip_land_and_gap(part, replace(form, module=mid, backlash=backlash))
         lo, hi = (mid, hi) if worst >= MIN_TIP_LAND and gap > 0 else (lo, mid)
     return float(np.floor(lo * 100.0) / 100.0)
 

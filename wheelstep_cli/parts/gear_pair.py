@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from wheelstep_cli.config.specs import MIN_MODULE, GearPairSpec
+from wheelstep_cli.config.specs import MIN_MODULE, PAPER_BACKLASH_PER_MODULE, GearPairSpec
 from wheelstep_cli.gears.paper_teeth import check_tooth_form, pinion_outline, wheel_outline
 from wheelstep_cli.gears.laws import CrankLaw
 from wheelstep_cli.gears.sectors import SectorPartition, sector_partition, sectors_per_quarter
@@ -131,7 +131,8 @@ def check_paper_teeth(partition: SectorPartition, form, spec: GearPairSpec) -> N
     from wheelstep_cli.errors import DesignError
 
     try:
-        check_tooth_form(partition, form, least_module=MIN_MODULE)
+        check_tooth_form(partition, form, least_module=MIN_MODULE,
+                         backlash_per_module=PAPER_BACKLASH_PER_MODULE if spec.backlash is None else None)
     except DesignError as err:
         if err.param == "module" and spec.module is None:
             # a module nobody gave is said to be the default, not as if the user had set it

@@ -6,7 +6,7 @@ from typing import Annotated, Optional
 
 from wheelstep_cli.cli.options import A, B, C, Json, Profile, Quiet, Turns, Verbose, Z, opt
 from wheelstep_cli.cli.output import Output
-from wheelstep_cli.config.resolve import paper_table_spec
+from wheelstep_cli.config.resolve import paper_table_note, paper_table_spec
 
 # the paper method's tables (pitch, teeth): their own rules, not the generator's
 PaperDistance = Annotated[Optional[float], opt(
@@ -30,9 +30,17 @@ def pitch(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
     parameters = {"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
                   "center_distance": spec.center_distance}
     out.parameters(parameters)
+    _note_left_out(out, profile)
     # the report says what it was computed for, as the part commands' reports do
     report = {"tool": "wheelstep pitch", "parameters": parameters, **pitch_report(spec)}
     out.report(report, lambda: _pitch_lines(report))
+
+
+def _note_left_out(out: Output, profile: str | None) -> None:
+    """Say what of the profile the paper tables leave out (its blend), on stderr."""
+    note = paper_table_note(profile)
+    if note is not None:
+        out.warning(note)
 
 
 def _pitch_lines(report: dict) -> list[str]:
@@ -65,6 +73,7 @@ def teeth(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
                   "center_distance": spec.center_distance, "module": spec.paper_module,
                   "backlash": spec.backlash_mm}
     out.parameters(parameters)
+    _note_left_out(out, profile)
     report = {"tool": "wheelstep teeth", "parameters": parameters, **teeth_report(spec)}
     out.report(report, lambda: _teeth_lines(report))
 
