@@ -395,3 +395,14 @@ def test_a_body_too_narrow_for_any_strut_names_its_width_not_the_strut(cli, tmp_
     line = error_line(cli("shoe", "--width", "4.5", "--strut-diameter", "1", "--out", tmp_path / "o"))
     assert line.startswith("wheelstep: error: --width = 4.5: must be >= 5.00 mm (socket wider than the body"), line
     assert cli("shoe", "--width", "5", "--strut-diameter", "1", "--out", tmp_path / "o", "-q").exit_code == 0
+
+
+def test_a_rim_thinner_than_the_shoes_least_wall_is_refused(cli, tmp_path):
+    """--rim is the body's height above the sole's ends: 1e-9 mm was written as printable
+    (knife-edged ends); it takes the shoe's least wall, as the socket's walls do."""
+    from wheelstep_cli.config.specs import MIN_SHOE_WALL
+
+    line = error_line(cli("shoe", "--rim", "1e-9", "--out", tmp_path / "thin"))
+    assert line == f"wheelstep: error: --rim = 1e-9: must be >= {MIN_SHOE_WALL:g} mm", line
+    assert not (tmp_path / "thin").exists()
+    assert cli("shoe", "--rim", f"{MIN_SHOE_WALL:g}", "--out", tmp_path / "least", "-q").exit_code == 0

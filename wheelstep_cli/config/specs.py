@@ -41,6 +41,9 @@ MIN_DISTANCE = 1.0
 #: Greatest centre distance (mm): beyond any printer's bed, and it bounds the work (outlines
 #: are sampled in micrometres: about 0.8 GB and 15 s at 1000 mm, linear in the distance).
 MAX_DISTANCE = 1000.0
+#: Least plastic of a shoe (mm): around and under its strut socket, and its body's height
+#: above the sole's ends (thinner, the ends print as knife edges that break off).
+MIN_SHOE_WALL = 2.0
 #: Least socket bore (mm): a smaller hole does not print, and far below it the bore's polygon
 #: degenerates before the solid is made.
 MIN_BORE = 1.0
@@ -362,7 +365,7 @@ class ShoeSpec(BaseModel):
     width: Real = length(40.0, gt=0)            # across the track
     strut_diameter: Real = length(12.0, ge=MIN_BORE)   # socket bore (circumscribed polygon, the strut fits)
     socket_depth: Real = length(25.0, gt=0)
-    rim: Real = length(15.0, gt=0)              # body height above the sole's ends
+    rim: Real = length(15.0, ge=MIN_SHOE_WALL)  # body height above the sole's ends
 
     def design(self):
         """The mechanism sizing (mechanism.crank.CrankMechanism); DesignError for an invalid or

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from wheelstep_cli.config.specs import MIN_BORE, ShoeSpec
+from wheelstep_cli.config.specs import MIN_BORE, MIN_SHOE_WALL, ShoeSpec
 from wheelstep_cli.errors import DesignError, rounded_down, rounded_up
 from wheelstep_cli.geometry.planar import polyline_box_distance
 from wheelstep_cli.mechanism.sole import contact_angles, sole_profile
@@ -13,7 +13,7 @@ from wheelstep_cli.mechanism.sole import contact_angles, sole_profile
 #: Hub angles sampled along the sole (JSON, CSV, DXF and the mesh all use these).
 PROFILE_POINTS = 401
 #: Least plastic around and under the strut socket, mm.
-MIN_WALL = 2.0
+MIN_WALL = MIN_SHOE_WALL
 
 
 def check_socket(spec: ShoeSpec, sole_part: np.ndarray, top: float) -> float:
