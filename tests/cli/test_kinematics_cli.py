@@ -151,3 +151,16 @@ def test_the_summary_is_the_cycles_not_the_samples_shown(cli):
         for key in ("min_m_s", "max_m_s", "ripple_pct"):
             assert few[side][key] == pytest.approx(many[side][key], rel=1e-9, abs=1e-12), (side, key)
     assert max(few["curve"]["without_m_s"]) < few["without_gears"]["max_m_s"] - 0.1
+
+
+def test_more_table_rows_than_samples_are_refused_and_a_fast_motors_cycle_is_not_zero(cli):
+    """--rows 1000 over the default 361 samples printed 361 rows unsaid: refused naming the
+    samples; with as many samples it prints them. A 1e6 rpm motor's cycle (30 us) was
+    printed as 0.000 s."""
+    line = error_line(cli("kinematics", "--rows", "1000"))
+    assert line.startswith("wheelstep: error: --rows = 1000: must be <= --points = 361"), line
+    table = cli("kinematics", "--rows", "1000", "--points", "1000").stdout.splitlines()
+    assert sum(1 for row in table if row.split() and row.split()[0].replace(".", "").lstrip("-").isdigit()) == 1000
+    fast = cli("kinematics", "--motor-rpm", "1e6").stdout.splitlines()[0]
+    seconds = json.loads(cli("kinematics", "--motor-rpm", "1e6", "--json").stdout)["cycle_time_s"]
+    assert f"one shoe cycle {seconds:.3g} s" in fast and seconds < 1e-3, fast

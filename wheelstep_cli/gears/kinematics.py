@@ -87,11 +87,14 @@ def require_shoe_cycle_period(law, param: str, value) -> None:
 
 def check_inputs(motor_rpm: float, points: int, rows: int) -> None:
     """Raise DesignError unless the motor speed is 1e-3..1e6 rpm, points 3..100000 and rows
-    2..10000 (bounds that keep the work and the figures finite)."""
+    2..10000 (bounds that keep the work and the figures finite), and no more rows than points
+    (the table prints samples: more rows than samples would print the samples only)."""
     require(np.isfinite(motor_rpm) and 1e-3 <= motor_rpm <= 1e6, "motor_rpm", motor_rpm,
             "must be 0.001..1e6 rpm")
     require(3 <= points <= 100_000, "points", points, "must be 3..100000")
     require(2 <= rows <= 10_000, "rows", rows, "must be 2..10000")
+    require(rows <= points, "rows", rows, f"must be <= --points = {points} (the table prints samples of the "
+                                          "cycle; give more --points for more rows)")
 
 
 def hub_speed_study(design: CrankMechanism, turns: int, motor_rpm: float, points: int,

@@ -102,7 +102,7 @@ def kinematics(
 
         raise DesignError("rows", rows, "shapes the printed table, which --json and -q do not "
                                         "print (--json gives every sample)")
-    rows = 9 if rows is None else rows
+    rows = min(9, points) if rows is None else rows     # the default table: 9 rows, or every sample
     check_inputs(motor_rpm, points, rows)
     design = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min).design()
     gears = _profile_gears(profile)
@@ -118,6 +118,12 @@ def kinematics(
     show.files(named, dry_run)
 
 
+def _seconds(time: float) -> str:
+    """A time in seconds to the millisecond, or to 3 digits when shorter than 10 ms (a fast
+    motor's cycle printed as 0.000 s)."""
+    return f"{time:.3f}" if time >= 0.01 else f"{time:.3g}"
+
+
 def _kinematics_lines(report: dict, rows: int) -> list[str]:
     """The cycle, a table of ``rows`` samples and both ripples."""
     from wheelstep_cli.gears.kinematics import table_rows
@@ -125,7 +131,7 @@ def _kinematics_lines(report: dict, rows: int) -> list[str]:
     curve = report["curve"]
     lines = [f"a = {report['a_mm']:g}  b = {report['b_mm']:g}  c = {report['c_mm']:g} mm, motor "
              f"{report['motor_rpm']:g} rpm, {report['turns']:g} pinion turn{'' if report['turns'] == 1 else 's'} per carrier turn: one "
-             f"shoe cycle {report['cycle_time_s']:.3f} s, {report['x_cycle_mm']:.1f} mm, mean hub "
+             f"shoe cycle {_seconds(report['cycle_time_s'])} s, {report['x_cycle_mm']:.1f} mm, mean hub "
              f"speed {report['mean_speed_m_s']:.3f} m/s",
              f"{'phi deg':>8} {'U':>8} {'without m/s':>12} {'with m/s':>10}"]
     for i in table_rows(len(curve["phi_deg"]), rows):
