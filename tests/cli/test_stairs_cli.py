@@ -76,3 +76,10 @@ def test_cli_bad_input_one_line_exit_2(cli, tmp_path, args, param):
 ])
 def test_options_that_would_do_nothing_are_refused(cli, args, line):
     assert error_line(cli("stairs", *args)).startswith(f"wheelstep: error: {line}")
+
+
+def test_no_negative_zero_in_the_tables(cli):
+    """The climb table's derivatives at phi = 0 printed as -0.00 (and -0.0 in --json)."""
+    text = cli("stairs").stdout
+    assert "-0.00 " not in text and not any(line.endswith("-0.00") for line in text.splitlines())
+    assert "-0.0," not in cli("stairs", "--json").stdout.replace(" ", "")

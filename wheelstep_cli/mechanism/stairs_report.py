@@ -88,10 +88,11 @@ def stair_study(request: StairRequest) -> StairStudy:
 
 
 def kinematics_rows(kin: np.ndarray) -> list[dict]:
-    """Rows of the kinematics table as dicts; ``phi`` in degrees."""
+    """Rows of the kinematics table as dicts; ``phi`` in degrees; no negative zeros (a
+    derivative of 0 at phi = 0 came out as -0.0)."""
     out = []
     for row in kin:
-        item = dict(zip(st.KINEMATICS_COLUMNS, (float(v) for v in row)))
+        item = dict(zip(st.KINEMATICS_COLUMNS, (float(v) + 0.0 for v in row)))
         item["phi"] = float(np.degrees(row[0]))
         out.append(item)
     return out

@@ -169,8 +169,10 @@ def _study_lines(study, report: dict) -> list[str]:
 def _table(title: str, rows) -> list[str]:
     lines = [title, f"{'phi':>8} {'X01':>9} {'dX01':>9} {'d2X01':>9} {'Y01':>9} {'dY01':>9} {'d2Y01':>9}"]
     for r in rows:
-        lines.append(f"{r['phi']:8.2f} {r['X01']:9.2f} {r['dX01']:9.2f} {r['d2X01']:9.2f} "
-                     f"{r['Y01']:9.2f} {r['dY01']:9.2f} {r['d2Y01']:9.2f}")
+        # rounded first: a value within 0.005 of zero prints as 0.00, not -0.00
+        cells = {key: round(value, 2) + 0.0 for key, value in r.items()}
+        lines.append(f"{cells['phi']:8.2f} {cells['X01']:9.2f} {cells['dX01']:9.2f} {cells['d2X01']:9.2f} "
+                     f"{cells['Y01']:9.2f} {cells['dY01']:9.2f} {cells['d2Y01']:9.2f}")
     return lines
 
 
