@@ -77,3 +77,13 @@ def test_a_support_band_as_deep_as_the_lift_or_none_at_all_is_refused(cli, tmp_p
         assert not (tmp_path / "leg.csv").exists()
     near = json.loads(cli("linkage", "--ground-tol", f"{0.99 * lift:g}", "--json").stdout)
     assert 0.5 < near["duty_factor"] < 1
+
+
+def test_the_papers_own_numbers_typed_are_the_papers_leg(cli):
+    """--o1 567,615 (the paper's pivot) gave a 'four-bar leg' report without the source's
+    name: the same numbers typed are the paper's leg, reported the same; one changed is not."""
+    plain = json.loads(cli("linkage", "--json").stdout)
+    typed = json.loads(cli("linkage", "--o1", "567,615", "--l1", "270", "--beta", "70.8", "--json").stdout)
+    assert typed["description"] == plain["description"] and plain["description"].startswith("source paper")
+    changed = json.loads(cli("linkage", "--beta", "70.9", "--json").stdout)
+    assert not changed["description"].startswith("source paper") and "70.9 deg" in changed["description"]

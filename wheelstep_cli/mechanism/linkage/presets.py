@@ -13,7 +13,7 @@ def four_bar_paper() -> Linkage:
     return Linkage(
         name="four-bar",
         description="source paper four-bar leg (SPEC §7): crank OK 270, rocker O1L 638, coupler KL 650, "
-                    "bent arm LH 654 mm at 70.8 deg to the coupler, O1 = (567, 615) mm, 27 rpm",
+                    "bent arm LH 654 mm at 70.8 deg to the coupler, O1 = (567, 615) mm (the paper runs it at 27 rpm)",
         steps=(Fixed("O", 0.0, 0.0), Fixed("O1", 567.0, 615.0), Crank("K", "O", l1),
                Dyad("L", "K", l3, "O1", l2, branch=-1),
                # H = L - l4 (cos(g3 + beta), sin(g3 + beta)), g3 the direction K -> L
@@ -111,6 +111,9 @@ def four_bar(l1=None, l2=None, l3=None, l4=None, beta_deg=None, o1=None) -> Link
     l4 = steps["H"].length if l4 is None else l4
     beta = float(np.degrees(steps["H"].angle)) if beta_deg is None else beta_deg
     ox, oy = (steps["O1"].x, steps["O1"].y) if o1 is None else o1
+    if (l1, l2, l3, l4, beta, ox, oy) == (steps["K"].length, steps["L"].rq, steps["L"].rp, steps["H"].length,
+                                          float(np.degrees(steps["H"].angle)), steps["O1"].x, steps["O1"].y):
+        return base         # the paper's own numbers, typed: the paper's leg
     for name, value in (("l1", l1), ("l2", l2), ("l3", l3), ("l4", l4)):
         require(value > 0, name, value, "link length must be > 0 mm")
     return Linkage(
