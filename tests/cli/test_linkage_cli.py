@@ -19,6 +19,9 @@ def test_cli_json_plot_gif_csv(cli, tmp_path):
     assert data["branches"] == {"U": -1, "W": 1, "R": 1, "K": -1, "F": -1}
     assert out["png"].read_bytes()[:4] == b"\x89PNG" and out["gif"].read_bytes()[:6] == b"GIF89a"
     assert len(out["csv"].read_text().splitlines()) == 361
+    # the support column is a flag, 0 or 1 as the JSON's booleans are (it was 0.000000 / 1.000000)
+    support = [line.rsplit(",", 1)[1] for line in out["csv"].read_text().splitlines()[1:]]
+    assert set(support) == {"0", "1"}
     from PIL import Image
 
     assert Image.open(out["gif"]).n_frames == 6

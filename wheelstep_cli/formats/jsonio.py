@@ -39,8 +39,9 @@ def json_bytes(data) -> bytes:
     return json_text(data).encode("utf-8")
 
 
-def csv_bytes(header: list[str], rows: np.ndarray, fmt: str = "%.6f") -> bytes:
-    """CSV with a header line; ``rows`` a 2D numeric array."""
+def csv_bytes(header: list[str], rows: np.ndarray, fmt: str | list[str] = "%.6f") -> bytes:
+    """CSV with a header line; ``rows`` a 2D numeric array; ``fmt`` one format for every
+    column or one per column (``%d`` for a 0/1 flag)."""
     buf = io.StringIO()
     np.savetxt(buf, np.asarray(rows, dtype=float), fmt=fmt, delimiter=",",
                header=",".join(header), comments="")

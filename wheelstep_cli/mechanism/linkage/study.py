@@ -157,9 +157,10 @@ def linkage_report(study: LinkageStudy) -> dict:
     }
 
 
-def path_table(study: LinkageStudy) -> tuple[list[str], np.ndarray]:
-    """Header and rows of the foot path at every sample (deg, mm, mm/s, support 0/1)."""
+def path_table(study: LinkageStudy) -> tuple[list[str], np.ndarray, list[str]]:
+    """Header, rows and column formats of the foot path at every sample (deg, mm, mm/s to six
+    decimals; support as 0 or 1)."""
     g = study.gait
     header = ["crank_deg", "x_mm", "y_mm", "vx_mm_s", "vy_mm_s", "speed_mm_s", "support"]
     return header, np.column_stack([np.degrees(study.solution.theta), g.foot, g.velocity, g.speed,
-                                    g.support])
+                                    g.support]), ["%.6f"] * (len(header) - 1) + ["%d"]
