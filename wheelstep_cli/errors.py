@@ -82,6 +82,11 @@ class DesignError(ValueError):
         return other
 
 
+#: How an error's limit says that its value is a default nobody gave (the command line then
+#: does not mark it again).
+NONE_GIVEN = "(none given)"
+
+
 def tie_context(param: str, shown_value: str) -> str:
     """How an error restated for another input names the parameter its rule is about
     (:meth:`DesignError.tied_to`): ``with it, backlash = 0.239 fails``."""

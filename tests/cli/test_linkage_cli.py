@@ -74,7 +74,10 @@ def test_a_support_band_as_deep_as_the_lift_or_none_at_all_is_refused(cli, tmp_p
     or beyond, every crank angle would be support (duty factor 1); at 0, hardly one. Both are
     refused naming the lift; just under the lift the support is most of the turn, not all."""
     lift = json.loads(cli("linkage", "--json").stdout)["lift_mm"]
-    for value, limit in ((f"{lift + 1:g}", f"must be < the foot's lift {lift:.1f} mm"), ("0", "must be > 0 mm")):
+    from wheelstep_cli.errors import rounded_down
+
+    for value, limit in ((f"{lift + 1:g}", f"must be < the foot's lift {rounded_down(lift, 1)} mm"),
+                         ("0", "must be > 0 mm")):
         line = error_line(cli("linkage", "--ground-tol", value, "--csv", tmp_path / "leg.csv"))
         assert line.startswith(f"wheelstep: error: --ground-tol = {value}: {limit}"), line
         assert not (tmp_path / "leg.csv").exists()

@@ -135,7 +135,7 @@ def test_two_wheels_or_two_pinions_are_refused_before_any_work(desk_pair, cli, t
     # named, given or the design's
     for given in (["--distance", "100"], []):
         far = error_line(cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", *given))
-        assert far == (f"wheelstep: error: --distance = {given[1] if given else '144 (the default)'}: the pinion and the "
+        assert far == (f"wheelstep: error: --distance = {given[1] if given else 144}: the pinion and the "
                        "wheel given are a pair for about 71.6 mm (radii by area 23.8 + 47.7 mm), more than "
                        "20 % off: give the distance they were designed for, or their design's --profile"), far
     # neither fits, nor are they in the law's ratio: said of both, as the sizes that do not add up

@@ -1,6 +1,7 @@
 """`wheelstep stairs` (SPEC §6): JSON and plot, design check, sweep, bad input."""
 
 import json
+import math
 
 import pytest
 
@@ -82,4 +83,16 @@ def test_no_negative_zero_in_the_tables(cli):
     """The climb table's derivatives at phi = 0 printed as -0.00 (and -0.0 in --json)."""
     text = cli("stairs").stdout
     assert "-0.00 " not in text and not any(line.endswith("-0.00") for line in text.splitlines())
-    assert "-0.0," not in cli("stairs", "--json").stdout.replace(" ", "")
+    numbers = []
+
+    def walk(value):
+        if isinstance(value, float):
+            numbers.append(value)
+        elif isinstance(value, dict):
+            [walk(v) for v in value.values()]
+        elif isinstance(value, list):
+            [walk(v) for v in value]
+
+    walk(json.loads(cli("stairs", "--json").stdout))
+    zeros = [v for v in numbers if v == 0.0]
+    assert zeros and all(math.copysign(1.0, v) > 0 for v in zeros)

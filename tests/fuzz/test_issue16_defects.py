@@ -50,7 +50,7 @@ CASES = [  # (args, files, text the line must hold)
     (["trajectory", "--r2", "1e-300"], {}, "--r2 = 1e-300"),
     (["kinematics", "--b", "5e-324"], {}, "--b = 5e-324"),
     (["teeth", "--b", "0.5", "--c", "3", "--z", "144"], {}, "--z = 144"),
-    (["teeth", "--backlash", "144"], {}, "--backlash = 144: with it, module = 2 (the default) fails: the paper teeth's default module (none given): too large"),
+    (["teeth", "--backlash", "144"], {}, "--backlash = 144: with it, module = 2 fails: the paper teeth's default module (none given): too large"),
     (["gears", "--tilt", "-0.0"], {}, "--tilt = -0"),   # its remedy: tests/cli/test_design_bounds.py
     # found by a scan of every numeric option with every fuzz value, one at a time
     (["pitch", "--center-distance", "5e-324"], {}, "--center-distance = 5e-324"),

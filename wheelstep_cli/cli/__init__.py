@@ -23,7 +23,8 @@ except ImportError:  # pragma: no cover - older typer uses click itself
 
 from wheelstep_cli.batch.interrupts import (caused_by_interrupt, exit_now, exit_unless_threads_end,
                                             interrupts_not_lost)
-from wheelstep_cli.cli.naming import command_options, flag_values, given_names, os_error_text, refusal_line
+from wheelstep_cli.cli.naming import (command_options, flag_values, given_names, option_values, os_error_text,
+                                      refusal_line)
 from wheelstep_cli.cli.refusal import said
 from wheelstep_cli.config.schema import InvalidInput
 from wheelstep_cli.errors import CheckRefused, DesignError, Interrupted, MeshDefect
@@ -106,35 +107,6 @@ def _with_limit(kind: str, name: str) -> str:
     return kind + (", " + limit[len("must be "):] if limit is not None and limit.startswith("must be ") else "")
 
 
-def _option_values(params, argv: list[str]) -> list[tuple[object, str, str]]:
-    """(parameter, flag as typed, value) of every value-taking option of ``params`` in
-    ``argv`` as the parser reads them: ``--flag value``, ``--flag=value``, ``-f value``,
-    ``-fvalue`` and bundled ``-qfvalue``; a value is not read as an option, and nothing
-    after ``--`` is an option."""
-    by_flag = {flag: p for p in params for flag in (*p.opts, *p.secondary_opts)}
-    takes_value = {flag: not (getattr(p, "is_flag", False) or getattr(p, "count", False))
-                   for flag, p in by_flag.items()}
-    found, i = [], 0
-    while i < len(argv) and argv[i] != "--":
-        arg, i = argv[i], i + 1
-        if arg.startswith("--"):
-            flag, eq, value = arg.partition("=")
-            if takes_value.get(flag) and (eq or i < len(argv)):
-                found.append((by_flag[flag], flag, value if eq else argv[i]))
-                i += 0 if eq else 1
-            continue
-        for k in range(1, len(arg) if arg.startswith("-") else 1):
-            flag = "-" + arg[k]
-            if flag not in by_flag:
-                break
-            if takes_value[flag]:
-                if k + 1 < len(arg) or i < len(argv):
-                    found.append((by_flag[flag], flag, arg[k + 1:] if k + 1 < len(arg) else argv[i]))
-                    i += 0 if k + 1 < len(arg) else 1
-                break
-    return found
-
-
 def misread_value_text(group, argv: list[str]) -> str | None:
     """One line for an option value of the named subcommand that the parser would read as
     something the person did not mean; None when there is none (or help is asked for):
@@ -152,7 +124,7 @@ def misread_value_text(group, argv: list[str]) -> str | None:
     if both is not None:
         return both
     seen: dict[str, tuple[str, str]] = {}
-    for param, flag, value in _option_values(options, argv[argv.index(name) + 1:]):
+    for param, flag, value in option_values(options, argv[argv.index(name) + 1:]):
         if not getattr(param, "multiple", False) and param.name in seen:
             first = seen[param.name]
             return f"{flag} = {value}: given twice ({first[0]} = {first[1]} before it); give it once"
@@ -188,7 +160,7 @@ def _in_design_profile(err: DesignError, group, argv: list[str]):
     if name is None:
         return None
     # the command's own options, as the parser reads them (nothing after "--")
-    given = [value for param, _, value in _option_values(group.commands[name].params, argv[argv.index(name) + 1:])
+    given = [value for param, _, value in option_values(group.commands[name].params, argv[argv.index(name) + 1:])
              if param.name == "profile"]
     if not given:
         return None
@@ -216,7 +188,7 @@ def run(argv: list[str] | None = None) -> int:
     except (MeshDefect, CheckRefused) as err:  # a failed check (wheelstep's own, or of the result)
         return said([f"wheelstep: {'refused' if isinstance(err, CheckRefused) else 'error'}: {err}"], 1, args, err)
     except DesignError as err:
-        given = given_names(command_options(command, args), args)
+        given = given_names(command, args)
         stated = err.for_given(given)
         located = None if stated.param.replace("-", "_") in given else _in_design_profile(stated, command, args)
         if located is not None:     # said at the profile's line: its problem, the remedies the line's

@@ -3,8 +3,10 @@ spelling, the value's text), and, for a value the user did not give, as the defa
 
 from __future__ import annotations
 
+import re
+
 from wheelstep_cli.config.names import flag_name
-from wheelstep_cli.errors import DesignError, tie_context
+from wheelstep_cli.errors import NONE_GIVEN, DesignError, tie_context
 
 
 def command_options(group, argv: list[str]) -> dict[str, list[str]]:
@@ -24,14 +26,65 @@ def _as_typed(param: str, options: dict[str, list[str]], argv: list[str]) -> str
     if not opts:
         return param
     typed = {arg.split("=", 1)[0] for arg in argv if arg.startswith("-")}
+    typed |= {arg[:2] for arg in argv if arg.startswith("-") and not arg.startswith("--")}   # -m10
     used = [o for o in opts if o in typed]
     return (used or [o for o in opts if o == flag_name(param)] or opts)[0]
 
 
-def given_names(options: dict[str, list[str]], argv: list[str]) -> list[str]:
-    """Names of the parameters whose flags appear in ``argv``."""
-    typed = {arg.split("=", 1)[0] for arg in argv if arg.startswith("-")}
-    return [name for name, opts in options.items() if typed.intersection(opts)]
+def given_names(group, argv: list[str]) -> list[str]:
+    """Names of the options of the subcommand named in ``argv`` that the command line gives,
+    read as the parser reads them (``--z 48``, ``--z=48``, ``-m10``, ``-qm10``; a switch by
+    any of its spellings)."""
+    params = _command_params(group, argv)
+    if not params:
+        return []
+    words = argv[argv.index(next(a for a in argv if a in group.commands)) + 1:]
+    words = words[:words.index("--")] if "--" in words else words
+    named = {param.name for param, _, _ in option_values(params, words)}
+    switches = {flag: p.name for p in params if getattr(p, "is_flag", False) or getattr(p, "count", False)
+                for flag in (*p.opts, *p.secondary_opts)}
+    for word in words:
+        if word in switches:
+            named.add(switches[word])
+        elif word.startswith("-") and not word.startswith("--"):
+            # a bundle of short switches (-qv) names each
+            named.update(switches[f"-{letter}"] for letter in word[1:] if f"-{letter}" in switches)
+    return [p.name for p in params if p.name in named]
+
+
+def _command_params(group, argv: list[str]) -> list:
+    """The options of the subcommand named in ``argv`` (none if no subcommand is named)."""
+    name = next((arg for arg in argv if arg in group.commands), None)
+    return [] if name is None else [p for p in group.commands[name].params if p.param_type_name == "option"]
+
+
+def option_values(params, argv: list[str]) -> list[tuple[object, str, str]]:
+    """(parameter, flag as typed, value) of every value-taking option of ``params`` in
+    ``argv`` as the parser reads them: ``--flag value``, ``--flag=value``, ``-f value``,
+    ``-fvalue`` and bundled ``-qfvalue``; a value is not read as an option, and nothing
+    after ``--`` is an option."""
+    by_flag = {flag: p for p in params for flag in (*p.opts, *p.secondary_opts)}
+    takes_value = {flag: not (getattr(p, "is_flag", False) or getattr(p, "count", False))
+                   for flag, p in by_flag.items()}
+    found, i = [], 0
+    while i < len(argv) and argv[i] != "--":
+        arg, i = argv[i], i + 1
+        if arg.startswith("--"):
+            flag, eq, value = arg.partition("=")
+            if takes_value.get(flag) and (eq or i < len(argv)):
+                found.append((by_flag[flag], flag, value if eq else argv[i]))
+                i += 0 if eq else 1
+            continue
+        for k in range(1, len(arg) if arg.startswith("-") else 1):
+            flag = "-" + arg[k]
+            if flag not in by_flag:
+                break
+            if takes_value[flag]:
+                if k + 1 < len(arg) or i < len(argv):
+                    found.append((by_flag[flag], flag, arg[k + 1:] if k + 1 < len(arg) else argv[i]))
+                    i += 0 if k + 1 < len(arg) else 1
+                break
+    return found
 
 
 def error_text(err: DesignError, name: str, argv: list[str]) -> str:
@@ -114,25 +167,29 @@ def os_error_text(err: OSError, options: dict[str, list[str]], argv: list[str]) 
 def refusal_line(original: DesignError, err: DesignError, group, argv: list[str]) -> tuple[str, str]:
     """(the line, the parameter as it names it) for ``err``, the design error ``original``
     restated for a parameter the user gave (:meth:`DesignError.for_given`). A value of an
-    option the command line did not give is said as the default it is, when nothing else
-    could have given it (no ``--profile``, no plate or G-code read for its design): the
-    parameter the line names (``--distance = 144 (the default): ...``), and the one the rule
-    is about when the line names another (``--z = 100: with it, backlash = 0.239 (the
-    default) fails: ...``)."""
+    option the command line did not give is marked as the default when it is the number
+    the option's help states as its default and nothing else could have given it (no
+    ``--profile``, no plate or G-code read for its design): the parameter the line names
+    (``--z = 48 (the default): ...``) and the one the rule is about when the line names
+    another (``--run = 0.5: with it, landing-angle = -90 (the default) fails: ...``). A value
+    worked out from other inputs (c from a and b, a printer's compensation) is not marked."""
     options = command_options(group, argv)
-    given = {name.replace("-", "_") for name in given_names(options, argv)}
     name = typed_name(err, options, argv)
-    if not _from_defaults(given, argv):
+    given = {n.replace("-", "_") for n in given_names(group, argv)}
+    if {"profile", "gcode"} & given or any(arg.lower().endswith(".3mf") for arg in argv):
         return error_text(err, name, argv), name
+    defaults = _documented_defaults(group, argv)
 
-    def untyped(param: str) -> bool:
-        return param.replace("-", "_") in options and param.replace("-", "_") not in given
+    def is_default(param: str, value: object) -> bool:
+        param = param.replace("-", "_")
+        number = value if isinstance(value, (int, float)) and not isinstance(value, bool) else None
+        return param not in given and number is not None and defaults.get(param) == number
 
-    if err is not original and untyped(original.param):
+    if err is not original and is_default(original.param, original.value) and NONE_GIVEN not in original.limit:
         context = tie_context(original.param, original.shown_value)
         err = err.restated(err.limit.replace(context, tie_context(original.param,
                                                                   f"{original.shown_value} {DEFAULT_MARK}")))
-    if untyped(err.param):
+    if is_default(err.param, err.value) and DEFAULT_MARK not in err.limit and NONE_GIVEN not in err.limit:
         return f"{name} = {err.shown_value} {DEFAULT_MARK}: {err.limit}", name
     return error_text(err, name, argv), name
 
@@ -141,7 +198,19 @@ def refusal_line(original: DesignError, err: DesignError, group, argv: list[str]
 DEFAULT_MARK = "(the default)"
 
 
-def _from_defaults(given: set[str], argv: list[str]) -> bool:
-    """Whether a value no option gave is a default: no design profile was given, and no
-    plate or G-code whose metadata holds the design (mesh-check) was read."""
-    return not {"profile", "gcode"} & given and not any(arg.lower().endswith(".3mf") for arg in argv)
+def _documented_defaults(group, argv: list[str]) -> dict[str, float]:
+    """Parameter name -> the default number each option of the subcommand named in ``argv``
+    documents: its own default, else the ``[default: N]`` its help shows (options whose
+    default is None print the value the design takes); options whose default is not one
+    number (a rule such as ``0.25 x module``) are left out."""
+    found = {}
+    for param in _command_params(group, argv):
+        default = param.default
+        if default is None:
+            shown = re.search(r"\[default: ([^\]]+)\]\s*$", param.help or "")
+            default = shown.group(1) if shown else None
+        try:
+            found[param.name] = float(default)
+        except (TypeError, ValueError):
+            continue
+    return found

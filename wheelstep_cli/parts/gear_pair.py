@@ -128,7 +128,7 @@ def check_paper_teeth(partition: SectorPartition, form, spec: GearPairSpec) -> N
     """The sector-involute teeth's form check (module against tooth pitch), its refusal also
     stated for the backlash and the inputs that size the pair (the tooth thickness and
     pitch), so it names the one the user gave (``teeth`` checks it outside a build)."""
-    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.errors import NONE_GIVEN, DesignError
 
     try:
         check_tooth_form(partition, form, least_module=MIN_MODULE,
@@ -136,8 +136,8 @@ def check_paper_teeth(partition: SectorPartition, form, spec: GearPairSpec) -> N
     except DesignError as err:
         if err.param == "module" and spec.module is None:
             # a module nobody gave is said to be the default, not as if the user had set it
-            err = err._with_extras(DesignError("module", err.value, "the paper teeth's default module (none "
-                                               f"given): {err.limit}", err.alternatives))
+            err = err._with_extras(DesignError("module", err.value, f"the paper teeth's default module "
+                                               f"{NONE_GIVEN}: {err.limit}", err.alternatives))
         # the tooth count and backlash first: the remedy's own levers, named before the mechanism
         raise err.tied_to({"z": spec.z, "backlash": form.backlash, **spec.sizing()}) from None
 

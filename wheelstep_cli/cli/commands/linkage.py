@@ -27,7 +27,8 @@ Gif = output_file("--gif", "Write an animation of one crank turn (GIF).", ".gif"
 def linkage(
     preset: Annotated[Preset, opt("--preset", help="Which leg.")] = Preset.four_bar,
     rpm: Annotated[Length, opt("--rpm", help="Crank speed, rpm.",
-                               shown="the preset's: 27 for four-bar and six-bar (the source paper's legs, --l1..--o1 changed too), 60 for chebyshev and jansen")] = None,
+                               shown="the preset's: 27 for four-bar (also with --l1..--o1 changed) and "
+                                     "six-bar, 60 for chebyshev and jansen")] = None,
     samples: Annotated[int, opt("--samples", help="Crank angles per turn.")] = 720,
     scale: Annotated[float, opt("--scale", help="Multiply every length by this.")] = 1.0,
     branch: Annotated[List[str], opt("--branch", help="Assembly branch of a dyad joint, NAME=+1 "

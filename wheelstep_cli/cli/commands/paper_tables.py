@@ -40,7 +40,7 @@ def _note_left_out(out: Output, profile: str | None) -> None:
     """Say what of the profile the paper tables leave out (its blend), on stderr."""
     note = paper_table_note(profile)
     if note is not None:
-        out.warning(note)
+        out.warning(f"note: {note}")
 
 
 def _pitch_lines(report: dict) -> list[str]:

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.errors import DesignError, require, rounded_down
 from wheelstep_cli.mechanism.linkage.gait import Gait, gait
 from wheelstep_cli.mechanism.linkage.presets import PRESETS, four_bar
 from wheelstep_cli.mechanism.linkage.solver import Dyad, Linkage, Solution, cycle_angles, solve
@@ -101,7 +101,8 @@ def linkage_study(request: LinkageRequest) -> LinkageStudy:
     probe = gait(leg, sol, rpm)
     # a band as deep as the lift holds the whole path: every crank angle would be support
     require(request.ground_tol is None or request.ground_tol < probe.lift, "ground-tol", request.ground_tol,
-            f"must be < the foot's lift {probe.lift:.1f} mm (within the lift the whole path is support)")
+            f"must be < the foot's lift {rounded_down(probe.lift, 1)} mm (within the lift the whole path is "
+            "support)")
     tol = 0.02 * probe.lift if request.ground_tol is None else request.ground_tol
     return LinkageStudy(request, leg, rpm, sol, gait(leg, sol, rpm, tol))
 
