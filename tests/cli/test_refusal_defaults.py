@@ -22,8 +22,8 @@ SMALL_SHOE = ["--dry-run", "--a", "0.06", "--b", "0.1", "--rmin", "0.02"]
     (["shoe", *SMALL_SHOE, "--strut-diameter=12"], "--strut-diameter = 12: "),
     # a printer's compensation changed it: not the default any more
     (["shoe", *SMALL_SHOE, "--printer", "fdm-0.4-pla"], "--a = 0.06: with it, strut-diameter = 12.2 fails: "),
-    # worked out from a value given (c = R_min - a + 4b), not the help's 360
-    (["pitch", "--b", "3000"], "--c = 11960: must be <= 10000 mm"),
+    # worked out from a value given (c = R_min - a + 4b, not the help's 360): said of that one
+    (["pitch", "--b", "3000"], "--b = 3000: must be <= 2510 mm (the strut c = R_min - a + 4b = 11960 mm"),
     # the limit already says it is a default nobody gave
     (["teeth", "--backlash", "144"], "--backlash = 144: with it, module = 2 fails: the paper teeth's default module (none given)"),
 ])
@@ -52,3 +52,18 @@ def test_only_options_documenting_one_number_have_a_default_to_mark():
     assert teeth["module"] == 2 and "backlash" not in teeth
     assert "scheduler" not in _documented_defaults(group, ["sweep"])
     assert _documented_defaults(group, ["stairs"])["landing_angle"] == -90
+
+
+@pytest.mark.parametrize("command", ["pitch", "gears"])
+def test_a_strut_too_long_for_the_crank_given_is_said_of_the_crank(cli, tmp_path, command):
+    """--b 3000 sets the strut c = R_min - a + 4b = 11960 mm, past the longest length taken:
+    the line named --c (not given) with the strut's limit; it names --b with the largest crank
+    that keeps the strut within it, which applied is taken and 0.01 mm more is not."""
+    out = ["--dry-run", "--out", tmp_path / "out"] if command == "gears" else []
+    line = error_line(cli(command, "--b", "3000", *out))
+    assert line.startswith("wheelstep: error: --b = 3000: must be <= 2510 mm (the strut c = R_min - a + 4b = "
+                           "11960 mm they set must be <= 10000 mm)"), line
+    assert cli(command, "--b", "2510", *out).exit_code == 0
+    assert cli(command, "--b", "2510.01", *out).exit_code == 2
+    assert error_line(cli(command, "--b", "3000", "--a", "1979", *out)).startswith(
+        "wheelstep: error: --b = 3000: must be <= 2989.75 mm")

@@ -17,7 +17,7 @@ from pydantic import AfterValidator, BaseModel, Field, model_validator
 from pydantic_core import PydanticCustomError
 
 from wheelstep_cli.config.fields import STRICT, Choice, Number, Real, Whole, length, quantity
-from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.errors import DesignError, require, rounded_down, rounded_up
 from wheelstep_cli.gears.cutter_limits import (ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG,
                                                range_text)
 from wheelstep_cli.gears.laws import TURNS, TURNS_LIMIT
@@ -319,7 +319,14 @@ def strut_default(values: dict) -> dict:
         return values   # the field checks say what is wrong with them
     from wheelstep_cli.mechanism.crank import CrankMechanism
 
-    return {**values, "c": CrankMechanism.from_r_min(a, b, DEFAULT_R_MIN).c}   # refuses a and b no strut fits
+    c = CrankMechanism.from_r_min(a, b, DEFAULT_R_MIN).c     # refuses a and b no strut fits
+    if c > MAX_LENGTH:
+        # the strut nobody gave is the given a and b's: said of them, with their own limits
+        why = f"(the strut c = R_min - a + 4b = {c:g} mm they set must be <= {MAX_LENGTH:g} mm)"
+        raise DesignError("c", c, f"must be <= {MAX_LENGTH:g} mm", {
+            "b": (b, f"must be <= {float(rounded_down((MAX_LENGTH - DEFAULT_R_MIN + a) / 4.0)):g} mm {why}"),
+            "a": (a, f"must be >= {float(rounded_up(DEFAULT_R_MIN + 4.0 * b - MAX_LENGTH)):g} mm {why}")})
+    return {**values, "c": c}
 
 
 def bore_defaults(values: dict) -> dict:
