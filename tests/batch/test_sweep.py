@@ -340,7 +340,7 @@ printers: [no-such-printer]
 
 def test_too_many_points_refused(cli, tmp_path):
     sweep = write(tmp_path / "big.yaml", "command: shoe\ngrid:\n  width: {start: 1, stop: 200, step: 1}\n"
-                                         "  rim: {start: 1, stop: 100, step: 1}\n")
+                                         "  rim: {start: 2, stop: 101, step: 1}\n")
     line = error_line(cli("sweep", sweep, "--out", tmp_path / "out"))
     assert "the sweep has 20000 points; at most 10000" in line
 
