@@ -23,8 +23,8 @@ except ImportError:  # pragma: no cover - older typer uses click itself
 
 from wheelstep_cli.batch.interrupts import (caused_by_interrupt, exit_now, exit_unless_threads_end,
                                             interrupts_not_lost)
-from wheelstep_cli.cli.naming import (command_options, flag_values, given_names, option_values, os_error_text,
-                                      refusal_line)
+from wheelstep_cli.cli.naming import (command_options, command_params, flag_values, given_names, option_values,
+                                      os_error_text, refusal_line, subcommand)
 from wheelstep_cli.cli.refusal import said
 from wheelstep_cli.config.schema import InvalidInput
 from wheelstep_cli.errors import CheckRefused, DesignError, Interrupted, MeshDefect
@@ -116,15 +116,15 @@ def misread_value_text(group, argv: list[str]) -> str | None:
     * an option given twice that takes one value (``--z 40 --z 48``): the parser keeps the
       last and drops the other unsaid.
     """
-    name = next((arg for arg in argv if arg in group.commands), None)
+    name = subcommand(group, argv)
     if name is None or "-h" in argv or "--help" in argv:
         return None
-    options = [p for p in group.commands[name].params if p.param_type_name == "option"]
-    both = _both_ways(options, argv[argv.index(name) + 1:])
+    options, words = command_params(group, argv), argv[argv.index(name) + 1:]
+    both = _both_ways(options, words)
     if both is not None:
         return both
     seen: dict[str, tuple[str, str]] = {}
-    for param, flag, value in option_values(options, argv[argv.index(name) + 1:]):
+    for param, flag, value in option_values(options, words):
         if not getattr(param, "multiple", False) and param.name in seen:
             first = seen[param.name]
             return f"{flag} = {value}: given twice ({first[0]} = {first[1]} before it); give it once"
@@ -156,11 +156,11 @@ def _in_design_profile(err: DesignError, group, argv: list[str]):
     from wheelstep_cli.config.profiles import load_design_profile
     from wheelstep_cli.config.resolve import in_profile
 
-    name = next((arg for arg in argv if arg in group.commands), None)
+    name = subcommand(group, argv)
     if name is None:
         return None
     # the command's own options, as the parser reads them (nothing after "--")
-    given = [value for param, _, value in option_values(group.commands[name].params, argv[argv.index(name) + 1:])
+    given = [value for param, _, value in option_values(command_params(group, argv), argv[argv.index(name) + 1:])
              if param.name == "profile"]
     if not given:
         return None

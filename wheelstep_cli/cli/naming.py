@@ -9,13 +9,20 @@ from wheelstep_cli.config.names import flag_name
 from wheelstep_cli.errors import NONE_GIVEN, DesignError, tie_context
 
 
+def subcommand(group, argv: list[str]) -> str | None:
+    """The name of the subcommand ``argv`` runs (None: it names none)."""
+    return next((arg for arg in argv if arg in group.commands), None)
+
+
+def command_params(group, argv: list[str]) -> list:
+    """The options of the subcommand ``argv`` runs (none if it names no subcommand)."""
+    name = subcommand(group, argv)
+    return [] if name is None else [p for p in group.commands[name].params if p.param_type_name == "option"]
+
+
 def command_options(group, argv: list[str]) -> dict[str, list[str]]:
-    """Parameter name -> option strings of the subcommand named in ``argv`` (empty if none is)."""
-    name = next((arg for arg in argv if arg in group.commands), None)
-    if name is None:
-        return {}
-    return {param.name: [*param.opts, *param.secondary_opts] for param in group.commands[name].params
-            if param.param_type_name == "option"}
+    """Parameter name -> option strings of the subcommand ``argv`` runs (empty if none)."""
+    return {param.name: [*param.opts, *param.secondary_opts] for param in command_params(group, argv)}
 
 
 def _as_typed(param: str, options: dict[str, list[str]], argv: list[str]) -> str:
@@ -35,10 +42,10 @@ def given_names(group, argv: list[str]) -> list[str]:
     """Names of the options of the subcommand named in ``argv`` that the command line gives,
     read as the parser reads them (``--z 48``, ``--z=48``, ``-m10``, ``-qm10``; a switch by
     any of its spellings)."""
-    params = _command_params(group, argv)
+    params = command_params(group, argv)
     if not params:
         return []
-    words = argv[argv.index(next(a for a in argv if a in group.commands)) + 1:]
+    words = argv[argv.index(subcommand(group, argv)) + 1:]
     words = words[:words.index("--")] if "--" in words else words
     named = {param.name for param, _, _ in option_values(params, words)}
     switches = {flag: p.name for p in params if getattr(p, "is_flag", False) or getattr(p, "count", False)
@@ -50,12 +57,6 @@ def given_names(group, argv: list[str]) -> list[str]:
             # a bundle of short switches (-qv) names each
             named.update(switches[f"-{letter}"] for letter in word[1:] if f"-{letter}" in switches)
     return [p.name for p in params if p.name in named]
-
-
-def _command_params(group, argv: list[str]) -> list:
-    """The options of the subcommand named in ``argv`` (none if no subcommand is named)."""
-    name = next((arg for arg in argv if arg in group.commands), None)
-    return [] if name is None else [p for p in group.commands[name].params if p.param_type_name == "option"]
 
 
 def option_values(params, argv: list[str]) -> list[tuple[object, str, str]]:
@@ -103,10 +104,15 @@ def typed_name(err: DesignError, options: dict[str, list[str]], argv: list[str])
     return name
 
 
+def _number(value: object) -> int | float | None:
+    """``value`` when it is a number (not a switch's True / False), else None."""
+    return value if isinstance(value, (int, float)) and not isinstance(value, bool) else None
+
+
 def _typed_value(flag: str, err: DesignError, argv: list[str]) -> str:
     """The value as the user typed it after ``flag`` (``1e9``, not ``1e+09``) when it is the
     number the error is about; else as the messages print it."""
-    number = err.value if isinstance(err.value, (int, float)) and not isinstance(err.value, bool) else None
+    number = _number(err.value)
     for _, text in flag_values({flag}, argv):
         try:
             same = number is not None and float(text) == float(number)
@@ -182,14 +188,13 @@ def refusal_line(original: DesignError, err: DesignError, group, argv: list[str]
 
     def is_default(param: str, value: object) -> bool:
         param = param.replace("-", "_")
-        number = value if isinstance(value, (int, float)) and not isinstance(value, bool) else None
-        return param not in given and number is not None and defaults.get(param) == number
+        return param not in given and _number(value) is not None and defaults.get(param) == value
 
     if err is not original and is_default(original.param, original.value) and NONE_GIVEN not in original.limit:
         context = tie_context(original.param, original.shown_value)
         err = err.restated(err.limit.replace(context, tie_context(original.param,
                                                                   f"{original.shown_value} {DEFAULT_MARK}")))
-    if is_default(err.param, err.value) and DEFAULT_MARK not in err.limit and NONE_GIVEN not in err.limit:
+    if is_default(err.param, err.value) and NONE_GIVEN not in err.limit:
         return f"{name} = {err.shown_value} {DEFAULT_MARK}: {err.limit}", name
     return error_text(err, name, argv), name
 
@@ -204,7 +209,7 @@ def _documented_defaults(group, argv: list[str]) -> dict[str, float]:
     default is None print the value the design takes); options whose default is not one
     number (a rule such as ``0.25 x module``) are left out."""
     found = {}
-    for param in _command_params(group, argv):
+    for param in command_params(group, argv):
         default = param.default
         if default is None:
             shown = re.search(r"\[default: ([^\]]+)\]\s*$", param.help or "")

@@ -146,11 +146,10 @@ def _crank_law_only(loaded, profile) -> None:
             "profile", profile, f"gives gears.law_csv = {value}: {err.limit}")
 
 
-def paper_table_note(profile) -> str | None:
-    """What the paper tables leave out of a design profile that a reader could expect in them:
-    the blend its generated teeth's law is smoothed over (the paper method follows the crank
-    law itself); None when there is nothing to say."""
-    loaded = _profile(profile)
+def _left_out(loaded) -> str | None:
+    """What the paper tables leave out of the design profile ``loaded`` that a reader could
+    expect in them: the blend its generated teeth's law is smoothed over (the paper method
+    follows the crank law itself); None when there is nothing to say."""
     blend = None if loaded is None else loaded.values("gears").get("blend")
     if not blend:
         return None
@@ -158,11 +157,12 @@ def paper_table_note(profile) -> str | None:
             "(gears, kinematics); the paper tables are the crank law's own sectors")
 
 
-def paper_table_spec(profile, **cli) -> GearPairSpec:
+def paper_table_spec(profile, **cli) -> tuple[GearPairSpec, str | None]:
     """The spec of the paper method's tables (SPEC §4, §5): command line over the profile's
     mechanism and :data:`PAPER_TABLE_KEYS`, paper teeth at their design distance L_p (the
     one given, else the installed distance less the paper's opening). The tables do not
-    mount the pair, so it is taken as mounted at L_p and without a bore."""
+    mount the pair, so it is taken as mounted at L_p and without a bore. With it, a note of
+    what of the profile the tables leave out (None: nothing)."""
     from wheelstep_cli.config.specs import paper_design_distance
 
     loaded = _profile(profile)
@@ -175,7 +175,7 @@ def paper_table_spec(profile, **cli) -> GearPairSpec:
     spec = _named_for(cli, build, GearPairSpec, {**values, "center_distance": center,
                                                  "install_distance": center}, profile=(loaded, "gears"))
     _named_for(cli, spec.mechanism, profile=(loaded, "gears"))
-    return spec
+    return spec, _left_out(loaded)
 
 
 def shoe_spec(profile, **cli) -> ShoeSpec:

@@ -6,7 +6,7 @@ from typing import Annotated, Optional
 
 from wheelstep_cli.cli.options import A, B, C, Json, Profile, Quiet, Turns, Verbose, Z, opt
 from wheelstep_cli.cli.output import Output
-from wheelstep_cli.config.resolve import paper_table_note, paper_table_spec
+from wheelstep_cli.config.resolve import paper_table_spec
 
 # the paper method's tables (pitch, teeth): their own rules, not the generator's
 PaperDistance = Annotated[Optional[float], opt(
@@ -26,19 +26,18 @@ def pitch(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
 
     out = Output(json, quiet, verbose)
     # the sector partition of SPEC §4 is the paper method's, at the distance its sectors roll at
-    spec = paper_table_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
+    spec, left_out = paper_table_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
     parameters = {"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
                   "center_distance": spec.center_distance}
     out.parameters(parameters)
-    _note_left_out(out, profile)
+    _note_left_out(out, left_out)
     # the report says what it was computed for, as the part commands' reports do
     report = {"tool": "wheelstep pitch", "parameters": parameters, **pitch_report(spec)}
     out.report(report, lambda: _pitch_lines(report))
 
 
-def _note_left_out(out: Output, profile: str | None) -> None:
+def _note_left_out(out: Output, note: str | None) -> None:
     """Say what of the profile the paper tables leave out (its blend), on stderr."""
-    note = paper_table_note(profile)
     if note is not None:
         out.warning(f"note: {note}")
 
@@ -67,13 +66,13 @@ def teeth(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
 
     out = Output(json, quiet, verbose)
     # the sector-involute teeth of SPEC §5 are the paper's: their rules, not the generator's
-    spec = paper_table_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
+    spec, left_out = paper_table_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
                             module=module, backlash=backlash)
     parameters = {"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
                   "center_distance": spec.center_distance, "module": spec.paper_module,
                   "backlash": spec.backlash_mm}
     out.parameters(parameters)
-    _note_left_out(out, profile)
+    _note_left_out(out, left_out)
     report = {"tool": "wheelstep teeth", "parameters": parameters, **teeth_report(spec)}
     out.report(report, lambda: _teeth_lines(report))
 

@@ -105,15 +105,13 @@ def four_bar(l1=None, l2=None, l3=None, l4=None, beta_deg=None, o1=None) -> Link
 
     base = four_bar_paper()
     steps = {s.name: s for s in base.steps}
-    l1 = steps["K"].length if l1 is None else l1
-    l3 = steps["L"].rp if l3 is None else l3
-    l2 = steps["L"].rq if l2 is None else l2
-    l4 = steps["H"].length if l4 is None else l4
-    beta = float(np.degrees(steps["H"].angle)) if beta_deg is None else beta_deg
-    ox, oy = (steps["O1"].x, steps["O1"].y) if o1 is None else o1
-    if (l1, l2, l3, l4, beta, ox, oy) == (steps["K"].length, steps["L"].rq, steps["L"].rp, steps["H"].length,
-                                          float(np.degrees(steps["H"].angle)), steps["O1"].x, steps["O1"].y):
+    paper = (steps["K"].length, steps["L"].rq, steps["L"].rp, steps["H"].length,
+             float(np.degrees(steps["H"].angle)), steps["O1"].x, steps["O1"].y)
+    given = (l1, l2, l3, l4, beta_deg, *((None, None) if o1 is None else o1))
+    numbers = tuple(own if value is None else value for value, own in zip(given, paper))
+    if numbers == paper:
         return base         # the paper's own numbers, typed: the paper's leg
+    l1, l2, l3, l4, beta, ox, oy = numbers
     for name, value in (("l1", l1), ("l2", l2), ("l3", l3), ("l4", l4)):
         require(value > 0, name, value, "link length must be > 0 mm")
     return Linkage(
