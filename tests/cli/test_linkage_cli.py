@@ -93,3 +93,14 @@ def test_the_papers_own_numbers_typed_are_the_papers_leg(cli):
     assert typed["description"] == plain["description"] and plain["description"].startswith("source paper")
     changed = json.loads(cli("linkage", "--beta", "70.9", "--json").stdout)
     assert not changed["description"].startswith("source paper") and "70.9 deg" in changed["description"]
+
+
+def test_an_arm_angle_past_a_full_turn_is_refused(cli, tmp_path):
+    """--beta 400 was taken as the leg of 40 deg (angles wrap), the report saying 400: a value
+    past a full turn is refused; just inside a turn it is the leg of that angle."""
+    for value in ("400", "-360"):
+        line = error_line(cli("linkage", "--beta", value, "--csv", tmp_path / "leg.csv"))
+        assert line == f"wheelstep: error: --beta = {value}: must be in (-360, 360) deg", line
+        assert not (tmp_path / "leg.csv").exists()
+    inside = json.loads(cli("linkage", "--beta", "359", "--json").stdout)
+    assert "359 deg" in inside["description"]

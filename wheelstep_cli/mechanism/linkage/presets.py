@@ -114,6 +114,9 @@ def four_bar(l1=None, l2=None, l3=None, l4=None, beta_deg=None, o1=None) -> Link
     l1, l2, l3, l4, beta, ox, oy = numbers
     for name, value in (("l1", l1), ("l2", l2), ("l3", l3), ("l4", l4)):
         require(value > 0, name, value, "link length must be > 0 mm")
+    # an angle past a full turn names the same arm as its remainder: taken as typed, 400 would
+    # silently be 40
+    require(-360 < beta < 360, "beta", beta, "must be in (-360, 360) deg")
     return Linkage(
         name="four-bar",
         description=f"four-bar leg (SPEC §7): crank OK {l1:g}, rocker O1L {l2:g}, coupler KL {l3:g}, "
