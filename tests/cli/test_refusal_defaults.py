@@ -52,6 +52,11 @@ def test_only_options_documenting_one_number_have_a_default_to_mark():
     assert teeth["module"] == 2 and "backlash" not in teeth
     assert "scheduler" not in _documented_defaults(group, ["sweep"])
     assert _documented_defaults(group, ["stairs"])["landing_angle"] == -90
+    # a default said with where it comes from is that number; a rule with numbers of its own
+    # (paper teeth roll 0.5 mm inside the installed distance) and a list are none
+    assert _documented_defaults(group, ["mesh-check"])["distance"] == 144
+    gears = _documented_defaults(group, ["gears"])
+    assert "center_distance" not in gears and "install_distance" not in gears
 
 
 @pytest.mark.parametrize("command", ["pitch", "gears"])

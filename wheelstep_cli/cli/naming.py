@@ -214,6 +214,10 @@ def _documented_defaults(group, argv: list[str]) -> dict[str, float]:
         if default is None:
             shown = re.search(r"\[default: ([^\]]+)\]\s*$", param.help or "")
             default = shown.group(1) if shown else None
+            # a default said with where it comes from ("the design's, 144"); not a list of
+            # numbers, nor a rule with numbers of its own ("paper 0.5 less, 143.5")
+            number = re.fullmatch(r"[^\d;,]+,\s*(-?\d+(?:\.\d+)?)", default or "")
+            default = number.group(1) if number else default
         try:
             found[param.name] = float(default)
         except (TypeError, ValueError):

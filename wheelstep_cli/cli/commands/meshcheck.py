@@ -150,9 +150,15 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
         # and teeth that interfere may only be mounted closer than the pair was made for
         closer = (f"; teeth that interfere may also be mounted closer than the pair was made for "
                   f"(--distance {installed_distance(spec):g} mm)" if summary["interference"] else "")
-        show.warning("WARNING: checked against the law of the options given (mechanism, --turns, "
-                     "--blend, --law-csv): if the pair was made with others, give them as it was "
+        show.warning("WARNING: out of phase, checked against the law of the options given (mechanism, "
+                     "--turns, --blend, --law-csv): if the pair was made with others, give them as it was "
                      f"made, or its design's --profile{closer}")
+    elif summary.get("bounds", {}).get("within") is False:
+        # in phase and far outside: --blend 5 left out of a pair cut with it reads F'i 144 um
+        show.warning("WARNING: outside the bounds: one cause is a law other than the pair was made for "
+                     "(checked against the options given: mechanism, --turns, --blend, --law-csv; give them "
+                     "as it was made, or its design's --profile); a fit's inset, teeth written with "
+                     "--allow-interference and a print's own deviations are others")
     warn_band_jams(show, summary.get("tolerance"), band[1])
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
