@@ -65,6 +65,9 @@ def test_gears_slice_writes_gcode_beside_the_plates_and_finds_the_print_meshing(
         assert readback["gcode"][gear]["outline_rms_mm"] < 0.05
     stored = json.loads((folder / "gears.json").read_text())
     assert stored["slice"]["backlash_min_mm"] == readback["backlash_min_mm"]
+    assert readback["bounds"]["judged_on"].startswith("the printed outlines")
+    assert "PrusaSlicer does not slice the same plate to the same bytes twice" in readback["note"]
+    assert any(line.startswith("  printed bounds: OUTSIDE (") for line in slice_lines(readback))
 
 
 def test_mesh_check_gcode_finds_the_least_backlash_inside_the_band_prediction(cli, sliced):
@@ -89,6 +92,12 @@ def test_mesh_check_gcode_finds_the_least_backlash_inside_the_band_prediction(cl
     text = cli("mesh-check", "--gcode", folder / "gears-1.gcode", "--gcode", folder / "gears-2.gcode",
                "--samples", "256").stdout
     assert f"bore {summary['gcode']['pinion']['bore_printed_mm']:.3f} mm across by area (drawn " in text, text
+    # the design's bounds said of the print too (every other check says them): its FDM figures
+    # are tens of um, outside, and the line says what they were judged on
+    verdict = summary["bounds"]
+    assert verdict["within"] is False and "printed outlines" in verdict["judged_on"]
+    assert any(s.startswith("drive flank F'i ") for s in verdict["broken"])
+    assert "\nbounds: OUTSIDE (drive flank F'i " in text and "judged on the printed outlines" in text, text
 
 
 def test_the_print_turned_by_a_law_period_gives_the_same_figures(sliced):

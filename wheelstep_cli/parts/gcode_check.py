@@ -322,6 +322,12 @@ def run_gcode_check(gcode_files: list[Path], pair, samples: int | None, window: 
                "gcode": {"source": source, "pinion": read.records["pinion"],
                          "wheel": read.records["wheel"]}}
     summary["meshes"] = not (report.interferes or report.contact_lost)
+    from wheelstep_cli.parts.bound_figures import bounds_verdict
+
+    # the design's bounds on the print: how far from the drawing it runs (FDM prints read
+    # tens of um of F'i), said as every other check says it
+    summary["bounds"] = {**bounds_verdict(summary), "judged_on": "the printed outlines, the printer's "
+                         "deviations included (the bounds are the design's: an FDM print's F'i is tens of um)"}
     return report, summary, read
 
 
