@@ -139,10 +139,28 @@ def test_thin_teeth_under_a_fit_are_refused_with_a_tooth_count_that_keeps_its_ti
     assert "nothing written" in line and not out.exists()
     remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()[:2]
     assert remedy[0] == "--z" and int(remedy[1]) < 42
-    result = cli("gears", *with_remedy(design, remedy), "--json", "-q", "--out", out)
+    result = cli("gears", *with_remedy(design, remedy), "--out", out)
     assert result.exit_code == 0, result.stderr
     assert json.loads((out / "gears.json").read_text())["meshing"]["tolerance"]["fit"]["inset_mm"] > 0.0
+    # the written figures carry the inset (print compensation), not the design's: said so
+    for side in ("drive", "coast"):
+        assert f"\n  {side} flank (as drawn, with the fit's inset): F'i " in result.stdout, result.stdout
 
+
+def test_teeth_too_thin_before_a_fit_are_offered_a_count_that_prints_after_it(cli, tmp_path):
+    """z 120 on FDM PLA, fitted loose: the design's teeth are already too thin for the nozzle.
+    The count offered (z 60) was sized without the fit, whose inset then left 20 teeth
+    without tips (applied, refused again with z 48): the count offered is now built with
+    the fit first, and applied it is written."""
+    out = tmp_path / "out"
+    design = ["--z", "120", "--printer", "fdm-0.4-pla", "--fit", "loose", "--format", "stl"]
+    line = error_line(cli("gears", *design, "--out", out))
+    assert line.startswith("wheelstep: error: --z = 120: the teeth are too thin for printer 'fdm-0.4-pla'"), line
+    assert not out.exists()
+    remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()
+    assert remedy[0] == "--z" and int(remedy[1]) < 120
+    result = cli("gears", *with_remedy(design, remedy), "--json", "-q", "--out", out)
+    assert result.exit_code == 0, result.stderr
 
 def test_a_fits_remedies_are_built_with_the_fit_and_do_not_go_round(cli, tmp_path):
     """The desk demo at z 34 fitted loose to the PETG band ripples past the bound; the tooth

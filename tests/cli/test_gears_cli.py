@@ -192,6 +192,26 @@ def test_a_pair_mounted_so_close_that_it_interferes_is_the_distance_s_error(cli,
     assert not (tmp_path / "a").exists()
 
 
+def test_a_pair_mounted_closer_than_its_tip_clearance_is_refused_before_it_is_cut(cli, tmp_path):
+    """The desk preset's installed distance (72.125) with --center-distance 80: mounted 7.9 mm
+    inside the rolling distance the tips run into the space bottoms; found after a build and a
+    meshing check (85 s), it is refused from the tip clearance before any tooth is cut, with
+    the remedy, which applied is written with that tip clearance."""
+    line = error_line(cli("gears", "--profile", "desk-demo", "--center-distance", "80", "--out", tmp_path / "a"))
+    assert line.startswith("wheelstep: error: --center-distance = 80: with it, install-distance = 72.125 fails: "
+                           "mounted 7.875 mm closer than the pitch curves roll (80 mm), more than the tip "
+                           "clearance "), line
+    assert line.endswith(" mm: tips run into the shallower spaces' bottoms where they cross the line of centres; "
+                         "nothing written; use --install-distance 80"), line
+    assert not (tmp_path / "a").exists()
+    applied = cli("gears", "--profile", "desk-demo", "--center-distance", "80", "--install-distance", "80",
+                  "--format", "stl", "--out", tmp_path / "b", "--json", "-q")
+    assert applied.exit_code == 0, applied.stderr
+    spaces = json.loads(applied.stdout)["generated"]["tip_clearance"]
+    said = float(line.split("more than the tip clearance ")[1].split(" mm")[0])
+    assert said == pytest.approx(min(spaces["pinion_spaces_mm"], spaces["wheel_spaces_mm"]), abs=5e-4)
+
+
 def test_a_module_sets_where_the_presets_pair_rolls_and_the_plate_is_checked_there(cli, tmp_path):
     """--module on the desk preset (which gives an installed distance): the module's distance
     replaces the preset's (generated teeth roll and are mounted where the module fits), and
@@ -290,7 +310,6 @@ def test_a_written_pair_that_interferes_is_warned_of_with_its_overlap_in_um2(cli
     assert warning.startswith("WARNING: the teeth interfere at ") and " um2); pointwise" in warning, warning
 
 
-
 def test_the_tip_clearance_said_is_the_shallower_gears_spaces(cli, tmp_path):
     """A longer addendum leaves the pinion's spaces shallower below the wheel's tips than the
     wheel's below the pinion's: the mounting line gives that smaller clearance, the one that
@@ -301,3 +320,20 @@ def test_the_tip_clearance_said_is_the_shallower_gears_spaces(cli, tmp_path):
     spaces = report["generated"]["tip_clearance"]
     assert spaces["pinion_spaces_mm"] < spaces["wheel_spaces_mm"]
     assert report["meshing"]["mounting"]["tip_clearance_mm"] == pytest.approx(spaces["pinion_spaces_mm"])
+
+
+def test_the_mounting_line_gives_each_gears_tip_clearance(cli, tmp_path):
+    """--clearance 0.5 deepens the wheel's spaces only; the line gave the shallower one (the
+    pinion's, 0.25 module), the same as without the option, so the option looked ignored:
+    it gives both, as gears.json's mounting record and the generated teeth state them."""
+    result = cli("gears", "--clearance", "0.5", "--format", "stl", "--dry-run", "--out", tmp_path)
+    assert result.exit_code == 0, result.stderr
+    report = json.loads(cli("gears", "--clearance", "0.5", "--format", "stl", "--dry-run", "--json",
+                            "--out", tmp_path).stdout)
+    spaces, mounting = report["generated"]["tip_clearance"], report["meshing"]["mounting"]
+    assert spaces["wheel_spaces_mm"] == pytest.approx(2.0 * spaces["pinion_spaces_mm"])
+    for gear in ("pinion", "wheel"):
+        assert mounting[f"{gear}_spaces_mm"] == pytest.approx(spaces[f"{gear}_spaces_mm"])
+    line = next(s for s in result.stdout.splitlines() if s.strip().startswith("mounting:"))
+    assert line.endswith(f"; tip clearance {spaces['pinion_spaces_mm']:.3f} mm in the pinion's spaces, "
+                         f"{spaces['wheel_spaces_mm']:.3f} mm in the wheel's (the wheel's set by --clearance)"), line

@@ -135,7 +135,9 @@ def test_two_wheels_or_two_pinions_are_refused_before_any_work(desk_pair, cli, t
     # named, given or the design's
     for given in (["--distance", "100"], []):
         far = error_line(cli("mesh-check", desk_pair / "pinion.stl", desk_pair / "wheel.stl", *given))
-        assert far == (f"wheelstep: error: --distance = {given[1] if given else 144}: the pinion and the "
+        # not given: the help's default, marked as such (as every refusal marks one)
+        assert far == (f"wheelstep: error: --distance = {given[1] if given else '144 (the default)'}: the "
+                       "pinion and the "
                        "wheel given are a pair for about 71.6 mm (radii by area 23.8 + 47.7 mm), more than "
                        "20 % off: give the distance they were designed for, or their design's --profile"), far
     # neither fits, nor are they in the law's ratio: said of both, as the sizes that do not add up
@@ -303,9 +305,15 @@ def test_a_plate_says_whether_its_parts_were_drawn_for_its_printer(desk_pair, cl
     plain = _model_metadata(desk_pair / "gears.3mf")
     assert plain["printer"] == "fdm-0.4-pla" and plain["compensated"].startswith("no: drawn as designed")
     out = tmp_path / "printed"
-    assert cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--format", "3mf",
-               "--out", out, "-q").exit_code == 0
+    printed = cli("gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--format", "3mf", "--out", out)
+    assert printed.exit_code == 0, printed.stderr
     assert _model_metadata(out / "gears.3mf")["compensated"] == "yes"
+    # the desk pair's default backlash is under the printer's tooth clearance: all of it is the
+    # clearance, and a print a little larger than expected jams (exit 0 said nothing of it)
+    report = json.loads((out / "gears.json").read_text())
+    assert report["generated"]["backlash"]["normal_backlash_mm"] == pytest.approx(
+        report["printer_geometry"]["tooth_clearance"])
+    assert "WARNING: printed on 'fdm-0.4-pla' the teeth keep no play of their own" in printed.stderr
 
 
 def test_the_pose_count_a_design_needs_is_the_one_run_and_printed(cli, tmp_path):
@@ -373,7 +381,15 @@ def test_meshes_out_of_phase_with_the_law_given_are_told_to_give_the_options_the
     wrong = cli("mesh-check", *meshes, "--profile", "desk-demo", "--blend", "10", "--samples", "384")
     assert wrong.exit_code == 1 and "phase: OUT OF PHASE" in wrong.stdout, wrong.stdout
     assert wrong.stderr.strip().splitlines()[-1].startswith(
-        "WARNING: checked against the law of the options given (mechanism, --turns, --blend, --law-csv)")
+        "WARNING: out of phase, checked against the law of the options given (mechanism, --turns, --blend, "
+        "--law-csv)")
+    # a small blend keeps the law in phase and puts the figures far outside the bounds (F'i 24
+    # um): the same warning, without which the user read only OUTSIDE
+    slight = cli("mesh-check", *meshes, "--profile", "desk-demo", "--blend", "3", "--samples", "384")
+    assert "phase: in phase" in slight.stdout and "bounds: OUTSIDE" in slight.stdout, slight.stdout
+    assert slight.stderr.strip().splitlines()[-1].startswith(
+        "WARNING: outside the bounds: one cause is a law other than the pair was made for (checked against "
+        "the options given: mechanism, --turns, --blend, --law-csv;")
     right = cli("mesh-check", *meshes, "--profile", "desk-demo", "--samples", "384")
     assert right.exit_code == 0 and "in phase with the law" in right.stdout and "WARNING" not in right.stderr
     # mounted 0.1 mm closer the teeth interfere, and the warning names the distance as a cause

@@ -75,3 +75,42 @@ def require_play_that_clears(pair, record: dict, failure: str, verify: Callable,
                                 "(--allow-interference writes them anyway)")
             error.remedy = remedy
             raise error
+
+
+def require_tips_clear_of_roots(design, verify: Callable | None = None) -> None:
+    """Refuse (DesignError on the installed distance, before any tooth is cut) generated teeth
+    of ``design`` (config.specs.GearPairSpec) mounted closer than their pitch curves roll by
+    more than the shallower tip clearance: where a tip of the gear with the taller teeth
+    crosses the line of centres, mounting closer moves it straight into the other gear's
+    space bottom, so the teeth interfere at every such tooth (a fit's inset deepens the
+    spaces, but the design before it is checked first); the build and meshing check that
+    would find it take a minute. The remedy (mounted where the pitch curves roll) is built by
+    ``verify(design)`` (pair, record) when given."""
+    from wheelstep_cli.gears.pitch_curves import center_distance_for_module
+    from wheelstep_cli.parts.gear_laws import generation_law, rolling_distance
+
+    if design.teeth != "generated" or design.install_distance is None:
+        return
+    law = generation_law(design)[1]
+    if design.z % law.pinion_periods:
+        return      # a tooth count the law's periods do not share is refused as such, later
+    rolling = rolling_distance(design, law)
+    closer = rolling - float(design.install_distance)
+    if closer <= 0.0:
+        return
+    # the module the teeth are cut with at the rolling distance (SPEC §9: pitch / pi)
+    module = rolling / center_distance_for_module(law, design.z // law.pinion_periods, 1.0)
+    cutter = design.cutter()
+    clearance = min(cutter.clearance, cutter.pinion_clearance) * module
+    if closer <= clearance:
+        return
+    remedy, tried = {"install_distance": rolling}, []
+    if verify is not None:
+        remedy, tried, _ = verified_remedy(design, remedy, verify, MeshBounds())
+    advice = f"use {as_flags(remedy)}" if remedy else no_remedy(tried)
+    error = DesignError("install_distance", design.install_distance,
+                        f"mounted {closer:.4g} mm closer than the pitch curves roll ({rolling:g} mm), more than "
+                        f"the tip clearance {clearance:.3f} mm: tips run into the shallower spaces' bottoms "
+                        f"where they cross the line of centres; nothing written; {advice}")
+    error.remedy = remedy
+    raise error.tied_to({"center_distance": design.center_distance, "module": design.module})

@@ -51,10 +51,10 @@ def mounting_record(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw,
                     generated=None, inset: float = 0.0) -> dict:
     """How much closer than ``distance`` (mm) the outlines (mm, own frames) may be mounted:
     their least separation over the law's poses (a wheel moved that little toward the
-    pinion cannot reach it), and for generated teeth the tip clearance cut for it (mm): the
-    smaller of the wheel's spaces below the pinion's tips and the pinion's below the wheel's,
-    grown by 2 ``inset`` for outlines a fit drew ``inset`` mm smaller (each tip moves in by
-    it, each space deepens by it)."""
+    pinion cannot reach it), and for generated teeth the tip clearances cut for it (mm): the
+    pinion's spaces below the wheel's tips, the wheel's below the pinion's, and the smaller,
+    each grown by 2 ``inset`` for outlines a fit drew ``inset`` mm smaller (each tip moves in
+    by it, each space deepens by it)."""
     from wheelstep_cli.gears.meshing.mounting import least_separation
 
     samples = 192
@@ -63,13 +63,15 @@ def mounting_record(pinion: np.ndarray, wheel: np.ndarray, law: TransmissionLaw,
               "how": "least separation of the two outlines over the law's poses: mounted up to "
                      "that much closer, no point of one can reach the other"}
     if generated is not None:
-        spaces = min(generated.cutter.clearance, generated.cutter.pinion_clearance)
-        record["tip_clearance_mm"] = float(spaces * generated.module) + 2.0 * inset
+        pinion = float(generated.cutter.pinion_clearance * generated.module) + 2.0 * inset
+        wheel = float(generated.cutter.clearance * generated.module) + 2.0 * inset
+        record.update(tip_clearance_mm=min(pinion, wheel), pinion_spaces_mm=pinion, wheel_spaces_mm=wheel)
     return record
 
 
 def mounting_line(mounting: dict) -> str:
-    """One line saying how much closer the pair may be mounted (mm)."""
+    """One line saying how much closer the pair may be mounted (mm) and, for generated teeth,
+    each gear's tip clearance (the wheel's is the one --clearance sets)."""
     from wheelstep_cli.gears.meshing.mounting import THIN
 
     if mounting["closer_mm"] <= 0.0:
@@ -79,8 +81,9 @@ def mounting_line(mounting: dict) -> str:
     else:
         line = (f"mounting: clear when mounted up to {mounting['closer_mm']:.3f} mm closer (least gap "
                 f"between the outlines, at pinion angle {mounting['at_pinion_deg']:.1f} deg)")
-    if "tip_clearance_mm" in mounting:
-        line += f"; tip clearance {mounting['tip_clearance_mm']:.3f} mm (the shallower gear's spaces)"
+    if "wheel_spaces_mm" in mounting:
+        line += (f"; tip clearance {mounting['pinion_spaces_mm']:.3f} mm in the pinion's spaces, "
+                 f"{mounting['wheel_spaces_mm']:.3f} mm in the wheel's (the wheel's set by --clearance)")
     return line
 
 

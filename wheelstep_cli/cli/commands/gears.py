@@ -174,7 +174,8 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     import typer
 
     from wheelstep_cli.cli.commands.gears_checks import (checked_pair, collisions_first, printable_or_remedied,
-                                                         require_height_first, warn_of_the_figures)
+                                                         require_height_first, warn_no_printed_play,
+                                                         warn_of_the_figures)
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.bound_figures import bounds_verdict
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
@@ -206,6 +207,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
               "removed": [str(p) for p in show.removed]}
     show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
     warn_of_the_figures(show, record, speed_words(pair.spec.law_csv is not None))
+    warn_no_printed_play(show, pair, record)
     warn_band_jams(show, record.get("tolerance"), printer_given, rerun=True)
     show.files(written, dry_run, joined=True)
     if sliced is not None and not sliced["meshes"]:
@@ -287,7 +289,10 @@ def _gears_lines(pair, record: dict) -> list[str]:
                  f" mm on the wheel pitch curve, interference depth {record['max_penetration_mm']:.3f} mm, the law's own "
                  f"{speed} ripple {record['law_hub_speed_ripple_pct']:.2f} %")
     own = record.get("law_hub_speed_ripple_pct", 0.0)
-    lines.extend(f"  {flank_line(side, record[side], own, speed)}" for side in ("drive", "coast"))
+    # a fit's inset outlines carry the print compensation: their figures are not the design's
+    drawn = " (as drawn, with the fit's inset)" if float(getattr(pair, "inset", 0.0)) != 0.0 else ""
+    lines.extend(f"  {flank_line(side, record[side], own, speed).replace(' flank:', ' flank' + drawn + ':', 1)}"
+                 for side in ("drive", "coast"))
     if "mounting" in record:
         lines.append(f"  {mounting_line(record['mounting'])}")
     if "bounds" in record:

@@ -21,6 +21,7 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.parts.bed_remedy import scaled_to_bed
     from wheelstep_cli.parts.fit import PROFILE_FIT_REMEDY, require_fit_met
+    from wheelstep_cli.parts.interference_refusals import require_tips_clear_of_roots
     from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
     from wheelstep_cli.parts.mesh_check import check_gear_pair
     from wheelstep_cli.parts.printed_teeth import require_printable_teeth
@@ -32,6 +33,8 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
     # a remedy's try (trying) runs no remedy search of its own: refused, it is no remedy
     plain = None if trying else remedy_check(printer, checked_remedy, bed)
     whole = None if trying else whole_check(printer, show, band, bed)
+    # the tip clearance is known before any tooth is cut (a fit's design is checked before its inset)
+    require_tips_clear_of_roots(spec, plain if band[1] is None else whole)
     if band[1] is not None:
         # the design is checked, bounded and refused as without a fit before the search
         # spends a dozen meshing checks on it; the fit's inset is print compensation, judged
@@ -43,7 +46,10 @@ def checked_pair(spec, printer, show: Output, allow_interference: bool, band: tu
         design_record = _meshing_or_refused(design, design_check, allow_interference, design_verify, trying)
         # a bounds remedy is built with its fit: the inset thins the teeth the design's check passed
         require_within_bounds(design, design_record, verify=whole)
-        require_printable_teeth(design)
+        if trying:
+            require_printable_teeth(design)
+        else:   # the fewer teeth offered are built with their fit first: its inset thins them more
+            printable_or_remedied(design, spec, printer, show, band, bed)
         pair, tolerance, check = with_progress(not show.quiet, f"fitting to the band of {chosen.name}",
                                                fitted_pair, spec, chosen, band[1], design, design_check)
         record = _meshing_or_refused(pair, check, allow_interference, trying=trying)
@@ -258,3 +264,24 @@ def warn_of_the_figures(show: Output, record: dict, speed: str = "hub speed") ->
         clear = figure_text(record["diagnostic_pointwise_ripple_clear_pct"], ".2f")
         show.warning(f"WARNING: {interference_phrase(record)}; pointwise {speed} ripple where they "
                      f"do not (diagnostic): {clear} %")
+
+
+def warn_no_printed_play(show: Output, pair, record: dict) -> None:
+    """A warning line on stderr when generated teeth drawn for a printer keep no play of their
+    own: the backlash is all the printer's tooth clearance (a default design backlash no
+    larger than it, or --backlash 0), so a print whose teeth come out larger than the
+    clearance allows for jams. Not said when the band was checked (its cases say it) or a
+    fit drew the teeth."""
+    printing = getattr(pair, "printing", None)
+    if (pair.generated is None or printing is None or "tolerance" in record
+            or float(getattr(pair, "inset", 0.0)) != 0.0):
+        return
+    clearance = float(printing.printer.tooth_clearance)
+    backlash = float(pair.generated.cutter.backlash)
+    # the default backlash is max(design's, clearance): equal to it within rounding
+    if clearance > 0.0 and backlash - clearance < 1e-9:
+        show.warning(f"WARNING: printed on '{printing.printer.name}' the teeth keep no play of their own "
+                     f"(backlash j_n {backlash:.4g} mm, all of it the printer's tooth clearance): teeth "
+                     "printed larger than the clearance allows for jam; the same command with --tolerance "
+                     "checks it over the printer's band, with --fit auto fits the teeth to it (if the inset "
+                     "leaves the teeth too thin, its refusal names the tooth count that prints)")

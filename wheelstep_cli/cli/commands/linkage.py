@@ -40,7 +40,7 @@ def linkage(
     l2: Annotated[Length, opt("--l2", help="four-bar: rocker O1L, mm.", shown="638")] = None,
     l3: Annotated[Length, opt("--l3", help="four-bar: coupler KL, mm.", shown="650")] = None,
     l4: Annotated[Length, opt("--l4", help="four-bar: support arm LH, mm.", shown="654")] = None,
-    beta: Annotated[Length, opt("--beta", help="four-bar: arm angle to the coupler, deg.",
+    beta: Annotated[Length, opt("--beta", help="four-bar: arm angle to the coupler, deg, in (-360, 360).",
                                 shown="70.8")] = None,
     o1: Annotated[Optional[str], opt("--o1", help="four-bar: rocker pivot 'x,y', mm.",
                                      shown="567,615")] = None,
