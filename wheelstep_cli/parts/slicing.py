@@ -55,9 +55,8 @@ def slice_plates(plates: dict[Path, bytes], folder: Path) -> dict[Path, Path]:
     return out
 
 
-#: Why the G-code and its read-back differ a little between runs on the same plates. Measured
-#: with PrusaSlicer 2.5: the pinion plate sliced three times gave three G-code files, and
-#: confined to one CPU two runs still differed (a point 4 um apart, the paths after it shifted).
+#: Why the G-code and its read-back differ a little between runs on the same plates: PrusaSlicer
+#: 2.5's output varies from run to run (benchmarks/results.md), which wheelstep cannot fix.
 RERUN_NOTE = ("PrusaSlicer does not slice the same plate to the same bytes twice (perimeters start at "
               "other points and paths move by hundredths of a mm, even confined to one CPU): the G-code "
               "and these read-back figures vary that little between runs; the meshes, plates and design "
