@@ -255,6 +255,10 @@ parts:
     (VALID_ENTRY + "    quantity: two\n", "quantity", "parts[0].quantity = 'two': must be a whole number"),
     (VALID_ENTRY + "    quantity: 0\n", "quantity", "must be between 1 and 200"),
     (VALID_ENTRY + "    overrides:\n      zz: 3\n", "zz", "overrides.zz: unknown key; did you mean z? allowed: a, b, c, z"),
+    # a fit is the printer's (its band's): said where it goes, not "did you mean fillet?"
+    (VALID_ENTRY + "    overrides:\n      fit: auto\n", "fit", "parts[0].overrides.fit: unknown key here; a fit is "
+     "the printer's: `fit: auto` (or tight, normal, loose) in the printer profile's `band:` section"),
+    (VALID_ENTRY + "    fit: auto\n", "fit", "parts[0].fit: unknown key here; a fit is the printer's"),
     (VALID_ENTRY + "    overrides:\n      z: 24.5\n", "z: 24.5", "overrides.z = 24.5: must be a whole number"),
     (VALID_ENTRY + "    overrides:\n      module: fine\n", "module", "must be a number"),
     (VALID_ENTRY + "    overrides:\n      b: 110\n", "b: 110", "b = 110: must be <"),
@@ -318,14 +322,16 @@ def test_a_printer_entry_naming_no_printer_profile_says_what_it_names(cli, tmp_p
 
 
 def test_all_problems_reported_together(cli, tmp_path):
+    """Every problem of the file, each at its line, in the file's line order (they came in the
+    validator's field order: line 8 before line 7)."""
     batch = write(tmp_path / "bad.yaml", VALID_ENTRY + "    quantity: -1\n  - kind: shoe\n    colour: 1\n")
     result = cli("batch", batch, "--out", tmp_path / "out")
     assert result.exit_code == 2
     lines = result.stderr.strip().splitlines()
     assert [re.match(r"wheelstep: error: (.*?:\d+): ", ln).group(1) for ln in lines] == [
-        f"{batch}:{line_of(batch, 'quantity: -1')}", f"{batch}:{line_of(batch, 'colour')}",
-        f"{batch}:{line_of(batch, '- kind: shoe')}"]
-    assert "needs a printer" in lines[2]
+        f"{batch}:{line_of(batch, 'quantity: -1')}", f"{batch}:{line_of(batch, '- kind: shoe')}",
+        f"{batch}:{line_of(batch, 'colour')}"]
+    assert "needs a printer" in lines[1]
 
 
 def test_every_override_at_fault_is_reported_at_once_in_the_files_words(cli, tmp_path):

@@ -227,6 +227,8 @@ def test_a_dry_run_names_the_files_the_run_would_remove(cli, tmp_path):
     before = listing(folder)
     said = cli("batch", one, "--out", folder, "--jobs", "1", "--dry-run")
     assert said.exit_code == 0, said.stderr
+    # a dry run says what it would build, not that it built it
+    assert said.stdout.startswith(f"would build 1 of 1 entry: 1 part on 1 plate in {folder}\n"), said.stdout
     removed = sorted(line for line in said.stdout.splitlines() if line.startswith("would remove"))
     # the second printer's plate, picture, slicer settings and the dropped entry's report
     gone = ("plate-2.3mf", "plate-2.png", "reports/resin.json", "resin-0.05-standard.ini")
@@ -237,3 +239,5 @@ def test_a_dry_run_names_the_files_the_run_would_remove(cli, tmp_path):
     assert not any((folder / name).exists() for name in gone)
     # the real run says what it removed too (in its report with --json)
     assert sorted(json.loads(done.stdout)["removed"]) == sorted(str(folder / name) for name in gone)
+    # one entry, one part, one plate: each noun in its number (the sheet said "1 parts")
+    assert "\n1 of 1 entry built, 1 part on 1 plate.\n" in (folder / "print-sheet.md").read_text()

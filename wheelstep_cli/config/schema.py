@@ -46,7 +46,7 @@ class InvalidInput(DesignError):
     """Input files with problems; ``issues`` lists every one (each prints on its own line)."""
 
     def __init__(self, issues: list[Issue]):
-        self.issues = list(issues)
+        self.issues = _in_file_order(issues)
         first = self.issues[0]
         super().__init__(first.what, first.where, first.message)
 
@@ -55,6 +55,20 @@ class InvalidInput(DesignError):
 
     def __str__(self) -> str:
         return "\n".join(self.lines())
+
+
+def _in_file_order(issues: Iterable[Issue]) -> list[Issue]:
+    """``issues`` by line within each file (files in the order they first appear): the
+    validator finds them in its fields' order, not the file's."""
+    issues = list(issues)
+    files: dict[str, int] = {}
+    for issue in issues:
+        files.setdefault(issue.where.rsplit(":", 1)[0], len(files))
+
+    def place(issue: Issue) -> tuple[int, int]:
+        name, _, line = issue.where.rpartition(":")
+        return (files[issue.where.rsplit(":", 1)[0]], int(line) if name and line.isdigit() else 0)
+    return sorted(issues, key=place)
 
 
 def dotted(path: Iterable) -> str:
@@ -199,11 +213,21 @@ def field_limit(models: Iterable[type[BaseModel]], name: str) -> str | None:
     return None
 
 
+#: Keys that belong to another file or section, and where: a "did you mean" of this section's
+#: keys would send the user elsewhere (``fit`` read as ``fillet``).
+KEYS_ELSEWHERE = {
+    "fit": "a fit is the printer's: `fit: auto` (or tight, normal, loose) in the printer profile's "
+           "`band:` section (a copy of a preset such as fdm-0.4-pla.yaml, its path as the printer)",
+}
+
+
 def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) -> Issue:
     kind = error["type"]
     if kind == "missing":
         return Issue(doc.where(loc[:-1]), dotted(loc[:-1]), f"needs the key '{loc[-1]}'")
     if kind == "extra_forbidden":
+        if str(loc[-1]) in KEYS_ELSEWHERE:
+            return Issue(doc.where(loc), dotted(loc), f"unknown key here; {KEYS_ELSEWHERE[str(loc[-1])]}")
         allowed = allowed_keys(model, tuple(error["loc"][:-1]))
         near = nearest_name(str(loc[-1]), allowed)
         hint = f"did you mean {near}? " if near else ""

@@ -17,7 +17,8 @@ def print_sheet_bytes(plan, plates, built, results, failed, masses) -> bytes:
     if plan.description:
         lines += [plan.description, ""]
     total_parts = sum(len(p.items) for p in plates)
-    lines += [f"{len(built)} of {len(plan.entries)} entries built, {total_parts} parts on "
+    lines += [f"{len(built)} of {len(plan.entries)} {'entry' if len(plan.entries) == 1 else 'entries'} built, "
+              f"{total_parts} part{'s' if total_parts != 1 else ''} on "
               f"{len(plates)} plate{'s' if len(plates) != 1 else ''}.", ""]
     if failed:
         lines += ["## Not built", "", "| entry | where | reason |", "| --- | --- | --- |"]

@@ -49,7 +49,7 @@ def batch(
                     f"{entry.printer.name}: {values}")
     outcome, written = _run(plan, out, jobs, show, dry_run, force, scheduler, tolerance)
     show.report(_summary(file, out, plan, outcome, [] if dry_run else written),
-                lambda: _lines(out, plan, outcome))
+                lambda: _lines(out, plan, outcome, dry_run))
     _band_warnings(show, outcome)
     # a real run's files are said by its summary lines (each one with -v); a dry run's, and what
     # either removes, here
@@ -141,7 +141,8 @@ def _band_warnings(show: Output, outcome) -> None:
                          "outlines until the band clears (it says so when none within its limits does)")
 
 
-def _lines(out: Path, plan, outcome) -> list[str]:
+def _lines(out: Path, plan, outcome, dry_run: bool = False) -> list[str]:
+    """What the batch built (with ``dry_run``: would build) into ``out``, per plate, and each fit."""
     from wheelstep_cli.parts.fit import inset_words
 
     parts = sum(len(p.items) for p in outcome.plates)
@@ -151,7 +152,8 @@ def _lines(out: Path, plan, outcome) -> list[str]:
 
         kept = " (the earlier batch's files there are kept)" if (out / MANIFEST).is_file() else ""
         return [f"built none of {_count(len(plan.entries), 'entry', 'entries')}: nothing written to {out}{kept}"]
-    return [f"built {len(outcome.built)} of {_count(len(plan.entries), 'entry', 'entries')}: "
+    built = "would build" if dry_run else "built"
+    return [f"{built} {len(outcome.built)} of {_count(len(plan.entries), 'entry', 'entries')}: "
             f"{_count(parts, 'part', 'parts')} on {_count(plates, 'plate', 'plates')} in {out}",
             *(f"  {p.stem}.3mf ({p.printer.name}): {_count(len(p.items), 'part', 'parts')}"
               for p in outcome.plates),
