@@ -139,6 +139,11 @@ def format_value(value: object) -> str:
     return str(value)
 
 
+def counted(number: int, one: str, many: str) -> str:
+    """``number`` and the noun in the right number: 1 part, 2 parts."""
+    return f"{number} {one if number == 1 else many}"
+
+
 def rounded_down(limit: float, places: int = 2) -> str:
     """An upper limit printed to ``places`` decimals, rounded down: a value the user copies
     from the line then passes (rounded to nearest, 64.534 showed as 64.53 but 64.536 as 64.54,

@@ -60,15 +60,13 @@ class InvalidInput(DesignError):
 def _in_file_order(issues: Iterable[Issue]) -> list[Issue]:
     """``issues`` by line within each file (files in the order they first appear): the
     validator finds them in its fields' order, not the file's."""
-    issues = list(issues)
+    placed = []
     files: dict[str, int] = {}
     for issue in issues:
-        files.setdefault(issue.where.rsplit(":", 1)[0], len(files))
-
-    def place(issue: Issue) -> tuple[int, int]:
         name, _, line = issue.where.rpartition(":")
-        return (files[issue.where.rsplit(":", 1)[0]], int(line) if name and line.isdigit() else 0)
-    return sorted(issues, key=place)
+        key = (files.setdefault(name or issue.where, len(files)), int(line) if name and line.isdigit() else 0)
+        placed.append((key, issue))
+    return [issue for _, issue in sorted(placed, key=lambda item: item[0])]
 
 
 def dotted(path: Iterable) -> str:

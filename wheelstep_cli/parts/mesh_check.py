@@ -98,15 +98,16 @@ def figure_text(value, spec: str) -> str:
     return "n/a" if value is None else format(value, spec)
 
 
-def flank_line(side: str, flank: dict, own: float = 0.0, speed: str = "hub speed") -> str:
+def flank_line(side: str, flank: dict, own: float = 0.0, speed: str = "hub speed", note: str = "") -> str:
     """One line of a flank side's figures of merit (SPEC §10), ``flank`` from ``to_dict``;
     ``own``: the law's own output-speed ripple (%), which the bound leaves out: what the teeth
     add beyond it is said too when the law has one (a law CSV, a blend). ``speed``: what the
-    ripple is of (a law CSV's gears drive no hub: their output speed)."""
+    ripple is of (a law CSV's gears drive no hub: their output speed); ``note``: said after
+    the flank's name (what outlines the figures are of)."""
     ripple = flank["hub_speed_ripple_pct"]
     beyond = (f"; {max(0.0, ripple - own):.2f} % beyond the law's own {own:.2f} %"
               if ripple is not None and own > 0.01 else "")
-    return (f"{side} flank: F'i {figure_text(flank['F_i_total_um'], '.1f')} um, "
+    return (f"{side} flank{note}: F'i {figure_text(flank['F_i_total_um'], '.1f')} um, "
             f"f'i {figure_text(flank['f_i_tooth_um'], '.1f')} um, {speed} ripple "
             f"{figure_text(ripple, '.2f')} % (3 tooth harmonics{beyond}), "
             f"largest TE step {figure_text(flank['te_max_step_um'], '.1f')} um")

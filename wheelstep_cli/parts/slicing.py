@@ -124,7 +124,7 @@ def slice_lines(record: dict) -> list[str]:
             *(f"  {line}" for line in gcode_lines(record)),
             *(f"  printed {flank_line(side, record[side], record.get('law_hub_speed_ripple_pct', 0.0))}"
               for side in ("drive", "coast")),
-            *([f"  printed {bounds_line(record['bounds'])}"] if "bounds" in record else [])]
+            f"  printed {bounds_line(record['bounds'])}"]
 
 
 def _mm(value) -> str:

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 from collections import Counter
 
+from wheelstep_cli.errors import counted
+
 
 def print_sheet_bytes(plan, plates, built, results, failed, masses) -> bytes:
     """The print sheet: parts and quantities, volumes and masses, plates, slicer settings, failures.
@@ -17,9 +19,8 @@ def print_sheet_bytes(plan, plates, built, results, failed, masses) -> bytes:
     if plan.description:
         lines += [plan.description, ""]
     total_parts = sum(len(p.items) for p in plates)
-    lines += [f"{len(built)} of {len(plan.entries)} {'entry' if len(plan.entries) == 1 else 'entries'} built, "
-              f"{total_parts} part{'s' if total_parts != 1 else ''} on "
-              f"{len(plates)} plate{'s' if len(plates) != 1 else ''}.", ""]
+    lines += [f"{len(built)} of {counted(len(plan.entries), 'entry', 'entries')} built, "
+              f"{counted(total_parts, 'part', 'parts')} on {counted(len(plates), 'plate', 'plates')}.", ""]
     if failed:
         lines += ["## Not built", "", "| entry | where | reason |", "| --- | --- | --- |"]
         for entry, where, reason in failed:

@@ -17,6 +17,7 @@ BatchTolerance = Annotated[bool, opt(
          "one. --no-tolerance skips the check (about four meshing checks per pair); a band "
          "that names a fit still has its pairs fitted to it.")]
 from wheelstep_cli.cli.output import Output
+from wheelstep_cli.errors import counted
 
 
 def batch(
@@ -58,7 +59,7 @@ def batch(
             show.detail(f"  wrote {path}")
     show.files(written if dry_run else [], dry_run=dry_run)
     if outcome.failed:
-        show.error(f"{_count(len(outcome.failed), 'entry', 'entries')} failed:")
+        show.error(f"{counted(len(outcome.failed), 'entry', 'entries')} failed:")
         for entry, where, reason in outcome.failed:
             show.error(f"  {entry.name} ({where}): {reason}")
         raise typer.Exit(1)
@@ -151,20 +152,15 @@ def _lines(out: Path, plan, outcome, dry_run: bool = False) -> list[str]:
         from wheelstep_cli.batch.outputs import MANIFEST
 
         kept = " (the earlier batch's files there are kept)" if (out / MANIFEST).is_file() else ""
-        return [f"built none of {_count(len(plan.entries), 'entry', 'entries')}: nothing written to {out}{kept}"]
+        return [f"built none of {counted(len(plan.entries), 'entry', 'entries')}: nothing written to {out}{kept}"]
     built = "would build" if dry_run else "built"
-    return [f"{built} {len(outcome.built)} of {_count(len(plan.entries), 'entry', 'entries')}: "
-            f"{_count(parts, 'part', 'parts')} on {_count(plates, 'plate', 'plates')} in {out}",
-            *(f"  {p.stem}.3mf ({p.printer.name}): {_count(len(p.items), 'part', 'parts')}"
+    return [f"{built} {len(outcome.built)} of {counted(len(plan.entries), 'entry', 'entries')}: "
+            f"{counted(parts, 'part', 'parts')} on {counted(plates, 'plate', 'plates')} in {out}",
+            *(f"  {p.stem}.3mf ({p.printer.name}): {counted(len(p.items), 'part', 'parts')}"
               for p in outcome.plates),
             *(f"  {b['entry']}: fit {b['fit']} to the band of {b['printer']}: both tooth outlines drawn "
               f"{inset_words(b['inset_mm'])} along their normals, least backlash over the band "
               f"{b['least_backlash_mm']:.3f} mm" for b in _bands(outcome) if "fit" in b and not b["jams"])]
-
-
-def _count(number: int, one: str, many: str) -> str:
-    """``number`` and the noun in the right number: 1 part, 2 parts."""
-    return f"{number} {one if number == 1 else many}"
 
 
 def register(app: typer.Typer) -> None:

@@ -242,8 +242,8 @@ def _slice_lines(sliced: dict | None) -> list[str]:
 def _clearance_text(pair) -> str:
     """How a printer's tooth clearance makes up the backlash the teeth were cut with, or a
     fit's inset adds to it (mm)."""
-    printing = getattr(pair, "printing", None)
-    clearance = float(printing.printer.tooth_clearance) if printing is not None else 0.0
+    from wheelstep_cli.cli.commands.gears_checks import printed_play
+
     inset = float(getattr(pair, "inset", 0.0))
     if inset != 0.0:
         # a fit: the printer's clearance is replaced by the outlines' inset
@@ -251,9 +251,11 @@ def _clearance_text(pair) -> str:
 
         drawn = inset_words(inset)
         return f", then both outlines drawn {drawn} along their normals (the fit: j_n {4.0 * inset:+.3f} mm)"
-    if clearance <= 0.0:
+    designed = printed_play(pair)
+    if designed is None:
         return ""
-    designed = pair.generated.cutter.backlash - clearance
+    printing = pair.printing
+    clearance = float(printing.printer.tooth_clearance)
     if printing.design is not None and printing.design.backlash is None:
         # the default is the most play the ripple bound allows: the clearance is held in it
         return (f" (the design's default, which holds the {clearance:g} mm tooth clearance of printer "
@@ -291,8 +293,7 @@ def _gears_lines(pair, record: dict) -> list[str]:
     own = record.get("law_hub_speed_ripple_pct", 0.0)
     # a fit's inset outlines carry the print compensation: their figures are not the design's
     drawn = " (as drawn, with the fit's inset)" if float(getattr(pair, "inset", 0.0)) != 0.0 else ""
-    lines.extend(f"  {flank_line(side, record[side], own, speed).replace(' flank:', ' flank' + drawn + ':', 1)}"
-                 for side in ("drive", "coast"))
+    lines.extend(f"  {flank_line(side, record[side], own, speed, drawn)}" for side in ("drive", "coast"))
     if "mounting" in record:
         lines.append(f"  {mounting_line(record['mounting'])}")
     if "bounds" in record:

@@ -266,22 +266,29 @@ def warn_of_the_figures(show: Output, record: dict, speed: str = "hub speed") ->
                      f"do not (diagnostic): {clear} %")
 
 
+def printed_play(pair) -> float | None:
+    """Play (mm) generated teeth keep of their own once printed: the backlash they were cut
+    with less the printer's tooth clearance held in it; None when no clearance is held there
+    (paper teeth, no printer, a clearance of 0, or a fit's inset in its place)."""
+    printing = getattr(pair, "printing", None)
+    if pair.generated is None or printing is None or float(getattr(pair, "inset", 0.0)) != 0.0:
+        return None
+    clearance = float(printing.printer.tooth_clearance)
+    return None if clearance <= 0.0 else float(pair.generated.cutter.backlash) - clearance
+
+
 def warn_no_printed_play(show: Output, pair, record: dict) -> None:
     """A warning line on stderr when generated teeth drawn for a printer keep no play of their
-    own: the backlash is all the printer's tooth clearance (a default design backlash no
-    larger than it, or --backlash 0), so a print whose teeth come out larger than the
-    clearance allows for jams. Not said when the band was checked (its cases say it) or a
-    fit drew the teeth."""
-    printing = getattr(pair, "printing", None)
-    if (pair.generated is None or printing is None or "tolerance" in record
-            or float(getattr(pair, "inset", 0.0)) != 0.0):
-        return
-    clearance = float(printing.printer.tooth_clearance)
-    backlash = float(pair.generated.cutter.backlash)
+    own (:func:`printed_play`): the backlash is all the printer's tooth clearance (a default
+    design backlash no larger than it, or --backlash 0), so a print whose teeth come out
+    larger than the clearance allows for jams. Not said when the band was checked (its cases
+    say it)."""
+    play = printed_play(pair)
     # the default backlash is max(design's, clearance): equal to it within rounding
-    if clearance > 0.0 and backlash - clearance < 1e-9:
-        show.warning(f"WARNING: printed on '{printing.printer.name}' the teeth keep no play of their own "
-                     f"(backlash j_n {backlash:.4g} mm, all of it the printer's tooth clearance): teeth "
-                     "printed larger than the clearance allows for jam; the same command with --tolerance "
-                     "checks it over the printer's band, with --fit auto fits the teeth to it (if the inset "
-                     "leaves the teeth too thin, its refusal names the tooth count that prints)")
+    if play is None or "tolerance" in record or play >= 1e-9:
+        return
+    show.warning(f"WARNING: printed on '{pair.printing.printer.name}' the teeth keep no play of their own "
+                 f"(backlash j_n {pair.generated.cutter.backlash:.4g} mm, all of it the printer's tooth "
+                 "clearance): teeth printed larger than the clearance allows for jam; the same command with "
+                 "--tolerance checks it over the printer's band, with --fit auto fits the teeth to it (if the "
+                 "inset leaves the teeth too thin, its refusal names the tooth count that prints)")
