@@ -273,7 +273,8 @@ parts:
      "than the body"),
     # a shoe stands on its side: its width is its height on the bed
     (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      width: 300\n", "width: 300",
-     "overrides.width = 300: makes part 'shoe' 300.0 mm tall, more than the 250 mm printer"),
+     "overrides.width = 300: makes part 'shoe' 300.0 mm tall, more than the 250 mm printer 'fdm-0.4-pla' prints; "
+     "nothing written; use width: 250"),
     (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      width: -3\n", "width",
      "parts[0].overrides.width = -3: must be > 0 mm"),
     # the R_min rule names the parameter the entry gave (b), not the design's strut c

@@ -262,6 +262,26 @@ def test_a_pair_taller_than_the_printer_is_refused_before_any_tooth_is_cut(cli, 
     assert not (tmp_path / "tall").exists()
 
 
+def test_a_pair_too_tall_is_offered_the_plate_the_printer_prints_and_that_is_written(cli, tmp_path):
+    """The height refusal offers the thickness that makes the part as tall as the printer
+    prints (the hub kept, rounded down to 0.1 mm); applied, the pair is written that tall."""
+    import trimesh
+
+    args = ["gears", "--thickness", "250", "--hub-d", "40", "--hub-length", "8.2", "--printer", "fdm-0.4-pla"]
+    line = error_line(cli(*args, "--out", tmp_path / "tall"))
+    assert "258.2 mm tall (its 250 mm plate and 8.2 mm hub)" in line, line
+    assert line.endswith("; nothing written; use --thickness 241.8"), line
+    assert not (tmp_path / "tall").exists()
+    written = cli(*with_remedy(args, remedy_in(line)), "--format", "stl", "--out", tmp_path / "fits")
+    assert written.exit_code == 0, written.stderr
+    height = np.ptp(trimesh.load(tmp_path / "fits" / "pinion.stl").vertices[:, 2])
+    assert 249.9 < height <= 250.0
+    # only the hub too tall: no thickness makes it fit, and none is offered
+    line = error_line(cli("gears", "--hub-d", "40", "--hub-length", "300", "--printer", "fdm-0.4-pla",
+                          "--out", tmp_path / "tall"))
+    assert "; use" not in line, line
+
+
 def test_a_pair_too_large_for_the_default_printers_bed_says_so_and_how_to_write_it(cli, tmp_path):
     """--module 3 draws a 296 mm wheel: with no --printer it is refused for the default
     printer's bed, saying that it is the default printer, that --format stl writes no plate,

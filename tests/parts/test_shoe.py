@@ -374,6 +374,18 @@ def test_a_mechanism_typed_in_metres_is_told_lengths_are_millimetres(cli, tmp_pa
     assert line.endswith("lengths are in millimetres") and "<= -" not in line
 
 
+def test_a_shoe_too_tall_for_the_printer_is_offered_the_width_it_prints(cli, tmp_path):
+    """A shoe stands on its side: too wide to print upright, it is offered the width the
+    printer prints (the printer's height), which applied is written."""
+    line = error_line(cli("shoe", "--width", "300.04", "--printer", "resin-0.05-standard", "--out", tmp_path / "o"))
+    assert line.startswith("wheelstep: error: --width = 300.04: makes part 'shoe' 300.0 mm tall, more than the "
+                           "250 mm printer 'resin-0.05-standard' prints; nothing written; use --width 250"), line
+    assert not (tmp_path / "o").exists()
+    written = cli("shoe", "--width", "250", "--printer", "resin-0.05-standard", "--out", tmp_path / "o", "-q")
+    assert written.exit_code == 0, written.stderr
+    assert (tmp_path / "o" / "shoe.3mf").exists()
+
+
 def test_a_shoe_too_large_for_the_default_printers_bed_names_the_size_and_the_way_out(cli, tmp_path):
     """A mechanism ten times the source design's makes a shoe larger than the default
     printer's bed: said of the length given, as the size it makes, with the note that the

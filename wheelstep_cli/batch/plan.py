@@ -14,7 +14,7 @@ from pydantic import ValidationError
 from wheelstep_cli.batch.lookup import Profiles, profile_label
 from wheelstep_cli.config.batch_file import DEFAULT_DESIGN, KIND_NAMES, BatchDefaults, BatchEntry, BatchFile
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
-from wheelstep_cli.config.names import in_file_words, yaml_message
+from wheelstep_cli.config.names import in_file_words, remedies_as_keys, yaml_message
 from wheelstep_cli.config.printers import Printer
 from wheelstep_cli.config.profiles import beside, profile_names
 from wheelstep_cli.config.resolve import spec_problems, spec_values
@@ -333,6 +333,6 @@ def _problem(doc, path, err: DesignError, override_where, design_name, overrides
     if param in override_where:
         # the value as the file gives it (a law CSV's path as written, not as found from here)
         return Issue(override_where[param], dotted(path + ("overrides", param)),
-                     f"= {show(overrides.get(param, err.value))}: {in_file_words(err.limit)}")
+                     f"= {show(overrides.get(param, err.value))}: {remedies_as_keys(in_file_words(err.limit), err)}")
     given = f", with overrides {', '.join(overrides)}" if overrides else ""
     return Issue(doc.where(path), dotted(path), f"{yaml_message(err)} (from design {design_name}{given})")

@@ -76,11 +76,17 @@ def remedy_in_yaml(err, keys=lambda options: f"overrides {{{as_keys(options)}}}"
     backlash: 0.239}``), not as flags; any other refusal as :func:`yaml_message` words it.
     ``entry``: of a batch entry, whose "nothing written" is said "not built" (the file's other
     entries are written; a sweep's row keeps the words)."""
-    from wheelstep_cli.errors import offered_remedies
-
     message = yaml_message(err)   # its flags already said as keys (in_file_words)
     if entry:
         message = re.sub(r"; nothing written(?=;|$)", "; not built", message)
+    return remedies_as_keys(message, err, keys)
+
+
+def remedies_as_keys(message: str, err, keys=as_keys) -> str:
+    """``message`` (``err``'s words, its flags already said as keys by :func:`in_file_words`)
+    with each remedy ``err`` offers and each try it made said as ``keys(options)``."""
+    from wheelstep_cli.errors import offered_remedies
+
     # the longest first: a try that holds a shorter one (z 44 module 2.9 holds z 44) stays whole
     for tried in sorted(getattr(err, "tried", None) or [], key=lambda t: -len(as_flags(t))):
         message = _whole_words(message, in_file_words(as_flags(tried)), keys(tried))

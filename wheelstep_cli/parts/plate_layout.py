@@ -3,12 +3,13 @@ the packing onto as few plates as fit, and the design as 3MF object metadata. Le
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
 
 from wheelstep_cli.config.printers import Printer
-from wheelstep_cli.errors import DesignError
+from wheelstep_cli.errors import NOTHING_WRITTEN, DesignError
 from wheelstep_cli.formats.threemf import PlateObject, placed_object
 
 
@@ -85,9 +86,25 @@ def require_height(name: str, tall: float, printer: Printer, height_param: str, 
     (``stack``: what makes it that tall, when more than the parameter) when ``printer`` prints
     less; a build can check this before it spends time on the part."""
     if tall > printer.max_height:
-        raise _beyond(DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall{stack}, more "
-                                  f"than the {printer.max_height:g} mm printer '{printer.given or printer.name}' prints"),
-                      printer).tied_to(footprint or {})
+        error = _beyond(DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall{stack}, more "
+                                    f"than the {printer.max_height:g} mm printer '{printer.given or printer.name}' prints"),
+                        printer).tied_to(footprint or {})
+        lower = lowered_height(height, tall, printer.max_height)
+        if lower is not None:
+            from wheelstep_cli.config.names import as_flags
+
+            error = error.with_advice(f"use {as_flags({height_param: lower})}", {height_param: lower})
+        raise error
+
+
+def lowered_height(height: float, tall: float, most: float) -> float | None:
+    """The value (mm, to 0.1 mm, rounded down) of the input ``height`` that makes a part now
+    ``tall`` mm tall (it grows one for one with that input: a shoe's width, a gear's plate
+    under its hub) at most ``most`` mm tall; None when no positive value does (the rest of
+    the part alone is too tall)."""
+    # to 0.1 um first: a float32 mesh height is a few 0.01 um off the input's
+    lower = math.floor(round((height - (tall - most)) * 10.0, 3)) / 10.0
+    return lower if lower > 0 else None
 
 
 def default_printer_said(err: DesignError, stl_only: bool = True) -> DesignError:
@@ -95,8 +112,14 @@ def default_printer_said(err: DesignError, stl_only: bool = True) -> DesignError
     user did not name: how to choose another, and (``stl_only``) that STL files need no bed;
     its statements for the inputs sharing the blame carry the note too."""
     note = " (the default printer; --printer chooses another" + (", --format stl writes no plate" if stl_only else "") + ")"
-    sizes = {name: (value, limit + note) for name, (value, limit) in err.alternatives.items()}
-    return err._with_extras(DesignError(err.param, err.value, err.limit + note, sizes))
+
+    def noted(limit: str) -> str:
+        # said of the printer the refusal names, before what it advises
+        cause, written, advice = limit.partition(NOTHING_WRITTEN)
+        return cause + note + written + advice
+
+    sizes = {name: (value, noted(limit)) for name, (value, limit) in err.alternatives.items()}
+    return err._with_extras(DesignError(err.param, err.value, noted(err.limit), sizes))
 
 
 def _beyond(error: DesignError, printer: Printer) -> DesignError:
