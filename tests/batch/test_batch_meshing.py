@@ -103,6 +103,8 @@ def test_pair_outside_the_bounds_is_refused_like_gears_with_its_remedy(cli, tmp_
     assert entries["source24"]["status"] == "failed"
     assert entries["source24"]["meshing"]["interference"] is False
     assert [f["name"] for f in manifest["failed"]] == ["source24"]
+    # the manifest keeps the remedy as --json gives it
+    assert manifest["failed"][0]["remedies"] == failed["remedies"]
     assert "| source24 |" in (out / "print-sheet.md").read_text().split("## Parts")[0]
 
 

@@ -183,7 +183,9 @@ def manifest_bytes(plan, out, files, plates, built, results, failed) -> bytes:
                            for p in results[e.index].parts}} if e in built else {}),
              **_meshing(results[e.index])}
             for e in plan.entries],
-        "failed": [{"name": e.name, "where": f"{plan.file.name}:{where.rsplit(':', 1)[1]}", "reason": reason}
+        # each with the remedies its reason offers, as the entry's keys (none: []), as --json says them
+        "failed": [{"name": e.name, "where": f"{plan.file.name}:{where.rsplit(':', 1)[1]}", "reason": reason,
+                    "remedies": results[e.index].remedies if e.index in results else []}
                    for e, where, reason in failed],
         "plates": [{"file": f"{p.stem}.3mf", "picture": f"{p.stem}.png", "printer_profile": p.printer.name,
                     "parts": [i.label for i in p.items]} for p in plates],
