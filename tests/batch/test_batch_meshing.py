@@ -127,6 +127,26 @@ def test_an_entry_mounted_so_close_that_it_interferes_names_its_distance_and_the
     assert not out.exists()
 
 
+def test_an_entry_mounted_closer_than_its_tip_clearance_is_refused_before_its_teeth_are_cut(cli, tmp_path):
+    """Mounted far inside its rolling distance (the desk preset's 72.125 mm against 80), an
+    entry is refused from its tip clearance, as `wheelstep gears` refuses it, with the
+    distance they roll at as its remedy, as data too; applied, the entry is built."""
+    text = ("parts:\n  - name: close\n    kind: gear-pair\n    design: desk-demo\n"
+            "    printer: fdm-0.4-pla\n    overrides:\n      center_distance: 80\n")
+    result = cli("batch", write(tmp_path / "close.yaml", text), "--out", tmp_path / "out", "--jobs", "1",
+                 "--json", "--no-tolerance")
+    assert result.exit_code == 1, result.stderr
+    (failed,) = json.loads(result.stdout)["failed"]
+    assert failed["reason"].startswith("center_distance = 80: with it, install-distance = 72.125 fails: mounted "
+                                       "7.875 mm closer than the pitch curves roll (80 mm), more than the tip "
+                                       "clearance"), failed["reason"]
+    assert failed["reason"].endswith("; not built; use overrides {install_distance: 80}")
+    assert failed["remedies"] == [{"install_distance": 80.0}]
+    applied = cli("batch", write(tmp_path / "rolling.yaml", text + "      install_distance: 80\n"),
+                  "--out", tmp_path / "rolling", "--jobs", "1", "--no-tolerance")
+    assert applied.exit_code == 0, applied.stderr
+
+
 def test_a_batch_whose_every_entry_fails_leaves_an_earlier_batch_in_its_folder(cli, tmp_path):
     out = tmp_path / "out"
     assert cli("batch", write(tmp_path / "good.yaml", SMALL_BATCH), "--out", out, "--jobs", "1",

@@ -14,7 +14,7 @@ from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.names import remedy_in_yaml
 from wheelstep_cli.errors import DesignError, offered_remedies
 from wheelstep_cli.parts.interference_refusals import (interference_phrase, require_mounted_where_rolling,
-                                                       require_play_that_clears)
+                                                       require_play_that_clears, require_tips_clear_of_roots)
 from wheelstep_cli.parts.bed_remedy import scaled_to_bed
 from wheelstep_cli.parts.gear_pair import require_pair_on_bed
 from wheelstep_cli.parts.kinds import KINDS, as_designed, for_printer
@@ -76,6 +76,10 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
         # ``tolerance`` too (the print sheet and the plates say the parts are fitted)
         fit = _printer_fit(entry) if kind.mating_check is not None else None
         printer = entry.printer if fit is None else design_printer(entry.printer)
+        if kind.mating_check is not None:
+            # mounted closer than its teeth's tip clearance allows: refused before any tooth is cut
+            require_tips_clear_of_roots(entry.spec, remedy_check(printer, bed=printer) if fit is None
+                                        else _fit_check(entry, fit, printer))
         # an undercut entry is offered the remedies a build for its printer passed
         built = undercut_checked(lambda: (
             for_printer(kind, kind.build_part(entry.printed), printer, entry.spec) if fit is None
