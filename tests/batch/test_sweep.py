@@ -222,10 +222,43 @@ def test_a_point_too_large_for_its_printers_bed_is_refused_as_gears_refuses_it(c
     assert distance[0] == "--install-distance" and remedy.startswith(f"try install_distance: {distance[1]} ("), remedy
 
 
+def test_a_shoe_too_large_for_the_bed_is_a_refused_row_and_not_kept(cli, tmp_path):
+    """A shoe sweep's point whose shoe no bed holds is refused as `shoe --printer` refuses it,
+    named by the value the sweep varied (on the default printer when the sweep names none,
+    whose plate a kept design goes on); --keep then writes only what a plate holds."""
+    from wheelstep_cli.batch.sweep_point import evaluate, resolve_point, versions
+    from wheelstep_cli.config.profiles import load_design_profile, load_printer
+
+    design, printer = load_design_profile("bntu-2024"), load_printer("fdm-0.4-pla")
+    # the command names the sizing input given when the printer is its default one
+    line = error_line(cli("shoe", "--profile", "bntu-2024", "--rmin", "400", "--out", tmp_path / "shoe"))
+    cause = line.split(" (the default printer", 1)[0].split(": ", 3)[3]
+    assert cause.startswith("with it, part 'shoe' is 707.1 x 178.6 mm, larger than the bed of printer 'fdm-0.4-pla'")
+    for name, given in ((printer.name, printer), (None, None)):
+        row = evaluate(resolve_point(0, "shoe", design, name, given, {"r_min": 400}, False, versions()))
+        assert row["outcome"] == "refused", row
+        assert row["reason"].startswith(f"r_min = 400: {cause}"), row["reason"]
+        assert row["reason"].endswith("(the default printer: the sweep names no printers)") == (name is None)
+    # a rule two inputs share, said of the one varied (as `shoe --width 5` says it)
+    row = evaluate(resolve_point(0, "shoe", load_design_profile("desk-demo"), printer.name, printer, {"width": 5},
+                                 False, versions()))
+    assert row["reason"].startswith("width = 5: must be >= 10.20 mm"), row["reason"]
+    sweep = write(tmp_path / "s.yaml", "command: shoe\ndesign: bntu-2024\ngrid:\n  r_min: [20, 400]\n"
+                  "printers: [fdm-0.4-pla]\n")
+    result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "--keep", "best:2")
+    assert result.exit_code == 1, result.stderr
+    assert sorted(p.name for p in (tmp_path / "out").glob("best-*")) == ["best-1"]
+
+
 def test_tolerance_is_refused_for_shoes(cli, tmp_path):
     sweep = write(tmp_path / "s.yaml", "command: shoe\ntolerance: true\ngrid:\n  width: [12]\n")
     line = error_line(cli("sweep", sweep, "--out", tmp_path / "out"))
     assert "s.yaml:2: tolerance = true: the band check is of gear pairs" in line
+    # so is keeping interfering teeth: a shoe has none
+    sweep = write(tmp_path / "s.yaml", "command: shoe\nallow_interference: true\ngrid:\n  width: [12]\n")
+    line = error_line(cli("sweep", sweep, "--out", tmp_path / "out", "--dry-run"))
+    assert "s.yaml:2: allow_interference = true: keeps gear pairs whose teeth interfere" in line, line
+    assert not (tmp_path / "out").exists()
 
 
 def test_rows_of_other_code_under_the_same_version_are_computed_again(tmp_path, monkeypatch):

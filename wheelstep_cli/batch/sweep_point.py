@@ -114,6 +114,8 @@ def evaluate(point: Point) -> dict:
             row.update(outcome="refused", reason="the teeth interfere (allow_interference: true "
                                                  "keeps such designs)")
     except DesignError as err:
+        # a rule several inputs share is said of the one the sweep gave (as a command names the flag given)
+        err = err.for_given(point.values)
         reason = err.limit if err.param == "design" else remedy_in_yaml(err, as_keys, entry=False)
         row.update(outcome="refused", reason=reason)
     except Exception as err:  # a crash of one design must not stop the sweep
@@ -128,21 +130,39 @@ def build_point(point: Point):
     from wheelstep_cli.parts.kinds import build_for_printer
 
     if point.command != "gears":
-        return build_for_printer(KINDS_OF[point.command], point.spec, point.printer), None
+        from wheelstep_cli.parts.shoe import require_shoe_on_bed
+
+        return _on_a_bed(lambda bed: require_shoe_on_bed(
+            build_for_printer(KINDS_OF[point.command], point.spec, point.printer), bed), point.printer), None
     from wheelstep_cli.parts.mesh_check import check_gear_pair, meshing_record
     from wheelstep_cli.parts.tolerance_cli import band_pair
 
     from wheelstep_cli.parts.bed_remedy import scaled_to_bed
     from wheelstep_cli.parts.bound_figures import bounds_verdict
 
-    built, band, nominal = scaled_to_bed(lambda: band_pair(point.spec, point.printer, point.tolerance, point.printer),
-                                         point.spec, None, unbuilt=True)
+    built, band, nominal = _on_a_bed(lambda bed: scaled_to_bed(
+        lambda: band_pair(point.spec, point.printer, point.tolerance, bed), point.spec, None, unbuilt=True),
+        point.printer)
     record = meshing_record(nominal if nominal is not None else check_gear_pair(built))
     if band is not None:
         record["tolerance"] = band
     # whether it is within the bounds, as `gears` reports it (a best design's gears.json too)
     record["bounds"] = bounds_verdict(record, (band or {}).get("fit"))
     return built, record
+
+
+def _on_a_bed(build, printer):
+    """``build(bed)`` with the point's ``printer``, else the default printer (a best design's
+    plates go on it), whose refusals of a part too large say so."""
+    from wheelstep_cli.config.profiles import load_printer
+    from wheelstep_cli.parts.plate_layout import default_printer_said
+
+    try:
+        return build(printer or load_printer())
+    except DesignError as err:
+        if printer is not None or getattr(err, "beyond_printer", None) is None:
+            raise
+        raise default_printer_said(err, note="the default printer: the sweep names no printers") from None
 
 
 def _figures(point: Point) -> dict:

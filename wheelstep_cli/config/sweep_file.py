@@ -71,6 +71,9 @@ def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
     _check_printers(doc, data.get("printers"), issues)
     _check_profile_files(doc, data.get("design"), data.get("printers"), issues)
     _check_bands(doc, command, data.get("printers"), data.get("tolerance") is True, issues)
+    if command == "shoe" and data.get("allow_interference") is True:
+        issues.append(Issue(doc.where(("allow_interference",)), "allow_interference",
+                            "= true: keeps gear pairs whose teeth interfere (command: gears); a shoe has no teeth"))
     if issues:
         raise InvalidInput(issues)
     # counted before the points are listed (a product of long axes would not fit in memory)

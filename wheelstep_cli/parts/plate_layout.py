@@ -107,11 +107,12 @@ def lowered_height(height: float, tall: float, most: float) -> float | None:
     return lower if lower > 0 else None
 
 
-def default_printer_said(err: DesignError, stl_only: bool = True) -> DesignError:
+def default_printer_said(err: DesignError, stl_only: bool = True, note: str | None = None) -> DesignError:
     """``err`` (a part larger than the printer prints) said of the default printer, which the
-    user did not name: how to choose another, and (``stl_only``) that STL files need no bed;
-    its statements for the inputs sharing the blame carry the note too."""
-    note = " (the default printer; --printer chooses another" + (", --format stl writes no plate" if stl_only else "") + ")"
+    user did not name: how to choose another, and (``stl_only``) that STL files need no bed
+    (``note``: another way to say it, in brackets); its statements for the inputs sharing the
+    blame carry the note too."""
+    note = f" ({note or 'the default printer; --printer chooses another' + (', --format stl writes no plate' if stl_only else '')})"
 
     def noted(limit: str) -> str:
         # said of the printer the refusal names, before what it advises

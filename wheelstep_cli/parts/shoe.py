@@ -134,6 +134,15 @@ def _printing(shoe: Shoe) -> dict:
     return record
 
 
+def require_shoe_on_bed(shoe: Shoe, printer) -> Shoe:
+    """``shoe``, refused (DesignError naming the input that sizes it) when its part is taller
+    than ``printer`` (config.printers.Printer) prints or larger than its bed."""
+    spec = shoe.spec
+    require_on_bed([shoe.part], printer, "width", spec.width, {
+        "a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min, "rim": spec.rim})
+    return shoe
+
+
 def shoe_files(shoe: Shoe, out: Path, fmt: str = "both", printer=None) -> dict[Path, bytes]:
     """File name -> contents: shoe.stl / shoe.3mf (on ``printer``'s bed, a config.printers.Printer;
     default the printer the shoe was drawn for, else the fdm-0.4-pla preset), shoe.json,
@@ -146,10 +155,8 @@ def shoe_files(shoe: Shoe, out: Path, fmt: str = "both", printer=None) -> dict[P
     printer = chosen or load_printer()
     part = shoe.part
     if chosen is not None or fmt in ("3mf", "both"):
-        spec = shoe.spec
         try:
-            require_on_bed([part], printer, "width", spec.width, {
-                "a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min, "rim": spec.rim})
+            require_shoe_on_bed(shoe, printer)
         except DesignError as err:
             if chosen is not None:
                 raise
