@@ -29,8 +29,12 @@ def pareto_png(first, second, front, names: tuple[str, str], title: str, labels=
     if best:
         ax.plot([p[0] for p in best], [p[1] for p in best], "o-", c="tab:red", ms=5, lw=1.2,
                 label=f"Pareto front ({len(best)})")
+        # a label right of the middle runs to the left of its point, so that it stays in the figure
+        middle = 0.5 * (min(first) + max(first))
         for a, b, name in labelled(best):
-            ax.annotate(name, (a, b), textcoords="offset points", xytext=(4, 4), fontsize=7, color="tab:red")
+            right = a > middle
+            ax.annotate(name, (a, b), textcoords="offset points", xytext=(-4 if right else 4, 4), fontsize=7,
+                        color="tab:red", ha="right" if right else "left")
     ax.set_xlabel(names[0])
     ax.set_ylabel(names[1])
     ax.set_title(title)
