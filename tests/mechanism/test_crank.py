@@ -63,3 +63,21 @@ def test_the_r_min_rule_names_the_parameter_the_user_gave(given, param, limit):
     named = err.value.for_given(given)
     assert named.param == param and named.limit.startswith(limit)
     assert "R_min = a - 4b + c = -60 mm" in named.limit
+
+
+@pytest.mark.parametrize("given, param, limit", [
+    ({"c"}, "c", "must be >= 4b - a + 0.001 = 340.001 mm"),
+    ({"b"}, "b", "must be <= (a + c - 0.001)/4 = 99.999875 mm"),
+    ({"a"}, "a", "must be >= 4b - c + 0.001 = 60.0005 mm"),
+])
+def test_a_strut_leaving_the_sole_tighter_than_the_least_r_min_is_refused_as_r_min_is(given, param, limit):
+    """c = 340.0005 leaves R_min = 0.0005 mm, which --rmin refuses (in effect a cusp): the
+    strut, or the input given, is refused with the least value that passes; that value and
+    the least R_min itself pass."""
+    with pytest.raises(DesignError) as err:
+        CrankMechanism(60, 100, 340.0005)
+    named = err.value.for_given(given)
+    assert named.param == param and named.limit.startswith(limit), named.limit
+    assert "R_min = a - 4b + c = 0.0005 mm" in named.limit
+    assert CrankMechanism(60, 100, 340.001).r_min == pytest.approx(0.001)
+    assert CrankMechanism.from_r_min(60, 100, 0.001).r_min == pytest.approx(0.001)

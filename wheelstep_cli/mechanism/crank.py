@@ -33,8 +33,8 @@ class CrankMechanism:
     """Mechanism lengths in mm: ``a`` hub to crank axes, ``b`` crank, ``c`` strut.
 
     Valid only with a, c > 0, b >= 0 (b = 0: no cranks, a plain wheel) and
-    R_min = a - 4b + c > 0 (otherwise the sole has a cusp or loop); k = a - b + c
-    then is positive too.
+    R_min = a - 4b + c >= :data:`MIN_R_MIN` (otherwise the sole has, in effect, a cusp, or
+    a loop); k = a - b + c then is positive too.
     """
 
     a: float
@@ -50,6 +50,17 @@ class CrankMechanism:
                 "b": (self.b, f"must be < (a + c)/4 = {(self.a + self.c) / 4:g} mm" + why),
                 "a": (self.a, f"must be > 4b - c = {4 * self.b - self.c:g} mm" + why),
                 "r_min": (self.r_min, "must be > 0 mm" + why)})
+        # the least R_min that from_r_min takes, also for a strut given as c (a nanometre of
+        # slack for the rounding of c = R_min - a + 4b)
+        if self.r_min < MIN_R_MIN - 1e-6:
+            why = (f" (with it, the sole curvature radius R_min = a - 4b + c = {self.r_min:.4g} mm; a sole "
+                   f"bent tighter than {MIN_R_MIN:g} mm has, in effect, a cusp)")
+            least_c = 4 * self.b - self.a + MIN_R_MIN
+            raise DesignError("c", self.c, f"must be >= 4b - a + {MIN_R_MIN:g} = {least_c:.10g} mm" + why, {
+                "b": (self.b, f"must be <= (a + c - {MIN_R_MIN:g})/4 = {(self.a + self.c - MIN_R_MIN) / 4:.10g} mm"
+                      + why),
+                "a": (self.a, f"must be >= 4b - c + {MIN_R_MIN:g} = {4 * self.b - self.c + MIN_R_MIN:.10g} mm" + why),
+                "r_min": (self.r_min, f"must be >= {MIN_R_MIN:g} mm (a sole bent tighter has, in effect, a cusp)")})
 
     @classmethod
     def from_r_min(cls, a: float, b: float, r_min: float) -> "CrankMechanism":
