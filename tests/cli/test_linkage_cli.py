@@ -69,6 +69,19 @@ def test_a_table_step_between_the_sampled_crank_angles_is_refused_with_the_ones_
     assert cli("linkage", "--samples", "700", "--step", above, "--json").exit_code == 0
 
 
+def test_the_default_table_step_is_the_sampled_multiple_nearest_15_deg_and_says_so(cli):
+    """With no --step the table steps by 15 deg where the samples hold it, else by the multiple
+    of their spacing nearest it (36 samples: 20 deg, 100: 14.4 deg), stated in the table's
+    header and --json's table_step_deg; that step given is taken as it is."""
+    for samples, step in (("720", 15.0), ("36", 20.0), ("100", 14.4)):
+        report = json.loads(cli("linkage", "--samples", samples, "--json").stdout)
+        assert report["table_step_deg"] == pytest.approx(step)
+        assert np.diff([r["crank_deg"] for r in report["path"]]) == pytest.approx(step)
+        printed = cli("linkage", "--samples", samples)
+        assert f"phase   (every {step:g} deg)" in printed.stdout, printed.stdout
+        assert cli("linkage", "--samples", samples, "--step", f"{step:g}", "--json").exit_code == 0
+
+
 def test_a_support_band_as_deep_as_the_lift_or_none_at_all_is_refused(cli, tmp_path):
     """--ground-tol is how near its lowest level the foot counts as on the ground: at the lift
     or beyond, every crank angle would be support (duty factor 1); at 0, hardly one. Both are

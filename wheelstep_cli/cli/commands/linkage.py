@@ -45,7 +45,8 @@ def linkage(
     o1: Annotated[Optional[str], opt("--o1", help="four-bar: rocker pivot 'x,y', mm.",
                                      shown="567,615")] = None,
     step: Annotated[Optional[float], opt("--step", help="Crank-angle step of the printed table "
-                                                        "(and of --json's), deg.", shown="15")] = None,
+                                                        "(and of --json's), deg.",
+                                        shown="15, or the multiple of 360/--samples nearest it")] = None,
     csv: Csv = None, plot: Plot = None,
     gif: Gif = None,
     gif_frames: Annotated[Optional[int], opt("--gif-frames", help="Frames of the GIF animation.",
@@ -61,11 +62,11 @@ def linkage(
     require_a_file(dry_run, force, csv=csv, plot=plot, gif=gif)
     require_with("gif_frames", gif_frames, gif, "--gif")
     require_printed("step", step, quiet and not json, "table")
-    given_step = step is not None
-    step = 15.0 if step is None else step
     gif_frames = 48 if gif_frames is None else gif_frames
-    ls.check_sampling(samples, scale, gif_frames, step)
-    if given_step:
+    ls.check_sampling(samples, scale, gif_frames, ls.DEFAULT_STEP if step is None else step)
+    if step is None:
+        step = ls.default_step(samples)
+    else:
         ls.require_step_on_samples(step, samples)
     four_bar = {"l1": l1, "l2": l2, "l3": l3, "l4": l4, "beta_deg": beta,
                 "o1": None if o1 is None else point(o1, "o1")}
@@ -93,7 +94,8 @@ def _lines(report: dict) -> list[str]:
              f"at {report['rpm']:g} rpm: foot speed {foot['min'] / 1000:.3f} .. {foot['max'] / 1000:.3f} "
              f"m/s (mean {foot['mean'] / 1000:.3f});  body speed in support "
              f"{body['min'] / 1000:.3f} .. {body['max'] / 1000:.3f} m/s (mean {body['mean'] / 1000:.3f})",
-             f"{'crank':>7} {'x':>9} {'y':>9} {'vx':>9} {'vy':>9} {'|v|':>9}  phase",
+             f"{'crank':>7} {'x':>9} {'y':>9} {'vx':>9} {'vy':>9} {'|v|':>9}  phase   "
+             f"(every {report['table_step_deg']:.10g} deg)",
              f"{'deg':>7} {'mm':>9} {'mm':>9} {'mm/s':>9} {'mm/s':>9} {'mm/s':>9}"]
     for r in report["path"]:
         lines.append(f"{r['crank_deg']:7.1f} {r['x_mm']:9.2f} {r['y_mm']:9.2f} {r['vx_mm_s']:9.1f} "

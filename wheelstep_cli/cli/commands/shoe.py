@@ -85,7 +85,8 @@ def kinematics(
     motor_rpm: Annotated[float, opt("--motor-rpm",
                                     help="Constant pinion (motor side) speed, rpm.")] = 60.0,
     points: Annotated[int, opt("--points", help="Samples over one shoe cycle.")] = 361,
-    rows: Annotated[Optional[int], opt("--rows", help="Table rows printed.", shown="9")] = None,
+    rows: Annotated[Optional[int], opt("--rows", help="Table rows printed.",
+                                       shown="9, or every sample when --points gives fewer")] = None,
     plot: Plot = None, profile: Profile = None, force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:

@@ -44,6 +44,17 @@ def check_sampling(samples: int, scale: float, gif_frames: int, step_deg: float)
     require(0 < step_deg <= 180, "step", step_deg, "must be in (0, 180] deg")
 
 
+#: Crank-angle step (deg) of the printed table when none is given.
+DEFAULT_STEP = 15.0
+
+
+def default_step(samples: int) -> float:
+    """The table's step (deg) when none is given: the whole multiple of the ``samples`` crank
+    angles' spacing (360 / samples) nearest :data:`DEFAULT_STEP`, at least one spacing."""
+    spacing = 360.0 / samples
+    return max(1, round(DEFAULT_STEP / spacing)) * spacing
+
+
 def require_step_on_samples(step_deg: float, samples: int) -> None:
     """Refuse (DesignError) a table step (deg) that is not a whole number of the ``samples``
     crank angles' spacing: the table lists sampled angles, so such a step would be rounded."""
@@ -148,7 +159,7 @@ def linkage_report(study: LinkageStudy) -> dict:
     return {
         "preset": study.leg.name, "description": study.leg.description, "scale": study.request.scale,
         "rpm": study.rpm,
-        "samples": study.request.samples,
+        "samples": study.request.samples, "table_step_deg": study.request.step_deg,
         "branches": sol.branches, "loop_residual_mm": sol.residual,
         "stride_mm": g.stride, "lift_mm": g.lift, "duty_factor": g.duty_factor,
         "ground_level_mm": g.ground_level, "ground_tol_mm": g.ground_tol,
