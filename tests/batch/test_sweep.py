@@ -248,6 +248,7 @@ def test_a_shoe_too_large_for_the_bed_is_a_refused_row_and_not_kept(cli, tmp_pat
     result = cli("sweep", sweep, "--out", tmp_path / "out", "--workers", "1", "--keep", "best:2")
     assert result.exit_code == 1, result.stderr
     assert sorted(p.name for p in (tmp_path / "out").glob("best-*")) == ["best-1"]
+    assert "wheelstep: warning: --keep best:2 keeps 1: the results hold 1 ok design to rank" in result.stderr
 
 
 def test_tolerance_is_refused_for_shoes(cli, tmp_path):
@@ -368,6 +369,20 @@ printers: [no-such-printer]
     assert len(lines) == len(expected)
     for line_no, text in expected.items():
         assert any(f"bad.yaml:{line_no}: {text}" in line for line in lines), (line_no, lines)
+    assert not (tmp_path / "out").exists()
+
+
+def test_no_printers_and_one_objective_twice_are_refused_in_words(cli, tmp_path):
+    """`printers: []` and `objectives: [mass_g, mass_g]` each get a line a user can act on
+    (not pydantic's "List should have at least 1 item"; not a one-point front)."""
+    sweep = write(tmp_path / "s.yaml", "command: shoe\ngrid: {width: [20]}\nprinters: []\n")
+    line = error_line(cli("sweep", sweep, "--out", tmp_path / "out", "--dry-run"))
+    assert line.endswith("s.yaml:3: printers = []: must name at least one printer profile (or leave "
+                         "`printers:` out: no printer)"), line
+    sweep = write(tmp_path / "s.yaml", "command: shoe\ngrid: {width: [20]}\nprinters: [fdm-0.4-pla]\n"
+                  "objectives: [mass_g, mass_g]\n")
+    line = error_line(cli("sweep", sweep, "--out", tmp_path / "out", "--dry-run"))
+    assert "s.yaml:4: objectives[1] = 'mass_g': names the first objective again" in line, line
     assert not (tmp_path / "out").exists()
 
 

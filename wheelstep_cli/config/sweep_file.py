@@ -180,7 +180,10 @@ def _check_objectives(doc: LocatedYaml, names, command, printers: bool, issues: 
     only where the sweep names printers (a row without one has no mass)."""
     for i, name in enumerate(names if isinstance(names, list) else []):
         at = ("objectives", i)
-        if name not in OBJECTIVES:
+        if i and name in names[:i]:
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: names the first objective again; "
+                                "a front of one figure is its least value: name two different figures"))
+        elif name not in OBJECTIVES:
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: must be one of: "
                                 + ", ".join(OBJECTIVES)))
         elif command in COMMAND_OBJECTIVES and name not in COMMAND_OBJECTIVES[command]:

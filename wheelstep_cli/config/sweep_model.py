@@ -51,11 +51,12 @@ class SweepFile(BaseModel):
     description: Optional[str] = Field(None, strict=True)
     command: Literal["gears", "shoe"]
     design: Optional[str] = Field(None, strict=True)
-    printers: Optional[list[str]] = Field(None, min_length=1)
+    printers: Optional[list[str]] = Field(None, min_length=1, json_schema_extra={
+        "limit": "must name at least one printer profile (or leave `printers:` out: no printer)"})
     fixed: dict[str, Any] = {}
     grid: dict[str, Any] = {}          # name -> list of values or {start, stop, step} (a Range)
     random: Optional[dict[str, Any]] = None   # a RandomAxes, checked on its own
     objectives: Optional[list[str]] = Field(None, min_length=2, max_length=2, json_schema_extra={
-        "limit": "must name two figures: " + ", ".join(OBJECTIVES)})
+        "limit": "must name two figures: " + ", ".join(OBJECTIVES) + " (a shoe's: volume_mm3, mass_g)"})
     allow_interference: bool = Field(False, strict=True)
     tolerance: bool = Field(False, strict=True)   # gears: also the check over the printer's band

@@ -235,7 +235,11 @@ def _keep_best(plan, results: Path, out: Path, count: int, show: Output, force: 
     from wheelstep_cli.batch.sweep_run import best_points
 
     written: list[Path] = []
-    for rank, point in enumerate(best_points(plan, results, count) if count else [], start=1):
+    best = best_points(plan, results, count) if count else []
+    if len(best) < count:
+        show.warning(f"wheelstep: warning: --keep best:{count} keeps {len(best)}: the results hold "
+                     f"{len(best)} ok design{'' if len(best) == 1 else 's'} to rank")
+    for rank, point in enumerate(best, start=1):
         folder = out / f"best-{rank}"
         built, record = build_point(point)
         if point.command == "gears":
