@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 
 from tests.batch.test_batch import object_metadata
+from tests.helpers.clicheck import error_line
 from tests.helpers.files import printer_profile_without_band, write
 
 
@@ -138,3 +139,16 @@ def test_a_resin_pair_jamming_over_its_band_is_not_sent_to_the_fdm_read_back(cli
     assert result.exit_code == 0, result.stderr
     warning = next(l for l in result.stderr.splitlines() if "rgears jams over the band" in l)
     assert "--slice" not in warning and "`fit: auto` in the printer profile's band section" in warning
+
+
+def test_the_band_switch_on_a_batch_without_gear_pairs_is_refused(cli, tmp_path):
+    """--tolerance / --no-tolerance act on gear pairs only: given for a batch of shoes, refused
+    (exit 2, nothing written) rather than ignored; left out, the batch builds."""
+    batch = write(tmp_path / "shoes.yaml", "parts:\n  - kind: shoe\n    design: desk-demo\n    printer: fdm-0.4-pla\n")
+    for switch in ("--tolerance", "--no-tolerance"):
+        result = cli("batch", batch, "--out", tmp_path / "out", "--jobs", "1", switch)
+        assert result.exit_code == 2
+        assert error_line(result) == (f"wheelstep: error: {switch} = on: the band check is of gear pairs, "
+                                      "and the batch has none")
+        assert not (tmp_path / "out").exists()
+    assert cli("batch", batch, "--out", tmp_path / "out", "--jobs", "1").exit_code == 0

@@ -9,8 +9,8 @@ import typer
 
 from wheelstep_cli.cli.options import DryRun, Force, Json, Out, Quiet, Verbose, opt
 
-BatchTolerance = Annotated[bool, opt(
-    "--tolerance/--no-tolerance",
+BatchTolerance = Annotated[Optional[bool], opt(
+    "--tolerance/--no-tolerance", shown="--tolerance",
     help="Check every gear pair over its printer's dimensional band (SPEC §11), as drawn with "
          "the printer's tooth clearance: per case in its report and the manifest, a warning "
          "for a pair that jams. On by default; a printer profile without a band is told to add "
@@ -27,7 +27,7 @@ def batch(
     scheduler: Annotated[Optional[str], opt(
         "--scheduler", help="Build on the Dask cluster of this scheduler (tcp://HOST:8786) "
                             "instead of --jobs local processes.")] = None,
-    force: Force = False, tolerance: BatchTolerance = True,
+    force: Force = False, tolerance: BatchTolerance = None,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
 ) -> None:
     """Build every part of a batch file into packed 3MF plates with PNG previews,
@@ -44,6 +44,10 @@ def batch(
         raise DesignError("out", str(out), "is a file; give a folder")
     # a file's problems (InvalidInput) are said by the CLI's runner, with --json's object too
     plan = load_batch(file, str(file))
+    if tolerance is not None and not any(entry.kind == "gear-pair" for entry in plan.entries):
+        # said as the switch typed, given (on), as a switch given twice is
+        raise DesignError("tolerance", True, "the band check is of gear pairs, and the batch has none")
+    tolerance = True if tolerance is None else tolerance
     for entry in plan.entries:      # -v: what each entry resolved to, before any build
         values = ", ".join(f"{k} = {v}" for k, v in entry.spec.model_dump().items() if v is not None)
         show.detail(f"  {entry.name}: {entry.kind} x {entry.quantity} from {entry.design_label} for printer "
