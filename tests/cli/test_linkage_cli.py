@@ -117,3 +117,11 @@ def test_an_arm_angle_past_a_full_turn_is_refused(cli, tmp_path):
         assert not (tmp_path / "leg.csv").exists()
     inside = json.loads(cli("linkage", "--beta", "359", "--json").stdout)
     assert "359 deg" in inside["description"]
+
+
+def test_a_scale_beyond_a_thousand_either_way_is_refused(cli):
+    """--scale 1e6 printed a foot speed of 1.5e6 m/s, 1e-9 only zeros: the range is said."""
+    for value in ("1e6", "0.0001", "0"):
+        assert error_line(cli("linkage", "--scale", value)) == f"wheelstep: error: --scale = {value}: must be in [0.001, 1000]"
+    for value in ("0.001", "1000"):
+        assert cli("linkage", "--scale", value, "--json").exit_code == 0

@@ -20,6 +20,9 @@ def test_cli_files(cli, tmp_path):
     assert data["case"] == "general" and data["h_max_mm"] == pytest.approx(120.0)
     rows = np.loadtxt(f["csv"], delimiter=",", skiprows=1)
     assert rows[:, 1].max() == pytest.approx(120.0, abs=1e-3) and rows[:, 1].min() == pytest.approx(0.0)
+    # the piece each sample lies on, as the JSON's pieces count them: whole numbers
+    pieces = [line.rsplit(",", 1)[1] for line in f["csv"].read_text().splitlines()[1:]]
+    assert sorted(set(pieces)) == [str(k) for k in range(len(data["pieces"]))]
     doc = ezdxf.readfile(f["dxf"])
     ents = list(doc.modelspace())
     assert [e.dxftype() for e in ents] == ["LINE", "ARC", "ARC", "ARC"]

@@ -53,7 +53,8 @@ def trajectory_files(study, csv: Path | None, dxf: Path | None, polyline: bool,
     path = study.path
     files = {}
     if csv is not None:
-        files[csv] = csv_bytes(["x_mm", "y_mm", "piece"], np.column_stack([study.points, study.pieces]))
+        files[csv] = csv_bytes(["x_mm", "y_mm", "piece"], np.column_stack([study.points, study.pieces]),
+                               ["%.6f", "%.6f", "%d"])
     if dxf is not None:
         from wheelstep_cli.formats.dxf import path_dxf_bytes
 

@@ -36,10 +36,16 @@ class LinkageRequest:
     step_deg: float = 15.0
 
 
+#: Range of --scale, the factor on every length of a leg.
+MIN_SCALE, MAX_SCALE = 1e-3, 1e3
+
+
 def check_sampling(samples: int, scale: float, gif_frames: int, step_deg: float) -> None:
     """Raise DesignError for a sample count, scale, GIF frame count or table step out of range."""
     require(36 <= samples <= 100000, "samples", samples, "must be in [36, 100000]")
-    require(scale > 0, "scale", scale, "must be > 0")
+    # a thousandth to a thousand times the presets' lengths (about 2 mm to 600 m of crank):
+    # beyond, the printed mm and m/s figures show nothing but zeros or nonsense speeds
+    require(MIN_SCALE <= scale <= MAX_SCALE, "scale", scale, f"must be in [{MIN_SCALE:g}, {MAX_SCALE:g}]")
     require(2 <= gif_frames <= 720, "gif-frames", gif_frames, "must be in [2, 720]")
     require(0 < step_deg <= 180, "step", step_deg, "must be in (0, 180] deg")
 
