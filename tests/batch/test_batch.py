@@ -293,7 +293,14 @@ parts:
      "= 'pair': already used at"),
     # one report file on a case-insensitive file system
     (VALID_ENTRY + "  - name: 'PAIR'\n    kind: shoe\n    printer: fdm-0.4-pla\n", "'PAIR'",
-     "= 'PAIR': already used at"),
+     "bad.yaml:2 as 'pair' (names are compared ignoring case"),
+    # a name the file did not give, said as the one the tool gives
+    (VALID_ENTRY.replace("name: pair\n    kind", "kind") + "  - name: gear-pair-1\n    kind: shoe\n    printer: fdm-0.4-pla\n",
+     "gear-pair-1", "bad.yaml:2, the name that entry without one gets (KIND-N"),
+    (VALID_ENTRY + "  - kind: shoe\n    printer: fdm-0.4-pla\n  - name: shoe-2\n    kind: shoe\n    printer: fdm-0.4-pla\n",
+     "name: shoe-2", "bad.yaml:6, the name that entry without one gets"),
+    (VALID_ENTRY + "  - name: shoe-3\n    kind: shoe\n    printer: fdm-0.4-pla\n  - kind: shoe\n    printer: fdm-0.4-pla\n",
+     "- kind: shoe", "bad.yaml:6; give it a name:"),
     (VALID_ENTRY + "  - name: '.'\n    kind: shoe\n    printer: fdm-0.4-pla\n", "'.'",
      "starting with a letter or digit"),
     (VALID_ENTRY + "    quantity: 1\n    quantity: 2\n", "quantity: 2", "duplicate key 'quantity'"),

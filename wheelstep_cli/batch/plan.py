@@ -68,7 +68,8 @@ class _Check:
     profiles: Profiles
     defaults: BatchDefaults
     bad: set = field(default_factory=set)                 # paths (3 keys at most) with problems
-    names: dict[str, str] = field(default_factory=dict)   # entry name -> where first used
+    # entry name (case folded) -> where first used, that name, and whether the file gave it
+    names: dict[str, tuple[str, str, bool]] = field(default_factory=dict)
 
     def flawed(self, path: tuple, key: str) -> bool:
         """Whether ``key`` was given at ``path`` or in the defaults with a problem (reported)."""
@@ -216,10 +217,17 @@ def _name(check: _Check, path: tuple, index: int, entry: BatchEntry, kind_name, 
     at = path + ("name",)
     # names its report file: two names one case apart are one file on Windows and macOS
     if name.casefold() in check.names:
-        issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: already used at "
-                            f"{check.names[name.casefold()]} (names are compared ignoring case)"))
+        where, earlier, given = check.names[name.casefold()]
+        there = where + ("" if given else ", the name that entry without one gets (KIND-N: its kind and place)")
+        if earlier != name:
+            there += f" as {show(earlier)} (names are compared ignoring case: they name report files)"
+        if entry.name:
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: already used at {there}"))
+        else:
+            issues.append(Issue(doc.where(path), dotted(path), f"has no name, and {show(name)}, the one it "
+                                f"would get, is already used at {there}; give it a name:"))
     else:
-        check.names[name.casefold()] = doc.where(path)
+        check.names[name.casefold()] = (doc.where(path), name, bool(entry.name))
     return name
 
 
