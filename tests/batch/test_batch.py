@@ -279,7 +279,7 @@ parts:
      "parts[0].overrides.width = -3: must be > 0 mm"),
     # the R_min rule names the parameter the entry gave (b), not the design's strut c
     (VALID_ENTRY.replace("gear-pair", "shoe") + "    overrides:\n      b: 60\n", "b: 60",
-     "parts[0].overrides.b = 60: must be < (a + c)/4 = 52.5 mm"),
+     "parts[0].overrides.b = 60: must be <= (a + c - 0.001)/4 = 52.4997 mm"),
     (VALID_ENTRY.replace("kind: gear-pair", "kind: gears"), "kind", "unknown kind; allowed: gear-pair, shoe"),
     (VALID_ENTRY.replace("printer: fdm-0.4-pla", "printer: fdm-0.6-abs"), "printer",
      "not found; known printer profiles: fdm-0.4-petg, fdm-0.4-pla, resin-0.05-standard"),
@@ -300,7 +300,7 @@ parts:
     (VALID_ENTRY + "  - kind: shoe\n    printer: fdm-0.4-pla\n  - name: shoe-2\n    kind: shoe\n    printer: fdm-0.4-pla\n",
      "name: shoe-2", "bad.yaml:6, the name that entry without one gets"),
     (VALID_ENTRY + "  - name: shoe-3\n    kind: shoe\n    printer: fdm-0.4-pla\n  - kind: shoe\n    printer: fdm-0.4-pla\n",
-     "- kind: shoe", "bad.yaml:6; give it a name:"),
+     "- kind: shoe", "bad.yaml:6; give it a `name:`"),
     (VALID_ENTRY + "  - name: '.'\n    kind: shoe\n    printer: fdm-0.4-pla\n", "'.'",
      "starting with a letter or digit"),
     (VALID_ENTRY + "    quantity: 1\n    quantity: 2\n", "quantity: 2", "duplicate key 'quantity'"),
@@ -662,6 +662,17 @@ def test_a_batch_gear_pair_whose_hub_makes_it_too_tall_is_refused_before_it_is_b
             "part 'pinion' 260.0 mm tall (its 200 mm plate and 60 mm hub), more than the 250 mm printer "
             "'fdm-0.4-pla' prints") in result.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_a_design_profiles_value_too_tall_is_offered_as_an_override(cli, tmp_path):
+    """The entry's design profile gives the plate that is too tall: the remedy is the
+    override the entry adds (as a build's refusals say theirs), and added, the file passes."""
+    write(tmp_path / "thick.yaml", "gears:\n  thickness: 300\n")
+    text = "parts:\n  - name: g\n    kind: gear-pair\n    design: thick.yaml\n    printer: fdm-0.4-pla\n"
+    line = error_line(cli("batch", write(tmp_path / "b.yaml", text), "--out", tmp_path / "out"))
+    assert line.endswith("; nothing written; use overrides {thickness: 250} (from design thick.yaml)"), line
+    fixed = write(tmp_path / "fixed.yaml", text + "    overrides: {thickness: 250}\n")
+    assert cli("batch", fixed, "--out", tmp_path / "out", "--dry-run").exit_code == 0
 
 
 def test_an_empty_override_is_refused_at_its_line(cli, tmp_path):

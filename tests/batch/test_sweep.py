@@ -382,7 +382,7 @@ def test_no_printers_and_one_objective_twice_are_refused_in_words(cli, tmp_path)
     sweep = write(tmp_path / "s.yaml", "command: shoe\ngrid: {width: [20]}\nprinters: [fdm-0.4-pla]\n"
                   "objectives: [mass_g, mass_g]\n")
     line = error_line(cli("sweep", sweep, "--out", tmp_path / "out", "--dry-run"))
-    assert "s.yaml:4: objectives[1] = 'mass_g': names the first objective again" in line, line
+    assert "s.yaml:4: objectives[1] = 'mass_g': names objectives[0] again" in line, line
     assert not (tmp_path / "out").exists()
 
 
@@ -566,3 +566,17 @@ def test_a_point_with_teeth_too_thin_for_its_printer_is_refused_as_gears_refuses
     assert rows[44]["outcome"] == "refused"
     assert rows[44]["reason"].startswith("z = 44: the teeth are too thin for printer 'fdm-0.4-pla'")
     assert "use z: 42 (fewer, larger teeth)" in rows[44]["reason"]
+
+
+def test_a_row_without_a_printer_is_keyed_by_the_default_printers_bed(monkeypatch):
+    """A row without printers is checked on the default printer's bed: another default printer
+    (a profiles/ folder here that overrides it) makes it another row, not a stale one."""
+    from dataclasses import replace
+
+    import wheelstep_cli.config.profiles as profiles
+    from wheelstep_cli.batch.sweep_point import resolve_point, versions
+
+    first = resolve_point(0, "shoe", None, None, None, {"width": 20}, False, versions()).key
+    default = profiles.load_printer()
+    monkeypatch.setattr(profiles, "load_printer", lambda *a: replace(default, sha256="another"))
+    assert resolve_point(0, "shoe", None, None, None, {"width": 20}, False, versions()).key != first

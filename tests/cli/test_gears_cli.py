@@ -258,7 +258,8 @@ def test_a_pair_taller_than_the_printer_is_refused_before_any_tooth_is_cut(cli, 
     line = error_line(cli("gears", "--hub-d", "40", "--hub-length", "300", "--out", tmp_path / "tall"))
     assert line.startswith("wheelstep: error: --hub-length = 300: with it, thickness = 10 (the default) fails: makes "
                            "part 'pinion' 310.0 mm tall"), line
-    assert line.endswith("(the default printer; --printer chooses another, --format stl writes no plate)")
+    assert line.endswith("(the default printer; --printer chooses another, --format stl writes no plate); "
+                         "nothing written; use --hub-length 240")
     assert not (tmp_path / "tall").exists()
 
 
@@ -267,19 +268,21 @@ def test_a_pair_too_tall_is_offered_the_plate_the_printer_prints_and_that_is_wri
     prints (the hub kept, rounded down to 0.1 mm); applied, the pair is written that tall."""
     import trimesh
 
-    args = ["gears", "--thickness", "250", "--hub-d", "40", "--hub-length", "8.2", "--printer", "fdm-0.4-pla"]
+    args = ["gears", "--thickness", "250", "--hub-d", "40", "--hub-length", "8.20005", "--printer", "fdm-0.4-pla"]
     line = error_line(cli(*args, "--out", tmp_path / "tall"))
-    assert "258.2 mm tall (its 250 mm plate and 8.2 mm hub)" in line, line
-    assert line.endswith("; nothing written; use --thickness 241.8"), line
+    assert "mm tall (its 250 mm plate and 8.20005 mm hub)" in line, line
+    # a 50 um of hub off the tenths: 241.8 would stand 250.00005 mm tall
+    assert line.endswith("; nothing written; use --thickness 241.7"), line
     assert not (tmp_path / "tall").exists()
     written = cli(*with_remedy(args, remedy_in(line)), "--format", "stl", "--out", tmp_path / "fits")
     assert written.exit_code == 0, written.stderr
     height = np.ptp(trimesh.load(tmp_path / "fits" / "pinion.stl").vertices[:, 2])
-    assert 249.9 < height <= 250.0
-    # only the hub too tall: no thickness makes it fit, and none is offered
-    line = error_line(cli("gears", "--hub-d", "40", "--hub-length", "300", "--printer", "fdm-0.4-pla",
-                          "--out", tmp_path / "tall"))
-    assert "; use" not in line, line
+    assert 249.8 < height <= 250.0
+    # a hub that leaves too thin a plate: the hub lowered is offered, not a plate the spec refuses
+    args = ["gears", "--hub-d", "40", "--hub-length", "249.7", "--printer", "fdm-0.4-pla"]
+    line = error_line(cli(*args, "--out", tmp_path / "tall"))
+    assert line.endswith("; nothing written; use --hub-length 240"), line
+    assert cli(*with_remedy(args, remedy_in(line)), "--dry-run", "--out", tmp_path / "hub").exit_code == 0
 
 
 def test_a_pair_too_large_for_the_default_printers_bed_says_so_and_how_to_write_it(cli, tmp_path):

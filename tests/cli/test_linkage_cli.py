@@ -71,9 +71,10 @@ def test_a_table_step_between_the_sampled_crank_angles_is_refused_with_the_ones_
 
 def test_the_default_table_step_is_the_sampled_multiple_nearest_15_deg_and_says_so(cli):
     """With no --step the table steps by 15 deg where the samples hold it, else by the multiple
-    of their spacing nearest it (36 samples: 20 deg, 100: 14.4 deg), stated in the table's
+    of their spacing nearest it, the larger of two as near (36 samples: 20 deg, 60: 18 deg, 100:
+    14.4 deg), stated in the table's
     header and --json's table_step_deg; that step given is taken as it is."""
-    for samples, step in (("720", 15.0), ("36", 20.0), ("100", 14.4)):
+    for samples, step in (("720", 15.0), ("36", 20.0), ("100", 14.4), ("60", 18.0)):
         report = json.loads(cli("linkage", "--samples", samples, "--json").stdout)
         assert report["table_step_deg"] == pytest.approx(step)
         assert np.diff([r["crank_deg"] for r in report["path"]]) == pytest.approx(step)

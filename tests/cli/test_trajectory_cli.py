@@ -22,7 +22,8 @@ def test_cli_files(cli, tmp_path):
     assert rows[:, 1].max() == pytest.approx(120.0, abs=1e-3) and rows[:, 1].min() == pytest.approx(0.0)
     # the piece each sample lies on, as the JSON's pieces count them: whole numbers
     pieces = [line.rsplit(",", 1)[1] for line in f["csv"].read_text().splitlines()[1:]]
-    assert sorted(set(pieces)) == [str(k) for k in range(len(data["pieces"]))]
+    assert all(piece.isdigit() for piece in pieces)
+    assert sorted({int(piece) for piece in pieces}) == list(range(len(data["pieces"])))
     doc = ezdxf.readfile(f["dxf"])
     ents = list(doc.modelspace())
     assert [e.dxftype() for e in ents] == ["LINE", "ARC", "ARC", "ARC"]

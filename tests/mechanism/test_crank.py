@@ -52,10 +52,10 @@ def test_speed_analogue_is_periodic_with_its_minimum_at_the_handover(m):
 
 
 @pytest.mark.parametrize("given, param, limit", [
-    ({"b"}, "b", "must be < (a + c)/4 = 105 mm"),
-    ({"a", "z"}, "a", "must be > 4b - c = 120 mm"),
-    ({"c"}, "c", "must be > 4b - a = 420 mm"),
-    (set(), "c", "must be > 4b - a = 420 mm"),
+    ({"b"}, "b", "must be <= (a + c - 0.001)/4 = 104.9997 mm"),
+    ({"a", "z"}, "a", "must be >= 4b - c + 0.001 = 120.001 mm"),
+    ({"c"}, "c", "must be >= 4b - a + 0.001 = 420.001 mm"),
+    (set(), "c", "must be >= 4b - a + 0.001 = 420.001 mm"),
 ])
 def test_the_r_min_rule_names_the_parameter_the_user_gave(given, param, limit):
     with pytest.raises(DesignError) as err:
@@ -67,17 +67,19 @@ def test_the_r_min_rule_names_the_parameter_the_user_gave(given, param, limit):
 
 @pytest.mark.parametrize("given, param, limit", [
     ({"c"}, "c", "must be >= 4b - a + 0.001 = 340.001 mm"),
-    ({"b"}, "b", "must be <= (a + c - 0.001)/4 = 99.999875 mm"),
-    ({"a"}, "a", "must be >= 4b - c + 0.001 = 60.0005 mm"),
+    ({"b"}, "b", "must be <= (a + c - 0.001)/4 = 99.9998 mm"),
+    ({"a"}, "a", "must be >= 4b - c + 0.001 = 60.001 mm"),
 ])
 def test_a_strut_leaving_the_sole_tighter_than_the_least_r_min_is_refused_as_r_min_is(given, param, limit):
     """c = 340.0005 leaves R_min = 0.0005 mm, which --rmin refuses (in effect a cusp): the
-    strut, or the input given, is refused with the least value that passes; that value and
-    the least R_min itself pass."""
+    strut, or the input given, is refused with the limit of the least R_min, printed so that
+    the value copied from it passes; the least R_min itself passes."""
     with pytest.raises(DesignError) as err:
         CrankMechanism(60, 100, 340.0005)
     named = err.value.for_given(given)
     assert named.param == param and named.limit.startswith(limit), named.limit
-    assert "R_min = a - 4b + c = 0.0005 mm" in named.limit
-    assert CrankMechanism(60, 100, 340.001).r_min == pytest.approx(0.001)
+    assert "R_min = a - 4b + c = 0.0005 mm must be >= 0.001 mm" in named.limit
+    copied = float(limit.rsplit("= ", 1)[1].split()[0])
+    lengths = {"a": 60.0, "b": 100.0, "c": 340.0005, param: copied}
+    assert CrankMechanism(lengths["a"], lengths["b"], lengths["c"]).r_min >= 0.001 - 1e-9
     assert CrankMechanism.from_r_min(60, 100, 0.001).r_min == pytest.approx(0.001)

@@ -384,6 +384,14 @@ def test_a_shoe_too_tall_for_the_printer_is_offered_the_width_it_prints(cli, tmp
     written = cli("shoe", "--width", "250", "--printer", "resin-0.05-standard", "--out", tmp_path / "o", "-q")
     assert written.exit_code == 0, written.stderr
     assert (tmp_path / "o" / "shoe.3mf").exists()
+    # a printer too low for any shoe the strut's socket fits in: no width is offered
+    profiles = Path(__file__).resolve().parents[2] / "profiles"
+    low = tmp_path / "low.yaml"
+    low.write_text((profiles / "fdm-0.4-pla.yaml").read_text().replace("max_height: 250", "max_height: 12"))
+    line = error_line(cli("shoe", "--printer", low, "--out", tmp_path / "low"))
+    assert line.startswith("wheelstep: error: --width = 40 (the default): makes part 'shoe' 40.0 mm tall, more than "
+                           "the 12 mm"), line
+    assert "; use" not in line and not (tmp_path / "low").exists()
 
 
 def test_a_shoe_too_large_for_the_default_printers_bed_names_the_size_and_the_way_out(cli, tmp_path):

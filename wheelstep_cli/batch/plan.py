@@ -14,7 +14,7 @@ from pydantic import ValidationError
 from wheelstep_cli.batch.lookup import Profiles, profile_label
 from wheelstep_cli.config.batch_file import DEFAULT_DESIGN, KIND_NAMES, BatchDefaults, BatchEntry, BatchFile
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
-from wheelstep_cli.config.names import in_file_words, remedies_as_keys, yaml_message
+from wheelstep_cli.config.names import as_keys, in_file_words, remedies_as_keys, yaml_message
 from wheelstep_cli.config.printers import Printer
 from wheelstep_cli.config.profiles import beside, profile_names
 from wheelstep_cli.config.resolve import spec_problems, spec_values
@@ -218,14 +218,16 @@ def _name(check: _Check, path: tuple, index: int, entry: BatchEntry, kind_name, 
     # names its report file: two names one case apart are one file on Windows and macOS
     if name.casefold() in check.names:
         where, earlier, given = check.names[name.casefold()]
-        there = where + ("" if given else ", the name that entry without one gets (KIND-N: its kind and place)")
+        there = where
         if earlier != name:
             there += f" as {show(earlier)} (names are compared ignoring case: they name report files)"
+        if not given:
+            there += ", the name that entry without one gets (KIND-N: its kind and place)"
         if entry.name:
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: already used at {there}"))
         else:
             issues.append(Issue(doc.where(path), dotted(path), f"has no name, and {show(name)}, the one it "
-                                f"would get, is already used at {there}; give it a name:"))
+                                f"would get, is already used at {there}; give it a `name:`"))
     else:
         check.names[name.casefold()] = (doc.where(path), name, bool(entry.name))
     return name
@@ -324,14 +326,16 @@ def _require_height(kind: PartKind, printed, printer: Printer) -> None:
     """A part taller than its printer prints, refused before it is built (as the plate would
     refuse it after): a gear pair stands on its face, a shoe on its side (its width upright)."""
     from wheelstep_cli.parts.gear_pair import footprint
+    from wheelstep_cli.parts.kinds import height_inputs
     from wheelstep_cli.parts.plate_layout import gear_pair_height, gear_pair_stack, require_height
 
     if kind.name == "gear-pair":
         require_height("pinion", gear_pair_height(printed), printer, "thickness", printed.thickness,
-                       footprint(printed), gear_pair_stack(printed))
+                       footprint(printed), gear_pair_stack(printed), height_inputs(kind.name, printed))
     elif kind.name == "shoe":
         # as the mesh's float32 vertices hold it (the plate's check sees that)
-        require_height("shoe", float(np.float32(printed.width)), printer, "width", printed.width)
+        require_height("shoe", float(np.float32(printed.width)), printer, "width", printed.width,
+                       lowers=height_inputs(kind.name, printed))
 
 
 def _problem(doc, path, err: DesignError, override_where, design_name, overrides) -> Issue:
@@ -343,4 +347,6 @@ def _problem(doc, path, err: DesignError, override_where, design_name, overrides
         return Issue(override_where[param], dotted(path + ("overrides", param)),
                      f"= {show(overrides.get(param, err.value))}: {remedies_as_keys(in_file_words(err.limit), err)}")
     given = f", with overrides {', '.join(overrides)}" if overrides else ""
-    return Issue(doc.where(path), dotted(path), f"{yaml_message(err)} (from design {design_name}{given})")
+    # a remedy is an override the entry adds
+    said = remedies_as_keys(yaml_message(err), err, lambda options: f"overrides {{{as_keys(options)}}}")
+    return Issue(doc.where(path), dotted(path), f"{said} (from design {design_name}{given})")

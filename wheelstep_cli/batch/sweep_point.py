@@ -97,6 +97,11 @@ def resolve_point(index: int, command: str, profile, printer_name: str | None, p
         refusal = yaml_message(err)
     design = spec.model_dump(mode="json") if spec is not None else {"given": values}
     keyed = {**design, "tolerance_band": True} if tolerance else design
+    if printer is None:
+        from wheelstep_cli.config.profiles import load_printer
+
+        # a row without a printer is still checked on the default printer's bed (_on_a_bed)
+        keyed = {**keyed, "bed_of": [(default := load_printer()).name, default.sha256]}
     return Point(index, command, printer_name, printer, values, spec, refusal, allow_interference,
                  point_key(command, keyed, printer, tool), tolerance)
 

@@ -181,7 +181,7 @@ def _check_objectives(doc: LocatedYaml, names, command, printers: bool, issues: 
     for i, name in enumerate(names if isinstance(names, list) else []):
         at = ("objectives", i)
         if i and name in names[:i]:
-            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: names the first objective again; "
+            issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: names objectives[{names.index(name)}] again; "
                                 "a front of one figure is its least value: name two different figures"))
         elif name not in OBJECTIVES:
             issues.append(Issue(doc.where(at), dotted(at), f"= {show(name)}: must be one of: "

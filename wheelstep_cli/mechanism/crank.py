@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError, require
+from wheelstep_cli.errors import DesignError, require, rounded_down, rounded_up
 
 #: Carrier angle of one shoe cycle (four shoes per turn), rad.
 SHOE_CYCLE = np.pi / 2.0
@@ -43,24 +43,19 @@ class CrankMechanism:
 
     def __post_init__(self) -> None:
         _check_lengths(a=self.a, b=self.b, c=self.c)
-        if not self.r_min > 0:
-            why = (f" (sole curvature radius R_min = a - 4b + c = {self.r_min:g} mm must be > 0, "
-                   "else the sole has a cusp or loop)")
-            raise DesignError("c", self.c, f"must be > 4b - a = {4 * self.b - self.a:g} mm" + why, {
-                "b": (self.b, f"must be < (a + c)/4 = {(self.a + self.c) / 4:g} mm" + why),
-                "a": (self.a, f"must be > 4b - c = {4 * self.b - self.c:g} mm" + why),
-                "r_min": (self.r_min, "must be > 0 mm" + why)})
-        # the least R_min that from_r_min takes, also for a strut given as c (a nanometre of
-        # slack for the rounding of c = R_min - a + 4b)
-        if self.r_min < MIN_R_MIN - 1e-6:
-            why = (f" (with it, the sole curvature radius R_min = a - 4b + c = {self.r_min:.4g} mm; a sole "
-                   f"bent tighter than {MIN_R_MIN:g} mm has, in effect, a cusp)")
-            least_c = 4 * self.b - self.a + MIN_R_MIN
-            raise DesignError("c", self.c, f"must be >= 4b - a + {MIN_R_MIN:g} = {least_c:.10g} mm" + why, {
-                "b": (self.b, f"must be <= (a + c - {MIN_R_MIN:g})/4 = {(self.a + self.c - MIN_R_MIN) / 4:.10g} mm"
-                      + why),
-                "a": (self.a, f"must be >= 4b - c + {MIN_R_MIN:g} = {4 * self.b - self.c + MIN_R_MIN:.10g} mm" + why),
-                "r_min": (self.r_min, f"must be >= {MIN_R_MIN:g} mm (a sole bent tighter has, in effect, a cusp)")})
+        # the least R_min from_r_min takes, also for a strut given as c (a nanometre of slack
+        # for the rounding of c = R_min - a + 4b); each limit printed rounded so that the value
+        # copied from it passes
+        if not self.r_min >= MIN_R_MIN - 1e-6:
+            least = MIN_R_MIN
+            why = (f" (sole curvature radius R_min = a - 4b + c = {self.r_min:.4g} mm must be >= {least:g} mm, "
+                   "else the sole has, in effect, a cusp, or a loop)")
+            raise DesignError("c", self.c, f"must be >= 4b - a + {least:g} = "
+                              f"{_shown_up(4 * self.b - self.a + least)} mm" + why, {
+                "b": (self.b, f"must be <= (a + c - {least:g})/4 = "
+                              f"{rounded_down((self.a + self.c - least) / 4 + 1e-7, 4)} mm" + why),
+                "a": (self.a, f"must be >= 4b - c + {least:g} = {_shown_up(4 * self.b - self.c + least)} mm" + why),
+                "r_min": (self.r_min, f"must be >= {least:g} mm (a sole bent tighter has, in effect, a cusp)")})
 
     @classmethod
     def from_r_min(cls, a: float, b: float, r_min: float) -> "CrankMechanism":
@@ -133,3 +128,8 @@ def _check_lengths(**lengths: float) -> None:
             require(bool(np.isfinite(value)) and value >= 0, name, value, "must be >= 0 mm")
         else:
             require(bool(np.isfinite(value)) and value > 0, name, value, "must be > 0 mm")
+
+
+def _shown_up(limit: float) -> str:
+    """A lower limit (mm) to a thousandth, rounded up, without trailing zeros (340.001, 420)."""
+    return rounded_up(limit - 1e-7, 3).rstrip("0").rstrip(".")

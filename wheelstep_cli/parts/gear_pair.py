@@ -119,8 +119,10 @@ def footprint(spec: GearPairSpec) -> dict[str, object]:
 def require_pair_on_bed(pair: GearPair, printer) -> GearPair:
     """``pair``, refused (DesignError naming the input the user gave that sizes it) when a gear
     is taller than ``printer`` prints or larger than its bed."""
+    from wheelstep_cli.parts.kinds import height_inputs
+
     require_on_bed([pair.pinion, pair.wheel], printer, "thickness", pair.spec.thickness, footprint(pair.spec),
-                   height_only=("hub_length",))
+                   height_only=("hub_length",), lowers=height_inputs("gear-pair", pair.spec))
     return pair
 
 

@@ -317,3 +317,24 @@ KINDS: dict[str, PartKind] = {
         hole_fields=("strut_diameter",), checks=(_shoe_fits,),
         with_parts=lambda shoe, parts, checks: replace(shoe, parts=parts, checks=checks)),
 }
+
+
+def height_inputs(kind_name: str, spec):
+    """What a part of ``spec`` stands on the bed as (plate_layout.HeightInputs: a gear pair's
+    plate and hub, a shoe's width, lying on its side), each lowered only as far as ``spec``,
+    changed so, is still a valid spec of its kind (its model's rules and the kind's problems)."""
+    from wheelstep_cli.parts.plate_layout import HeightInputs
+
+    if kind_name == "gear-pair":
+        hub = spec.hub_mm[1]
+        values = {"thickness": float(spec.thickness), **({"hub_length": hub} if hub > 0 else {})}
+    else:
+        values = {"width": float(spec.width)}
+
+    def accepts(options: dict) -> bool:
+        try:
+            return not KINDS[kind_name].problems(updated(spec, **options))
+        except DesignError:
+            return False
+
+    return HeightInputs(values, accepts)

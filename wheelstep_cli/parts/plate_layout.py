@@ -4,7 +4,8 @@ the packing onto as few plates as fit, and the design as 3MF object metadata. Le
 from __future__ import annotations
 
 import math
-from typing import Any
+from dataclasses import dataclass, field
+from typing import Any, Callable
 
 import numpy as np
 
@@ -40,14 +41,16 @@ def _bed_words(printer: Printer) -> str:
 
 
 def require_on_bed(parts, printer: Printer, height_param: str, height: float,
-                   footprint: dict[str, object] | None = None, height_only: tuple[str, ...] = ()) -> None:
+                   footprint: dict[str, object] | None = None, height_only: tuple[str, ...] = (),
+                   lowers: "HeightInputs | None" = None) -> None:
     """Refuse (DesignError) a part taller than the printer prints (named by ``height_param``,
-    the option that sets it) or larger than its bed (named ``printer``); either also stated
-    for the ``footprint`` inputs (name -> value) that set the part's size (a bed too small,
-    not for those of them ``height_only`` names), so the line names the one the user gave."""
+    the option that sets it, with the ``lowers`` remedies) or larger than its bed (named
+    ``printer``); either also stated for the ``footprint`` inputs (name -> value) that set the
+    part's size (a bed too small, not for those of them ``height_only`` names), so the line
+    names the one the user gave."""
     for part in parts:
         size = part.bounds[1] - part.bounds[0]
-        require_height(part.name, size[2], printer, height_param, height, footprint)
+        require_height(part.name, size[2], printer, height_param, height, footprint, lowers=lowers)
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
             makes = f"with it, part '{part.name}' is {size[0]:.1f} x {size[1]:.1f} mm, larger than {_bed_words(printer)}"
@@ -80,31 +83,50 @@ def gear_pair_stack(spec) -> str:
     return f" (its {spec.thickness:g} mm plate and {hub:g} mm hub)" if hub > 0 else ""
 
 
+@dataclass(frozen=True)
+class HeightInputs:
+    """The inputs a part's height is the sum of (name -> value, mm; a shoe's width, a gear's
+    plate and its hub), in the order a refusal offers them lowered, and ``accepts``:
+    whether the part's spec takes the options (name -> value) a remedy would set."""
+
+    values: dict[str, float]
+    accepts: Callable[[dict], bool] = field(default=lambda options: True, compare=False)
+
+
 def require_height(name: str, tall: float, printer: Printer, height_param: str, height: float,
-                   footprint: dict[str, object] | None = None, stack: str = "") -> None:
+                   footprint: dict[str, object] | None = None, stack: str = "",
+                   lowers: HeightInputs | None = None) -> None:
     """Refuse (DesignError on ``height_param`` = ``height``) a part ``name`` ``tall`` mm tall
     (``stack``: what makes it that tall, when more than the parameter) when ``printer`` prints
-    less; a build can check this before it spends time on the part."""
+    less, offering each of the ``lowers`` inputs (default: the parameter) lowered until the
+    part is as tall as the printer prints, where its spec accepts that; a build can check
+    this before it spends time on the part."""
     if tall > printer.max_height:
         error = _beyond(DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall{stack}, more "
                                     f"than the {printer.max_height:g} mm printer '{printer.given or printer.name}' prints"),
                         printer).tied_to(footprint or {})
-        lower = lowered_height(height, tall, printer.max_height)
-        if lower is not None:
+        lowers = lowers or HeightInputs({height_param: height})
+        total = sum(lowers.values.values())
+        offered = [{input_name: lower} for input_name, value in lowers.values.items()
+                   if (lower := lowered_height(value, total - value, printer.max_height)) is not None
+                   and lowers.accepts({input_name: lower})]
+        if offered:
             from wheelstep_cli.config.names import as_flags
 
-            error = error.with_advice(f"use {as_flags({height_param: lower})}", {height_param: lower})
+            error = error.with_advice(" or ".join(f"use {as_flags(option)}" for option in offered), offered[0])
+            error.remedies = offered
         raise error
 
 
-def lowered_height(height: float, tall: float, most: float) -> float | None:
-    """The value (mm, to 0.1 mm, rounded down) of the input ``height`` that makes a part now
-    ``tall`` mm tall (it grows one for one with that input: a shoe's width, a gear's plate
-    under its hub) at most ``most`` mm tall; None when no positive value does (the rest of
-    the part alone is too tall)."""
-    # to 0.1 um first: a float32 mesh height is a few 0.01 um off the input's
-    lower = math.floor(round((height - (tall - most)) * 10.0, 3)) / 10.0
-    return lower if lower > 0 else None
+def lowered_height(value: float, rest: float, most: float) -> float | None:
+    """The value (mm, a whole number of tenths) of an input now ``value`` mm, on which ``rest``
+    mm of the part stand (its hub), rounded down so that the part, its height held as its
+    float32 mesh holds it, is at most ``most`` mm tall; None when no positive value does (the
+    rest of the part alone is too tall)."""
+    tenths = math.floor((most - rest) * 10.0 + 1e-6)
+    while tenths > 0 and float(np.float32(rest + tenths / 10.0)) > most:
+        tenths -= 1
+    return tenths / 10.0 if tenths > 0 else None
 
 
 def default_printer_said(err: DesignError, stl_only: bool = True, note: str | None = None) -> DesignError:

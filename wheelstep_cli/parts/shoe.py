@@ -137,9 +137,12 @@ def _printing(shoe: Shoe) -> dict:
 def require_shoe_on_bed(shoe: Shoe, printer) -> Shoe:
     """``shoe``, refused (DesignError naming the input that sizes it) when its part is taller
     than ``printer`` (config.printers.Printer) prints or larger than its bed."""
+    from wheelstep_cli.parts.kinds import height_inputs
+
     spec = shoe.spec
     require_on_bed([shoe.part], printer, "width", spec.width, {
-        "a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min, "rim": spec.rim})
+        "a": spec.a, "b": spec.b, "c": spec.c, "r_min": spec.r_min, "rim": spec.rim},
+        lowers=height_inputs("shoe", spec))
     return shoe
 
 

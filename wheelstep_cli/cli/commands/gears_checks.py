@@ -185,13 +185,15 @@ def require_height_first(spec, printer, fmt: str, fit: bool):
 
     from wheelstep_cli.config.profiles import load_printer
     from wheelstep_cli.parts.gear_pair import footprint
+    from wheelstep_cli.parts.kinds import height_inputs
     from wheelstep_cli.parts.plate_layout import gear_pair_height, gear_pair_stack, require_height
 
     target = printer or (load_printer() if fmt in ("3mf", "both") or fit else None)
     if target is None:
         return None
     return _on_the_bed(lambda: require_height("pinion", gear_pair_height(spec), target, "thickness",
-                                              spec.thickness, footprint(spec), gear_pair_stack(spec))
+                                              spec.thickness, footprint(spec), gear_pair_stack(spec),
+                                              height_inputs("gear-pair", spec))
                        or target, printer, fit)
 
 

@@ -46,7 +46,7 @@ def linkage(
                                      shown="567,615")] = None,
     step: Annotated[Optional[float], opt("--step", help="Crank-angle step of the printed table "
                                                         "(and of --json's), deg.",
-                                        shown="15, or the multiple of 360/--samples nearest it")] = None,
+                                        shown="15, or the multiple of 360/--samples nearest it, the larger on a tie")] = None,
     csv: Csv = None, plot: Plot = None,
     gif: Gif = None,
     gif_frames: Annotated[Optional[int], opt("--gif-frames", help="Frames of the GIF animation.",

@@ -6,6 +6,8 @@ Lengths mm, speeds mm/s, angles rad inside; the report gives crank angles in deg
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -56,9 +58,10 @@ DEFAULT_STEP = 15.0
 
 def default_step(samples: int) -> float:
     """The table's step (deg) when none is given: the whole multiple of the ``samples`` crank
-    angles' spacing (360 / samples) nearest :data:`DEFAULT_STEP`, at least one spacing."""
+    angles' spacing (360 / samples) nearest :data:`DEFAULT_STEP` (the larger of two as near),
+    at least one spacing."""
     spacing = 360.0 / samples
-    return max(1, round(DEFAULT_STEP / spacing)) * spacing
+    return max(1, math.floor(DEFAULT_STEP / spacing + 0.5)) * spacing
 
 
 def require_step_on_samples(step_deg: float, samples: int) -> None:
