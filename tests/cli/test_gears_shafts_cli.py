@@ -161,3 +161,27 @@ def test_the_report_gives_the_hub_length_built(cli, tmp_path):
     report = json.loads((out / "gears.json").read_text())
     assert report["parameters"]["hub_length"] == 8.0
     assert report["parts"]["pinion"]["bounding_box_mm"][1][2] == pytest.approx(6.0 + 8.0, abs=1e-3)
+
+
+def test_a_keyed_bore_too_large_for_the_timing_mark_gets_one_limit_that_passes(cli, tmp_path):
+    """The keyed bore's limit was searched with the typed bore's DIN key (60 -> 56.33 mm,
+    80 -> 53.09 mm, while 57 passed), and a search among bores under their key crashed (a
+    traceback for --key-depth 20 of a 40-tooth pinion): the default key follows the bore, so
+    every bore too large gets the same limit, which applied passes; a given key is kept."""
+    limits = set()
+    for bore in ("60", "70", "80"):
+        args = ["gears", "--bore", bore, "--bore-shape", "keyway", "--out", tmp_path / "k", "--dry-run"]
+        line = error_line(cli(*args))
+        assert line.startswith(f"wheelstep: error: --bore = {bore}: must be <= "), line
+        limits.add(line.split("must be <= ")[1].split(" mm")[0])
+    (limit,) = limits
+    assert cli("gears", "--bore", limit, "--bore-shape", "keyway", "--out", tmp_path / "k", "--dry-run").exit_code == 0
+    for extra in (["--key-depth", "20"], ["--bore", "60"], ["--key-width", "7.9", "--key-depth", "16"]):
+        args = ["gears", "--turns", "4", "--z", "40", "--bore-shape", "keyway", *extra]
+        result = cli(*args, "--out", tmp_path / "k", "--dry-run")
+        assert result.exit_code == 2, result.stderr
+        line = error_line(result)
+        param, rest = line.split("wheelstep: error: ")[1].split(" = ", 1)
+        limit = rest.split("must be <= ")[1].split(" mm")[0]
+        fixed = with_remedy(args, [param, limit])
+        assert cli(*fixed, "--out", tmp_path / "k", "--dry-run").exit_code == 0, (fixed, line)

@@ -109,12 +109,18 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec):
 
 def _largest_hole(spec, param: str, reach: float) -> float:
     """The largest ``param`` (bore or key_depth, mm, at most the spec's) whose shaft hole
-    reaches at most ``reach`` mm from the axis, the other hole dimensions kept (smaller DIN
-    keys of a smaller bore only reach less); 0 when none does."""
+    reaches at most ``reach`` mm from the axis; 0 when none does. A key or flat the bore's
+    defaults gave follows the bore (a smaller bore takes its smaller DIN key), one given is
+    kept (smaller DIN keys of a smaller bore only reach less)."""
     from wheelstep_cli.errors import rounded_down
 
+    def changed(value: float):
+        return spec.model_copy(update={param: value, **_following(spec, param, value)})
+
     def fits(value: float) -> bool:
-        return hole_reach(shaft_hole(spec.model_copy(update={param: value}), 0.0)) <= reach
+        hole = changed(value)
+        # a bore under its key or flat is no hole: those values lie below every one that fits
+        return not _valid_hole(hole) or hole_reach(shaft_hole(hole, 0.0)) <= reach
 
     low, high = 0.0, float(getattr(spec, param))
     for _ in range(40):
@@ -124,7 +130,29 @@ def _largest_hole(spec, param: str, reach: float) -> float:
     shown = float(rounded_down(low))
     while shown > 0 and not fits(shown):
         shown = round(shown - 0.01, 2)
-    return max(shown, 0.0)
+    return shown if shown > 0 and _valid_hole(changed(shown)) else 0.0
+
+
+def _following(spec, param: str, bore: float) -> dict:
+    """The key or flat dimensions (name -> mm) that follow ``bore`` when ``param`` is the bore
+    and the spec's are its bore's defaults (specs.bore_defaults); none otherwise."""
+    if param != "bore":
+        return {}
+    if spec.bore_shape == "keyway" and (spec.key_width, spec.key_depth) == shapes.din_6885_key(spec.bore):
+        return dict(zip(("key_width", "key_depth"), shapes.din_6885_key(bore)))
+    if spec.bore_shape == "d-flat" and spec.flat_depth == round(0.1 * spec.bore, 6):
+        return {"flat_depth": round(0.1 * bore, 6)}
+    return {}
+
+
+def _valid_hole(spec) -> bool:
+    """Whether ``spec``'s shaft hole is one its rules take: a key narrower than the bore, a
+    flat shallower than its radius."""
+    if spec.bore_shape == "keyway":
+        return spec.key_width < spec.bore
+    if spec.bore_shape == "d-flat":
+        return spec.flat_depth < spec.bore / 2.0
+    return True
 
 
 #: Least radial room (mm) for a pocket: its two corner fillets and 3 mm between them.
