@@ -102,3 +102,14 @@ def test_lighten_with_no_room_for_a_pocket_in_the_wheel_is_refused(cli, tmp_path
     # the remedy applied
     assert cli(*args, "--center-distance", "60", "--json").exit_code == 0
     assert json.loads((out / "gears.json").read_text())["lighten"]["wheel"]["pockets"] > 0
+
+
+def test_no_marks_is_offered_only_where_the_gear_holds_without_them(cli, tmp_path):
+    """A 200 mm hub on a 40-tooth pinion: --mark-depth 0 was offered, and applied, the hub was
+    refused by its own wall rule; only the hub that leaves room is offered, and it passes."""
+    args = ["gears", "--turns", "4", "--z", "40", "--hub-d", "200", "--dry-run", "--out", tmp_path / "out"]
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --hub-d = 200: must be <= ") and "mark-depth" not in line, line
+    largest = line.split(": must be <= ", 1)[1].split(" mm", 1)[0]
+    assert cli(*with_remedy(args, ["--hub-d", largest])).exit_code == 0
+    assert cli(*args, "--mark-depth", "0").exit_code == 2

@@ -125,7 +125,8 @@ class GearPairSpec(BaseModel):
     # solves the design centre distance for it (SPEC §9). Paper teeth: None is 2 mm.
     module: Optional[Number] = length(None, ge=MIN_MODULE)
     backlash: Optional[Number] = length(None, ge=0)   # None: 0.25 * module (2 mm when none)
-    thickness: Number = length(10.0, ge=MIN_THICKNESS)
+    thickness: Number = length(10.0, ge=MIN_THICKNESS, limit=f"must be >= {MIN_THICKNESS:g} mm, and at least twice "
+                               "the mark depth (1 mm with the default 0.5 mm marks)")
     bore: Number = length(8.0, ge=0)   # shaft diameter; across flats for a hex bore
     bore_shape: BoreShape = BoreShape.round.value
     flat_depth: Optional[Number] = length(None, gt=0)  # d-flat; None: 0.1 x bore

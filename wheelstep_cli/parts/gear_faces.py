@@ -78,10 +78,11 @@ def _mark_span(outline: np.ndarray, hole: np.ndarray | None, hub: float) -> tupl
     return inner, min_radius(outline) - MARK_GAP
 
 
-def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec):
+def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec, unmarked: bool = True):
     """The refusal (DesignError) of a gear whose web has no room for its timing mark: the pair
     is set in phase by its marks, and a gear left without one could not be. Each input that
-    narrows the web and would make room if smaller is stated with the value that does (mm)."""
+    narrows the web and would make room if smaller is stated with the value that does (mm);
+    ``unmarked``: the gear as it is would be built without marks (--mark-depth 0 is offered)."""
     from wheelstep_cli.errors import DesignError, rounded_down
 
     inner, outer = _mark_span(outline, hole, spec.hub_mm[0])
@@ -98,10 +99,11 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec):
             largest = _largest_hole(spec, param, reach - short)
             if largest > 0:
                 limits[param] = (getattr(spec, param), largest)
-    said = {param: (value, f"must be <= {rounded_down(largest)} mm: larger, it {room}; or --mark-depth 0 for "
-                           "no marks") for param, (value, largest) in limits.items()}
-    remedy = "".join(f"--{param.replace('_', '-')} <= {rounded_down(largest)} mm, or "
-                     for param, (_, largest) in limits.items()) + "--mark-depth 0 for no marks"
+    no_marks = "--mark-depth 0 for no marks" if unmarked else ""
+    said = {param: (value, f"must be <= {rounded_down(largest)} mm: larger, it {room}"
+                           + (f"; or {no_marks}" if no_marks else "")) for param, (value, largest) in limits.items()}
+    remedy = ", or ".join([f"--{param.replace('_', '-')} <= {rounded_down(largest)} mm"
+                           for param, (_, largest) in limits.items()] + ([no_marks] if no_marks else []))
     # what narrows the web, the most specific first: named when the user gave it
     return DesignError("mark_depth", spec.mark_depth, f"{room}: {remedy}", said).tied_to(
         {"key_width": spec.key_width, "bore_shape": spec.bore_shape})
@@ -242,7 +244,10 @@ def gear_part(face: GearFace, spec):
     if no_mark is not None and set(no_mark.alternatives) & {"hub_d", "bore", "key_depth"}:
         # before the solid's own checks: a smaller hole or hub making room for the marks is the
         # binding limit (the walls the solid needs are narrower); with no such limit (the gear
-        # too small for any mark) the solid's walls are said first, then the marks
+        # too small for any mark) the solid's walls are said first, then the marks. Without
+        # marks offered only where those walls hold
+        if not _walls_hold(face, spec, hole, param, value):
+            no_mark = _no_room_for_mark(face.name, face.outline, hole, spec, unmarked=False)
         raise no_mark
     part = extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
                         spec.mark_depth, param, value, cut, spec.chamfer_mm, spec.hub_mm,
@@ -253,6 +258,23 @@ def gear_part(face: GearFace, spec):
     if spec.lighten and face.name == "wheel" and not cut:
         _no_room_for_pockets(face, spec)
     return part
+
+
+def _walls_hold(face: GearFace, spec, hole, param: str, value: float) -> bool:
+    """Whether the gear's plate keeps its walls round the shaft hole and the hub (the checks
+    extruding it makes, cheap and before any solid)."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.geometry.hole_walls import require_hub_fits, require_wall
+
+    try:
+        if hole is not None:
+            require_wall(face.name, face.outline, hole, param, value,
+                         (float(spec.bore), float(spec.key_width)) if param == "key_depth" else None)
+        if spec.hub_mm[0] > 0:
+            require_hub_fits(face.outline, hole, spec.hub_mm[0])
+    except DesignError:
+        return False
+    return True
 
 
 def _no_room_for_pockets(face: GearFace, spec) -> None:

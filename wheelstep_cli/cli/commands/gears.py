@@ -39,8 +39,11 @@ Step = Annotated[bool, opt("--step", help="Also write pinion.step and wheel.step
 
 
 InstallDistance = Annotated[Optional[float], opt(
-    "--install-distance", help="Centre distance the pair is mounted and checked at, mm; "
-                               "farther than --center-distance opens backlash.",
+    "--install-distance", help="Centre distance the pair is mounted and checked at, mm. Generated "
+                               "teeth belong where they roll (--center-distance): mounted off it they "
+                               "no longer follow the law, and a pair that then fails its check is "
+                               "refused with that remedy; paper teeth mounted farther than "
+                               "--center-distance get that much more backlash.",
     shown="where generated teeth roll; 144")]
 Thickness = Annotated[Optional[float], opt("--thickness", help="Face width, mm.", shown="10")]
 Bore = Annotated[Optional[float], opt("--bore", help="Shaft diameter, mm (a hex bore: across flats); "
