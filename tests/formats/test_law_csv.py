@@ -46,6 +46,10 @@ def test_headers_blank_lines_semicolons_and_trailing_separators_are_read(tmp_pat
                                                              "in;out")))
     theta = np.linspace(0.0, 3.0, 7)
     assert np.array_equal(plain.carrier_angle(theta), other.carrier_angle(theta))
+    # a comment after a row, as after a header (README: `#` comments anywhere)
+    noted = read_law_csv(_write(tmp_path, [f"{r}  # note {k}" for k, r in enumerate(ROWS)],
+                                header=("driving_deg,driven_deg # degrees",)))
+    assert np.array_equal(plain.carrier_angle(theta), noted.carrier_angle(theta))
 
 
 def test_too_few_rows_is_one_line(tmp_path):
@@ -129,7 +133,7 @@ def test_a_batch_entrys_law_csv_whose_periods_do_not_divide_its_teeth_is_refused
     assert result.exit_code == 2 and not (tmp_path / "out").exists()
     assert error_line(result) == (f"wheelstep: error: {batch}:6: parts[0].overrides.law_csv = '{path}': with "
                                   "it, z = 48 fails: must be a multiple of 7 (law periods per pinion turn) "
-                                  "and >= 6; use z 42 or use z 49")
+                                  "and >= 6; use z: 42 or use z: 49")
 
 
 def test_a_plate_keeps_its_law_csvs_digest_and_is_checked_only_with_that_file(cli, tmp_path, monkeypatch):

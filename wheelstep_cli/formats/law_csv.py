@@ -45,10 +45,11 @@ def read_law_csv(path, param: str = "law_csv"):
         raise DesignError(param, str(path), "is not UTF-8 text") from None
     rows, lines, written = [], [], []
     for number, line in enumerate(text.splitlines(), start=1):
+        line = line.split("#", 1)[0]     # a comment, on its own line or after a row
         cells = [c.strip() for c in line.replace(";", ",").split(",")]
         while cells and not cells[-1]:
             cells.pop()                  # a spreadsheet's trailing separators
-        if not cells or cells[0].startswith("#"):
+        if not cells:
             continue                     # a blank or comment line
         try:
             row = _row(cells, number)
