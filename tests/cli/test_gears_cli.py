@@ -360,3 +360,14 @@ def test_the_mounting_line_gives_each_gears_tip_clearance(cli, tmp_path):
     line = next(s for s in result.stdout.splitlines() if s.strip().startswith("mounting:"))
     assert line.endswith(f"; tip clearance {spaces['pinion_spaces_mm']:.3f} mm in the pinion's spaces, "
                          f"{spaces['wheel_spaces_mm']:.3f} mm in the wheel's (the wheel's set by --clearance)"), line
+
+
+def test_the_no_closer_mounting_warning_says_what_the_mounting_line_says(cli, tmp_path):
+    """With next to no backlash the mounting line says the outlines come within its
+    resolution or overlap; the warning said "mounted 0.000 mm closer the teeth meet"."""
+    result = cli("gears", "--backlash", "0.01", "--out", tmp_path / "o")
+    assert result.exit_code == 0, result.stderr
+    mounting = next(line for line in result.stdout.splitlines() if line.strip().startswith("mounting:"))
+    assert "come within" in mounting and "or overlap" in mounting, mounting
+    assert ("WARNING: mounted any closer than designed the teeth may meet (see 'mounting')" in result.stderr), \
+        result.stderr

@@ -388,8 +388,13 @@ def test_meshes_out_of_phase_with_the_law_given_are_told_to_give_the_options_the
     slight = cli("mesh-check", *meshes, "--profile", "desk-demo", "--blend", "3", "--samples", "384")
     assert "phase: in phase" in slight.stdout and "bounds: OUTSIDE" in slight.stdout, slight.stdout
     assert slight.stderr.strip().splitlines()[-1].startswith(
-        "WARNING: outside the bounds: one cause is a law other than the pair was made for (checked against "
-        "the options given: mechanism, --turns, --blend, --law-csv;")
+        "WARNING: outside the bounds: one cause is a law or a distance other than the pair was made for "
+        "(checked against the options given: mechanism, --turns, --blend, --law-csv, at --distance 72.125 mm;")
+    # mounted farther than it was made for (0.875 mm), in phase but far outside: the distance is named
+    farther = cli("mesh-check", *meshes, "--profile", "desk-demo", "--distance", "73", "--samples", "384")
+    assert "bounds: OUTSIDE" in farther.stdout, farther.stdout
+    assert "a law or a distance other than the pair was made for" in farther.stderr
+    assert "at --distance 73 mm;" in farther.stderr, farther.stderr
     right = cli("mesh-check", *meshes, "--profile", "desk-demo", "--samples", "384")
     assert right.exit_code == 0 and "in phase with the law" in right.stdout and "WARNING" not in right.stderr
     # mounted 0.1 mm closer the teeth interfere, and the warning names the distance as a cause

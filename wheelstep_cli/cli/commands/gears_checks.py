@@ -256,9 +256,11 @@ def warn_of_the_figures(show: Output, record: dict, speed: str = "hub speed") ->
                      f"the teeth, the output speed varies that much; the teeth add {where})")
     closer = record.get("mounting", {}).get("closer_mm")
     if closer is not None and closer < MOUNTING_WARNING and not record["interference"]:
-        show.warning(f"WARNING: mounted {max(closer, 0.0):.3f} mm closer than designed the teeth meet "
-                     "(see 'mounting'): less than a printed frame's centre distance can be held to "
-                     "(FDM about +-0.05 mm)")
+        # said as the mounting line says it: none known (0 or less) is "any closer ... may meet"
+        how = (f"mounted {closer:.3f} mm closer than designed the teeth meet" if closer > 0.0
+               else "mounted any closer than designed the teeth may meet")
+        show.warning(f"WARNING: {how} (see 'mounting'): less than a printed frame's centre distance can be "
+                     "held to (FDM about +-0.05 mm)")
     if record["interference"]:
         from wheelstep_cli.parts.interference_refusals import interference_phrase
         from wheelstep_cli.parts.mesh_check import figure_text

@@ -155,10 +155,13 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
                      f"made, or its design's --profile{closer}")
     elif summary.get("bounds", {}).get("within") is False:
         # in phase and far outside: --blend 5 left out of a pair cut with it reads F'i 144 um
-        show.warning("WARNING: outside the bounds: one cause is a law other than the pair was made for "
-                     "(checked against the options given: mechanism, --turns, --blend, --law-csv; give them "
-                     "as it was made, or its design's --profile); a fit's inset, teeth written with "
-                     "--allow-interference and a print's own deviations are others")
+        # a pair mounted off its distance no longer follows its law either: 0.875 mm farther
+        # reads F'i 452 um
+        show.warning("WARNING: outside the bounds: one cause is a law or a distance other than the pair was "
+                     "made for (checked against the options given: mechanism, --turns, --blend, --law-csv, "
+                     f"at --distance {installed_distance(spec):g} mm; give them as it was made, or its "
+                     "design's --profile); a fit's inset, teeth written with --allow-interference and a "
+                     "print's own deviations are others")
     warn_band_jams(show, summary.get("tolerance"), band[1])
     show.files(named, dry_run)
     return report.interferes or report.contact_lost
