@@ -267,13 +267,16 @@ def test_no_backlash_is_refused_as_input_with_a_backlash_that_is_written(cli, tm
     outlines' micrometres. Refused as bad input (exit 2, nothing written) naming --backlash,
     with the least backlash a build found within the bounds; applied, the pair is written."""
     out = tmp_path / "out"
-    result = cli("gears", "--backlash", "0", "--format", "stl", "--out", out)
+    result = cli("gears", "--backlash", "0", "--format", "stl", "--out", out, "--json")
     line = error_line(result)
     assert result.exit_code == 2 and not out.exists()
     assert line.startswith("wheelstep: error: --backlash = 0: the teeth interfere at "), line
     assert line.endswith("(--allow-interference writes them anyway)"), line
     remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()
     assert remedy[0] == "--backlash" and 0 < float(remedy[1]) < 0.239
+    # --json: both ways out the line offers, in its order
+    assert json.loads(result.stdout)["error"]["remedies"] == [{"--backlash": float(remedy[1])},
+                                                             {"--allow-interference": True}]
     written = cli("gears", *with_remedy(["--backlash", "0"], remedy), "--format", "stl", "--out", out)
     assert written.exit_code == 0, written.stderr
     assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
