@@ -576,7 +576,13 @@ def test_a_row_without_a_printer_is_keyed_by_the_default_printers_bed(monkeypatc
     import wheelstep_cli.config.profiles as profiles
     from wheelstep_cli.batch.sweep_point import resolve_point, versions
 
+    from wheelstep_cli.batch import sweep_point
+
     first = resolve_point(0, "shoe", None, None, None, {"width": 20}, False, versions()).key
     default = profiles.load_printer()
     monkeypatch.setattr(profiles, "load_printer", lambda *a: replace(default, sha256="another"))
-    assert resolve_point(0, "shoe", None, None, None, {"width": 20}, False, versions()).key != first
+    sweep_point._default_printer_id.cache_clear()     # a new process reads the profile anew
+    try:
+        assert resolve_point(0, "shoe", None, None, None, {"width": 20}, False, versions()).key != first
+    finally:
+        sweep_point._default_printer_id.cache_clear()

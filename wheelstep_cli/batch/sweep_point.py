@@ -98,12 +98,20 @@ def resolve_point(index: int, command: str, profile, printer_name: str | None, p
     design = spec.model_dump(mode="json") if spec is not None else {"given": values}
     keyed = {**design, "tolerance_band": True} if tolerance else design
     if printer is None:
-        from wheelstep_cli.config.profiles import load_printer
-
         # a row without a printer is still checked on the default printer's bed (_on_a_bed)
-        keyed = {**keyed, "bed_of": [(default := load_printer()).name, default.sha256]}
+        keyed = {**keyed, "bed_of": _default_printer_id()}
     return Point(index, command, printer_name, printer, values, spec, refusal, allow_interference,
                  point_key(command, keyed, printer, tool), tolerance)
+
+
+@functools.lru_cache(maxsize=1)
+def _default_printer_id() -> tuple[str, str]:
+    """(name, SHA-256) of the default printer profile, read once per process (a sweep resolves
+    up to 10 000 points)."""
+    from wheelstep_cli.config.profiles import load_printer
+
+    default = load_printer()
+    return default.name, default.sha256
 
 
 def evaluate(point: Point) -> dict:
