@@ -38,7 +38,8 @@ def test_batch_reports_every_bad_value_of_an_entry_with_its_line(cli, tmp_path):
     assert result.exit_code == 2
     lines = result.stderr.strip().splitlines()
     expected = {
-        "thickness: -2": "parts[0].overrides.thickness = -2: must be >= 0.5 mm",
+        "thickness: -2": "parts[0].overrides.thickness = -2: must be >= 0.5 mm, and at least twice the mark depth "
+                         "(1 mm with the default 0.5 mm marks)",
         "z: 24.5": "parts[0].overrides.z = 24.5: must be a whole number",
         "blend: 40": "parts[0].overrides.blend = 40: must be 0..20 deg",
         "teeth: wooden": "parts[0].overrides.teeth = 'wooden': must be one of: generated, paper",
