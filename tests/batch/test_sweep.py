@@ -581,8 +581,8 @@ def test_a_row_without_a_printer_is_keyed_by_the_default_printers_bed(monkeypatc
     first = resolve_point(0, "shoe", None, None, None, {"width": 20}, False, versions()).key
     default = profiles.load_printer()
     monkeypatch.setattr(profiles, "load_printer", lambda *a: replace(default, sha256="another"))
-    sweep_point._default_printer_id.cache_clear()     # a new process reads the profile anew
+    sweep_point._default_printer.cache_clear()     # a new process reads the profile anew
     try:
         assert resolve_point(0, "shoe", None, None, None, {"width": 20}, False, versions()).key != first
     finally:
-        sweep_point._default_printer_id.cache_clear()
+        sweep_point._default_printer.cache_clear()

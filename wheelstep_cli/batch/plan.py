@@ -331,7 +331,7 @@ def _require_height(kind: PartKind, printed, printer: Printer) -> None:
 
     if kind.name == "gear-pair":
         require_height("pinion", gear_pair_height(printed), printer, "thickness", printed.thickness,
-                       footprint(printed), gear_pair_stack(printed), height_inputs(kind.name, printed))
+                       footprint(printed), gear_pair_stack(printed), lowers=height_inputs(kind.name, printed))
     elif kind.name == "shoe":
         # as the mesh's float32 vertices hold it (the plate's check sees that)
         require_height("shoe", float(np.float32(printed.width)), printer, "width", printed.width,

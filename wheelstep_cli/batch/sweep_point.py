@@ -99,19 +99,18 @@ def resolve_point(index: int, command: str, profile, printer_name: str | None, p
     keyed = {**design, "tolerance_band": True} if tolerance else design
     if printer is None:
         # a row without a printer is still checked on the default printer's bed (_on_a_bed)
-        keyed = {**keyed, "bed_of": _default_printer_id()}
+        keyed = {**keyed, "bed_of": [(default := _default_printer()).name, default.sha256]}
     return Point(index, command, printer_name, printer, values, spec, refusal, allow_interference,
                  point_key(command, keyed, printer, tool), tolerance)
 
 
 @functools.lru_cache(maxsize=1)
-def _default_printer_id() -> tuple[str, str]:
-    """(name, SHA-256) of the default printer profile, read once per process (a sweep resolves
-    up to 10 000 points)."""
+def _default_printer():
+    """The default printer profile (config.printers.Printer), read once per process: a sweep
+    resolves up to 10 000 points, and each row without a printer is built on its bed."""
     from wheelstep_cli.config.profiles import load_printer
 
-    default = load_printer()
-    return default.name, default.sha256
+    return load_printer()
 
 
 def evaluate(point: Point) -> dict:
@@ -167,11 +166,10 @@ def build_point(point: Point):
 def _on_a_bed(build, printer):
     """``build(bed)`` with the point's ``printer``, else the default printer (a best design's
     plates go on it), whose refusals of a part too large say so."""
-    from wheelstep_cli.config.profiles import load_printer
     from wheelstep_cli.parts.plate_layout import default_printer_said
 
     try:
-        return build(printer or load_printer())
+        return build(printer or _default_printer())
     except DesignError as err:
         if printer is not None or getattr(err, "beyond_printer", None) is None:
             raise

@@ -239,6 +239,7 @@ def gear_part(face: GearFace, spec):
     cut = face.holes[1 if spec.bore > 0 else 0:]
     param = {"keyway": "key_depth", "d-flat": "bore", "hex": "bore"}.get(spec.bore_shape, "bore")
     value = spec.key_depth if param == "key_depth" else spec.bore
+    keyed = (float(spec.bore), float(spec.key_width)) if param == "key_depth" else None
     no_mark = _no_room_for_mark(face.name, face.outline, hole, spec) if not face.marks and spec.mark_depth > 0 \
         else None
     if no_mark is not None and set(no_mark.alternatives) & {"hub_d", "bore", "key_depth"}:
@@ -246,13 +247,12 @@ def gear_part(face: GearFace, spec):
         # binding limit (the walls the solid needs are narrower); with no such limit (the gear
         # too small for any mark) the solid's walls are said first, then the marks. Without
         # marks offered only where those walls hold
-        if not _walls_hold(face, spec, hole, param, value):
+        if not _walls_hold(face, spec, hole, (param, value, keyed)):
             no_mark = _no_room_for_mark(face.name, face.outline, hole, spec, unmarked=False)
         raise no_mark
     part = extrude_gear(face.name, face.outline, spec.thickness, hole, face.marks,
                         spec.mark_depth, param, value, cut, spec.chamfer_mm, spec.hub_mm,
-                        _set_screw(spec, face.direction),
-                        (float(spec.bore), float(spec.key_width)) if param == "key_depth" else None)
+                        _set_screw(spec, face.direction), keyed)
     if no_mark is not None:
         raise no_mark
     if spec.lighten and face.name == "wheel" and not cut:
@@ -260,16 +260,16 @@ def gear_part(face: GearFace, spec):
     return part
 
 
-def _walls_hold(face: GearFace, spec, hole, param: str, value: float) -> bool:
-    """Whether the gear's plate keeps its walls round the shaft hole and the hub (the checks
-    extruding it makes, cheap and before any solid)."""
+def _walls_hold(face: GearFace, spec, hole, sized: tuple) -> bool:
+    """Whether the gear's plate keeps its walls round the shaft ``hole`` (``sized``: the input
+    that sizes it, its value and a keyed bore's (bore, key width), as extrusion takes them) and
+    the hub: the checks extruding it makes, cheap and before any solid."""
     from wheelstep_cli.errors import DesignError
     from wheelstep_cli.geometry.hole_walls import require_hub_fits, require_wall
 
     try:
         if hole is not None:
-            require_wall(face.name, face.outline, hole, param, value,
-                         (float(spec.bore), float(spec.key_width)) if param == "key_depth" else None)
+            require_wall(face.name, face.outline, hole, *sized)
         if spec.hub_mm[0] > 0:
             require_hub_fits(face.outline, hole, spec.hub_mm[0])
     except DesignError:

@@ -41,8 +41,8 @@ def _bed_words(printer: Printer) -> str:
 
 
 def require_on_bed(parts, printer: Printer, height_param: str, height: float,
-                   footprint: dict[str, object] | None = None, height_only: tuple[str, ...] = (),
-                   lowers: "HeightInputs | None" = None) -> None:
+                   footprint: dict[str, object] | None = None, height_only: tuple[str, ...] = (), *,
+                   lowers: "HeightInputs") -> None:
     """Refuse (DesignError) a part taller than the printer prints (named by ``height_param``,
     the option that sets it, with the ``lowers`` remedies) or larger than its bed (named
     ``printer``); either also stated for the ``footprint`` inputs (name -> value) that set the
@@ -90,22 +90,21 @@ class HeightInputs:
     whether the part's spec takes the options (name -> value) a remedy would set."""
 
     values: dict[str, float]
-    accepts: Callable[[dict], bool] = field(default=lambda options: True, compare=False)
+    accepts: Callable[[dict], bool] = field(compare=False)
 
 
 def require_height(name: str, tall: float, printer: Printer, height_param: str, height: float,
-                   footprint: dict[str, object] | None = None, stack: str = "",
-                   lowers: HeightInputs | None = None) -> None:
+                   footprint: dict[str, object] | None = None, stack: str = "", *,
+                   lowers: HeightInputs) -> None:
     """Refuse (DesignError on ``height_param`` = ``height``) a part ``name`` ``tall`` mm tall
     (``stack``: what makes it that tall, when more than the parameter) when ``printer`` prints
-    less, offering each of the ``lowers`` inputs (default: the parameter) lowered until the
+    less, offering each of the ``lowers`` inputs lowered until the
     part is as tall as the printer prints, where its spec accepts that; a build can check
     this before it spends time on the part."""
     if tall > printer.max_height:
         error = _beyond(DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall{stack}, more "
                                     f"than the {printer.max_height:g} mm printer '{printer.given or printer.name}' prints"),
                         printer).tied_to(footprint or {})
-        lowers = lowers or HeightInputs({height_param: height})
         total = sum(lowers.values.values())
         offered = [{input_name: lower} for input_name, value in lowers.values.items()
                    if (lower := lowered_height(value, total - value, printer.max_height)) is not None

@@ -193,7 +193,7 @@ def require_height_first(spec, printer, fmt: str, fit: bool):
         return None
     return _on_the_bed(lambda: require_height("pinion", gear_pair_height(spec), target, "thickness",
                                               spec.thickness, footprint(spec), gear_pair_stack(spec),
-                                              height_inputs("gear-pair", spec))
+                                              lowers=height_inputs("gear-pair", spec))
                        or target, printer, fit)
 
 

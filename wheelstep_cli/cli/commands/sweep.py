@@ -237,8 +237,10 @@ def _keep_best(plan, results: Path, out: Path, count: int, show: Output, force: 
     written: list[Path] = []
     best = best_points(plan, results, count) if count else []
     if len(best) < count:
+        from wheelstep_cli.errors import counted
+
         show.warning(f"wheelstep: warning: --keep best:{count} keeps {len(best)}: the results hold "
-                     f"{len(best)} ok design{'' if len(best) == 1 else 's'} to rank")
+                     f"{counted(len(best), 'ok design', 'ok designs')} to rank")
     for rank, point in enumerate(best, start=1):
         folder = out / f"best-{rank}"
         built, record = build_point(point)
