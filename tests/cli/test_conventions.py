@@ -178,6 +178,7 @@ def test_verbose_never_prints_none(cli, tmp_path, args, resolved, left):
     (["linkage", "--l3", "100"], "--l3 = 100"),          # the solver's crank angle: the link given
     # more local workers than the machine runs (they only queued, for minutes): refused
     (["sweep", "missing.yaml", "--workers", "1000"], "--workers = 1000: must be 0.."),
+    (["batch", "missing.yaml", "--jobs", "1000"], "--jobs = 1000: must be 0.."),
     # a choice option's value not among its choices, as typed (the parser said "Invalid value")
     (["shoe", "--format", "obj"], "--format = obj: must be one of stl, 3mf, both"),
     (["gears", "--bore-shape=square"], "--bore-shape = square: must be one of round, d-flat, keyway, hex"),

@@ -10,6 +10,7 @@ profile or the built-in design).
 from __future__ import annotations
 
 import math
+import os
 from enum import Enum
 from pathlib import Path
 from typing import Annotated, Optional
@@ -230,3 +231,17 @@ def signs(items: list[str], param: str) -> dict[str, int]:
                                               "it); give each joint once")
         out[name], typed[name] = int(sign), item
     return out
+
+
+#: Most worker processes (``batch --jobs``, ``sweep --workers``) per CPU core: each is a
+#: Python process with the gear libraries loaded (a few hundred MB), and more than this
+#: only wait their turn.
+WORKERS_PER_CORE = 4
+
+
+def require_workers(param: str, count: int, zero: str) -> None:
+    """Refuse ``count`` worker processes outside 0..WORKERS_PER_CORE per CPU core of this
+    machine (DesignError naming ``param``); ``zero`` says what 0 means."""
+    most = WORKERS_PER_CORE * (os.cpu_count() or 1)
+    require(0 <= count <= most, param, count,
+            f"must be 0..{most} ({WORKERS_PER_CORE} per CPU core of this machine; 0: {zero})")

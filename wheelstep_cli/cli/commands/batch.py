@@ -7,7 +7,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from wheelstep_cli.cli.options import DryRun, Force, Json, Out, Quiet, Verbose, opt
+from wheelstep_cli.cli.options import DryRun, Force, Json, Out, Quiet, Verbose, opt, require_workers
 
 BatchTolerance = Annotated[Optional[bool], opt(
     "--tolerance/--no-tolerance", shown="--tolerance",
@@ -36,8 +36,7 @@ def batch(
     from wheelstep_cli.errors import DesignError
 
     show = Output(json, quiet, verbose)
-    if jobs < 0:
-        raise DesignError("jobs", jobs, "must be >= 0 (0: one per CPU core)")
+    require_workers("jobs", jobs, "one per CPU core; a cluster goes in --scheduler")
     if scheduler and jobs:
         raise DesignError("jobs", jobs, "must not be given with --scheduler (the cluster's workers build)")
     if out.exists() and not out.is_dir():

@@ -9,7 +9,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from wheelstep_cli.cli.options import DryRun, Force, Json, Out, Quiet, Verbose, opt
+from wheelstep_cli.cli.options import DryRun, Force, Json, Out, Quiet, Verbose, opt, require_workers
 from wheelstep_cli.cli.output import Output
 
 #: --scheduler, shared with ``batch``.
@@ -18,9 +18,6 @@ Scheduler = Annotated[Optional[str], opt(
                         "DASK_SCHEDULER_ADDRESS, else a local cluster.")]
 Workers = Annotated[int, opt("--workers", help="Worker processes of the local cluster; 0 = one "
                                                "per CPU core (not with --scheduler).")]
-#: Most worker processes of the local cluster per CPU core: each is a Python process with
-#: the gear libraries loaded (a few hundred MB), and more than this only wait their turn.
-WORKERS_PER_CORE = 4
 #: Most designs --keep best:N writes (each is a set of mesh files).
 MAX_KEEP = 50
 
@@ -47,10 +44,7 @@ def sweep(
 
     show = Output(json, quiet, verbose)
     best = _keep_count(keep)
-    most = WORKERS_PER_CORE * (os.cpu_count() or 1)
-    if not 0 <= workers <= most:
-        raise DesignError("workers", workers, f"must be 0..{most} ({WORKERS_PER_CORE} per CPU core of this "
-                                              "machine; 0: one per core; a larger cluster goes in --scheduler)")
+    require_workers("workers", workers, "one per core; a larger cluster goes in --scheduler")
     if workers and (scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")):
         raise DesignError("workers", workers, "sizes the local cluster; not with a scheduler")
     if out.exists() and not out.is_dir():
