@@ -402,3 +402,56 @@ def test_meshes_out_of_phase_with_the_law_given_are_told_to_give_the_options_the
     assert closer.exit_code == 1 and "phase: OUT OF PHASE" in closer.stdout, closer.stdout
     assert closer.stderr.strip().splitlines()[-1].endswith(
         "; teeth that interfere may also be mounted closer than the pair was made for (--distance 72.025 mm)")
+
+
+def _edited_plate(source, plate, edit) -> None:
+    """``source`` plate copied to ``plate`` with ``edit(model text) -> text`` applied."""
+    import zipfile
+
+    with zipfile.ZipFile(source) as old, zipfile.ZipFile(plate, "w") as new:
+        for item in old.infolist():
+            data = old.read(item)
+            if item.filename == "3D/3dmodel.model":
+                data = edit(data.decode()).encode()
+            new.writestr(item, data)
+
+
+def test_a_plate_whose_gears_are_mislabelled_is_refused_before_the_check(desk_pair, cli, tmp_path):
+    """Labels swapped (the wheel object says pinion): refused as two swapped meshes are, exit 2,
+    not run into 1149 interfering poses; two wheels of one pair id are refused, not one of
+    them skipped; gears of two designs say which key differs."""
+    pinion, wheel = ('<metadata name="wheelstep:part">pinion</metadata>',
+                     '<metadata name="wheelstep:part">wheel</metadata>')
+    swapped = tmp_path / "swapped.3mf"
+    _edited_plate(desk_pair / "gears.3mf", swapped,
+                  lambda t: t.replace(pinion, "@").replace(wheel, pinion).replace("@", wheel))
+    result = cli("mesh-check", swapped)
+    assert result.exit_code == 2
+    assert error_line(result).startswith(f"wheelstep: error: pinion = {swapped}:wheel: is the larger gear")
+    assert error_line(result).endswith("look swapped; swap the two objects' wheelstep:part metadata "
+                                       "(pinion, wheel) or write the pair again")
+
+    def second_wheel(text: str) -> str:
+        start = text.index('<object id="2"')
+        body = text[start:text.index("</object>", start) + len("</object>")]
+        twin = body.replace('<object id="2"', '<object id="9"')
+        return text.replace(body, body + twin).replace('<item objectid="2"', '<item objectid="9" transform='
+                                                       '"1 0 0 0 1 0 0 0 1 0 0 0"/><item objectid="2"')
+    twins = tmp_path / "twins.3mf"
+    _edited_plate(desk_pair / "gears.3mf", twins, second_wheel)
+    result = cli("mesh-check", twins)
+    assert result.exit_code == 2
+    assert error_line(result) == (f"wheelstep: error: pinion = {twins}: holds two wheels of pair 'gears' "
+                                  "(objects 'wheel' and 'wheel'): remove one, or give it its own "
+                                  "wheelstep:pair id")
+
+    def moved_wheel(text: str) -> str:
+        start = text.index('<object id="2"')
+        return text[:start] + text[start:].replace(
+            '<metadata name="wheelstep:install_distance">72.125</metadata>',
+            '<metadata name="wheelstep:install_distance">73</metadata>', 1)
+    other = tmp_path / "other.3mf"
+    _edited_plate(desk_pair / "gears.3mf", other, moved_wheel)
+    assert error_line(cli("mesh-check", other)) == (
+        f"wheelstep: error: wheel = {other}: carries another design than the pinion of pair 'gears': "
+        "install_distance = 73 (the pinion's 72.125)")

@@ -68,8 +68,11 @@ def test_a_backlash_no_module_can_carry_names_no_module(cli):
 def test_a_module_too_large_names_one_that_works(cli):
     """The desk demo at half scale cannot carry the paper teeth's default module 2: the
     refusal names the largest module that can, and that module is accepted."""
-    line = error_line(cli("teeth", "--profile", "desk-demo", "--json"))
+    result = cli("teeth", "--profile", "desk-demo", "--json")
+    line = error_line(result)
     found = re.search(r"use --module ([0-9.]+) or less", line)
+    # the module the line names is the one a script reads
+    assert json.loads(result.stdout)["error"]["remedies"] == [{"--module": float(found.group(1))}]
     # the module nobody gave is said to be the default
     assert line.startswith("wheelstep: error: --module = 2: the paper teeth's default module (none given): "
                            "too large for the tooth pitch") and found, line

@@ -111,11 +111,16 @@ def check_tooth_form(part: SectorPartition, form: ToothForm, least_module: float
     smaller = [f"--module {largest:g} or less"] if largest >= max(least_module, 0.01) else []
     if worst < MIN_TIP_LAND:
         remedies = [*smaller, "less backlash (--backlash)", "fewer teeth (--z: fewer teeth, longer pitch)"]
-        raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: teeth come "
-                          f"to a point (tip land {worst:.3f} mm < {MIN_TIP_LAND} mm); use "
-                          + ", ".join(remedies[:-1]) + " or " + remedies[-1])
-    raise DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: tooth spaces "
-                      "close at the root" + (f"; use {smaller[0]}" if smaller else ""))
+        error = DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: teeth come "
+                            f"to a point (tip land {worst:.3f} mm < {MIN_TIP_LAND} mm); use "
+                            + ", ".join(remedies[:-1]) + " or " + remedies[-1])
+    else:
+        error = DesignError("module", m, f"too large for the tooth pitch {part.arc:.3f} mm: tooth spaces "
+                            "close at the root" + (f"; use {smaller[0]}" if smaller else ""))
+    if smaller:     # the one remedy with a value, for a script (--json) to apply
+        error.remedy = {"module": float(f"{largest:g}")}
+        error.remedies = [error.remedy]
+    raise error
 
 
 def _tip_land_and_gap(part: SectorPartition, form: ToothForm) -> tuple[float, float]:

@@ -158,17 +158,18 @@ def _mean_ratio(law) -> float:
     return abs(float(ends[1] - ends[0])) / period
 
 
-def require_pinion_first(radii: tuple[float, float], law, pinion: str) -> None:
+def require_pinion_first(radii: tuple[float, float], law, pinion: str,
+                         remedy: str = "give the pinion first, then the wheel") -> None:
     """Refuse (naming the pinion) outlines given wheel first (``radii`` by area, mm, in the
     order given): where the law turns the wheel slower than the pinion on average (by more
     than SIZE_SLACK), the wheel is the larger gear. Checked up front: swapped, every pose
-    interferes."""
+    interferes. ``remedy``: how the user puts them in order."""
     ratio = _mean_ratio(law)
     first, second = radii
     require(not (ratio < 1.0 - SIZE_SLACK and first > second), "pinion", pinion,
             f"is the larger gear (radius by area {first:.1f} mm, the wheel given {second:.1f} mm) "
             f"while the law turns the wheel {1.0 / ratio:.3g} times slower than the pinion: the two "
-            "look swapped; give the pinion first, then the wheel")
+            f"look swapped; {remedy}")
 
 
 #: How far (a fraction) the wheel's teeth counted may lie from those the pinion's need.
@@ -263,7 +264,15 @@ def run_plate_pair_check(pair, samples: int | None, window: float | None,
     distance of the design in its metadata; returns the report and its summary."""
     check = WrittenPairCheck(f"{pair.files[0]}:{pair.pinion.name}", f"{pair.files[1]}:{pair.wheel.name}",
                              pair.spec, samples, window)
+    from wheelstep_cli.gears.meshing.check import radius_by_area
+
     check.validate()
-    require_poses_per_tooth(samples, int(pair.spec.z), design_law(pair.spec))
-    report, summary = run_written_pair_check(check, plate_pair_outlines(pair), progress, pair.inset)
+    outlines = plate_pair_outlines(pair)
+    law = design_law(pair.spec)
+    # the labels are the plate's word for which gear is which: checked as two meshes given are
+    radii = tuple(radius_by_area(o) for o in outlines)
+    require_pinion_first(radii, law, check.pinion, "swap the two objects' wheelstep:part metadata "
+                                                   "(pinion, wheel) or write the pair again")
+    require_poses_per_tooth(samples, int(pair.spec.z), law)
+    report, summary = run_written_pair_check(check, outlines, progress, pair.inset)
     return report, {"pair": pair.pair, "distance_mm": installed_distance(pair.spec), **summary}

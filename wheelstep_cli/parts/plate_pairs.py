@@ -63,7 +63,12 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
         for obj in read_3mf_objects(path, param):
             part, pair_id = obj.metadata.get("part"), obj.metadata.get("pair")
             if part in GEARS and pair_id:
-                own.setdefault(pair_id, {}).setdefault(part, (file, obj))
+                gears = own.setdefault(pair_id, {})
+                # two of one gear: which meshes with the other is not the plate's to say
+                require(part not in gears, param, file, f"holds two {part}s of pair '{pair_id}' (objects "
+                        f"'{gears[part][1].name if part in gears else ''}' and '{obj.name}'): remove one, "
+                        "or give it its own wheelstep:pair id")
+                gears[part] = (file, obj)
         for pair_id, gears in own.items():
             if len(gears) == 2 and pair_id in groups:
                 # two plates each holding a pair of one id (two `gears` runs): both checked
@@ -101,8 +106,12 @@ def _plate_pair(pair: str, group: dict[str, tuple[str, MeshObject]]) -> PlatePai
     (p_file, pinion), (w_file, wheel) = group["pinion"], group["wheel"]
     keys = set(GearPairSpec.model_fields)
     design = {k: v for k, v in pinion.metadata.items() if k in keys}
-    if design != {k: v for k, v in wheel.metadata.items() if k in keys}:
-        raise DesignError("wheel", w_file, f"carries another design than the pinion of pair '{pair}'")
+    other = {k: v for k, v in wheel.metadata.items() if k in keys}
+    if design != other:
+        differ = sorted(k for k in design.keys() | other.keys() if design.get(k) != other.get(k))
+        said = "; ".join(f"{k} = {other.get(k, '(none)')} (the pinion's {design.get(k, '(none)')})"
+                         for k in differ)
+        raise DesignError("wheel", w_file, f"carries another design than the pinion of pair '{pair}': {said}")
     spec = spec_from_metadata(design, p_file)
     require_plate_law_csv(spec, pinion.metadata, p_file)
     return PlatePair(pair, pinion, wheel, (p_file, w_file), spec, _inset(pinion.metadata, p_file))
