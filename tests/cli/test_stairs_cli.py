@@ -74,6 +74,8 @@ def test_cli_bad_input_one_line_exit_2(cli, tmp_path, args, param):
      "at most 100000 cells"),
     # -q prints no table: the step would shape nothing
     (("--step", "7", "-q"), "--step = 7: shapes the printed tables, which -q does not print (--json does)"),
+    # a step that does not divide 90 deg was spread to one that does (7 printed every 6.92 deg)
+    (("--step", "7"), "--step = 7: must divide the cycle's 90 deg into whole steps: 6.923076923 or 7.5"),
 ])
 def test_options_that_would_do_nothing_are_refused(cli, args, line):
     assert error_line(cli("stairs", *args)).startswith(f"wheelstep: error: {line}")
@@ -96,3 +98,13 @@ def test_no_negative_zero_in_the_tables(cli):
     walk(json.loads(cli("stairs", "--json").stdout))
     zeros = [v for v in numbers if v == 0.0]
     assert zeros and all(math.copysign(1.0, v) > 0 for v in zeros)
+
+
+def test_a_step_named_by_the_refusal_prints_at_that_step(cli):
+    """The step the refusal of 7 offers, as printed, is taken and the tables run at it."""
+    result = cli("stairs", "--step", "6.923076923", "--json")
+    assert result.exit_code == 0, result.stderr
+    import json
+
+    angles = [row["phi"] for row in json.loads(result.stdout)["climb"]]
+    assert len(angles) == 14 and abs(angles[1] - angles[0] - 90 / 13) < 1e-6

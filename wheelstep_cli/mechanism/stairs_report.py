@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from wheelstep_cli.errors import require
+from wheelstep_cli.errors import DesignError, require
 from wheelstep_cli.mechanism import stairs as st
 
 UNITS = {"phi": "deg", "X01": "mm", "Y01": "mm", "dX01": "mm/rad", "dY01": "mm/rad",
@@ -37,10 +37,18 @@ class StairRequest:
 
 
 def check_stair(run: float, rise: float, step_deg: float) -> None:
-    """Raise DesignError unless run and rise (mm) are > 0 and the step is 0.01..45 deg."""
+    """Raise DesignError unless run and rise (mm) are > 0 and the step is 0.01..45 deg and
+    divides the cycle's 90 deg (the tables list the cycle's ends, so another step would be
+    spread to one that does)."""
     require(run > 0, "run", run, "must be > 0 mm")
     require(rise > 0, "rise", rise, "must be > 0 mm")
     require(0.01 <= step_deg <= 45, "step", step_deg, "must be in [0.01, 45] deg")
+    count = 90.0 / step_deg
+    # within the digits the steps are printed with (10), so a printed one is taken
+    if abs(count - round(count)) > 1e-8 * count:
+        fine, coarse = 90.0 / int(np.ceil(count)), 90.0 / int(np.floor(count))
+        raise DesignError("step", step_deg, f"must divide the cycle's 90 deg into whole steps: "
+                                            f"{fine:.10g} or {coarse:.10g}")
 
 
 def given_design(a, b, y1, y2, tol: float) -> st.StairDesign | None:
