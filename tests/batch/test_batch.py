@@ -254,6 +254,8 @@ parts:
     (VALID_ENTRY + "    quantitiy: 2\n", "quantitiy", "parts[0].quantitiy: unknown key; did you mean quantity? allowed:"),
     (VALID_ENTRY + "    quantity: two\n", "quantity", "parts[0].quantity = 'two': must be a whole number"),
     (VALID_ENTRY + "    quantity: 0\n", "quantity", "must be between 1 and 200"),
+    # 2.0 is 2, as z's 42.0 is 42; a fraction is said as written
+    (VALID_ENTRY + "    quantity: 1.5\n", "quantity", "parts[0].quantity = 1.5: must be a whole number"),
     (VALID_ENTRY + "    overrides:\n      zz: 3\n", "zz", "overrides.zz: unknown key; did you mean z? allowed: a, b, c, z"),
     # a fit is the printer's (its band's): said where it goes, not "did you mean fillet?"
     (VALID_ENTRY + "    overrides:\n      fit: auto\n", "fit", "parts[0].overrides.fit: unknown key here; a fit is "
@@ -684,3 +686,13 @@ def test_an_empty_override_is_refused_at_its_line(cli, tmp_path):
     assert result.exit_code == 2 and not out.exists()
     assert error_line(result) == (f"wheelstep: error: {batch}:{line_of(batch, 'width')}: parts[0].overrides.width "
                                   "= null: give a value, or leave the key out for the design's")
+
+
+def test_a_quantity_written_with_a_point_zero_is_that_many(cli, tmp_path):
+    """`quantity: 2.0` (YAML reads a float) is 2 parts, as `z: 42.0` is 42 teeth (it was
+    refused as 'quantity = 2: must be a whole number', a line at odds with itself)."""
+    batch = write(tmp_path / "two.yaml", VALID_ENTRY.replace("gear-pair", "shoe").replace(
+        "    design: desk-demo\n", "") + "    quantity: 2.0\n")
+    result = cli("batch", batch, "--out", tmp_path / "out", "--dry-run", "--json")
+    assert result.exit_code == 0, result.stderr
+    assert json.loads(result.stdout)["parts"] == 2

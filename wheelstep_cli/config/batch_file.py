@@ -10,7 +10,7 @@ from typing import Annotated, Any, Optional
 
 from pydantic import BaseModel, Field
 
-from wheelstep_cli.config.fields import STRICT, Choice
+from wheelstep_cli.config.fields import STRICT, Choice, Whole
 
 
 class KindName(Choice):
@@ -30,7 +30,8 @@ Kind = Annotated[Optional[KindName], Field(
     None, json_schema_extra={"limit": "unknown kind; allowed: " + ", ".join(KIND_NAMES)})]
 ProfileName = Annotated[Optional[str], Field(
     None, strict=True, json_schema_extra={"limit": "must be a profile name"})]
-Quantity = Annotated[Optional[int], Field(
+# a whole number as z is (2.0 is 2), so that a quantity is read as every count is
+Quantity = Annotated[Optional[Whole], Field(
     None, strict=True, ge=1, le=MAX_QUANTITY,
     json_schema_extra={"limit": f"must be between 1 and {MAX_QUANTITY}"})]
 
