@@ -49,6 +49,10 @@ def test_cli_impossible_linkage_one_line_exit_2(cli, tmp_path):
     assert line.startswith("wheelstep: error: --l1 = 500: ") and "crank angle 195.5 deg" in line
     res = cli("linkage", "--preset", "jansen", "--branch", "Q=+1")
     assert res.exit_code == 2 and res.stderr.startswith("wheelstep: error: --branch = Q")
+    # a four-bar link given with another preset is the option that would do nothing: named
+    assert error_line(cli("linkage", "--preset", "jansen", "--o1", "3,4")) == (
+        "wheelstep: error: --o1 = 3,4: shapes the four-bar only (--l1..--l4, --beta, --o1), not the "
+        "jansen preset: drop it or use --preset four-bar")
 
 
 def test_a_table_step_between_the_sampled_crank_angles_is_refused_with_the_ones_it_takes(cli):

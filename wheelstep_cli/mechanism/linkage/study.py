@@ -81,9 +81,14 @@ def require_step_on_samples(step_deg: float, samples: int) -> None:
 def build_leg(request: LinkageRequest) -> Linkage:
     """The leg of ``request``: preset or custom four-bar, its branches set, scaled."""
     custom = {k: v for k, v in request.four_bar.items() if v is not None}
+    if custom and request.preset != "four-bar":
+        # named as the option that would do nothing: the preset has links of its own
+        name = next(iter(custom))
+        value = custom[name]
+        shown = ",".join(f"{v:g}" for v in value) if isinstance(value, tuple) else value   # as typed: X,Y
+        raise DesignError(name, shown, f"shapes the four-bar only (--l1..--l4, --beta, --o1), "
+                                              f"not the {request.preset} preset: drop it or use --preset four-bar")
     if custom:
-        require(request.preset == "four-bar", "preset", request.preset,
-                "--l1..--l4, --beta, --o1 apply to four-bar only")
         leg = four_bar(**custom)
     else:
         leg = PRESETS[request.preset]()
