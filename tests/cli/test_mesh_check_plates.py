@@ -455,3 +455,13 @@ def test_a_plate_whose_gears_are_mislabelled_is_refused_before_the_check(desk_pa
     assert error_line(cli("mesh-check", other)) == (
         f"wheelstep: error: wheel = {other}: carries another design than the pinion of pair 'gears': "
         "install_distance = 73 (the pinion's 72.125)")
+
+
+def test_a_report_named_as_a_mesh_is_said_to_be_no_mesh(desk_pair, cli):
+    """gears.json named alone was told to 'give the wheel mesh after it', as if it were a gear."""
+    report = desk_pair / "gears.json"
+    for args, param in (([report], "pinion"), ([report, desk_pair / "wheel.stl"], "pinion"),
+                        ([desk_pair / "pinion.stl", report], "wheel")):
+        result = cli("mesh-check", *args)
+        assert result.exit_code == 2
+        assert error_line(result) == f"wheelstep: error: {param} = {report}: must be an .stl or .3mf file"
