@@ -124,6 +124,11 @@ def test_json_is_one_document_on_stdout(cli, tmp_path, pair, command):
     assert result.exit_code == 0, result.stderr
     data = json.loads(result.stdout)
     assert isinstance(data, dict) and data
+    if command in WRITERS:
+        # every file the run wrote is listed, as gears, shoe and batch listed theirs (the
+        # commands writing files the user names listed none)
+        listed = {Path(p).resolve() for p in data["written"]}
+        assert {p.resolve() for p in files_below(tmp_path / "out")} <= listed, command
 
 
 @pytest.mark.parametrize("command", WRITERS)

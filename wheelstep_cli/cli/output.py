@@ -26,6 +26,9 @@ class Output:
     would_remove: list = field(default_factory=list, compare=False, repr=False)
     #: Files of an earlier run a run removed (said by :meth:`files`).
     removed: list = field(default_factory=list, compare=False, repr=False)
+    #: Files the user named (:meth:`write_named`) that a run wrote: a --json report without
+    #: a ``written`` list of its own gets them as one.
+    named_written: list = field(default_factory=list, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.quiet and self.verbose:
@@ -35,8 +38,12 @@ class Output:
             raise DesignError("verbose", "on", "cannot be combined with -q/--quiet")
 
     def report(self, report: Mapping, table: Callable[[], Iterable[str]]) -> None:
-        """Print ``report`` as JSON (``--json``) or the lines of ``table()`` (none with -q)."""
+        """Print ``report`` as JSON (``--json``) or the lines of ``table()`` (none with -q). A
+        command that wrote files the user named lists them as the report's ``written`` (unless
+        it has its own), as the commands writing an output folder do."""
         if self.json:
+            if self.named_written and "written" not in report:
+                report = {**report, "written": [str(p) for p in self.named_written]}
             typer.echo(json_text(report), nl=False)
         elif not self.quiet:
             for line in table():
@@ -140,7 +147,9 @@ class Output:
                     for folder, group in groups.items()}
         if dry_run or not files:
             return [*files, *recorded]
-        return self.write({**files, **recorded}, dry_run)
+        written = self.write({**files, **recorded}, dry_run)
+        self.named_written.extend(written)
+        return written
 
     def files(self, paths: Iterable[Path], dry_run: bool, joined: bool = False) -> None:
         """Say which files were written (or would be, with ``dry_run``): one line each, or
