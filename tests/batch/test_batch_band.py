@@ -63,6 +63,9 @@ def test_no_tolerance_runs_no_band_check(cli, tmp_path):
     assert result.exit_code == 0, result.stderr
     assert "jams over the band" not in result.stderr
     assert "tolerance" not in json.loads((out / "reports" / "pair.json").read_text())
+    # unchecked, its backlash all the printer's tooth clearance is warned of, as gears warns
+    assert ("WARNING: pair: printed on 'fdm-0.4-pla' the teeth keep no play of their own (the backlash "
+            "is all the printer's tooth clearance)") in result.stderr
     assert "gear_pairs_mesh_over_printer_bands" not in json.loads((out / "manifest.json").read_text())["checks"]
 
 

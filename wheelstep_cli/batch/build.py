@@ -19,7 +19,7 @@ from wheelstep_cli.parts.bed_remedy import scaled_to_bed
 from wheelstep_cli.parts.gear_pair import require_pair_on_bed
 from wheelstep_cli.parts.kinds import KINDS, as_designed, for_printer
 from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
-from wheelstep_cli.parts.tolerance import design_printer
+from wheelstep_cli.parts.tolerance import design_printer, printed_play
 from wheelstep_cli.parts.tolerance_cli import design_pair
 
 
@@ -56,6 +56,7 @@ class EntryResult:
     param: str | None = None
     mating: dict | None = None   # a gear pair's meshing record (parts.mesh_check.meshing_record)
     band: dict | None = None     # its band record when the band is checked (parts.tolerance_cli)
+    no_play: bool = False        # a gear pair whose backlash is all its printer's tooth clearance
     remedies: list = field(default_factory=list)   # a refusal's remedies, the entry's keys -> values
 
 
@@ -100,7 +101,10 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
         band = _band(built, entry) if tolerance and mating is not None else None
         if band is not None:
             result.report["tolerance"] = band
-        return EntryResult(entry.index, result.parts, result.report, mating=mating, band=band)
+        # unchecked over the band, a pair keeping no play of its own is warned of (gears warns too)
+        play = printed_play(built) if band is None and mating is not None else None
+        return EntryResult(entry.index, result.parts, result.report, mating=mating, band=band,
+                           no_play=play is not None and play < 1e-9)
     except DesignError as err:
         # raised on the printer's compensated values: said of the override that shares the
         # blame (as the command line names the flag given), as the entry gives them

@@ -259,3 +259,14 @@ def design_printer(printer):
     """``printer`` as a fit's design is drawn for it: without its tooth clearance (the
     fit's outline inset replaces it); every other compensation kept."""
     return replace(printer, tooth_clearance=0.0)
+
+
+def printed_play(pair) -> float | None:
+    """Play (mm) generated teeth keep of their own once printed: the backlash they were cut
+    with less the printer's tooth clearance held in it; None when no clearance is held there
+    (paper teeth, no printer, a clearance of 0, or a fit's inset in its place)."""
+    printing = getattr(pair, "printing", None)
+    if pair.generated is None or printing is None or float(getattr(pair, "inset", 0.0)) != 0.0:
+        return None
+    clearance = float(printing.printer.tooth_clearance)
+    return None if clearance <= 0.0 else float(pair.generated.cutter.backlash) - clearance

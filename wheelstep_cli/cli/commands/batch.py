@@ -128,9 +128,16 @@ def _bands(outcome) -> list[dict]:
 
 
 def _band_warnings(show: Output, outcome) -> None:
-    """One stderr line per gear pair that jams over its band or whose printer has none."""
+    """One stderr line per gear pair that jams over its band or whose printer has none, and
+    (not checked over its band) per pair that keeps no play of its own once printed."""
     # PrusaSlicer's read-back is of FDM G-code: a resin printer's pair is not offered it
     resin = {e.name for e in outcome.built if getattr(e.printer, "technology", None) == "resin"}
+    for entry in outcome.built:
+        if outcome.results[entry.index].no_play:
+            show.warning(f"WARNING: {entry.name}: printed on '{entry.printer.name}' the teeth keep no play of "
+                         "their own (the backlash is all the printer's tooth clearance): teeth printed larger "
+                         "than the clearance allows for jam; the batch without --no-tolerance checks it over "
+                         "the printer's band, `fit: auto` in the profile's band section fits the teeth to it")
     for band in _bands(outcome):
         slice_words = "" if band["entry"] in resin else "`gears --slice` checks the pair as PrusaSlicer prints it, and "
         if not band["checked"]:

@@ -245,7 +245,7 @@ def _slice_lines(sliced: dict | None) -> list[str]:
 def _clearance_text(pair) -> str:
     """How a printer's tooth clearance makes up the backlash the teeth were cut with, or a
     fit's inset adds to it (mm)."""
-    from wheelstep_cli.cli.commands.gears_checks import printed_play
+    from wheelstep_cli.parts.tolerance import printed_play
 
     inset = float(getattr(pair, "inset", 0.0))
     if inset != 0.0:

@@ -270,23 +270,14 @@ def warn_of_the_figures(show: Output, record: dict, speed: str = "hub speed") ->
                      f"do not (diagnostic): {clear} %")
 
 
-def printed_play(pair) -> float | None:
-    """Play (mm) generated teeth keep of their own once printed: the backlash they were cut
-    with less the printer's tooth clearance held in it; None when no clearance is held there
-    (paper teeth, no printer, a clearance of 0, or a fit's inset in its place)."""
-    printing = getattr(pair, "printing", None)
-    if pair.generated is None or printing is None or float(getattr(pair, "inset", 0.0)) != 0.0:
-        return None
-    clearance = float(printing.printer.tooth_clearance)
-    return None if clearance <= 0.0 else float(pair.generated.cutter.backlash) - clearance
-
-
 def warn_no_printed_play(show: Output, pair, record: dict) -> None:
     """A warning line on stderr when generated teeth drawn for a printer keep no play of their
-    own (:func:`printed_play`): the backlash is all the printer's tooth clearance (a default
+    own (:func:`~wheelstep_cli.parts.tolerance.printed_play`): the backlash is all the printer's tooth clearance (a default
     design backlash no larger than it, or --backlash 0), so a print whose teeth come out
     larger than the clearance allows for jams. Not said when the band was checked (its cases
     say it)."""
+    from wheelstep_cli.parts.tolerance import printed_play
+
     play = printed_play(pair)
     # the default backlash is max(design's, clearance): equal to it within rounding
     if play is None or "tolerance" in record or play >= 1e-9:
