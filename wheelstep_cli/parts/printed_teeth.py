@@ -141,8 +141,7 @@ def _printing(design, z: int, printer, width: float, inset: float, periods: int)
         return "uncut"
     if inset:
         # a fit thins every tooth by its inset: the remedy must keep the tips after it
-        thin = generation_settings(printed).at_module(module).wheel_tolerance
-        outline = offset_outline(outline, -inset, "pinion", thin=thin)
+        outline = offset_outline(outline, -inset, "pinion", thin=generation_settings(printed).wheel_tolerance)
     return "prints" if thin_teeth(outline, module, width, periods) is None else "thin"
 
 

@@ -111,7 +111,8 @@ def _plates_given(pinion: str | None, wheel: str | None) -> bool:
                               "is G-code, not a mesh: read it back with --gcode FILE.gcode")
     for given in (pinion, wheel):
         # a report or any other file is no mesh, said so before it is taken for half a pair
-        if given is not None and split_mesh_spec(given)[0].suffix.lower() not in (".stl", ".3mf"):
+        path = split_mesh_spec(given)[0] if given is not None else None
+        if path is not None and path.is_file() and path.suffix.lower() not in (".stl", ".3mf"):
             raise DesignError("pinion" if given == pinion else "wheel", given, "must be an .stl or .3mf file")
     plates = is_plate_input(pinion, wheel)
     if wheel is None and not plates:

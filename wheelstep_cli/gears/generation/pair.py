@@ -57,7 +57,6 @@ class GeneratedPair:
     topping: dict
     center_distance: float
     play: float = 0.0      # rad of wheel angle each side (angular backlash mode)
-    #: The settings as applied: those given at the pair's module (GenerationSettings.at_module).
     settings: GenerationSettings = field(default_factory=GenerationSettings)
 
 
@@ -124,7 +123,7 @@ def generate_pair(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, *
         undercut_limit=limit, min_curvature_radius=rho_min,
         pinion_tip_land=pinion.land, wheel_tip_land=wheel.land,
         topping={"pinion": pinion.topping, "wheel": wheel.topping},
-        center_distance=float(center_distance), play=wheel.play, settings=job.settings)
+        center_distance=float(center_distance), play=wheel.play, settings=settings)
 
 
 def generate_pinion(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, *, corner: str = "space",
@@ -162,9 +161,8 @@ def _job(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, corner: st
     require_whole_periods(law, pinion_teeth)
     per_period = pinion_teeth // law.pinion_periods
     curves = pitch_curves(law, center_distance)
-    pitch = curves.period_arc / per_period
-    return _Job(law, curves, cutter, pinion_teeth, per_period, pitch, settings.at_module(pitch / np.pi),
-                strict)
+    return _Job(law, curves, cutter, pinion_teeth, per_period, curves.period_arc / per_period,
+                settings, strict)
 
 
 def _check_undercut(job: _Job) -> tuple[float, float]:
@@ -208,6 +206,11 @@ def _require_no_gaps(radii: np.ndarray, pinion_teeth: int) -> None:
             "(--z) make the cutter smaller")
 
 
+#: Longest segment (mm) of the pinion's cut outline when its ray map is taken: the map's
+#: linear-in-angle interpolation of a segment then stays well within a micron of the line.
+RAY_MAP_SEGMENT = 0.05
+
+
 def _cut_pinion(job: _Job, corner: str) -> _GearCut:
     """The pinion cut by the rack, topped, tips rounded: the outline as written (and carving)."""
     law, curves, s = job.law, job.curves, job.settings
@@ -223,7 +226,7 @@ def _cut_pinion(job: _Job, corner: str) -> _GearCut:
     # its ray map (farthest crossing: the tips, also of teeth leaning over a neighbour's space),
     # taken on short segments: the map interpolates a segment's radius linearly in angle, and
     # the outline's flanks are long straight segments (the rack's flanks are)
-    dense = segmentize_ring(exact, s.ray_map_segment)
+    dense = segmentize_ring(exact, RAY_MAP_SEGMENT)
     cut = polyline_envelope(grid, np.vstack([dense, dense[:1]])[None], nearest=False)
     cut_radii = np.minimum(blank, cut)
     _require_no_gaps(cut_radii, job.pinion_teeth)
@@ -231,7 +234,7 @@ def _cut_pinion(job: _Job, corner: str) -> _GearCut:
                                          job.cutter, job.limits)
     # the outline as written (tips rounded; slivers and spikes a boolean can leave removed)
     # carves the wheel
-    rounded = round_tips(exact, s.tip_round * job.module, s.tip_round_thin)
+    rounded = round_tips(exact, s.tip_round * job.module)
     outline = simplify_outline(topped_outline(rounded, grid, radii, cut_radii, law.pinion_periods),
                                s.pinion_tolerance)
     return _GearCut(outline, radii, grid, topping, land)
