@@ -19,7 +19,7 @@ from wheelstep_cli.parts.bed_remedy import scaled_to_bed
 from wheelstep_cli.parts.gear_pair import require_pair_on_bed
 from wheelstep_cli.parts.kinds import KINDS, as_designed, for_printer
 from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
-from wheelstep_cli.parts.tolerance import design_printer, printed_play
+from wheelstep_cli.parts.tolerance import design_printer, keeps_no_play
 from wheelstep_cli.parts.tolerance_cli import design_pair
 
 
@@ -102,9 +102,8 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
         if band is not None:
             result.report["tolerance"] = band
         # unchecked over the band, a pair keeping no play of its own is warned of (gears warns too)
-        play = printed_play(built) if band is None and mating is not None else None
         return EntryResult(entry.index, result.parts, result.report, mating=mating, band=band,
-                           no_play=play is not None and play < 1e-9)
+                           no_play=band is None and mating is not None and keeps_no_play(built))
     except DesignError as err:
         # raised on the printer's compensated values: said of the override that shares the
         # blame (as the command line names the flag given), as the entry gives them

@@ -65,9 +65,10 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
             if part in GEARS and pair_id:
                 gears = own.setdefault(pair_id, {})
                 # two of one gear: which meshes with the other is not the plate's to say
-                require(part not in gears, param, file, f"holds two {part}s of pair '{pair_id}' (objects "
-                        f"'{gears[part][1].name if part in gears else ''}' and '{obj.name}'): remove one, "
-                        "or give it its own wheelstep:pair id")
+                if part in gears:
+                    raise DesignError(param, file, f"holds two {part}s of pair '{pair_id}' (objects "
+                                      f"'{gears[part][1].name}' and '{obj.name}'): remove one, or give it "
+                                      "its own wheelstep:pair id")
                 gears[part] = (file, obj)
         for pair_id, gears in own.items():
             if len(gears) == 2 and pair_id in groups:

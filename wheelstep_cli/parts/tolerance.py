@@ -270,3 +270,11 @@ def printed_play(pair) -> float | None:
         return None
     clearance = float(printing.printer.tooth_clearance)
     return None if clearance <= 0.0 else float(pair.generated.cutter.backlash) - clearance
+
+
+def keeps_no_play(pair) -> bool:
+    """Whether generated teeth drawn for a printer keep no play of their own once printed
+    (:func:`printed_play` none within rounding: the default backlash is max(design's,
+    clearance), so equal to the clearance within it)."""
+    play = printed_play(pair)
+    return play is not None and play < 1e-9

@@ -276,11 +276,9 @@ def warn_no_printed_play(show: Output, pair, record: dict) -> None:
     design backlash no larger than it, or --backlash 0), so a print whose teeth come out
     larger than the clearance allows for jams. Not said when the band was checked (its cases
     say it)."""
-    from wheelstep_cli.parts.tolerance import printed_play
+    from wheelstep_cli.parts.tolerance import keeps_no_play
 
-    play = printed_play(pair)
-    # the default backlash is max(design's, clearance): equal to it within rounding
-    if play is None or "tolerance" in record or play >= 1e-9:
+    if "tolerance" in record or not keeps_no_play(pair):
         return
     show.warning(f"WARNING: printed on '{pair.printing.printer.name}' the teeth keep no play of their own "
                  f"(backlash j_n {pair.generated.cutter.backlash:.4g} mm, all of it the printer's tooth "

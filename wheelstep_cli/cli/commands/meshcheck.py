@@ -105,15 +105,15 @@ def _plates_given(pinion: str | None, wheel: str | None) -> bool:
                                       "plate, or --gcode FILE")
     if wheel is None and not split_mesh_spec(pinion)[0].is_file():
         raise DesignError("pinion", pinion, file_problem(split_mesh_spec(pinion)[0]))
-    for given in (pinion, wheel):
-        if given is not None and str(given).lower().endswith((".gcode", ".gco", ".bgcode")):
-            raise DesignError("pinion" if given == pinion else "wheel", given,
-                              "is G-code, not a mesh: read it back with --gcode FILE.gcode")
-    for given in (pinion, wheel):
+    for param, given in (("pinion", pinion), ("wheel", wheel)):
+        if given is None:
+            continue
+        if str(given).lower().endswith((".gcode", ".gco", ".bgcode")):
+            raise DesignError(param, given, "is G-code, not a mesh: read it back with --gcode FILE.gcode")
         # a report or any other file is no mesh, said so before it is taken for half a pair
-        path = split_mesh_spec(given)[0] if given is not None else None
-        if path is not None and path.is_file() and path.suffix.lower() not in (".stl", ".3mf"):
-            raise DesignError("pinion" if given == pinion else "wheel", given, "must be an .stl or .3mf file")
+        path = split_mesh_spec(given)[0]
+        if path.is_file() and path.suffix.lower() not in (".stl", ".3mf"):
+            raise DesignError(param, given, "must be an .stl or .3mf file")
     plates = is_plate_input(pinion, wheel)
     if wheel is None and not plates:
         raise click_errors.UsageError(f"Missing argument 'WHEEL': {pinion} is one gear; give the wheel "
