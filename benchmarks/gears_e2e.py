@@ -87,7 +87,7 @@ def stages() -> list[tuple[str, float, float]]:
     gen = generate_pair(law, spec.z, spec.cutter(), corner=spec.corner, settings=settings,
                         center_distance=gp.rolling_distance(spec, law))
     laps.lap("generate teeth (gears/generation)")
-    wheel_outline = simplify_outline(gen.wheel_outline, settings.wheel_tolerance)
+    wheel_outline = simplify_outline(gen.wheel_outline, gen.settings.wheel_tolerance)
     pinion = extrude_plate("pinion", gen.pinion_outline, spec.thickness, spec.bore)
     wheel = extrude_plate("wheel", wheel_outline, spec.thickness, spec.bore)
     laps.lap("thin wheel outline + extrude both")

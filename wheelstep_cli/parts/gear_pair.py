@@ -188,7 +188,7 @@ def _build_generated(spec: GearPairSpec) -> GearPair:
     # fraction of a micron (coarser facets make real speed ripple: a 0.2 mm facet on a
     # curved flank kinks the hub speed by about 1 %)
     p_outline = gen.pinion_outline
-    w_outline = simplify_outline(gen.wheel_outline, settings.wheel_tolerance)
+    w_outline = simplify_outline(gen.wheel_outline, gen.settings.wheel_tolerance)
     pinion, wheel = _plates(spec, gen.law, p_outline, w_outline, gen.module)
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     crank = spec.law() if spec.law_csv is None else None
@@ -204,13 +204,13 @@ def inset_gear_pair(pair: GearPair, inset: float) -> GearPair:
     compensation is not applied here (parts.fit does, as for any part drawn for a printer)."""
     from wheelstep_cli.geometry.planar import offset_outline
 
-    # thinned as the written outlines are (their Douglas-Peucker tolerance)
-    thin = generation_settings(pair.spec).wheel_tolerance
-    p_outline = offset_outline(pair.pinion_outline, -inset, "pinion", thin=thin)
-    w_outline = offset_outline(pair.wheel_outline, -inset, "wheel", thin=thin)
     gen = pair.generated
     law = gen.law if gen is not None else pair.law
     module = gen.module if gen is not None else pair.spec.paper_module
+    # thinned as the written outlines are (their Douglas-Peucker tolerance)
+    thin = generation_settings(pair.spec).at_module(module).wheel_tolerance
+    p_outline = offset_outline(pair.pinion_outline, -inset, "pinion", thin=thin)
+    w_outline = offset_outline(pair.wheel_outline, -inset, "wheel", thin=thin)
     pinion, wheel = _plates(pair.spec, law, p_outline, w_outline, module)
     checks = {part.name: require_printable(part) for part in (pinion, wheel)}
     return replace(pair, pinion_outline=p_outline, wheel_outline=w_outline, pinion=pinion,

@@ -141,7 +141,8 @@ def _printing(design, z: int, printer, width: float, inset: float, periods: int)
         return "uncut"
     if inset:
         # a fit thins every tooth by its inset: the remedy must keep the tips after it
-        outline = offset_outline(outline, -inset, "pinion", thin=generation_settings(printed).wheel_tolerance)
+        thin = generation_settings(printed).at_module(module).wheel_tolerance
+        outline = offset_outline(outline, -inset, "pinion", thin=thin)
     return "prints" if thin_teeth(outline, module, width, periods) is None else "thin"
 
 

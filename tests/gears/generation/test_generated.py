@@ -94,20 +94,43 @@ def test_pointed_teeth_are_refused():
 
 def test_pointed_teeth_remedy_follows_the_cause():
     """Teeth pointed beside the corners (a large module, a steep flank) are told to take more
-    teeth; teeth pointed everywhere because the module is a fraction of a millimetre are told
-    to take fewer, and fewer clear the floor where more do not."""
+    teeth, a smaller addendum or pressure angle: the ordinary teeth keep their land wherever
+    the rack's spaces stay open (the floor is 0.1 mm, a fraction of a smaller module)."""
     law = CrankLaw(CrankMechanism(60, 100, 360), 2)
     with pytest.raises(DesignError) as err:
         generate_pair(law, 48, RackCutter(pressure_angle=np.radians(30.0), addendum=1.25,
                                           dedendum=1.5, fillet=0.1), center_distance=144)
     assert "more teeth (--z)" in err.value.limit and "fewer" not in err.value.limit
-    small = RackCutter(backlash=0.02)
-    with pytest.raises(DesignError) as err:
-        generate_pair(law, 48, small, center_distance=10)
-    assert "use fewer teeth (--z) or a larger module" in err.value.limit
-    with pytest.raises(DesignError):
-        generate_pair(law, 96, small, center_distance=10)
-    generate_pair(law, 24, small, center_distance=10)      # past the tip-land floor
+    # a module of 0.15 mm is a larger pair scaled down (its floor too): not pointed
+    generate_pair(law, 48, RackCutter(backlash=0.02), center_distance=10)
+
+
+def test_the_generators_lengths_follow_a_module_below_theirs():
+    """Below GenerationSettings.length_module (2 mm) every length setting takes the module's
+    proportion; at or above it they stay as given (the F'i and f'i bounds are micrometres)."""
+    from wheelstep_cli.gears.generation import GenerationSettings
+
+    given = GenerationSettings()
+    assert given.at_module(2.0) == given and given.at_module(4.2) == given
+    half = given.at_module(1.0)
+    for name in GenerationSettings.LENGTHS:
+        assert getattr(half, name) == pytest.approx(getattr(given, name) / 2.0, rel=1e-12), name
+    assert half.tilt == given.tilt and half.poses_per_tooth == given.poses_per_tooth
+
+
+def test_below_its_length_module_a_scaled_design_is_generated_as_the_scaled_pair():
+    """A pair of module 1.05 mm and the same design at a quarter of the size (rolling at a
+    quarter of the distance, a quarter of the backlash) have the same teeth: both outlines
+    scaled by 1/4 (a quarter scales every float exactly), so the same transmission error and
+    hub speed ripple however small the module."""
+    law = CrankLaw(CrankMechanism(60, 100, 360), 2)
+    base = generate_pair(law, 48, RackCutter(backlash=0.12), center_distance=72.0)
+    quarter = generate_pair(law, 48, RackCutter(backlash=0.03), center_distance=18.0)
+    assert base.module < 2.0 and quarter.module == pytest.approx(base.module / 4.0, rel=1e-12)
+    for name in ("pinion_outline", "wheel_outline"):
+        ours, theirs = getattr(base, name), 4.0 * getattr(quarter, name)
+        assert ours.shape == theirs.shape, name
+        np.testing.assert_allclose(theirs, ours, rtol=0, atol=1e-9 * base.module)
 
 
 def test_cli_reports_undercut_and_pointed_in_one_line(cli, tmp_path):
@@ -220,7 +243,7 @@ def test_round_tips_rounds_convex_corners_only():
     # an L-shaped plate: five convex corners and one concave corner
     ell = np.array([[0, 0], [10, 0], [10, 4], [4, 4], [4, 10], [0, 10]], dtype=float)
     r = 0.5
-    rounded = round_tips(ell, r)
+    rounded = round_tips(ell, r, 1e-4)
     area = 0.5 * np.sum(rounded[:, 0] * np.roll(rounded[:, 1], -1) - np.roll(rounded[:, 0], -1) * rounded[:, 1])
     # each convex corner loses (1 - pi/4) r^2; the arcs are chords of 8 per quarter turn
     # inscribed in the circle, so a little more

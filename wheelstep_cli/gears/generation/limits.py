@@ -145,7 +145,7 @@ class ToppingLimits:
     """When a pointed tooth is topped and when the design is refused instead."""
 
     min_tip_land: float
-    """Tip land floor, mm (GenerationSettings.min_tip_land)."""
+    """Tip land floor, mm (GenerationSettings.min_tip_land at the pair's module)."""
     max_topping: float
     """Most height topped off, x module (GenerationSettings.max_topping)."""
     module: float
@@ -162,22 +162,11 @@ def top_or_refuse(body: GearBody, radii: np.ndarray, cutter: RackCutter,
     new, count, drop, land = top_pointed_teeth(body.grid, radii, pitch_r, body.blank, limits.min_tip_land)
     module = limits.module
     if drop > limits.max_topping * module and limits.strict:
-        if ordinary_tip_land(cutter, module) < 2.0 * limits.min_tip_land:
-            # every tooth is thin in millimetres: only a larger module widens the land
-            remedy = "use fewer teeth (--z) or a larger module (--module, or a larger centre distance)"
-        else:
-            # the teeth beside the pitch-curve corners are thinner than the rest
-            remedy = "use a smaller addendum, a smaller pressure angle or more teeth (--z)"
+        # the ordinary teeth keep their land wherever the rack's spaces stay open (the rack
+        # refuses those that close): the thin teeth are those beside the pitch-curve corners
+        remedy = "use a smaller addendum, a smaller pressure angle or more teeth (--z)"
         raise DesignError("addendum", cutter.addendum,
-                          f"the {body.name} teeth come to a point (a {limits.min_tip_land} mm tip land "
+                          f"the {body.name} teeth come to a point (a {limits.min_tip_land:.3g} mm tip land "
                           f"needs {drop:.3f} mm off the tip, more than {limits.max_topping} x the "
                           f"module = {limits.max_topping * module:.3f} mm); {remedy}")
     return new, (count, drop), land
-
-
-def ordinary_tip_land(cutter: RackCutter, module: float) -> float:
-    """Tip land (mm) of a tooth on a straight pitch line: the rack's space at the addendum,
-    the pinion's thinning by the backlash j_n/2 included."""
-    a = cutter.pressure_angle
-    return (np.pi * module / 2.0 - cutter.backlash / (2.0 * np.cos(a))
-            - 2.0 * cutter.addendum * module * np.tan(a))

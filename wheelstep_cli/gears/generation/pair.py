@@ -123,7 +123,7 @@ def generate_pair(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, *
         undercut_limit=limit, min_curvature_radius=rho_min,
         pinion_tip_land=pinion.land, wheel_tip_land=wheel.land,
         topping={"pinion": pinion.topping, "wheel": wheel.topping},
-        center_distance=float(center_distance), play=wheel.play, settings=settings)
+        center_distance=float(center_distance), play=wheel.play, settings=job.settings)
 
 
 def generate_pinion(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, *, corner: str = "space",
@@ -161,8 +161,9 @@ def _job(law: TransmissionLaw, pinion_teeth: int, cutter: RackCutter, corner: st
     require_whole_periods(law, pinion_teeth)
     per_period = pinion_teeth // law.pinion_periods
     curves = pitch_curves(law, center_distance)
-    return _Job(law, curves, cutter, pinion_teeth, per_period, curves.period_arc / per_period,
-                settings, strict)
+    pitch = curves.period_arc / per_period
+    return _Job(law, curves, cutter, pinion_teeth, per_period, pitch, settings.at_module(pitch / np.pi),
+                strict)
 
 
 def _check_undercut(job: _Job) -> tuple[float, float]:
@@ -206,11 +207,6 @@ def _require_no_gaps(radii: np.ndarray, pinion_teeth: int) -> None:
             "(--z) make the cutter smaller")
 
 
-#: Longest segment (mm) of the pinion's cut outline when its ray map is taken: the map's
-#: linear-in-angle interpolation of a segment then stays well within a micron of the line.
-RAY_MAP_SEGMENT = 0.05
-
-
 def _cut_pinion(job: _Job, corner: str) -> _GearCut:
     """The pinion cut by the rack, topped, tips rounded: the outline as written (and carving)."""
     law, curves, s = job.law, job.curves, job.settings
@@ -226,7 +222,7 @@ def _cut_pinion(job: _Job, corner: str) -> _GearCut:
     # its ray map (farthest crossing: the tips, also of teeth leaning over a neighbour's space),
     # taken on short segments: the map interpolates a segment's radius linearly in angle, and
     # the outline's flanks are long straight segments (the rack's flanks are)
-    dense = segmentize_ring(exact, RAY_MAP_SEGMENT)
+    dense = segmentize_ring(exact, s.ray_map_segment)
     cut = polyline_envelope(grid, np.vstack([dense, dense[:1]])[None], nearest=False)
     cut_radii = np.minimum(blank, cut)
     _require_no_gaps(cut_radii, job.pinion_teeth)
@@ -234,7 +230,7 @@ def _cut_pinion(job: _Job, corner: str) -> _GearCut:
                                          job.cutter, job.limits)
     # the outline as written (tips rounded; slivers and spikes a boolean can leave removed)
     # carves the wheel
-    rounded = round_tips(exact, s.tip_round * job.module)
+    rounded = round_tips(exact, s.tip_round * job.module, s.tip_round_thin)
     outline = simplify_outline(topped_outline(rounded, grid, radii, cut_radii, law.pinion_periods),
                                s.pinion_tolerance)
     return _GearCut(outline, radii, grid, topping, land)

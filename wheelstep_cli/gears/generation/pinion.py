@@ -46,15 +46,16 @@ def pinion_by_rack(rolling: RackRolling, cutter: RackCutter, module: float) -> n
     return grown_minus_rotated_union(body, cutter.addendum * module, regions, angles)
 
 
-def round_tips(outline: np.ndarray, radius: float) -> np.ndarray:
+def round_tips(outline: np.ndarray, radius: float, thin: float) -> np.ndarray:
     """The outline (N, 2, mm) with its convex corners (tooth tips) rounded to ``radius`` mm.
 
     An opening (erode, then dilate) changes nothing else. The outline is first thinned
-    by a fraction of a micron: a boolean's many collinear points slow the buffers down.
+    by ``thin`` mm (Douglas-Peucker), a fraction of a micron: a boolean's many collinear
+    points slow the buffers down.
     """
     if radius <= 0:
         return outline
-    return open_outline(outline, radius, thin=0.0002, quad_segs=8)
+    return open_outline(outline, radius, thin=thin, quad_segs=8)
 
 
 def topped_outline(outline: np.ndarray, grid: PolarGrid, topped: np.ndarray, before: np.ndarray,

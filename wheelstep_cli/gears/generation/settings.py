@@ -1,13 +1,15 @@
 """Tuning values of the tooth generator, as one frozen value passed explicitly.
 
-Change one with ``dataclasses.replace(GenerationSettings(), tilt=0.3)``. How each
+Change one with ``dataclasses.replace(GenerationSettings(), tilt=0.3)``. Its lengths (mm)
+are those of a pair of module :attr:`GenerationSettings.length_module` or more; a smaller
+module takes them in proportion (:meth:`GenerationSettings.at_module`). How each
 default was chosen (the hub speed ripple measured for its neighbours) is recorded in
 benchmarks/results.md, "Generation settings: how the defaults were chosen".
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from wheelstep_cli.errors import require
 
@@ -103,11 +105,38 @@ class GenerationSettings:
     """Longest piece (mm) the pinion outline is split into for carving: between the outline's
     points, their paths carve the wheel too."""
 
+    ray_map_segment: float = 0.05
+    """Longest segment (mm) of the pinion's cut outline when its ray map is taken: the map's
+    linear-in-angle interpolation of a segment then stays well within a micron of the line."""
+
+    tip_round_thin: float = 0.0002
+    """Douglas-Peucker tolerance (mm) the pinion's cut outline is thinned by before its tips
+    are rounded: a boolean's many collinear points slow the buffers down."""
+
     pinion_tolerance: float = 0.0005
     """Douglas-Peucker tolerance (mm) of the pinion outline that carves the wheel and is written."""
 
     wheel_tolerance: float = 0.0005
     """Douglas-Peucker tolerance (mm) of the wheel's ray-map outline as written (by the caller)."""
+
+    length_module: float = 2.0
+    """Module (mm) down to which the lengths above (scallop clearance, tip land floor, segments,
+    tolerances) hold as given; a smaller module takes them in proportion. The bounds on F'i
+    and f'i are micrometres, which a larger module needs as finely as this one; the bound on
+    the hub speed ripple is relative, which a smaller module needs as finely per tooth: below
+    it, a design scaled by s is generated as its pair scaled by s."""
+
+    #: The fields that are lengths (mm) :meth:`at_module` scales.
+    LENGTHS = ("scallop_clearance", "min_tip_land", "carve_segment", "ray_map_segment", "tip_round_thin",
+               "pinion_tolerance", "wheel_tolerance")
+
+    def at_module(self, module: float) -> "GenerationSettings":
+        """These settings for a pair of ``module`` mm: the lengths scaled by module /
+        length_module when that is below 1 (see :attr:`length_module`), else unchanged."""
+        scale = min(1.0, module / self.length_module)
+        if scale >= 1.0:
+            return self
+        return replace(self, **{name: getattr(self, name) * scale for name in self.LENGTHS})
 
     def __post_init__(self) -> None:
         require(self.backlash_mode in BACKLASH_MODES, "backlash_mode", self.backlash_mode,
