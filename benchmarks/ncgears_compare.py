@@ -82,8 +82,9 @@ def main() -> None:
     pair = generate_pair(the_law, TEETH, RackCutter(np.radians(20.0), 1.0, 1.25, 0.25, BACKLASH),
                          center_distance=distance)
     seconds = time.perf_counter() - t0
-    report("wheelstep generated", simplify_outline(pair.pinion_outline),
-           simplify_outline(pair.wheel_outline), the_law, distance, seconds)
+    # thinned as `gears` writes them: the pinion as generated, the wheel at its tolerance
+    report("wheelstep generated", pair.pinion_outline,
+           simplify_outline(pair.wheel_outline, pair.settings.wheel_tolerance), the_law, distance, seconds)
     try:
         import ncgears
     except ImportError:

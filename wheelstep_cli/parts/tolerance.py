@@ -93,7 +93,8 @@ NOMINAL = BandCase("nominal", 0.0, 0.0, 0.0)
 #: Thinning (mm) of a band case's offset outlines: the round joins put an arc on every convex
 #: vertex of the dense sections; kept to 0.1 um they add 10-20 % vertices and as much to the
 #: meshing check's time. 0.5 um leaves about the sections' own count, far below the band's
-#: +-50..100 um and the figures' micrometre.
+#: +-50..100 um and the figures' micrometre. Fixed in mm at every module, as the band is (a
+#: printer's deviation does not shrink with the teeth), for the fit's insets too.
 OFFSET_THIN = 5e-4
 
 

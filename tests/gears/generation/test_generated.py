@@ -1,6 +1,7 @@
 """Generated teeth (SPEC §9): involute limit, undercut/pointed refusal, law-agnostic pitch curves."""
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -93,15 +94,24 @@ def test_pointed_teeth_are_refused():
 
 
 def test_pointed_teeth_remedy_follows_the_cause():
-    """Teeth pointed beside the corners (a large module, a steep flank) are told to take more
-    teeth, a smaller addendum or pressure angle: the ordinary teeth keep their land wherever
-    the rack's spaces stay open (the floor is 0.1 mm, a fraction of a smaller module)."""
+    """Teeth topped by more than max_topping x module to keep the tip land floor are those
+    beside the pitch-curve corners (an ordinary tooth under the floor loses at most
+    floor / (2 tan a)): the refusal names the topping and tells them to take more teeth, a
+    smaller addendum or pressure angle. The default design tops two pinion teeth by 14 um,
+    so a limit below that refuses it; the floor is 0.1 mm at module 2 and more, a fraction
+    of a smaller module (a 0.15 mm module is a larger pair scaled down: not pointed)."""
+    from dataclasses import replace
+
+    from wheelstep_cli.gears.generation import GenerationSettings
+
     law = CrankLaw(CrankMechanism(60, 100, 360), 2)
+    strict = replace(GenerationSettings(), max_topping=0.004)
     with pytest.raises(DesignError) as err:
-        generate_pair(law, 48, RackCutter(pressure_angle=np.radians(30.0), addendum=1.25,
-                                          dedendum=1.5, fillet=0.1), center_distance=144)
-    assert "more teeth (--z)" in err.value.limit and "fewer" not in err.value.limit
-    # a module of 0.15 mm is a larger pair scaled down (its floor too): not pointed
+        generate_pair(law, 48, RackCutter(backlash=0.24), center_distance=144, settings=strict)
+    assert re.match(r"the pinion teeth come to a point \(a 0\.1 mm tip land needs 0\.01\d mm off the tip, "
+                    r"more than 0\.004 x the module = 0\.008 mm\)", err.value.limit), err.value.limit
+    assert err.value.limit.endswith("use a smaller addendum, a smaller pressure angle or more teeth (--z)")
+    generate_pair(law, 48, RackCutter(backlash=0.24), center_distance=144)     # within 0.35 x module
     generate_pair(law, 48, RackCutter(backlash=0.02), center_distance=10)
 
 
@@ -116,6 +126,9 @@ def test_the_generators_lengths_follow_a_module_below_theirs():
     for name in GenerationSettings.LENGTHS:
         assert getattr(half, name) == pytest.approx(getattr(given, name) / 2.0, rel=1e-12), name
     assert half.tilt == given.tilt and half.poses_per_tooth == given.poses_per_tooth
+    assert half.mount_tolerance == given.mount_tolerance        # the frame's, not the teeth's
+    with pytest.raises(DesignError, match="length_module = 0: must be > 0 mm"):
+        GenerationSettings(length_module=0)
 
 
 def test_below_its_length_module_a_scaled_design_is_generated_as_the_scaled_pair():

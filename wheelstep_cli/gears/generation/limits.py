@@ -162,8 +162,9 @@ def top_or_refuse(body: GearBody, radii: np.ndarray, cutter: RackCutter,
     new, count, drop, land = top_pointed_teeth(body.grid, radii, pitch_r, body.blank, limits.min_tip_land)
     module = limits.module
     if drop > limits.max_topping * module and limits.strict:
-        # the ordinary teeth keep their land wherever the rack's spaces stay open (the rack
-        # refuses those that close): the thin teeth are those beside the pitch-curve corners
+        # an ordinary tooth whose land is under the floor (the rack refuses spaces that close)
+        # is topped by at most floor / (2 tan a), always under max_topping x module: the teeth
+        # that cost more lie beside the pitch-curve corners
         remedy = "use a smaller addendum, a smaller pressure angle or more teeth (--z)"
         raise DesignError("addendum", cutter.addendum,
                           f"the {body.name} teeth come to a point (a {limits.min_tip_land:.3g} mm tip land "

@@ -57,6 +57,7 @@ class GeneratedPair:
     topping: dict
     center_distance: float
     play: float = 0.0      # rad of wheel angle each side (angular backlash mode)
+    #: The settings as applied: those given at the pair's module (GenerationSettings.at_module).
     settings: GenerationSettings = field(default_factory=GenerationSettings)
 
 

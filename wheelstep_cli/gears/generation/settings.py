@@ -59,7 +59,8 @@ class GenerationSettings:
     ``scallop_clearance``; ``"normal"``: the wheel is carved by the pinion dilated by j_n/2."""
 
     min_tip_land: float = 0.1
-    """Smallest tip land (mm) before a tooth counts as pointed (the paper method's floor)."""
+    """Smallest tip land (mm) before a tooth counts as pointed: the paper method's 0.1 mm floor
+    (which its sector teeth keep at every module), in proportion below ``length_module``."""
 
     max_topping: float = 0.35
     """Most tooth height (x module) that may be topped off a pointed tooth before the design is
@@ -121,7 +122,8 @@ class GenerationSettings:
 
     length_module: float = 2.0
     """Module (mm) down to which the lengths above (scallop clearance, tip land floor, segments,
-    tolerances) hold as given; a smaller module takes them in proportion. The bounds on F'i
+    Douglas-Peucker tolerances: :attr:`LENGTHS`) hold as given; a smaller module takes them in
+    proportion. ``mount_tolerance`` is not among them: it is a mounting distance, the frame's. The bounds on F'i
     and f'i are micrometres, which a larger module needs as finely as this one; the bound on
     the hub speed ripple is relative, which a smaller module needs as finely per tooth: below
     it, a design scaled by s is generated as its pair scaled by s."""
@@ -139,5 +141,6 @@ class GenerationSettings:
         return replace(self, **{name: getattr(self, name) * scale for name in self.LENGTHS})
 
     def __post_init__(self) -> None:
+        require(self.length_module > 0, "length_module", self.length_module, "must be > 0 mm")
         require(self.backlash_mode in BACKLASH_MODES, "backlash_mode", self.backlash_mode,
                 "must be 'angular' or 'normal'")
