@@ -22,9 +22,8 @@ from wheelstep_cli.parts.bound_figures import (MeshBounds, backlash_remedy, boun
 #: Remedies tried (each a build and a meshing check) along each way of remedying a design
 #: before a refusal offers one: the figures' remedy, then (:func:`_other_ways`) fewer teeth
 #: for a ripple alone and the changed settings at their defaults; 3 ways at most. Five tries
-#: let a way alternate less play and more teeth twice (less play, then, where it hardly
-#: lowered the ripple, more teeth, less play for them, more teeth) after a first try of
-#: less play that left a figure a hair over its bound (designs at the edge of the bounds).
+#: let a way alternate less play and more teeth twice (less play, then, where it hardly lowered
+#: the ripple, more teeth, less play for them, more teeth) after a try a hair over a bound.
 REMEDY_TRIES = 5
 
 
