@@ -12,6 +12,7 @@ from hypothesis import HealthCheck, given, seed, settings
 
 from tests.helpers.clicheck import error_line, remedy_in, with_remedy
 from tests.helpers.strategies import generated_gear_options
+from wheelstep_cli.config.profiles import shipped_profiles
 from wheelstep_cli.parts.mesh_bounds import bound_violations
 
 
@@ -59,16 +60,19 @@ def test_a_pair_mounted_off_its_rolling_distance_gets_a_remedy_that_passes(cli, 
 
 
 def test_a_ripple_a_printers_clearance_costs_is_offered_a_fit_that_is_written(cli, tmp_path):
-    """The desk demonstrator on the PETG preset: the play of the printer's 0.2 mm tooth
-    clearance ripples past the bound, less backlash cannot lower it and more teeth print too
+    """The desk demonstrator on a user's PETG printer with a 0.3 mm tooth clearance: the play of
+    the clearance ripples past the bound, less backlash cannot lower it and more teeth print too
     thin; the refusal offers the fit to the printer's band (which replaces the clearance) with
     the tooth count the fitted teeth then need, and applied, the pair is fitted and written."""
+    printer = tmp_path / "petg-loose.yaml"
+    printer.write_text((shipped_profiles() / "fdm-0.4-petg.yaml").read_text().replace(
+        "tooth_clearance: 0.2", "tooth_clearance: 0.3"))
     out = tmp_path / "out"
-    design = ["--profile", "desk-demo", "--printer", "fdm-0.4-petg", "--format", "stl"]
+    design = ["--profile", "desk-demo", "--printer", str(printer), "--format", "stl"]
     line = error_line(cli("gears", *design, "--out", out))
     assert line.startswith("wheelstep: error: --z = 42: the pair would mesh outside the bounds ("), line
     assert "ripple" in line and "nothing written; use --fit auto" in line and not out.exists()
-    assert "replaces its 0.2 mm tooth clearance" in line, line
+    assert "replaces its 0.3 mm tooth clearance" in line, line
     remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()
     result = cli("gears", *with_remedy(design, remedy), "-q", "--out", out)
     assert result.exit_code == 0, result.stderr
@@ -163,27 +167,33 @@ def test_teeth_too_thin_before_a_fit_are_offered_a_count_that_prints_after_it(cl
     assert result.exit_code == 0, result.stderr
 
 def test_a_fits_remedies_are_built_with_the_fit_and_do_not_go_round(cli, tmp_path):
-    """The desk demo at z 34 fitted loose to the PETG band ripples past the bound; the tooth
-    count its figures point to (z 40) meshes within them, but the fit's inset thins its teeth
-    past what the nozzle prints, whose own remedy is z 34 again (it offered `use --z 40
-    --backlash 0.075`, refused when applied): each try is built with the fit, none is tried
-    twice, and with none passing no remedy is offered."""
-    design = ["--profile", "desk-demo", "--printer", "fdm-0.4-petg", "--fit", "loose", "--z", "34",
+    """The desk demo at z 32 fitted loose to a PETG printer whose outline band is 0.16 mm ripples
+    a hair past the bound; the model's remedies, built, do not pass: less play or two teeth more
+    still ripple, the play the count asks for leaves teeth the fit's inset thins past what the
+    nozzle prints, fewer teeth deviate more, and at z 42 no inset keeps the loose fit's play over
+    the band. Each try is built with the fit, none twice; with none passing, none is offered
+    and the line says what was tried, and nothing is written."""
+    printer = tmp_path / "petg-wide.yaml"
+    printer.write_text((shipped_profiles() / "fdm-0.4-petg.yaml").read_text().replace(
+        "outline: 0.12", "outline: 0.16"))
+    out = tmp_path / "out"
+    design = ["--profile", "desk-demo", "--printer", str(printer), "--fit", "loose", "--z", "32",
               "--format", "stl"]
-    line = error_line(cli("gears", *design, "--out", tmp_path / "out"))
-    assert line.startswith("wheelstep: error: --z = 34: the pair would mesh outside the bounds"), line
-    assert "; use " not in line and "no remedy found (" in line, line
+    line = error_line(cli("gears", *design, "--out", out))
+    assert line.startswith("wheelstep: error: --z = 32: the pair would mesh outside the bounds"), line
+    assert "; use " not in line and "no remedy found (" in line and not out.exists(), line
+    assert line.endswith("change the mechanism (--a, --b, --c) or the centre distance"), line
     tries = re.findall(r"(?:\(|; )((?:--[a-z-]+ [0-9.]+ ?)+) is refused", line.split("no remedy found (", 1)[1])
     assert len(tries) >= 3 and len(set(tries)) == len(tries), tries
-    assert "the teeth are too thin for printer 'fdm-0.4-petg'" in line      # the fit was built
+    assert "the teeth are too thin for printer 'petg-wide.yaml'" in line      # the fit was built
 
 
 def test_a_count_a_tries_refusal_changes_keeps_no_play_chosen_for_the_old_count(cli, tmp_path):
-    """z 112 on PLA ripples 1.04 %: less play is the first try, refused as teeth too thin for
-    the nozzle with fewer teeth as its remedy; the play chosen for 112 teeth does not follow
-    the count (it offered `--z 62 --backlash 0.011`), the line says what was tried first, and
-    the remedy, applied, is written."""
-    design = ["--z", "112", "--printer", "fdm-0.4-pla", "--format", "stl"]
+    """z 88 on PLA ripples 1.03 %: less play is the first try, refused as teeth too thin for
+    the nozzle with fewer teeth as its remedy; the play chosen for 88 teeth does not follow
+    the count (a count from that refusal offered with it: `--z 62 --backlash 0.011`), the line
+    says what was tried first, and the remedy, applied, is written."""
+    design = ["--z", "88", "--printer", "fdm-0.4-pla", "--format", "stl"]
     line = error_line(cli("gears", *design, "--out", tmp_path / "out"))
     assert "; use --z " in line and "(tried first: --backlash " in line, line
     remedy = remedy_in(line)
@@ -222,17 +232,16 @@ def test_a_remedy_beyond_the_tooth_limit_sets_the_changed_generator_setting_back
     assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
 
 
-def test_a_remedy_that_does_not_pass_when_built_is_not_offered(cli, tmp_path):
-    """A small pair (centre distance 20 mm) whose tooth form alone ripples: more teeth, the
-    model's remedy, ripple more when built, so the refusal offers no --z but says what was
-    tried, and nothing is written. (Unmarked: its web has no room for a timing mark, which
-    would be refused first.)"""
+def test_a_small_pair_meshes_as_the_scaled_pair(cli, tmp_path):
+    """A pair rolling at 20 mm (module 0.29) is the source pair scaled: its generator lengths
+    follow the module, so its tooth form does not ripple past the bound (it was refused, at
+    2 % ripple, with no tooth count that passed). (Unmarked: its web has no room for a timing
+    mark, which would be refused first.)"""
     out = tmp_path / "out"
-    line = error_line(cli("gears", "--center-distance", "20", "--bore", "6", "--mark-depth", "0",
-                          "--format", "stl", "--out", out))
-    assert "nothing written; no remedy found (--z 52 " in line and "; use --" not in line
-    assert "change the mechanism (--a, --b, --c) or the centre distance" in line
-    assert not out.exists()
+    result = cli("gears", "--center-distance", "20", "--bore", "6", "--mark-depth", "0", "--format", "stl",
+                 "--out", out)
+    assert result.exit_code == 0, result.stderr
+    assert bound_violations(json.loads((out / "gears.json").read_text())["meshing"]) == []
 
 
 def test_an_undercut_pinion_is_offered_only_remedies_that_pass(cli, tmp_path):

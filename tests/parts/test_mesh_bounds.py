@@ -150,11 +150,12 @@ def test_a_remedy_whose_build_is_still_out_is_not_offered_and_the_line_says_what
         return pair, record(drive=flank(total=18.0, tooth=6.0))
 
     error, _ = _refusal(verify)
-    assert builds == [36, 40, 44, 50]    # each try from the last one's figures (x sqrt 1.2)
+    assert builds == [36, 40, 44, 50, 56]    # each try from the last one's figures (x sqrt 1.2)
     assert error.remedy == {} and "; use --" not in error.limit
     assert ("no remedy found (--z 36 still gives drive flank F'i 18.00 um > 15 um; --z 40 still "
             "gives drive flank F'i 18.00 um > 15 um; --z 44 still gives drive flank F'i 18.00 um "
-            "> 15 um; --z 50 still gives drive flank F'i 18.00 um > 15 um): change the mechanism") in error.limit
+            "> 15 um; --z 50 still gives drive flank F'i 18.00 um > 15 um; --z 56 still gives drive "
+            "flank F'i 18.00 um > 15 um): change the mechanism") in error.limit
     from wheelstep_cli.config.names import remedy_in_yaml
 
     # a batch file states the tries as its override keys
@@ -178,14 +179,15 @@ def test_when_more_teeth_do_not_do_the_settings_the_design_changed_are_set_back(
 
     error, _ = _refusal(verify, pressure_angle=15.0, addendum=0.9, dedendum=1.2)
     defaults = GearPairSpec.model_fields
-    assert builds == [(36, 15.0, 0.9), (40, 15.0, 0.9), (44, 15.0, 0.9), (50, 15.0, 0.9), (32, 20.0, 1.0)]
+    assert builds == [(36, 15.0, 0.9), (40, 15.0, 0.9), (44, 15.0, 0.9), (50, 15.0, 0.9), (56, 15.0, 0.9),
+                      (32, 20.0, 1.0)]
     assert error.remedy == {name: defaults[name].default for name in ("pressure_angle", "addendum", "dedendum")}
     assert error.param == "pressure_angle"
     # after the counts tried first, which the line says
     assert "; use --pressure-angle 20 --addendum 1 --dedendum 1.25 (tried first: --z 36 still gives " in error.limit
     builds.clear()
     error, _ = _refusal(lambda design: verify(design.model_copy(update={"pressure_angle": 15.0})))
-    assert [z for z, _, _ in builds] == [36, 40, 44, 50] and error.remedy == {}
+    assert [z for z, _, _ in builds] == [36, 40, 44, 50, 56] and error.remedy == {}
 
 
 def test_a_ripple_more_teeth_do_not_cure_is_offered_fewer_teeth():
@@ -211,8 +213,8 @@ def test_a_ripple_more_teeth_do_not_cure_is_offered_fewer_teeth():
     with pytest.raises(DesignError) as err:
         require_within_bounds(pair, rippling, verify=verify)
     # the play first (less backlash); the ripple it left is the teeth's: two periods more teeth,
-    # then less play for them and, left again, more teeth; all found wanting: fewer teeth
-    assert builds[:-1] == [100, 104, 104, 108]
+    # then less play for them and, left again, more teeth, twice; all found wanting: fewer teeth
+    assert builds[:-1] == [100, 104, 104, 108, 112]
     assert builds[-1] == ripple_teeth_remedy(rippling, 100, 2) == 56
     assert err.value.remedy == {"z": 56} and "; use --z 56 (tried first: --backlash " in err.value.limit
 
