@@ -32,6 +32,12 @@ def test_paper_teeth_entry_is_refused_with_its_line_the_good_entries_are_written
     report = json.loads((out / "reports" / "pair.json").read_text())
     assert report["meshing"]["interference"] is False and report["meshing"]["samples"] == 1536
     assert report["meshing"] == report["design_report"]["meshing"]
+    # a shoe's strut and sole radius, one given, the other resolved: both stated, as its design
+    # report states them (r_min was null where the preset gives c)
+    shoes = json.loads((out / "reports" / "shoes.json").read_text())
+    for key in ("parameters", "printed_parameters"):
+        assert (shoes[key]["c"], shoes[key]["r_min"]) == (180, 10), shoes[key]
+        assert shoes[key]["r_min"] == shoes["design_report"][key]["r_min"]
     manifest = json.loads((out / "manifest.json").read_text())
     entries = {e["name"]: e for e in manifest["entries"]}
     assert entries["pair"]["meshing"]["interference"] is False

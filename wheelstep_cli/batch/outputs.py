@@ -39,12 +39,17 @@ def part_summary(part: BuiltPart, printer: Printer) -> dict:
             "estimated_mass_g": estimated_mass(part, printer), "checks": part.checks}
 
 
-def _distances_resolved(values: dict, report: dict | None, key: str) -> dict:
-    """``values`` with a gear pair's centre distances as its design report resolved them
-    (the distance it rolls and is mounted at, mm), as ``wheelstep gears`` reports them."""
+#: Inputs a part resolves from others (a gear pair's distances, a shoe's strut and sole
+#: radius, one from the other), as its design report states them.
+RESOLVED = ("center_distance", "install_distance", "c", "r_min")
+
+
+def _resolved(values: dict, report: dict | None, key: str) -> dict:
+    """``values`` with the inputs the part resolved (:data:`RESOLVED`: a gear pair's centre
+    distances, mm, a shoe's c and r_min, mm) as its design report's ``key`` states them, as
+    ``wheelstep gears`` and ``wheelstep shoe`` report them."""
     resolved = ((report or {}).get(key) or {})
-    return {**values, **{name: resolved[name] for name in ("center_distance", "install_distance")
-                         if name in resolved and name in values}}
+    return {**values, **{name: resolved[name] for name in RESOLVED if name in resolved and name in values}}
 
 
 def _is_fitted(result: EntryResult) -> bool:
@@ -77,9 +82,8 @@ def entry_report_bytes(entry: Entry, result: EntryResult) -> bytes:
     return json_bytes({
         "entry": entry.name, "kind": entry.kind, "design_profile": entry.design_label,
         "printer_profile": entry.printer.name, "quantity": entry.quantity,
-        "parameters": _distances_resolved(entry.spec.model_dump(), result.report, "parameters"),
-        "printed_parameters": _distances_resolved(printed_values(entry, result), result.report,
-                                                  "printed_parameters"),
+        "parameters": _resolved(entry.spec.model_dump(), result.report, "parameters"),
+        "printed_parameters": _resolved(printed_values(entry, result), result.report, "printed_parameters"),
         "printer_geometry": printer_geometry(entry, result),
         "printed_parts": {p.name: part_summary(p, entry.printer) for p in result.parts},
         # the meshing record with what the report says of the bounds (as in the design report)
