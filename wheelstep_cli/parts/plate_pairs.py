@@ -43,6 +43,28 @@ def is_plate_input(pinion: str, wheel: str | None) -> bool:
                for (path, _), param in zip(paths, GEARS))
 
 
+def named_plate_pair(pinion: str, wheel: str) -> PlatePair | None:
+    """The pair of two 3MF objects named ``FILE.3mf:NAME`` whose metadata marks them the
+    pinion and the wheel (``wheelstep:part``), with the design they carry (refused when the two
+    carry different designs); None when either is not such an object (an STL, an object of
+    another tool): its design then comes from the options."""
+    objects = []
+    for given, param in zip((pinion, wheel), GEARS):
+        path, name = split_mesh_spec(given)
+        if name is None or not path.is_file():
+            return None
+        named = [o for o in read_3mf_objects(path, param) if o.name == name]
+        if len(named) != 1 or named[0].metadata.get("part") not in GEARS:
+            return None
+        objects.append((str(path), named[0]))
+    for given, param, (_, obj) in zip((pinion, wheel), GEARS, objects):
+        # the plate's word for which gear is which, as a plate's pair is held to it
+        require(obj.metadata["part"] == param, param, given,
+                f"is a {obj.metadata['part']} by its wheelstep:part metadata: give the pinion first, then the "
+                "wheel (PINION WHEEL)")
+    return _plate_pair(objects[0][1].metadata.get("pair", "named"), dict(zip(GEARS, objects)))
+
+
 def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePair]:
     """The gear pairs of the plates ``files`` (each pair once, in file order: on one plate or
     with a gear on each), or the one named ``pair``; refused (DesignError) when there is

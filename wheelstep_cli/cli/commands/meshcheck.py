@@ -33,7 +33,9 @@ Gcode = Annotated[Optional[List[Path]], opt(
 
 def mesh_check(
     pinion: Optional[str] = typer.Argument(None, help="Pinion mesh: FILE.stl, FILE.3mf or "
-                                                      "FILE.3mf:NAME; alone, a plate (3MF) whose "
+                                                      "FILE.3mf:NAME (objects of wheelstep plates, "
+                                                      "with no design option: their stored design); "
+                                                      "alone, a plate (3MF) whose "
                                                       "gear pairs are found by their metadata; "
                                                       "with --gcode, the plate it was sliced from."),
     wheel: Optional[str] = typer.Argument(None, help="Wheel mesh: FILE.stl, FILE.3mf or "
@@ -84,6 +86,9 @@ def mesh_check(
     elif _plates_given(pinion, wheel):
         failed = _check_plates(show, [pinion] + ([wheel] if wheel else []), pair, design, samples,
                                window, plot, dry_run, quiet, force, band)
+    elif (named := _named_plate_pair(pinion, wheel, pair, design)) is not None:
+        failed = _check_plates(show, [pinion, wheel], pair, design, samples, window, plot, dry_run, quiet,
+                               force, band, named)
     else:
         failed = _check_meshes(show, pinion, wheel, pair, design, samples, window, plot, dry_run, quiet,
                                force, band)
@@ -119,6 +124,17 @@ def _plates_given(pinion: str | None, wheel: str | None) -> bool:
         raise click_errors.UsageError(f"Missing argument 'WHEEL': {pinion} is one gear; give the wheel "
                                       "mesh after it (PINION WHEEL), or a plate (3MF) holding the pair")
     return plates
+
+
+def _named_plate_pair(pinion: str, wheel: str, pair, design: dict):
+    """Two objects of wheelstep plates named as FILE.3mf:NAME, the pinion and the wheel by
+    their metadata, with no design option given: the pair with the design they carry
+    (parts.plate_pairs.PlatePair); else None (the design from the options, which override it)."""
+    from wheelstep_cli.parts.plate_pairs import named_plate_pair
+
+    if pair is not None or any(value is not None for value in design.values()):
+        return None
+    return named_plate_pair(pinion, wheel)
 
 
 def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, samples: int | None, window,
@@ -173,10 +189,11 @@ def _check_meshes(show: Output, pinion: str, wheel: str, pair, design: dict, sam
 
 
 def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: int | None, window, plot,
-                  dry_run: bool, quiet: bool, force: bool, band: tuple = (False, None)) -> bool:
-    """Every gear pair of the plates (or the one --pair names), designs from their metadata;
-    with ``band`` = (--tolerance, --printer) also over a printer's band: the one named, else
-    the one each pair's plates were written for (SPEC §11)."""
+                  dry_run: bool, quiet: bool, force: bool, band: tuple = (False, None), named=None) -> bool:
+    """Every gear pair of the plates (or the one --pair names; or ``named``, the one the two
+    objects named are), designs from their metadata; with ``band`` = (--tolerance, --printer)
+    also over a printer's band: the one named, else the one each pair's plates were written
+    for (SPEC §11)."""
     from wheelstep_cli.cli.commands.meshcheck_gcode import plate_printer
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.errors import require
@@ -187,7 +204,7 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
 
     no_design_options(design)
     chosen = band_printer_of(*band)
-    pairs = find_plate_pairs(plates, pair)
+    pairs = [named] if named is not None else find_plate_pairs(plates, pair)
     require(plot is None or len(pairs) == 1, "plot", str(plot),
             "draws one pair: add --pair ID, one of " + ", ".join(f"'{p.pair}'" for p in pairs))
     summaries, failed, files, warned = [], False, {}, []
