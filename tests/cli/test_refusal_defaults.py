@@ -16,6 +16,8 @@ SMALL_SHOE = ["--dry-run", "--a", "0.06", "--b", "0.1", "--rmin", "0.02"]
     (["stairs", "--run", "0.5"], "--run = 0.5: with it, landing-angle = -90 (the default) fails: "),
     (["shoe", *SMALL_SHOE], "--a = 0.06: with it, strut-diameter = 12 (the default) fails: "),
     (["trajectory", "-H", "1e6", "--r1", "0.01", "--h-max", "1e6"], "-H = 1e6: with it, spacing = 1 (the default) fails: "),
+    # a default while another option is not given (h-max: 100 if no --r3)
+    (["trajectory", "--r1", "200"], "--r1 = 200: with it, h-max = 100 (the default) fails: "),
     # given in any of the parser's spellings: named as typed, never marked
     (["teeth", "-m10"], "-m = 10: too large for the tooth pitch"),
     (["teeth", "--module=10"], "--module = 10: too large for the tooth pitch"),
@@ -52,6 +54,9 @@ def test_only_options_documenting_one_number_have_a_default_to_mark():
     assert teeth["module"] == 2 and "backlash" not in teeth
     assert "scheduler" not in _documented_defaults(group, ["sweep"])
     assert _documented_defaults(group, ["stairs"])["landing_angle"] == -90
+    # "100 if no --r3": that number while --r3 is not given, none with it
+    assert _documented_defaults(group, ["trajectory"])["h_max"] == 100
+    assert "h_max" not in _documented_defaults(group, ["trajectory", "--r3=400"])
     # a default said with where it comes from is that number; a rule with numbers of its own
     # (paper teeth roll 0.5 mm inside the installed distance) and a list are none
     assert _documented_defaults(group, ["mesh-check"])["distance"] == 144

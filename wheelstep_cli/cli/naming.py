@@ -203,6 +203,11 @@ def refusal_line(original: DesignError, err: DesignError, group, argv: list[str]
 DEFAULT_MARK = "(the default)"
 
 
+def _names_option(argv: list[str], flag: str) -> bool:
+    """Whether ``argv`` gives the option ``flag`` (``--r3 5`` or ``--r3=5``)."""
+    return any(arg == flag or arg.startswith(f"{flag}=") for arg in argv)
+
+
 def _documented_defaults(group, argv: list[str]) -> dict[str, float]:
     """Parameter name -> the default number each option of the subcommand named in ``argv``
     documents: its own default, else the ``[default: N]`` its help shows (options whose
@@ -218,6 +223,10 @@ def _documented_defaults(group, argv: list[str]) -> dict[str, float]:
             # numbers, nor a rule with numbers of its own ("paper 0.5 less, 143.5")
             number = re.fullmatch(r"[^\d;,]+,\s*(-?\d+(?:\.\d+)?)", default or "")
             default = number.group(1) if number else default
+            # a default that holds while another option is not given ("100 if no --r3")
+            unless = re.fullmatch(r"(-?\d+(?:\.\d+)?) if no (--[a-z0-9-]+)", default or "")
+            if unless:
+                default = None if _names_option(argv, unless.group(2)) else unless.group(1)
         try:
             found[param.name] = float(default)
         except (TypeError, ValueError):
