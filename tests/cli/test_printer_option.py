@@ -11,7 +11,6 @@ import trimesh
 
 from tests.helpers.clicheck import error_line
 from tests.helpers.files import write
-from wheelstep_cli.config.profiles import shipped_profiles
 
 
 @pytest.mark.parametrize("command", ["gears", "shoe"])
@@ -184,34 +183,6 @@ def test_a_chamfer_too_small_to_replace_the_foot_is_refused(cli, tmp_path, comma
     least = "0.4" if "fdm" in command[2] else "0.35"
     assert line.startswith(f"wheelstep: error: --chamfer = 0.2: must be 0 or >= {least} mm on printer {command[2]}")
     assert not out.exists()
-
-
-def test_a_chamfer_deeper_than_the_addendum_is_refused_with_one_that_is_written(cli, tmp_path):
-    """A chamfer beyond the addendum cuts the tips at the faces below the pitch curves: refused
-    (the printer's named as the printer's, the user's as given) with the addendum rounded
-    down, which applied is written; where that is under what the printer's elephant foot
-    needs, 0 (the foot's inset instead). Nothing is written by a refusal."""
-    import re
-
-    printer = tmp_path / "deep.yaml"
-    printer.write_text((shipped_profiles() / "fdm-0.4-petg.yaml").read_text().replace("chamfer: 0.5 ", "chamfer: 2.5 "))
-    out = tmp_path / "out"
-    design = ["gears", "--profile", "desk-demo", "--format", "stl"]
-    line = error_line(cli(*design, "--printer", str(printer), "--out", out))
-    found = re.fullmatch(r"wheelstep: error: --chamfer = 2\.5: must be <= the teeth's addendum, ([0-9.]+) mm "
-                         r"\(module [0-9.]+ mm x addendum 1\) \(printer deep\.yaml's\): .* nothing written; "
-                         r"use --chamfer ([0-9.]+)", line)
-    # the addendum said to 3 digits, the remedy rounded down to 0.01 mm
-    assert found and 0.0 <= float(found[1]) - float(found[2]) < 0.015, line
-    assert not out.exists()
-    written = cli(*design, "--printer", str(printer), "--chamfer", found[2], "--out", out, "-q")
-    assert written.exit_code == 0, written.stderr
-    assert json.loads((out / "gears.json").read_text())["chamfer"]["mm"] == float(found[2])
-    # a pair whose addendum is under the foot's 0.45 mm: the chamfer goes, the foot's inset stays
-    small = ["gears", "--center-distance", "20", "--bore", "2", "--mark-depth", "0", "--format", "stl"]
-    line = error_line(cli(*small, "--printer", "resin-0.05-standard", "--out", out / "small"))
-    assert line.endswith("use --chamfer 0 (0: the elephant-foot inset instead; a chamfer under 0.35 mm "
-                         "cannot stand for it)"), line
 
 
 def test_the_backlash_line_says_how_the_printers_clearance_makes_it_up(cli):

@@ -38,8 +38,6 @@ class PartKind:
     with_parts: Callable[[Any, list, dict], Any] = lambda built, parts, checks: built  # swap parts in
     mating_check: Callable[[Any], dict] | None = None  # check of the parts together, as written
     chamfer_field: str | None = None               # edge chamfer (mm), the printer's when None
-    # check of the built object for the printer (or None) and the spec as given
-    printed_check: Callable[[Any, Any, Any], None] = lambda built, printer, design: None
 
     def pipeline(self):
         """The kind's module; DesignError 'not available' if it is not installed."""
@@ -154,16 +152,12 @@ def build_for_printer(kind_name: str, spec, printer=None):
     :func:`printed_spec` and :func:`for_printer`); without a printer exactly as designed."""
     kind = KINDS[kind_name]
     if printer is None:
-        built = kind.build_part(spec)
-        kind.printed_check(built, None, spec)
-        return built
+        return kind.build_part(spec)
     printed = printed_spec(kind, spec, printer)
     try:
         for problem in kind.problems(printed):
             raise problem
-        built = kind.build_part(printed)
-        kind.printed_check(built, printer, spec)
-        return for_printer(kind, built, printer, spec)
+        return for_printer(kind, kind.build_part(printed), printer, spec)
     except DesignError as err:
         raise as_designed(err, spec, printed) from None
 
@@ -260,13 +254,6 @@ def _gear_pair_meshing(pair) -> dict:
     return meshing_record(check_gear_pair(pair))
 
 
-def _gear_pair_chamfer(pair, printer, design) -> None:
-    """The pair's edge chamfer within its teeth's addendum (parts.printed_teeth)."""
-    from wheelstep_cli.parts.printed_teeth import require_chamfer_within_teeth
-
-    require_chamfer_within_teeth(pair, printer, design)
-
-
 def _shoe_fits(spec) -> None:
     """The shoe's mechanism sized and its strut socket fitted in the body, before any solid."""
     from wheelstep_cli.parts.shoe_socket import socket_fits
@@ -321,7 +308,6 @@ KINDS: dict[str, PartKind] = {
         build="build_gear_pair", report="gear_pair_report", section="gears",
         parts=lambda pair: [pair.pinion, pair.wheel], hole_fields=("bore", "key_width"),
         clearance=_gear_pair_clearance, mating_check=_gear_pair_meshing, chamfer_field="chamfer",
-        printed_check=_gear_pair_chamfer,
         with_parts=lambda pair, parts, checks: replace(pair, pinion=parts[0], wheel=parts[1], checks=checks),
         checks=(lambda spec: spec.law(), lambda spec: spec.tooth_form(), _cutter, _sectors, _law_periods,
                 _hub_round_hole)),

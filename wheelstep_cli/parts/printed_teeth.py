@@ -159,37 +159,3 @@ def _pinion(spec) -> tuple[np.ndarray, float]:
     settings = replace(GenerationSettings(), tilt=spec.tilt)
     return generate_pinion(law, spec.z, spec.cutter(), corner=spec.corner, settings=settings,
                            center_distance=rolling_distance(spec, law))
-
-
-def require_chamfer_within_teeth(pair, printer=None, design=None) -> None:
-    """Refuse (DesignError naming ``chamfer``) a built pair's edge chamfer (mm) deeper than its
-    teeth's addendum: at height z above a face a 45 deg chamfer of c mm takes the outline in
-    by c - z, so a chamfer beyond the addendum cuts the tips at the faces below the pitch
-    curves, where the teeth mesh. The remedy: the addendum rounded down to 0.01 mm, or 0 (the
-    elephant-foot inset of ``printer`` instead) where that is less than the chamfer the foot
-    needs (config.printers.least_chamfer). ``design``: the spec as given (a chamfer it leaves
-    open is the printer's)."""
-    import math
-
-    from wheelstep_cli.config.printers import least_chamfer
-    from wheelstep_cli.parts.gear_faces import pair_module
-
-    chamfer = float(pair.spec.chamfer_mm)
-    module = pair_module(pair)
-    addendum = float(pair.spec.addendum) if pair.generated is not None else 1.0    # paper teeth: 1 module
-    depth = addendum * module
-    if chamfer <= depth:
-        return
-    least = least_chamfer(printer.elephant_foot_inset, printer.elephant_foot_height) if printer else 0.0
-    fits = math.floor(depth * 100.0) / 100.0
-    remedy = fits if fits >= least and fits > 0 else 0.0
-    whose = f" (printer {printer.name}'s)" if printer is not None and getattr(design, "chamfer", 0) is None else ""
-    instead = (f" (0: the elephant-foot inset instead; a chamfer under {least:g} mm cannot stand for it)"
-               if remedy == 0 and least > 0 else "")
-    error = DesignError("chamfer", chamfer,
-                        f"must be <= the teeth's addendum, {depth:.3g} mm (module {module:.3g} mm x addendum "
-                        f"{addendum:g}){whose}: a 45 deg chamfer deeper than that cuts the tips at the faces "
-                        f"below the pitch curves, where the teeth mesh; nothing written; use --chamfer "
-                        f"{remedy:g}{instead}")
-    error.remedy = {"chamfer": remedy}
-    raise error
