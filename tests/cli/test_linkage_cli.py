@@ -47,8 +47,9 @@ def test_cli_impossible_linkage_one_line_exit_2(cli, tmp_path):
     assert "cannot close" in line and "crank angle" in line and not png.exists()
     line = error_line(cli("linkage", "--l1", "500", "--o1=567,615"))
     assert line.startswith("wheelstep: error: --l1 = 500: ") and "crank angle 195.5 deg" in line
-    res = cli("linkage", "--preset", "jansen", "--branch", "Q=+1")
-    assert res.exit_code == 2 and res.stderr.startswith("wheelstep: error: --branch = Q=+1: not a dyad joint")
+    for typed in ("Q=+1", "Q=1"):     # echoed as typed
+        res = cli("linkage", "--preset", "jansen", "--branch", typed)
+        assert res.exit_code == 2 and res.stderr.startswith(f"wheelstep: error: --branch = {typed}: not a dyad joint")
     # a four-bar link given with another preset is the option that would do nothing: named
     assert error_line(cli("linkage", "--preset", "jansen", "--o1", "3,4")) == (
         "wheelstep: error: --o1 = 3,4: shapes the four-bar only (--l1..--l4, --beta, --o1), not the "

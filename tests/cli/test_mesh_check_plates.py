@@ -48,14 +48,18 @@ def test_a_plates_two_objects_named_are_checked_with_the_design_they_carry(desk_
     assert measured["distance_mm"] == 72.125 and measured["pinion"] == f"{plate}:pinion"
     assert measured["pinion_teeth"] == 42 and not measured["interference"]
     line = error_line(cli("mesh-check", f"{plate}:wheel", f"{plate}:pinion", "--plot", tmp_path / "p.png"))
-    assert line.startswith(f"wheelstep: error: pinion = {plate}:wheel: is a wheel by its wheelstep:part "
-                           "metadata: give the pinion first"), line
+    assert line == (f"wheelstep: error: pinion = {plate}:wheel: is a wheel by its wheelstep:part metadata (and "
+                    f"{plate}:pinion a pinion): give the pinion first, then the wheel (PINION WHEEL)"), line
     assert not (tmp_path / "p.png").exists()
+    line = error_line(cli("mesh-check", f"{plate}:pinion", f"{plate}:pinion"))
+    assert line == (f"wheelstep: error: wheel = {plate}:pinion: is a pinion by its wheelstep:part metadata, as "
+                    "is the pinion given: name a wheel's object (FILE.3mf:NAME)"), line
     other = tmp_path / "other"
     assert cli("gears", "--profile", "desk-demo", "--z", "44", "--format", "3mf", "--out", other,
                "-q").exit_code == 0
     line = error_line(cli("mesh-check", f"{plate}:pinion", f"{other / 'gears.3mf'}:wheel"))
-    assert "carries another design than the pinion of pair 'gears': z = 44 (the pinion's 42)" in line, line
+    assert line.startswith(f"wheelstep: error: wheel = {other / 'gears.3mf'}:wheel: carries another design than "
+                           "the pinion of pair 'gears': z = 44 (the pinion's 42)"), line
     given = cli("mesh-check", f"{plate}:pinion", f"{plate}:wheel", "--profile", "desk-demo", "--samples",
                 "160", "--json")
     assert given.exit_code == 0 and "pairs" not in json.loads(given.stdout), given.stderr

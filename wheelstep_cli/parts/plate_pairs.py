@@ -56,13 +56,17 @@ def named_plate_pair(pinion: str, wheel: str) -> PlatePair | None:
         named = [o for o in read_3mf_objects(path, param) if o.name == name]
         if len(named) != 1 or named[0].metadata.get("part") not in GEARS:
             return None
-        objects.append((str(path), named[0]))
-    for given, param, (_, obj) in zip((pinion, wheel), GEARS, objects):
-        # the plate's word for which gear is which, as a plate's pair is held to it
-        require(obj.metadata["part"] == param, param, given,
-                f"is a {obj.metadata['part']} by its wheelstep:part metadata: give the pinion first, then the "
-                "wheel (PINION WHEEL)")
-    return _plate_pair(objects[0][1].metadata.get("pair", "named"), dict(zip(GEARS, objects)))
+        # the file as the user typed it (the plate check names each object FILE:NAME)
+        objects.append((str(given).rpartition(":")[0], named[0]))
+    parts = tuple(obj.metadata["part"] for _, obj in objects)
+    # the plate's word for which gear is which, as a plate's pair is held to it
+    require(parts != ("wheel", "pinion"), "pinion", pinion, "is a wheel by its wheelstep:part metadata (and "
+            f"{wheel} a pinion): give the pinion first, then the wheel (PINION WHEEL)")
+    for given, param, part in zip((pinion, wheel), GEARS, parts):
+        require(part == param, param, given, f"is a {part} by its wheelstep:part metadata, as is the "
+                f"{'wheel' if param == 'pinion' else 'pinion'} given: name a {param}'s object (FILE.3mf:NAME)")
+    pair_id = objects[0][1].metadata.get("pair", f"{objects[0][1].name} + {objects[1][1].name}")
+    return _plate_pair(pair_id, dict(zip(GEARS, objects)), (pinion, wheel))
 
 
 def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePair]:
@@ -125,19 +129,25 @@ def find_plate_pairs(files: list[str], pair: str | None = None) -> list[PlatePai
     return [_plate_pair(k, groups[k]) for k in complete]
 
 
-def _plate_pair(pair: str, group: dict[str, tuple[str, MeshObject]]) -> PlatePair:
+def _plate_pair(pair: str, group: dict[str, tuple[str, MeshObject]], given: tuple[str, str] | None = None
+                ) -> PlatePair:
+    """The pair of ``group`` (part -> (file, object)); ``given``: the pinion and wheel as the
+    user named them, for the refusals (else the files)."""
     (p_file, pinion), (w_file, wheel) = group["pinion"], group["wheel"]
-    keys = set(GearPairSpec.model_fields)
+    p_said, w_said = given or (p_file, w_file)
+    # the design, and the fit's inset the check draws both outlines with
+    keys = set(GearPairSpec.model_fields) | {"outline_inset"}
     design = {k: v for k, v in pinion.metadata.items() if k in keys}
     other = {k: v for k, v in wheel.metadata.items() if k in keys}
     if design != other:
         differ = sorted(k for k in design.keys() | other.keys() if design.get(k) != other.get(k))
         said = "; ".join(f"{k} = {other.get(k, '(none)')} (the pinion's {design.get(k, '(none)')})"
                          for k in differ)
-        raise DesignError("wheel", w_file, f"carries another design than the pinion of pair '{pair}': {said}")
-    spec = spec_from_metadata(design, p_file)
-    require_plate_law_csv(spec, pinion.metadata, p_file)
-    return PlatePair(pair, pinion, wheel, (p_file, w_file), spec, _inset(pinion.metadata, p_file))
+        raise DesignError("wheel", w_said, f"carries another design than the pinion of pair '{pair}': {said}")
+    design.pop("outline_inset", None)
+    spec = spec_from_metadata(design, p_said)
+    require_plate_law_csv(spec, pinion.metadata, p_said)
+    return PlatePair(pair, pinion, wheel, (p_file, w_file), spec, _inset(pinion.metadata, p_said))
 
 
 def _inset(metadata: dict[str, str], file: str) -> float:

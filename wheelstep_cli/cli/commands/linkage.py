@@ -9,6 +9,7 @@ from wheelstep_cli.cli.options import (DryRun, Force, Json, Quiet, Verbose, csv_
                                        plot_option, point, require_a_file, require_printed, require_with,
                                        signs)
 from wheelstep_cli.cli.output import Output
+from wheelstep_cli.errors import DesignError
 
 
 class Preset(str, Enum):
@@ -73,7 +74,14 @@ def linkage(
     request = ls.LinkageRequest(preset.value, rpm, samples, scale, signs(branch, "branch"),
                                 ground_tol, four_bar, step)
     show.parameters(vars(request))
-    study = ls.linkage_study(request)
+    try:
+        study = ls.linkage_study(request)
+    except DesignError as err:
+        if err.param != "branch":
+            raise
+        # the joint refused, echoed as the user typed its item (NAME=1 as given)
+        typed = next((item for item in branch if item.partition("=")[0] == err.value), err.value)
+        raise DesignError("branch", typed, err.limit) from None
     files = linkage_files(study, csv, plot, gif, gif_frames)
     named = show.write_named("linkage", files, dry_run, force, csv=csv, plot=plot, gif=gif)
     report = ls.linkage_report(study)

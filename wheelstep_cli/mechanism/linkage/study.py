@@ -93,8 +93,8 @@ def build_leg(request: LinkageRequest) -> Linkage:
     else:
         leg = PRESETS[request.preset]()
     dyads = {s.name for s in leg.steps if isinstance(s, Dyad)}
-    for name, sign in request.branches.items():
-        require(name in dyads, "branch", f"{name}={sign:+d}",
+    for name in request.branches:
+        require(name in dyads, "branch", name,
                 f"not a dyad joint of {leg.name} (those are {', '.join(sorted(dyads))})")
     leg = leg.with_branches(request.branches)
     return leg.scaled(request.scale) if request.scale != 1.0 else leg
