@@ -261,6 +261,10 @@ parts:
     (VALID_ENTRY + "    overrides:\n      fit: auto\n", "fit", "parts[0].overrides.fit: unknown key here; a fit is "
      "the printer's: `fit: auto` (or tight, normal, loose) in the printer profile's `band:` section"),
     (VALID_ENTRY + "    fit: auto\n", "fit", "parts[0].fit: unknown key here; a fit is the printer's"),
+    # the printer is the entry's, not an override (was "did you mean corner?")
+    (VALID_ENTRY + "    overrides:\n      printer: resin-0.05-standard\n", "printer: resin",
+     "parts[0].overrides.printer: unknown key here; a printer is chosen where the parts are made: "
+     "`--printer NAME` (a preset or a profile's path), or a batch entry's `printer:` beside its `design:`"),
     (VALID_ENTRY + "    overrides:\n      z: 24.5\n", "z: 24.5", "overrides.z = 24.5: must be a whole number"),
     (VALID_ENTRY + "    overrides:\n      module: fine\n", "module", "must be a number"),
     (VALID_ENTRY + "    overrides:\n      b: 110\n", "b: 110", "b = 110: must be <"),

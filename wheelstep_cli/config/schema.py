@@ -216,6 +216,8 @@ def field_limit(models: Iterable[type[BaseModel]], name: str) -> str | None:
 KEYS_ELSEWHERE = {
     "fit": "a fit is the printer's: `fit: auto` (or tight, normal, loose) in the printer profile's "
            "`band:` section (a copy of a preset such as fdm-0.4-pla.yaml, its path as the printer)",
+    "printer": "a printer is chosen where the parts are made: `--printer NAME` (a preset or a profile's "
+               "path), or a batch entry's `printer:` beside its `design:`",
 }
 
 
