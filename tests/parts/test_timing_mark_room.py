@@ -23,8 +23,11 @@ def test_a_hub_that_leaves_the_pinion_no_room_for_its_mark_is_refused(cli, tmp_p
     assert result.exit_code == 0, result.stderr
     assert (out / "pinion.stl").exists()
     # and the assembly note does not send the user to marks that are not there
-    note = json.loads((out / "gears.json").read_text())["phase"]["shaft"]["note"]
+    phase = json.loads((out / "gears.json").read_text())["phase"]
+    note = phase["shaft"]["note"]
     assert "carry no timing marks (mark depth 0)" in note and "marks face each other" not in note
+    assert "no timing marks are engraved" in phase["carrier_zero"]["note"], phase["carrier_zero"]
+    assert "the timing marks point" not in phase["carrier_zero"]["note"]
 
 
 @pytest.mark.parametrize("args, flag", [

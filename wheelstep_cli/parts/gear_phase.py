@@ -13,6 +13,11 @@ def phase_report(pair) -> dict:
 
     law = pair_law(pair)
     record = phase_record(assembly_phase(law))
+    if pair.spec.mark_depth <= 0:
+        # nothing engraved: the directions are the assembly phase's, not marks on the gears
+        record["carrier_zero"]["note"] = ("a shoe in mid-stance; no timing marks are engraved (mark depth 0): "
+                                          "these directions set the pair in phase, the wheel's also the "
+                                          "carrier's reference")
     record["shaft"] = shaft_record(pair.spec, law)
     return record
 
