@@ -212,6 +212,10 @@ def test_a_dry_run_names_the_files_the_run_would_remove(cli, tmp_path):
     assert said.exit_code == 0
     assert f"would remove {out / 'shoe.3mf'} (written by an earlier run)" in said.stdout.splitlines()
     assert (out / "shoe.3mf").exists()
+    # --json says the same in the report (a script cannot read the lines, which go to stderr)
+    report = json.loads(cli("shoe", "--out", out, "--format", "stl", "--dry-run", "--json").stdout)
+    assert report["would_remove"] == [str(out / "shoe.3mf")] and report["written"] == []
+    assert str(out / "shoe.stl") in report["would_write"]
     assert "would remove" not in cli("shoe", "--out", out, "--format", "both", "--dry-run").stdout
     # the real run says what it removed, as the dry run said it would
     done = cli("shoe", "--out", out, "--format", "stl")

@@ -151,6 +151,15 @@ class Output:
         self.named_written.extend(written)
         return written
 
+    def written_record(self, paths: Iterable[Path], dry_run: bool) -> dict[str, list[str]]:
+        """A report's ``written`` and ``removed`` files (none with ``dry_run``, whose report
+        says them as ``would_write`` and ``would_remove``)."""
+        names = [str(p) for p in paths]
+        if dry_run:
+            return {"written": [], "removed": [], "would_write": names,
+                    "would_remove": [str(p) for p in self.would_remove]}
+        return {"written": names, "removed": [str(p) for p in self.removed]}
+
     def files(self, paths: Iterable[Path], dry_run: bool, joined: bool = False) -> None:
         """Say which files were written (or would be, with ``dry_run``): one line each, or
         one ``joined`` line, and those of an earlier run removed (would be). In table mode on

@@ -206,8 +206,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     written = show.write_owned(out, "gears", files, dry_run, force)
     written += show.write_named("gears-pictures", pictures, dry_run, force, **named)
     report = {**gear_pair_report(pair, record), **({"slice": sliced} if sliced else {}),
-              "written": [] if dry_run else [str(p) for p in written],
-              "removed": [str(p) for p in show.removed]}
+              **show.written_record(written, dry_run)}
     show.report(report, lambda: _gears_lines(pair, record) + _slice_lines(sliced))
     warn_of_the_figures(show, record, speed_words(pair.spec.law_csv is not None))
     warn_no_printed_play(show, pair, record)

@@ -54,8 +54,7 @@ def shoe(
     files = shoe_files(built, out, fmt.value)
     written = show.write_owned(out, "shoe", files, dry_run, force)
     report = shoe_report(built)
-    listed = [] if dry_run else [str(p) for p in written]
-    show.report({**report, "written": listed, "removed": [str(p) for p in show.removed]},
+    show.report({**report, **show.written_record(written, dry_run)},
                 lambda: _shoe_lines(built, report))
     show.files(written, dry_run, joined=True)
 
