@@ -348,6 +348,19 @@ def test_all_problems_reported_together(cli, tmp_path):
     assert "needs a printer" in lines[1]
 
 
+def test_an_entrys_override_rules_are_reported_beside_its_other_problems(cli, tmp_path):
+    """An entry with a problem of its own (quantity 0) and an override breaking a rule
+    (hub_d under the bore's wall): both in one run (the rule was found only once the
+    quantity was fixed)."""
+    batch = write(tmp_path / "bad.yaml", VALID_ENTRY + "    quantity: 0\n    overrides:\n      hub_d: 4\n")
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert [re.match(r"wheelstep: error: .*?:(\d+): ", ln).group(1) for ln in lines] == [
+        str(line_of(batch, "quantity: 0")), str(line_of(batch, "hub_d: 4"))], lines
+    assert "parts[0].overrides.hub_d = 4: must be >= " in lines[1], lines
+
+
 def test_every_override_at_fault_is_reported_at_once_in_the_files_words(cli, tmp_path):
     """The shaft rules stop at the first input at fault; the entry is checked again without it,
     so one run names every override to fix, each at its line, by its key (not its flag)."""

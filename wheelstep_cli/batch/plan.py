@@ -165,9 +165,10 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
         override_where, faulty = _check_overrides(doc, path, kind, overrides, issues)
     allow = _allow_interference(doc, path, kind, entry, issues)
     flawed = any(loc[:2] == path for loc in check.bad)
-    # overrides a field rule refused stop nothing: the rules of the others are checked below
+    # overrides a field rule refused stop nothing: the rules of the others are checked below,
+    # as they are beside the entry's other problems (its name, quantity, a key of its own)
     others = [issue for issue in issues[before:] if not issue.what.startswith(dotted(path + ("overrides",)))]
-    if others or flawed or kind is None or printer is None or design is None:
+    if kind is None or printer is None or design is None:
         return None
     # the overrides a field rule refused are left out, so the rules of the others (the
     # mechanism's, the kind's) are found in the same run
@@ -177,7 +178,7 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     written = {key: (entry.overrides or {}).get(key, value) for key, value in kept.items()}   # as the file has them
     for err in problems:
         issues.append(_problem(doc, path, err, where, design_name, written))
-    if problems or faulty:
+    if problems or faulty or others or flawed:
         issues[before:] = sorted(issues[before:], key=_line)     # the entry's problems in file order
         return None
     return Entry(index, name, kind.name, design_name, quantity, printer, overrides, spec, printed,
