@@ -321,7 +321,8 @@ def _plates_for_printer(folder: Path, into: Path, printer: str) -> Path:
 def test_the_band_checked_is_the_one_of_the_printer_the_plates_were_written_for(cli, sliced, tmp_path):
     """Without --printer, --tolerance checks the band of the printer the plates name (it took
     the default printer's band for a PETG plate); a plate printer whose profile is not found
-    is refused naming --printer; --printer given still chooses."""
+    is refused as --tolerance's (it named --printer, not given) with --printer as its remedy;
+    --printer given still chooses."""
     folder = _plates_for_printer(sliced[0], tmp_path / "petg", "fdm-0.4-petg")
     gcode = ["--gcode", folder / "gears-1.gcode", "--gcode", folder / "gears-2.gcode"]
     code, summary = _run_json("mesh-check", *gcode, "--tolerance", "--samples", "256", "--json")
@@ -332,7 +333,8 @@ def test_the_band_checked_is_the_one_of_the_printer_the_plates_were_written_for(
     lost = _plates_for_printer(sliced[0], tmp_path / "lost", "my-printer")
     line = error_line(cli("mesh-check", "--gcode", lost / "gears-1.gcode", "--gcode", lost / "gears-2.gcode",
                           "--tolerance"))
-    assert "the plates were written for printer 'my-printer'" in line and "(--printer PROFILE)" in line, line
+    assert line.startswith("wheelstep: error: --tolerance = on: the plates were written for printer 'my-printer'")
+    assert "(--printer PROFILE)" in line, line
 
 
 def test_gcode_given_as_a_mesh_is_sent_to_gcode(cli, tmp_path):

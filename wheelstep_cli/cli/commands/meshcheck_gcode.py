@@ -113,6 +113,7 @@ def plate_printer(pair, default):
         profile = load_printer_profile(name)
     except DesignError as err:      # not found, or a file's problems (config.schema.InvalidInput)
         why = "; ".join(err.lines()) if hasattr(err, "lines") else err.limit
-        raise DesignError("printer", "none", f"the plates were written for printer '{name}', whose profile cannot "
+        # said of --tolerance, the option the user gave that asks for the band
+        raise DesignError("tolerance", "on", f"the plates were written for printer '{name}', whose profile cannot "
                                              f"be loaded here ({why}): name it (--printer PROFILE)") from None
     return band_printer(profile)    # a profile without a band is told to add one
