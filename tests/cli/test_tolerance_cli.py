@@ -76,8 +76,13 @@ def test_mesh_check_tolerance_on_a_plate_checks_the_band_of_the_printer_it_was_w
     if band["jams"]:
         assert "WARNING: over the band of fdm-0.4-pla the pair jams" in result.stderr
         assert "`wheelstep gears --printer fdm-0.4-pla --fit auto`" in result.stderr
+    # the shaft fit of the bores, as gears found it: the plate says it was drawn for the printer
+    assert band["bore"] == drawn["bore"] and band["bore"]["shaft_mm"] == 5, band["bore"]
+    assert "  bore: shaft 5 mm in a bore drawn 5.2 mm" in cli("mesh-check", out / "gears.3mf", "--tolerance").stdout
     resin = cli("mesh-check", out / "gears.3mf", "--tolerance", "--printer", "resin-0.05-standard", "--json")
-    assert json.loads(resin.stdout)["pairs"][0]["tolerance"]["printer"] == "resin-0.05-standard"
+    resin_band = json.loads(resin.stdout)["pairs"][0]["tolerance"]
+    # drawn for another printer's hole compensation: the shaft is not known
+    assert resin_band["printer"] == "resin-0.05-standard" and resin_band["bore"] is None
 
 
 def test_gears_tolerance_reports_every_case_and_the_loose_corner_has_more_play(cli, tmp_path):

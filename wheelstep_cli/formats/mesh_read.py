@@ -27,7 +27,8 @@ _UNITS_MM = {"micron": 1e-3, "millimeter": 1.0, "centimeter": 10.0, "inch": 25.4
 class MeshObject:
     """One build item of a 3MF: the object's mesh in its own frame (mm), the item's transform
     (4 x 3, row vectors: placed = [x y z 1] @ transform) and the object's metadata (names
-    without the ``wheelstep:`` prefix; ``printer``: the plate's, unless the object names one)."""
+    without the ``wheelstep:`` prefix; ``printer`` and ``compensated``: the plate's, unless the
+    object names them)."""
 
     name: str
     vertices: np.ndarray
@@ -115,9 +116,10 @@ def _objects_of(root) -> list[MeshObject]:
     if scale is None:
         raise ValueError(f"unknown unit {root.get('unit')!r}")
     ns = {"m": _CORE_NS}
-    # the printer a plate was laid out for is the model's: each object carries it too
+    # the printer a plate was laid out for is the model's, and whether its parts were drawn
+    # for it (compensated): each object carries them too
     model = {m.get("name", ""): (m.text or "") for m in root.iterfind("m:metadata", ns)}
-    plate = {"printer": model["wheelstep:printer"]} if model.get("wheelstep:printer") else {}
+    plate = {key: model[f"wheelstep:{key}"] for key in ("printer", "compensated") if model.get(f"wheelstep:{key}")}
     meshes = {}
     for obj in root.iterfind("m:resources/m:object", ns):
         mesh = obj.find("m:mesh", ns)

@@ -28,13 +28,33 @@ def bore_fit(pair, band) -> dict | None:
     below zero the shaft must be pressed in). None for a pair without bores."""
     printing = getattr(pair, "printing", None)
     shaft = float((printing.design if printing is not None else pair.spec).bore or 0.0)
-    drawn = float(pair.spec.bore or 0.0)
+    return shaft_fit(shaft, float(pair.spec.bore or 0.0), pair.spec.bore_shape, band)
+
+
+def plate_bore_fit(found, printer) -> dict | None:
+    """:func:`bore_fit` of a pair found on plates (parts.plate_pairs.PlatePair, its bores as
+    drawn) over ``printer``'s band, when the plates say the hole compensation they were drawn
+    with (batch plates state it; a ``gears`` plate was drawn by the printer it names, so that
+    printer's); None otherwise (the shaft is not known) or for a pair without bores."""
+    metadata = found.pinion.metadata
+    given = metadata.get("printer.hole_compensation")
+    if given is None:
+        if metadata.get("printer") not in (printer.name, printer.given) or metadata.get("compensated") != "yes":
+            return None
+        given = printer.hole_compensation
+    drawn = float(found.spec.bore or 0.0)
+    return shaft_fit(drawn - float(given), drawn, found.spec.bore_shape, printer.band)
+
+
+def shaft_fit(shaft: float, drawn: float, bore_shape, band) -> dict | None:
+    """The fit (mm) of a shaft of diameter ``shaft`` in a bore drawn ``drawn`` over ``band``
+    (see :func:`bore_fit`); None for no bore."""
     if shaft <= 0.0:
         return None
     shrink = float(band.hole_shrink)
     # rounded to the nanometre: 8.2 - 0.2 - 8 is a zero, not a press fit of 2e-15 mm
     least, most = round(drawn - shrink - shaft, 9), round(drawn - shaft, 9)
-    return {"bore_shape": str(getattr(pair.spec.bore_shape, "value", pair.spec.bore_shape)),
+    return {"bore_shape": str(getattr(bore_shape, "value", bore_shape)),
             "shaft_mm": shaft, "drawn_mm": drawn, "hole_compensation_mm": most,
             "printed_mm": [round(drawn - shrink, 9), drawn], "clearance_mm": [least, most],
             "shaft_fits": bool(least >= 0.0),

@@ -200,7 +200,7 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
     from wheelstep_cli.parts.mesh_check_files import (WrittenPairCheck, plate_pair_outlines, run_plate_pair_check,
                                                       written_pair_files)
     from wheelstep_cli.parts.plate_pairs import find_plate_pairs
-    from wheelstep_cli.parts.tolerance_cli import outline_band
+    from wheelstep_cli.parts.tolerance_cli import outline_band, plate_bore_fit
 
     no_design_options(design)
     chosen = band_printer_of(*band)
@@ -215,6 +215,7 @@ def _check_plates(show: Output, plates: list[str], pair, design: dict, samples: 
         printer = plate_printer(found, chosen) if band[0] and band[1] is None else chosen
         if printer is not None:     # the outlines as written, any fit's inset in them
             summary["tolerance"] = outline_band(plate_pair_outlines(found), check, report, printer)
+            summary["tolerance"]["bore"] = plate_bore_fit(found, printer)
             # the fit the warning suggests is to the band checked, its printer as it was loaded
             warned.append((summary["tolerance"], band[1] or printer.given or printer.name))
         summaries.append(summary)
