@@ -34,6 +34,10 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
                                 f"{value:g} mm depth {wall}")
             if limit <= 0.0:    # no key depth helps: the bore itself is too large for this gear
                 raise DesignError("bore", *by_bore)
+        elif limit <= 0.0:      # a root too near the axis for any hole ("must be < -1.36 mm" said nothing)
+            raise DesignError(hole_param, hole_value, f"must be 0 (no hole): the {name}'s root is "
+                              f"{rounded_down(root)} mm from the axis, under the {MIN_HOLE_WALL:g} mm of wall "
+                              "a hole must leave")
         # a key depth the user left to its DIN default is said of the bore they gave
         raise DesignError(hole_param, hole_value, f"must be < {rounded_down(limit)} mm {wall}",
                           {"bore": by_bore} if by_bore else None)
