@@ -74,19 +74,25 @@ def linkage(
     request = ls.LinkageRequest(preset.value, rpm, samples, scale, signs(branch, "branch"),
                                 ground_tol, four_bar, step)
     show.parameters(vars(request))
-    try:
-        study = ls.linkage_study(request)
-    except DesignError as err:
-        if err.param != "branch":
-            raise
-        # the joint refused, echoed as the user typed its item (NAME=1 as given)
-        typed = next((item for item in branch if item.partition("=")[0] == err.value), err.value)
-        raise DesignError("branch", typed, err.limit) from None
+    study = _study(request, branch)
     files = linkage_files(study, csv, plot, gif, gif_frames)
     named = show.write_named("linkage", files, dry_run, force, csv=csv, plot=plot, gif=gif)
     report = ls.linkage_report(study)
     show.report(report, lambda: _lines(report))
     show.files(named, dry_run)
+
+
+def _study(request, branch: list[str]):
+    """The study of ``request``; a --branch joint it refuses echoed as the user typed its item."""
+    from wheelstep_cli.mechanism.linkage import study as ls
+
+    try:
+        return ls.linkage_study(request)
+    except DesignError as err:
+        if err.param != "branch":
+            raise
+        typed = next((item for item in branch if item.partition("=")[0] == err.value), err.value)
+        raise DesignError("branch", typed, err.limit) from None
 
 
 def _lines(report: dict) -> list[str]:

@@ -32,12 +32,11 @@ Gcode = Annotated[Optional[List[Path]], opt(
 
 
 def mesh_check(
-    pinion: Optional[str] = typer.Argument(None, help="Pinion mesh: FILE.stl, FILE.3mf or "
-                                                      "FILE.3mf:NAME (objects of wheelstep plates, "
-                                                      "with no design option: their stored design); "
-                                                      "alone, a plate (3MF) whose "
-                                                      "gear pairs are found by their metadata; "
-                                                      "with --gcode, the plate it was sliced from."),
+    pinion: Optional[str] = typer.Argument(None, help="Pinion mesh: FILE.stl, FILE.3mf or FILE.3mf:NAME "
+                                                      "(a wheelstep plate's, with no design option: its "
+                                                      "stored design); alone, a plate (3MF) whose gear pairs "
+                                                      "are found by their metadata; with --gcode, the plate "
+                                                      "it was sliced from."),
     wheel: Optional[str] = typer.Argument(None, help="Wheel mesh: FILE.stl, FILE.3mf or "
                                                      "FILE.3mf:NAME; or a second plate."),
     distance: Annotated[Optional[float], opt("--distance", "-d", help="Installed centre distance, mm.",
@@ -50,17 +49,13 @@ def mesh_check(
     law_csv: LawCsv = None, blend: Blend = None, profile: Profile = None,
     pair: Annotated[Optional[str], opt("--pair", help="On plates: the pair to check (its "
                                                       "wheelstep:pair id).", shown="every pair")] = None,
-    samples: Annotated[Optional[int], opt("--samples", help="Poses over one period of the law "
-                                                               "(more than 6 per tooth pitch); with "
-                                                               "--gcode as many in each period of the "
-                                                               "whole cycle a print is checked over "
-                                                               "(one wheel turn).",
+    samples: Annotated[Optional[int], opt("--samples", help="Poses over one period of the law (more than 6 "
+                                          "per tooth pitch); with --gcode as many in each period of the whole "
+                                          "cycle a print is checked over (one wheel turn).",
                                           shown="16 in the shortest tooth pitch, at least 1536")] = None,
-    window: Annotated[Optional[float], opt("--window", help="Half-height of the mesh window round "
-                                                            "the line of centres, mm; larger than "
-                                                            "the default only (a narrower one "
-                                                            "misses contacts).",
-                                           shown="0.25 x the smaller outer radius")] = None,
+    window: Annotated[Optional[float], opt("--window", help="Half-height of the mesh window round the line of "
+                                           "centres, mm; larger than the default only (a narrower one misses "
+                                           "contacts).", shown="0.25 x the smaller outer radius")] = None,
     plot: Plot = None, tolerance: Tolerance = False, printer: BandPrinter = None,
     gcode: Gcode = None, force: Force = False,
     json: Json = False, dry_run: DryRun = False, quiet: Quiet = False, verbose: Verbose = False,
