@@ -79,12 +79,13 @@ def test_a_file_that_cannot_be_made_is_named_by_its_option_not_by_a_hidden_tempo
 
 def test_the_clearance_rule_names_the_arc_given_not_the_support_length(cli):
     """h_max > 2 max(r1, r2) does not involve H, yet `--r1 1e6 -H 300` was blamed on -H; of two
-    arcs given, the larger is the one at fault (`--r1 40` alone passes)."""
+    arcs given, the larger is the one at fault (`--r1 40` alone passes). h-max not given is its
+    default (100 without --r3), and said so."""
     assert error_line(cli("trajectory", "--r1", "1e6", "-H", "300")) == (
-        "wheelstep: error: --r1 = 1e6: with it, h-max = 100 fails: must be > 2 max(r1, r2) = "
+        "wheelstep: error: --r1 = 1e6: with it, h-max = 100 (the default) fails: must be > 2 max(r1, r2) = "
         "2e+06 mm for the top arc to touch both arcs from outside")
     assert error_line(cli("trajectory", "--r1", "40", "--r2", "70")) == (
-        "wheelstep: error: --r2 = 70: with it, h-max = 100 fails: must be > 2 max(r1, r2) = "
+        "wheelstep: error: --r2 = 70: with it, h-max = 100 (the default) fails: must be > 2 max(r1, r2) = "
         "140 mm for the top arc to touch both arcs from outside")
     assert cli("trajectory", "--r1", "40", "-q").exit_code == 0
 
