@@ -203,18 +203,16 @@ def refusal_line(original: DesignError, err: DesignError, group, argv: list[str]
 DEFAULT_MARK = "(the default)"
 
 
-def _names_option(argv: list[str], flag: str) -> bool:
-    """Whether ``argv`` gives the option ``flag`` (``--r3 5`` or ``--r3=5``)."""
-    return any(arg == flag or arg.startswith(f"{flag}=") for arg in argv)
-
-
 def _documented_defaults(group, argv: list[str]) -> dict[str, float]:
     """Parameter name -> the default number each option of the subcommand named in ``argv``
     documents: its own default, else the ``[default: N]`` its help shows (options whose
     default is None print the value the design takes); options whose default is not one
     number (a rule such as ``0.25 x module``) are left out."""
-    found = {}
-    for param in command_params(group, argv):
+    found, params = {}, command_params(group, argv)
+    # the options given, read as the parser reads them (for a default that holds without one)
+    given = set(given_names(group, argv))
+    flags = {flag: p.name for p in params for flag in p.opts}
+    for param in params:
         default = param.default
         if default is None:
             shown = re.search(r"\[default: ([^\]]+)\]\s*$", param.help or "")
@@ -226,7 +224,7 @@ def _documented_defaults(group, argv: list[str]) -> dict[str, float]:
             # a default that holds while another option is not given ("100 if no --r3")
             unless = re.fullmatch(r"(-?\d+(?:\.\d+)?) if no (--[a-z0-9-]+)", default or "")
             if unless:
-                default = None if _names_option(argv, unless.group(2)) else unless.group(1)
+                default = None if flags.get(unless.group(2)) in given else unless.group(1)
         try:
             found[param.name] = float(default)
         except (TypeError, ValueError):

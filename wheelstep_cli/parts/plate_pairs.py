@@ -48,12 +48,14 @@ def named_plate_pair(pinion: str, wheel: str) -> PlatePair | None:
     pinion and the wheel (``wheelstep:part``), with the design they carry (refused when the two
     carry different designs); None when either is not such an object (an STL, an object of
     another tool): its design then comes from the options."""
-    objects = []
+    objects, read = [], {}
     for given, param in zip((pinion, wheel), GEARS):
         path, name = split_mesh_spec(given)
         if name is None or not path.is_file():
             return None
-        named = [o for o in read_3mf_objects(path, param) if o.name == name]
+        if path.resolve() not in read:     # both objects of one plate: the plate read once
+            read[path.resolve()] = read_3mf_objects(path, param)
+        named = [o for o in read[path.resolve()] if o.name == name]
         if len(named) != 1 or named[0].metadata.get("part") not in GEARS:
             return None
         # the file as the user typed it (the plate check names each object FILE:NAME)
