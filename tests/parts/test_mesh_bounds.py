@@ -272,6 +272,32 @@ def test_the_try_a_given_module_outgrows_the_printer_with_is_not_one_of_the_trie
     assert len(tries) == 1 + REMEDY_TRIES and error.remedy == {}
 
 
+def test_a_try_the_bed_refuses_is_followed_by_the_same_try_drawn_smaller():
+    """More teeth at the installed distance given widen the wheel past the bed's edge (its
+    refusal carries the scale the bed allows): the same count is tried at that distance scaled
+    (rounded down to 0.1 mm), and offered once within the bounds."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+
+    tries = []
+
+    def verify(design):
+        tries.append((design.z, design.install_distance))
+        if design.install_distance == 100.0:
+            error = DesignError("printer", "fdm-0.4-pla", "part 'wheel' does not fit the bed")
+            error.beyond_printer, error.bed_scale = "fdm-0.4-pla", 0.9504
+            raise error
+        pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
+                               spec=design, as_asked=design, opening=0.0)
+        return pair, record()
+
+    error, _ = _refusal(verify, install_distance=100.0)
+    assert tries[:2] == [(36, 100.0), (36, 95.0)]
+    assert error.remedy["install_distance"] == 95.0 and 32 < error.remedy["z"] <= 36
+    assert "--install-distance 95" in error.limit
+
+
 def test_a_remedy_the_pipeline_refuses_is_not_offered():
     from wheelstep_cli.errors import DesignError
 
