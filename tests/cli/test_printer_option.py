@@ -268,3 +268,48 @@ def test_a_broken_link_given_for_a_file_names_where_it_points(cli, tmp_path, arg
     line = error_line(cli(*(a.format(l=link) for a in args)))
     assert line == (f"wheelstep: error: {said.format(l=link)}: is a link to {tmp_path / 'moved' / 'pinion.stl'}, "
                     "which does not exist"), line
+
+
+def _small_bed_printer(tmp_path, side: int) -> str:
+    """The PLA preset on a ``side`` x ``side`` mm bed, as a printer profile file."""
+    from wheelstep_cli.config.profiles import find_profile
+
+    text = find_profile("fdm-0.4-pla", printer=True).read_text().replace("bed: [256, 256]", f"bed: [{side}, {side}]")
+    assert f"bed: [{side}, {side}]" in text
+    return str(write(tmp_path / f"bed{side}.yaml", text))
+
+
+@pytest.mark.parametrize("side, given", [(100, []), (60, ["--c", "360"])])
+def test_a_shoe_too_large_for_the_bed_is_offered_its_mechanism_drawn_smaller_which_prints(cli, tmp_path,
+                                                                                           side, given):
+    """The remedy scales a, b and the strut as given (the socket and rim keep their size);
+    applied, the shoe is written on that printer's plate."""
+    from tests.helpers.clicheck import remedy_in, with_remedy
+
+    printer = _small_bed_printer(tmp_path, side)
+    args = ["shoe", "--printer", printer, *given, "--out", tmp_path / "out"]
+    line = error_line(cli(*args))
+    assert f"does not fit the bed of printer '{printer}'" in line and "(the mechanism drawn at" in line, line
+    remedy = remedy_in(line)
+    assert remedy[0::2] == ["--a", "--b", "--c" if given else "--r-min"], remedy
+    assert not (tmp_path / "out").exists()
+    applied = cli(*with_remedy(args, remedy), "-q")
+    assert applied.exit_code == 0, applied.stderr
+    report = json.loads((tmp_path / "out" / "shoe.json").read_text())
+    assert report["parameters"]["a"] == float(remedy[1]) and report["parameters"]["b"] == float(remedy[3])
+    assert (tmp_path / "out" / "shoe.3mf").exists()
+
+
+def test_a_batch_shoe_too_large_for_the_bed_is_offered_overrides_that_print(cli, tmp_path):
+    import re
+
+    entry = f"parts:\n  - kind: shoe\n    name: big\n    printer: {_small_bed_printer(tmp_path, 100)}\n"
+    result = cli("batch", write(tmp_path / "big.yaml", entry), "--out", tmp_path / "out")
+    assert result.exit_code == 1 and not (tmp_path / "out").exists(), result.stderr
+    found = re.search(r"; not built; use overrides (\{a: [0-9.]+, b: [0-9.]+, c: [0-9.]+\}) \(the mechanism drawn",
+                      result.stderr)
+    assert found, result.stderr
+    fixed = write(tmp_path / "fixed.yaml", entry + f"    overrides: {found.group(1)}\n")
+    applied = cli("batch", fixed, "--out", tmp_path / "fixed")
+    assert applied.exit_code == 0, applied.stderr
+    assert [p.name for p in (tmp_path / "fixed").glob("plate-*.3mf")] == ["plate-1.3mf"]

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from wheelstep_cli.config.profiles import load_printer
-from wheelstep_cli.parts.bed_remedy import scaled_options
+from wheelstep_cli.parts.smaller import scaled_options
 from wheelstep_cli.parts.gear_pair import GearPairSpec, build_gear_pair
 from wheelstep_cli.parts.plate_layout import bed_scale
 

@@ -17,8 +17,9 @@ from wheelstep_cli.parts.interference_refusals import (interference_phrase, requ
                                                        require_play_that_clears, require_tips_clear_of_roots)
 from wheelstep_cli.parts.bed_remedy import scaled_to_bed
 from wheelstep_cli.parts.gear_pair import require_pair_on_bed
-from wheelstep_cli.parts.kinds import KINDS, as_designed, for_printer
+from wheelstep_cli.parts.kinds import KINDS, as_designed, build_for_printer, for_printer
 from wheelstep_cli.parts.mesh_bounds import remedy_check, require_within_bounds, undercut_checked
+from wheelstep_cli.parts.shoe_bed import shoe_scaled_to_bed
 from wheelstep_cli.parts.tolerance import design_printer, keeps_no_play
 from wheelstep_cli.parts.tolerance_cli import design_pair
 
@@ -91,6 +92,9 @@ def build_entry(entry: Entry, tolerance: bool = True) -> EntryResult:
             # with the pair drawn smaller as the remedy when that one fits and meshes
             scaled_to_bed(lambda: require_pair_on_bed(built, entry.printer), entry.spec,
                           remedy_check(printer, bed=printer) if fit is None else _fit_check(entry, fit, printer))
+        elif kind.name == "shoe":
+            # too large for the bed: the shoe of the mechanism drawn smaller as the remedy
+            built = shoe_scaled_to_bed(built, printer, lambda spec: build_for_printer(kind.name, spec, printer))
         mating = kind.mating_check(built) if kind.mating_check is not None else None
         result = EntryResult(entry.index, _parts(kind, built), _report(kind, built, mating), mating=mating)
         refused = _refused(entry, built, result, printer) or _out_of_bounds(entry, built, result, printer)

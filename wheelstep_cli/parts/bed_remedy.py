@@ -5,37 +5,12 @@ pitch, so the whole footprint scales with that distance. Lengths in mm."""
 
 from __future__ import annotations
 
-import math
 from typing import Callable
 
 from wheelstep_cli.config.names import as_flags
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.mesh_bounds import no_remedy
-
-
-def scaled_options(design, scale: float) -> tuple[dict, float]:
-    """(options, factor): the options (name -> value) that draw ``design``'s generated pair
-    at most ``scale`` times its size, and the factor they scale it by. The input that sizes
-    the pair (a module given, else the rolling distance given, else the installed distance)
-    is rounded down (0.001 mm of module, 0.1 mm of distance); the other lengths the user gave
-    (the other distance, the backlash) follow by the same factor, so the opening and the
-    play keep their share of the teeth."""
-    if design.module is not None:
-        sizing, step = "module", 0.001
-    elif design.center_distance is not None:
-        sizing, step = "center_distance", 0.1
-    else:
-        sizing, step = "install_distance", 0.1
-    given = getattr(design, sizing)
-    size = float(given if given is not None else design.paper_distances[1])
-    smaller = math.floor(size * scale / step + 1e-9) * step
-    factor = smaller / size
-    options = {sizing: round(smaller, 3)}
-    for name in ("center_distance", "install_distance", "backlash"):
-        value = getattr(design, name)
-        if name != sizing and value is not None:
-            options[name] = round(float(value) * factor, 3)
-    return options, factor
+from wheelstep_cli.parts.smaller import scaled_options
 
 
 def scaled_to_bed(build: Callable, design, verify: Callable | None, unbuilt: bool = False):

@@ -2,8 +2,7 @@
 refuse it before anything is written, with a remedy whose build meshes within them.
 
 The bounds and the remedies the figures point to are in :mod:`~wheelstep_cli.parts.bound_figures`
-(imported here for the callers that name them from this module). Lengths in mm, figures in
-um and %.
+(imported here for the callers that name them from this module). Lengths in mm, figures in um, %.
 """
 
 from __future__ import annotations
@@ -11,9 +10,10 @@ from __future__ import annotations
 from typing import Callable
 
 from wheelstep_cli.config.names import as_flags
-from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH, Teeth
+from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.fewest_teeth import fewest_teeth
+from wheelstep_cli.parts.smaller import drawn_smaller
 # the figures' side re-exported: callers name the bounds and their remedies from here
 from wheelstep_cli.parts.bound_figures import (MeshBounds, backlash_remedy, bound_violations,  # noqa: F401
                                                ripple_teeth_remedy, teeth_remedy, worst_ripple)
@@ -283,7 +283,7 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
             # a refusal with a remedy of its own (teeth too thin: fewer teeth) is followed too;
             # with no backlash given, the play chosen for the count it leaves goes with that
             # count (the default follows the new one); a backlash given stays replaced
-            own = getattr(err, "remedy", None) or _drawn_smaller(trial, err)
+            own = getattr(err, "remedy", None) or drawn_smaller(trial, err)
             if design.backlash is None and own.get("z", candidate.get("z")) != candidate.get("z"):
                 candidate = {name: value for name, value in candidate.items() if name != "backlash"}
             candidate = {**candidate, **own}
@@ -300,17 +300,6 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
         following = _remedy_of(pair, trial, record, bounds, teeth=teeth) if pair.generated is not None else {}
         before, candidate = (candidate, record), {**candidate, **following}
     return {}, tried, failed
-
-
-def _drawn_smaller(trial, err: DesignError) -> dict:
-    """The options that draw ``trial``'s generated pair small enough for the bed its try was
-    refused by (a count or play that widens the gears a little past the bed's edge), or {}."""
-    from wheelstep_cli.parts.bed_remedy import scaled_options
-
-    scale = getattr(err, "bed_scale", None)
-    if scale is None or trial.teeth != Teeth.generated:
-        return {}
-    return scaled_options(trial, scale)[0]
 
 
 def _play_not_the_cause(candidate: dict, record: dict, before: tuple[dict, dict | None],

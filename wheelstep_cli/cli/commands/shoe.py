@@ -44,13 +44,17 @@ def shoe(
     from wheelstep_cli.config.profiles import load_printer_profile
     from wheelstep_cli.parts.kinds import build_for_printer
     from wheelstep_cli.parts.shoe import shoe_files, shoe_report
+    from wheelstep_cli.parts.shoe_bed import shoe_scaled_to_bed
 
     show = Output(json, quiet, verbose)
     spec = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min, width=width,
                      strut_diameter=strut_diameter, socket_depth=socket_depth, rim=rim)
     design = spec.design()
     show.parameters({**vars(spec), "c": design.c, "r_min": design.r_min}, profile)
-    built = build_for_printer("shoe", spec, load_printer_profile(printer) if printer else None)
+    chosen = load_printer_profile(printer) if printer else None
+    built = build_for_printer("shoe", spec, chosen)
+    if chosen is not None:     # too large for its bed: the shoe drawn smaller as the remedy
+        built = shoe_scaled_to_bed(built, built.printing.printer, lambda s: build_for_printer("shoe", s, chosen))
     files = shoe_files(built, out, fmt.value)
     written = show.write_owned(out, "shoe", files, dry_run, force)
     report = shoe_report(built)
