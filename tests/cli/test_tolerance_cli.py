@@ -147,7 +147,7 @@ def test_fit_auto_insets_the_default_pair_until_the_fdm_band_no_longer_jams(cli,
     assert 0.0 < fit["inset_mm"] <= 0.5 and fit["normal_backlash_added_mm"] == pytest.approx(4 * fit["inset_mm"])
     # the written pair's own check closes the search: clear at the inset written, and no
     # smaller inset was found clear
-    written = [t for t in fit["search"] if t.get("written")]
+    written = [t for t in fit["search"] if t["checked_on"] == "fitted pair"]
     assert written[-1]["inset_mm"] == fit["inset_mm"] and not written[-1]["jams"]
     clear = [t["inset_mm"] for t in fit["search"]
              if not t["jams"] and t["tight_least_backlash_mm"] >= FIT_MARGINS[Fit.auto]]

@@ -142,8 +142,8 @@ def test_fit_search_lands_on_the_margin_for_a_linear_response(monkeypatch):
     result = _fit(spec, "normal", printer)
     tight = 4.3 * result.inset - 0.10 - 0.1 * 2 * printer.band.outline
     assert 0.1 - FIT_TOLERANCE <= tight <= 0.1 + FIT_TOLERANCE
-    searched = [r for r in result.rounds if not r.get("written")]
-    assert len(searched) <= 3 and [r["inset_mm"] for r in result.rounds if r.get("written")] == [result.inset]
+    searched = [r for r in result.rounds if r["checked_on"] == "design sections"]
+    assert len(searched) <= 3 and [r["inset_mm"] for r in result.rounds if r["checked_on"] == "fitted pair"] == [result.inset]
     assert result.pair == result.inset and result.design_pair == 0.0
     assert result.band["least_backlash_mm"] == pytest.approx(tight)
 
@@ -188,7 +188,7 @@ def test_the_written_pair_is_checked_again_and_the_inset_grown_while_it_jams(mon
     from wheelstep_cli.parts.fit import INSET_TOLERANCE
 
     result = _fit_written_off_by(monkeypatch, 0.01)
-    written = [r for r in result.rounds if r.get("written")]
+    written = [r for r in result.rounds if r["checked_on"] == "fitted pair"]
     assert len(written) == 2 and written[0]["jams"] and not written[1]["jams"]
     assert written[1]["inset_mm"] == pytest.approx(written[0]["inset_mm"] + 0.5 * written[0]["tight_depth_mm"]
                                                    + INSET_TOLERANCE)
@@ -199,7 +199,7 @@ def test_a_written_pair_that_keeps_jamming_reports_the_inset_it_was_built_with(m
     from wheelstep_cli.parts.fit import FIT_CONFIRM_ROUNDS
 
     result = _fit_written_off_by(monkeypatch, 1.0)
-    written = [r for r in result.rounds if r.get("written")]
+    written = [r for r in result.rounds if r["checked_on"] == "fitted pair"]
     assert len(written) == FIT_CONFIRM_ROUNDS and all(r["jams"] for r in written)
     assert result.inset == written[-1]["inset_mm"] and result.pair == pytest.approx(result.inset - 1.0)
     assert result.band["jams"]
@@ -242,7 +242,7 @@ def test_fit_search_stops_when_more_inset_leaves_the_corner_jam_as_deep(monkeypa
     spec = SimpleNamespace(pressure_angle=20.0, backlash_mm=0.5)
     _fake_search(monkeypatch, lambda inset: -1.0, law=law, jammed=np.array([False, True, False, False]))
     result = _fit(spec)
-    searched = [r for r in result.rounds if not r.get("written")]
+    searched = [r for r in result.rounds if r["checked_on"] == "design sections"]
     assert result.stopped == "corners" and len(searched) == 2
     assert searched[1]["inset_mm"] > searched[0]["inset_mm"]
     assert all(r["jammed_poses"] == r["jammed_at_corners"] == 1 for r in result.rounds)

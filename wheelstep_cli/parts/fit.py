@@ -140,7 +140,7 @@ def fit_pair(spec, printer, fit: str, build: Callable, settings: MeshingSettings
         fitted = sectioned_pair(pair)
         nominal = checked(check_case(fitted, NOMINAL, settings))
         report = checked(check_case(mid_play(fitted, nominal), tight, case_settings(settings)))
-        tried.append({**_try_record(chosen, tight, report, fitted.law), "written": True})
+        tried.append(_try_record(chosen, tight, report, fitted.law, on=FITTED_PAIR))
         if (not found or not tried[-1]["jams"] or chosen >= cap - 1e-9
                 or round_ == FIT_CONFIRM_ROUNDS - 1):
             break
@@ -156,13 +156,18 @@ def _normal_backlash(spec, design_pair) -> float:
     return float(cutter.backlash) if cutter is not None else float(spec.backlash_mm)
 
 
-def _try_record(inset: float, tight, report, law) -> dict:
-    """One try of the search: the inset (mm) and its tight corner's least backlash, jam depth
-    (mm) and jammed poses."""
+#: What a try of the search was checked on (its record's ``checked_on``): offsets of the
+#: design's sections, or the fitted pair built as it is written.
+DESIGN_SECTIONS, FITTED_PAIR = "design sections", "fitted pair"
+
+
+def _try_record(inset: float, tight, report, law, on: str = DESIGN_SECTIONS) -> dict:
+    """One try of the search: the inset (mm), what it was checked on (``on``) and its tight
+    corner's least backlash, jam depth (mm) and jammed poses."""
     case = case_record(tight, report)
     # where the teeth jam the least backlash is an overlap estimate, not a play
     least = None if case["jams"] or case["backlash_min_mm"] is None else float(case["backlash_min_mm"])
-    return {"inset_mm": inset, "tight_least_backlash_mm": least, "tight_depth_mm": case["max_penetration_mm"],
+    return {"inset_mm": inset, "checked_on": on, "tight_least_backlash_mm": least, "tight_depth_mm": case["max_penetration_mm"],
             "jams": case["jams"], **jam_record(report, law)}
 
 
@@ -286,8 +291,8 @@ def inset_words(inset: float) -> str:
 
 
 def _tries(search: list) -> str:
-    written = sum(1 for t in search if t.get("written"))
-    return f"{len(search) - written} tries on the design's sections, {written} on the pair as written"
+    built = sum(1 for t in search if t["checked_on"] == FITTED_PAIR)
+    return f"{len(search) - built} tries on the design's sections, {built} on the pair as written"
 
 
 #: What a refused fit suggests instead: the pair drawn with the printer's own clearance; the
