@@ -300,6 +300,7 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_sh
     (["--a", "-60"], "--a ="),
     (["--b", "-1"], "--b ="),
     (["--rmin", "30", "--c", "360"], "--rmin ="),           # contradicts c
+    (["--rmin", "20", "--c", "300"], "--rmin = 20: contradicts"),   # before c's own limit
     (["--strut-diameter", "40"], "--strut-diameter ="),     # socket wider than the body
     (["--strut-diameter", "-3"], "--strut-diameter ="),
     (["--socket-depth", "80"], "--socket-depth ="),         # deeper than the body

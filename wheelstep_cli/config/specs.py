@@ -383,9 +383,10 @@ class ShoeSpec(BaseModel):
         if self.c is None:
             r_min = DEFAULT_R_MIN if self.r_min is None else self.r_min
             return CrankMechanism.from_r_min(self.a, self.b, r_min)
-        design = CrankMechanism(self.a, self.b, self.c)
-        if self.r_min is not None and not np.isclose(design.r_min, self.r_min, rtol=0, atol=1e-6):
+        # both given: their contradiction first (a limit of c alone would lead to it)
+        r_min = self.a - 4.0 * self.b + self.c
+        if self.r_min is not None and not np.isclose(r_min, self.r_min, rtol=0, atol=1e-6):
             raise DesignError("r_min", self.r_min,
-                              f"contradicts c = {self.c:g} mm (a - 4b + c = {design.r_min:g} mm); "
+                              f"contradicts c = {self.c:g} mm (a - 4b + c = {r_min:g} mm); "
                               "give only one of c and R_min")
-        return design
+        return CrankMechanism(self.a, self.b, self.c)
