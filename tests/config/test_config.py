@@ -197,6 +197,27 @@ def test_a_printer_chamfer_too_small_to_replace_its_foot_is_refused_at_its_line(
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("bed, expect", [
+    ("[256]", "printer.bed = [256]: must be [X, Y] in mm, each > 0 and <= 2000"),
+    ("[8, 300]", "printer.bed = [8, 300]: must be > 10 mm each (twice the 5 mm a part keeps from each edge"),
+])
+def test_a_printer_bed_of_one_size_or_inside_its_margins_is_refused_at_its_line(cli, tmp_path, bed, expect):
+    """A bed list of the wrong length says the bed's own limit; a bed no part fits inside its
+    margins is refused with the profile, not part by part with remedies of negative size."""
+    from pathlib import Path
+
+    from wheelstep_cli.config.profiles import shipped_profiles
+
+    text = (Path(shipped_profiles()) / "fdm-0.4-pla.yaml").read_text()
+    assert "\n  bed: [256, 256] " in text
+    printer = write(tmp_path / "p.yaml", text.replace("\n  bed: [256, 256] ", f"\n  bed: {bed}\n "))
+    line_no = printer.read_text().splitlines().index(f"  bed: {bed}") + 1
+    for command in ("shoe", "gears"):
+        line = error_line(cli(command, "--printer", printer, "--out", tmp_path / "out"))
+        assert line.startswith(f"wheelstep: error: {printer}:{line_no}: {expect}"), line
+    assert not (tmp_path / "out").exists()
+
+
 @pytest.mark.parametrize("text, z", [("48", 48), ("48.0", 48), ("48.", 48)])
 def test_a_whole_number_written_with_a_point_is_that_number_as_on_the_command_line(tmp_path, text, z):
     """YAML reads `z: 48.0` as a float; like `--z 48.0` it is the whole number 48, stored

@@ -269,7 +269,7 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
         raise InvalidInput(issues)
     section, material = profile.printer, profile.material
     raw = Path(path).read_bytes()
-    return Printer(name=name, description=profile.description or name, technology=section.technology,
+    printer = Printer(name=name, description=profile.description or name, technology=section.technology,
                    bed=tuple(section.bed), max_height=section.max_height, margin=section.margin,
                    skirts=section.skirts, skirt_distance=section.skirt_distance,
                    brim_width=section.brim_width,
@@ -279,6 +279,14 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
                    density=material.density, slicer=dict(profile.slicer), chamfer=section.chamfer,
                    file_name=Path(path).name, sha256=hashlib.sha256(raw).hexdigest(),
                    band=None if profile.band is None else _band(profile.band), given=given or name)
+    edge = printer.edge_margin
+    if min(printer.bed) <= 2.0 * edge:
+        # nothing could be placed: every part would be refused with a bed of no size
+        raise InvalidInput([Issue(doc.where(("printer", "bed")), "printer.bed",
+                                  f"= [{printer.bed[0]:g}, {printer.bed[1]:g}]: must be > {2.0 * edge:g} mm each "
+                                  f"(twice the {edge:g} mm a part keeps from each edge: the margin, or the brim "
+                                  "and skirt)")])
+    return printer
 
 
 #: The printer a command uses when none is named.

@@ -223,6 +223,11 @@ KEYS_ELSEWHERE = {
 
 def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) -> Issue:
     kind = error["type"]
+    if kind == "missing" and isinstance(loc[-1], int):
+        # a list too short for its fixed length (a bed of one size): the list's own limit
+        given = _value_at(doc.data, loc[:-1])
+        return Issue(doc.where(loc[:-1]), dotted(loc[:-1]),
+                     f"= {show(given)}: {limit_text(model, {'loc': tuple(error['loc'])[:-1], 'type': 'too_short', 'msg': 'too short'})}")
     if kind == "missing":
         return Issue(doc.where(loc[:-1]), dotted(loc[:-1]), f"needs the key '{loc[-1]}'")
     if kind == "extra_forbidden":
@@ -243,6 +248,13 @@ def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) ->
     if isinstance(error["input"], bool) and not note:
         note = " (YAML reads yes, no, on and off, unquoted, as true or false)"
     return Issue(doc.where(loc), dotted(loc), f"= {show(error['input'])}: {limit}{note}")
+
+
+def _value_at(data, path: tuple):
+    """The value of parsed YAML ``data`` at ``path`` (keys and list indices)."""
+    for key in path:
+        data = data[key]
+    return data
 
 
 #: A number whose exponent has no sign, which YAML 1.1 leaves as text.
