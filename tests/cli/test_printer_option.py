@@ -313,3 +313,11 @@ def test_a_batch_shoe_too_large_for_the_bed_is_offered_overrides_that_print(cli,
     applied = cli("batch", fixed, "--out", tmp_path / "fixed")
     assert applied.exit_code == 0, applied.stderr
     assert [p.name for p in (tmp_path / "fixed").glob("plate-*.3mf")] == ["plate-1.3mf"]
+
+
+def test_a_shoe_no_smaller_shoe_fits_names_the_option_that_stops_the_smaller_one(cli, tmp_path):
+    """On a 40 mm bed the shoe small enough has no room for the 25 mm socket: the line says so
+    of --socket-depth (not given: its default), and offers no remedy."""
+    line = error_line(cli("shoe", "--printer", _small_bed_printer(tmp_path, 40), "--out", tmp_path / "out"))
+    assert "; no remedy found (--a " in line and "is refused: --socket-depth = 25: must be <= " in line, line
+    assert line.endswith(": a printer with a larger bed (--printer)"), line

@@ -50,7 +50,9 @@ def _smaller_shoe(spec, scale: float, printer, rebuild: Callable) -> tuple[dict 
             require_shoe_on_bed(rebuild(build(type(spec), {**spec.model_dump(), **options})), printer)
             return options, tried, factor
         except DesignError as refusal:
-            tried.append(f"{as_flags(options)} is refused: {refusal.cause}")
+            # the rule's own option when the try does not set it (a socket the smaller body cannot hold)
+            rule = "" if refusal.param in options else f"--{refusal.param.replace('_', '-')} = {refusal.shown_value}: "
+            tried.append(f"{as_flags(options)} is refused: {rule}{refusal.cause}")
             more = getattr(refusal, "bed_scale", None)
             if more is None or more >= 1.0:
                 break
