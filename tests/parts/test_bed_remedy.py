@@ -50,3 +50,15 @@ def test_a_generated_pair_drawn_smaller_shrinks_by_the_factor():
     smaller = np.ptp(build_gear_pair(design.model_copy(update=options)).wheel.bounds[:, :2], axis=0)
     assert smaller == pytest.approx(wheel * factor, rel=2e-3)
     assert bed_scale(smaller, printer) == 1.0
+
+
+def test_a_smaller_pair_remedy_says_what_it_changes_besides_the_size():
+    """The count (or play) a try at the smaller size needed is said after the size: the pair
+    with other teeth is not the same pair drawn smaller."""
+    from wheelstep_cli.parts.bed_remedy import _changed_besides
+
+    scaled = {"install_distance": 62.0}
+    assert _changed_besides({"install_distance": 61.9}, scaled) == ""
+    assert _changed_besides({"install_distance": 62.0, "z": 40}, scaled) == " with 40 teeth"
+    assert (_changed_besides({"install_distance": 62.0, "z": 40, "backlash": 0.1}, scaled)
+            == " with 40 teeth and a backlash of 0.1 mm")

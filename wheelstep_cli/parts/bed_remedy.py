@@ -35,11 +35,14 @@ def scaled_to_bed(build: Callable, design, verify: Callable | None, unbuilt: boo
         if unbuilt:
             raise err.with_advice(f"try {as_flags(options)} (the pair drawn at {_percent(factor)} of its size; "
                                   "not built)", options) from None
+        sizing = next(iter(options))    # the input the scaling sets, and its size as the design has it
+        size = options[sizing] / factor
         found, tried, factor = _smaller_pair(design, options, factor, verify)
         if found is None:
             raise err.with_advice(f"{no_remedy(tried)}: a printer with a larger bed (--printer)", {}) from None
-        raise err.with_advice(f"use {as_flags(found)} (the pair drawn at {_percent(factor)} of its size, which "
-                              "the bed holds)", found) from None
+        factor = found.get(sizing, size * factor) / size     # a later try may have drawn it smaller still
+        raise err.with_advice(f"use {as_flags(found)} (the pair drawn at {_percent(factor)} of its size"
+                              f"{_changed_besides(found, options)}, which the bed holds)", found) from None
 
 
 def _smaller_pair(design, options: dict, factor: float, verify: Callable
@@ -76,6 +79,16 @@ def _smaller_pair(design, options: dict, factor: float, verify: Callable
         own = getattr(refusal, "remedy", None) or {}
         return ({**options, **own} if own else None), tried, factor
     return options, [], factor
+
+
+def _changed_besides(found: dict, scaled: dict) -> str:
+    """What a remedy changes besides drawing the pair smaller (``scaled``: the scaling's own
+    options), as words after the size ("" if nothing): the count, the play a try at that size
+    needed."""
+    words = {"z": lambda v: f"{v} teeth", "backlash": lambda v: f"a backlash of {v:g} mm"}
+    more = [words.get(name, lambda v, n=name: f"{n.replace('_', ' ')} {v:g}")(value)
+            for name, value in found.items() if name not in scaled]
+    return f" with {' and '.join(more)}" if more else ""
 
 
 def _percent(factor: float) -> str:
