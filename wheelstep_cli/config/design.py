@@ -67,7 +67,7 @@ def mechanism_conflicts(values) -> list[tuple[str, str, str]]:
     the values a section gives (mm)."""
     shared = values("mechanism")
     base = _crank([shared])
-    conflicts = []
+    conflicts = _struts_contradicting(values)
     for section in ("gears", "shoe"):
         part = values(section)
         if section == "gears" and part.get("law_csv") is not None:
@@ -87,6 +87,21 @@ def mechanism_conflicts(values) -> list[tuple[str, str, str]]:
                "a mover's parts share one mechanism; give a, b and the strut in mechanism: only")
         conflicts += [(section, key, why) for key in differing]
     return conflicts
+
+
+def _struts_contradicting(values) -> list[tuple[str, str, str]]:
+    """(section, "r_min", why) of each section that gives the strut both as c and as R_min,
+    the two disagreeing (a and b: the section's, else the mechanism's, else the source design's)."""
+    from wheelstep_cli.config.specs import strut_contradiction
+
+    found = []
+    for section in ("mechanism", "gears", "shoe"):
+        given = values(section)
+        if "c" in given and "r_min" in given:
+            lengths = {"a": 60.0, "b": 100.0, **values("mechanism"), **given}
+            why = strut_contradiction(lengths["a"], lengths["b"], given["c"], given["r_min"])
+            found += [(section, "r_min", why)] if why else []
+    return found
 
 
 def _crank(layers: list[dict]) -> tuple[float, float, float] | None:

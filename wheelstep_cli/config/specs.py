@@ -356,6 +356,15 @@ def bore_defaults(values: dict) -> dict:
     return values
 
 
+def strut_contradiction(a: float, b: float, c: float, r_min: float) -> str | None:
+    """Why a strut given both as ``c`` and as ``r_min`` contradicts itself (a limit's words),
+    None when R_min = a - 4b + c holds (mm)."""
+    got = a - 4.0 * b + c
+    if np.isclose(got, r_min, rtol=0, atol=1e-6):
+        return None
+    return f"contradicts c = {c:g} mm (a - 4b + c = {got:g} mm); give only one of c and R_min"
+
+
 class ShoeSpec(BaseModel):
     """Everything that defines a printed shoe. Lengths in mm, stored as floats.
 
@@ -384,9 +393,6 @@ class ShoeSpec(BaseModel):
             r_min = DEFAULT_R_MIN if self.r_min is None else self.r_min
             return CrankMechanism.from_r_min(self.a, self.b, r_min)
         # both given: their contradiction first (a limit of c alone would lead to it)
-        r_min = self.a - 4.0 * self.b + self.c
-        if self.r_min is not None and not np.isclose(r_min, self.r_min, rtol=0, atol=1e-6):
-            raise DesignError("r_min", self.r_min,
-                              f"contradicts c = {self.c:g} mm (a - 4b + c = {r_min:g} mm); "
-                              "give only one of c and R_min")
+        if self.r_min is not None and (why := strut_contradiction(self.a, self.b, self.c, self.r_min)):
+            raise DesignError("r_min", self.r_min, why)
         return CrankMechanism(self.a, self.b, self.c)
