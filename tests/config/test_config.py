@@ -452,3 +452,33 @@ def test_a_number_whose_exponent_has_no_sign_is_told_how_yaml_reads_it(cli, tmp_
                          "or as plain decimal digits (100)"), line
     write(profile, "mechanism:\n  b: 1.0e+2\n")
     assert cli("gears", "--profile", profile, "--dry-run", "--out", tmp_path / "out").exit_code == 0
+
+
+@pytest.mark.parametrize("command, report", [("shoe", "shoe.json"), ("gears", "gears.json")])
+def test_a_profile_in_the_working_folder_that_replaces_a_preset_is_warned_of_and_recorded(
+        cli, tmp_path, monkeypatch, command, report):
+    """A profiles/ folder in the working folder comes before the shipped presets: a file there
+    named as a preset is said to be read instead of it, and the report records the file read
+    (its SHA-256), as it does for the preset itself."""
+    import hashlib
+    import json
+    from pathlib import Path
+
+    from wheelstep_cli.config.profiles import shipped_profiles
+
+    preset = (Path(shipped_profiles()) / "desk-demo.yaml").read_bytes()
+    monkeypatch.chdir(tmp_path)
+    shipped = cli(command, "--profile", "desk-demo", "--out", "a", "--dry-run", "--json", "-q")
+    assert shipped.exit_code == 0 and "warning" not in shipped.stderr, shipped.stderr
+    assert json.loads(shipped.stdout)["design_profile"] == {
+        "given": "desk-demo", "file": "desk-demo.yaml", "sha256": hashlib.sha256(preset).hexdigest(), "shipped": True}
+    local = preset.replace(b"  width: 20", b"  width: 21")
+    assert local != preset
+    (tmp_path / "profiles").mkdir()
+    write(tmp_path / "profiles" / "desk-demo.yaml", local.decode())
+    result = cli(command, "--profile", "desk-demo", "--out", "b")
+    assert result.exit_code == 0, result.stderr
+    assert ("wheelstep: warning: --profile desk-demo is read from profiles/desk-demo.yaml, a profiles/ folder in "
+            "the working folder, not the shipped preset of that name") in result.stderr
+    assert json.loads((tmp_path / "b" / report).read_text())["design_profile"] == {
+        "given": "desk-demo", "file": "desk-demo.yaml", "sha256": hashlib.sha256(local).hexdigest(), "shipped": False}

@@ -75,10 +75,17 @@ class Output:
         named on one last line, never printed as ``None``. ``profile``: the --profile given,
         said first with the file it was read from (a profiles/ folder in the working folder
         comes before the shipped presets)."""
-        if profile and self.verbose and not self.quiet:
-            from wheelstep_cli.config.profiles import find_profile
+        if profile:
+            from wheelstep_cli.config.profiles import find_profile, profile_label, shadowed_preset
 
-            self.detail(f"  profile = {profile} ({find_profile(profile)})")
+            preset = shadowed_preset(profile)
+            if preset is not None:
+                # the same command elsewhere reads the preset: say which file this one read
+                self.warning(f"wheelstep: warning: --profile {profile} is read from "
+                             f"{profile_label(find_profile(profile))}, "
+                             "a profiles/ folder in the working folder, not the shipped preset of that name")
+            if self.verbose and not self.quiet:
+                self.detail(f"  profile = {profile} ({find_profile(profile)})")
         left = []
         for name, value in _flat(values):
             if value is None:

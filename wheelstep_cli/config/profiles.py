@@ -120,6 +120,32 @@ def load_profile(name_or_path: str) -> tuple[Path, dict[str, Any]]:
     return path, data
 
 
+def shadowed_preset(name_or_path: str) -> Path | None:
+    """The shipped preset that a profile given by name is read instead of (a ``profiles/``
+    folder in the working folder comes first), None when it is the preset itself, a path, or
+    no preset has that name."""
+    if Path(name_or_path).suffix in (".yaml", ".yml"):
+        return None
+    try:
+        found = find_profile(name_or_path).resolve()
+    except DesignError:
+        return None
+    preset = next((shipped_profiles() / f"{name_or_path}{suffix}" for suffix in (".yaml", ".yml")
+                   if (shipped_profiles() / f"{name_or_path}{suffix}").is_file()), None)
+    return preset if preset is not None and preset.resolve() != found else None
+
+
+def profile_record(name_or_path: str) -> dict:
+    """What a report says of the design profile a part was made from: the name or path given,
+    the file's name, its SHA-256 (the part traced to the file's contents) and whether it is the
+    shipped preset."""
+    import hashlib
+
+    file = find_profile(name_or_path)
+    return {"given": name_or_path, "file": file.name, "sha256": hashlib.sha256(file.read_bytes()).hexdigest(),
+            "shipped": file.resolve().parent == shipped_profiles().resolve()}
+
+
 def profile_label(file: Path) -> str:
     """A profile's path as shown in messages: relative to the working folder when inside it."""
     try:

@@ -44,6 +44,7 @@ class GearPair:
     installed: float | None = None  # mm, generated teeth: parts.gear_laws.installed_distance
     inset: float = 0.0         # mm both tooth outlines are drawn smaller along their normals (a fit)
     asked: object = None       # the spec before the build filled in a default (generated teeth' backlash)
+    design_profile: dict | None = None  # the design profile it was made from (config.profiles.profile_record)
 
     @property
     def as_asked(self) -> GearPairSpec:
@@ -228,6 +229,11 @@ def partition_rows(partition: SectorPartition) -> list[dict]:
     ]
 
 
+def _made_from(built) -> dict:
+    """A report's ``design_profile`` (the profile a part was made from), when there is one."""
+    return {"design_profile": built.design_profile} if built.design_profile is not None else {}
+
+
 def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
     """Everything about the pair a person or a machine may want: inputs, partition, parts,
     and the meshing check of the written meshes when given."""
@@ -240,7 +246,7 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
         check = pair.checks[part.name]
         parts[part.name] = {"teeth": pair.spec.z if part.name == "pinion" else pair.wheel_teeth,
                             **part_record(part, check)}
-    report = {"tool": "wheelstep gears", "parameters": spec, **_printing(pair), "parts": parts,
+    report = {"tool": "wheelstep gears", **_made_from(pair), "parameters": spec, **_printing(pair), "parts": parts,
               "chamfer": chamfer_report(pair)}
     if pair.law is not None:
         report["u"] = pair.law.u

@@ -49,6 +49,7 @@ class Shoe:
     parts: list[Part]
     checks: dict[str, MeshReport] = field(default_factory=dict)
     printing: object = None   # parts.kinds.Printing when drawn for a printer (spec: the printed one)
+    design_profile: dict | None = None  # the design profile it was made from (config.profiles.profile_record)
 
     @property
     def part(self) -> Part:
@@ -106,6 +107,7 @@ def shoe_report(shoe: Shoe) -> dict:
     check = shoe.checks[part.name]
     return {
         "tool": "wheelstep shoe",
+        **({"design_profile": shoe.design_profile} if shoe.design_profile is not None else {}),
         "parameters": resolved_parameters(shoe),
         **_printing(shoe),
         **sizing(shoe.design),

@@ -139,7 +139,7 @@ def gears(
     source = "--fit" if fit else f"the band of printer {chosen.name}" if fit_name else None
     _make_gears(spec, chosen, show, out, fmt.value, allow_interference, dry_run, force,
                 checked_extras(plot, gif, dxf, svg, step),
-                (tolerance or fit_name is not None, fit_name, source), slice_, printer)
+                (tolerance or fit_name is not None, fit_name, source), slice_, printer, profile)
 
 
 def _value(choice):
@@ -170,16 +170,21 @@ def _require_slicer(slice_: bool, fmt: str, printer) -> None:
 
 def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interference: bool,
                 dry_run: bool, force: bool, extras: GearExtras = GearExtras(),
-                band: tuple = (False, None), slice_: bool = False, printer_given: str | None = None) -> None:
+                band: tuple = (False, None), slice_: bool = False, printer_given: str | None = None,
+                profile: str | None = None) -> None:
     """Build, check, write (unless refused or a dry run) and report the pair of ``spec``;
     ``band`` = (check over the printer's band, the fit or None[, where the fit comes from]);
-    ``slice_``: slice the plates and check the G-code; ``printer_given``: --printer as given."""
+    ``slice_``: slice the plates and check the G-code; ``printer_given``: --printer as given;
+    ``profile``: --profile as given (the report names the file and its SHA-256)."""
+    from dataclasses import replace
+
     import typer
 
     from wheelstep_cli.cli.commands.gears_checks import (checked_pair, collisions_first, printable_or_remedied,
                                                          require_height_first, warn_no_printed_play,
                                                          warn_of_the_figures)
     from wheelstep_cli.cli.progress import with_progress
+    from wheelstep_cli.config.profiles import profile_record
     from wheelstep_cli.parts.bound_figures import bounds_verdict
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
@@ -189,6 +194,8 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     bed = require_height_first(spec, printer, fmt, band[1] is not None)
     pair, record, tolerance, check = checked_pair(spec, printer, show, allow_interference, band, bed)
     printable_or_remedied(pair, spec, printer, show, band, bed)
+    if profile:
+        pair = replace(pair, design_profile=profile_record(profile))
     if tolerance is not None:
         record["tolerance"] = tolerance
     record["bounds"] = bounds_verdict(record, (tolerance or {}).get("fit"))

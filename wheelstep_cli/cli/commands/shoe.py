@@ -41,7 +41,9 @@ def shoe(
     ream or drill for a press fit), a flat top 15 mm above the sole's ends; at least 2 mm
     of plastic is kept around and under the socket.
     """
-    from wheelstep_cli.config.profiles import load_printer_profile
+    from dataclasses import replace
+
+    from wheelstep_cli.config.profiles import load_printer_profile, profile_record
     from wheelstep_cli.parts.kinds import build_for_printer
     from wheelstep_cli.parts.shoe import shoe_files, shoe_report
     from wheelstep_cli.parts.shoe_bed import shoe_scaled_to_bed
@@ -55,6 +57,8 @@ def shoe(
     built = build_for_printer("shoe", spec, chosen)
     if chosen is not None:     # too large for its bed: the shoe drawn smaller as the remedy
         built = shoe_scaled_to_bed(built, built.printing.printer, lambda s: build_for_printer("shoe", s, chosen))
+    if profile:
+        built = replace(built, design_profile=profile_record(profile))
     files = shoe_files(built, out, fmt.value)
     written = show.write_owned(out, "shoe", files, dry_run, force)
     report = shoe_report(built)
