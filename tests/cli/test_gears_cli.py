@@ -99,6 +99,8 @@ def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_pa
 
 @pytest.mark.parametrize("args, param", [
     (["--b", "110", "--c", "360"], "c ="),         # R_min = a - 4b + c < 0
+    (["--rmin", "0"], "--rmin = 0: must be >= 0.001 mm"),   # the strut as R_min, as shoe takes it
+    (["--rmin", "20", "--c", "300"], "--rmin = 20: contradicts c = 300 mm"),
     (["--z", "47"], "z ="),                        # not whole sectors
     (["--teeth", "paper", "--module", "4"], "module ="),   # pointed teeth
     (["--bore", "100"], "bore ="),                 # bore larger than the root
@@ -371,3 +373,23 @@ def test_the_no_closer_mounting_warning_says_what_the_mounting_line_says(cli, tm
     assert "come within" in mounting and "or overlap" in mounting, mounting
     assert ("WARNING: mounted any closer than designed the teeth may meet (see 'mounting')" in result.stderr), \
         result.stderr
+
+
+@pytest.mark.parametrize("command", ["gears", "pitch"])
+def test_the_strut_given_as_r_min_is_the_strut_it_sizes(cli, tmp_path, command):
+    """--rmin R sizes c = R - a + 4b, as shoe and kinematics take it: the same tables as --c."""
+    args = ["--json", "-q"] + (["--z", "54", "--dry-run", "--out", tmp_path / "o"] if command == "gears" else [])
+    by_r_min = cli(command, "--rmin", "30", *args)
+    by_c = cli(command, "--c", "370", *args)
+    assert by_r_min.exit_code == 0 and by_c.exit_code == 0, by_r_min.stderr + by_c.stderr
+    assert json.loads(by_r_min.stdout)["parameters"]["c"] == 370
+    assert json.loads(by_r_min.stdout) == json.loads(by_c.stdout)
+
+
+def test_a_refusal_shared_by_the_strut_names_r_min_when_it_is_given_so(cli, tmp_path):
+    """A rule the strut shares the blame for (the installed distance sizes the pair, c the
+    law) names --rmin when the command line gives the strut as R_min, as it names --c."""
+    for flag, value in (("--c", "370"), ("--rmin", "30")):
+        line = error_line(cli("gears", flag, value, "--install-distance", "3", "--dry-run", "--out", tmp_path / "o"))
+        assert line.startswith(f"wheelstep: error: {flag} = {value}: with it, bore = 8 (the default) fails: "
+                               "must be 0 (no hole)"), line

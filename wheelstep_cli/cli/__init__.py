@@ -24,7 +24,7 @@ except ImportError:  # pragma: no cover - older typer uses click itself
 from wheelstep_cli.batch.interrupts import (caused_by_interrupt, exit_now, exit_unless_threads_end,
                                             interrupts_not_lost)
 from wheelstep_cli.cli.naming import (command_options, command_params, flag_values, given_names, option_values,
-                                      os_error_text, refusal_line, subcommand)
+                                      os_error_text, refusal_line, strut_as_given, subcommand)
 from wheelstep_cli.cli.refusal import said
 from wheelstep_cli.config.schema import InvalidInput
 from wheelstep_cli.errors import CheckRefused, DesignError, Interrupted, MeshDefect
@@ -189,7 +189,7 @@ def run(argv: list[str] | None = None) -> int:
         return said([f"wheelstep: {'refused' if isinstance(err, CheckRefused) else 'error'}: {err}"], 1, args, err)
     except DesignError as err:
         given = given_names(command, args)
-        stated = err.for_given(given)
+        stated = strut_as_given(err, command, args, given).for_given(given)
         located = None if stated.param.replace("-", "_") in given else _in_design_profile(stated, command, args)
         if located is not None:     # said at the profile's line: its problem, the remedies the line's
             return said([f"wheelstep: error: {line}" for line in located.lines()], 2, args, located)

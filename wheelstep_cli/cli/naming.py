@@ -88,6 +88,23 @@ def option_values(params, argv: list[str]) -> list[tuple[object, str, str]]:
     return found
 
 
+def strut_as_given(err: DesignError, group, argv: list[str], given: list[str]) -> DesignError:
+    """``err``, where it is also stated for the strut length c, stated as well for --rmin when
+    the command line gives the strut as R_min and not as c (c is sized from it): the line then
+    names the option typed, not a default that shares the blame."""
+    if "r_min" not in given or "c" in given or "c" not in err.alternatives:
+        return err
+    typed = [value for param, _, value in option_values(command_params(group, argv), argv) if param.name == "r_min"]
+    try:
+        r_min = float(typed[-1])
+    except (IndexError, ValueError):
+        return err
+    alternatives = {}
+    for name, stated in err.alternatives.items():    # in c's place: the same precedence
+        alternatives.update({name: stated, **({"r_min": (r_min, stated[1])} if name == "c" else {})})
+    return err._with_extras(DesignError(err.param, err.value, err.limit, alternatives))
+
+
 def error_text(err: DesignError, name: str, argv: list[str]) -> str:
     """One line: the parameter as the user wrote it (``name``), the value and the limit."""
     return f"{name} = {_typed_value(name, err, argv)}: {err.limit}"

@@ -11,7 +11,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from wheelstep_cli.config.schema import InvalidInput, build, design_errors
-from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
+from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec, strut_contradiction
 from wheelstep_cli.errors import DesignError, offered_remedies
 
 STRUT = ("c", "r_min")
@@ -59,9 +59,12 @@ def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any
             _no_crank_law(top, f"the {'profile' if on_command_line else 'design'}'s {section}.law_csv")
     if "r_min" in merged and "r_min" not in fields:
         r_min = merged.pop("r_min")
+        a, b = merged.get("a", fields["a"].default), merged.get("b", fields["b"].default)
         if "c" not in merged:
-            merged["c"] = strut_length(merged.get("a", fields["a"].default),
-                                       merged.get("b", fields["b"].default), r_min)
+            merged["c"] = strut_length(a, b, r_min)
+        elif why := strut_contradiction(a, b, merged["c"], r_min):
+            # both given in one layer (a lower layer's strut gives way above): they must agree
+            raise DesignError("r_min", r_min, why)
     return {k: v for k, v in merged.items() if k in fields}
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (A, AllowInterference, B, Blend, C, CenterDistance, DryRun,
+from wheelstep_cli.cli.options import (A, AllowInterference, B, Blend, C, CenterDistance, DryRun, RMin,
                                        FitChoice, Force, Format,
                                        Json, LawCsv, MeshFormat, Out, Printer, Profile, Quiet, Tolerance,
                                        Turns, Verbose, Z, opt, output_file)
@@ -96,7 +96,7 @@ Tilt = Annotated[Optional[float], opt(
 
 
 def gears(
-    a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = None,
+    a: A = None, b: B = None, c: C = None, r_min: RMin = None, z: Z = None, turns: Turns = None,
     center_distance: CenterDistance = None, install_distance: InstallDistance = None,
     module: Module = None, backlash: Backlash = None, thickness: Thickness = None,
     bore: Bore = None, bore_shape: BoreShapeOpt = None, flat_depth: FlatDepth = None,
@@ -121,7 +121,7 @@ def gears(
     gear carries an engraved timing mark; gears.json states the assembly phase the marks
     and keyed bores build in."""
     show = Output(json, quiet, verbose)
-    spec = gear_pair_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
+    spec = gear_pair_spec(profile, a=a, b=b, c=c, r_min=r_min, z=z, turns=turns, center_distance=center_distance,
                           install_distance=install_distance, module=module, backlash=backlash,
                           thickness=thickness, bore=bore, bore_shape=_value(bore_shape),
                           flat_depth=flat_depth, key_width=key_width, key_depth=key_depth,

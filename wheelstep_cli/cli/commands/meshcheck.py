@@ -7,7 +7,7 @@ from typing import Annotated, List, Optional
 
 import typer
 
-from wheelstep_cli.cli.options import (A, B, Blend, C, DryRun, Force, Json, LawCsv,
+from wheelstep_cli.cli.options import (A, B, Blend, C, DryRun, Force, Json, LawCsv, RMin,
                                        Profile, Quiet, Tolerance, Turns, Verbose, opt, plot_option,
                                        require_a_file)
 from wheelstep_cli.cli.commands.meshcheck_shared import (band_printer_of, design_spec, no_design_options,
@@ -41,7 +41,7 @@ def mesh_check(
                                                      "FILE.3mf:NAME; or a second plate."),
     distance: Annotated[Optional[float], opt("--distance", "-d", help="Installed centre distance, mm.",
                                              shown="the design's, 144")] = None,
-    a: A = None, b: B = None, c: C = None, turns: Turns = None,
+    a: A = None, b: B = None, c: C = None, r_min: RMin = None, turns: Turns = None,
     center_distance: Annotated[Optional[float], opt(
         "--center-distance", help="Centre distance the pitch curves roll at, mm: here the distance "
                                   "checked at when no --distance (or profile install_distance) is "
@@ -70,7 +70,7 @@ def mesh_check(
     period. Exit 1 if they interfere or lose contact."""
     show = Output(json, quiet, verbose)
     require_a_file(dry_run, force, plot=plot)
-    design = {"distance": distance, "a": a, "b": b, "c": c, "turns": turns,
+    design = {"distance": distance, "a": a, "b": b, "c": c, "r_min": r_min, "turns": turns,
               "center_distance": center_distance, "law_csv": law_csv, "blend": blend, "profile": profile}
     band = (tolerance, printer)
     if gcode:

@@ -15,6 +15,7 @@ def design_spec(design: dict):
     law_csv = design["law_csv"]
     try:
         spec = gear_pair_spec(design["profile"], a=design["a"], b=design["b"], c=design["c"],
+                              r_min=design["r_min"],
                               turns=design["turns"], center_distance=design["center_distance"],
                               install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
                               blend=design["blend"])

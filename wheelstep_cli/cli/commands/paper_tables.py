@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import A, B, C, Json, Profile, Quiet, Turns, Verbose, Z, opt
+from wheelstep_cli.cli.options import A, B, C, Json, Profile, Quiet, RMin, Turns, Verbose, Z, opt
 from wheelstep_cli.cli.output import Output
 from wheelstep_cli.config.resolve import paper_table_spec
 
@@ -18,7 +18,7 @@ PaperBacklash = Annotated[Optional[float], opt("--backlash", help="Normal backla
                                                                   "teeth, mm.", shown="0.25 x module")]
 
 
-def pitch(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = None,
+def pitch(a: A = None, b: B = None, c: C = None, r_min: RMin = None, z: Z = None, turns: Turns = None,
           center_distance: PaperDistance = None, profile: Profile = None,
           json: Json = False, quiet: Quiet = False, verbose: Verbose = False) -> None:
     """Print the equal-arc sector partition of one carrier quarter (SPEC §4)."""
@@ -26,7 +26,7 @@ def pitch(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
 
     out = Output(json, quiet, verbose)
     # the sector partition of SPEC §4 is the paper method's, at the distance its sectors roll at
-    spec, left_out = paper_table_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance)
+    spec, left_out = paper_table_spec(profile, a=a, b=b, c=c, r_min=r_min, z=z, turns=turns, center_distance=center_distance)
     parameters = {"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
                   "center_distance": spec.center_distance}
     out.parameters(parameters)
@@ -57,7 +57,7 @@ def _pitch_lines(report: dict) -> list[str]:
                     "`gears` spaces generated teeth along the exact pitch curves, so its pitch is larger)"]
 
 
-def teeth(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = None,
+def teeth(a: A = None, b: B = None, c: C = None, r_min: RMin = None, z: Z = None, turns: Turns = None,
           center_distance: PaperDistance = None, module: PaperModule = None,
           backlash: PaperBacklash = None, profile: Profile = None,
           json: Json = False, quiet: Quiet = False, verbose: Verbose = False) -> None:
@@ -66,7 +66,7 @@ def teeth(a: A = None, b: B = None, c: C = None, z: Z = None, turns: Turns = Non
 
     out = Output(json, quiet, verbose)
     # the sector-involute teeth of SPEC §5 are the paper's: their rules, not the generator's
-    spec, left_out = paper_table_spec(profile, a=a, b=b, c=c, z=z, turns=turns, center_distance=center_distance,
+    spec, left_out = paper_table_spec(profile, a=a, b=b, c=c, r_min=r_min, z=z, turns=turns, center_distance=center_distance,
                             module=module, backlash=backlash)
     parameters = {"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
                   "center_distance": spec.center_distance, "module": spec.paper_module,
