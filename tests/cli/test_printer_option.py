@@ -270,12 +270,13 @@ def test_a_broken_link_given_for_a_file_names_where_it_points(cli, tmp_path, arg
                     "which does not exist"), line
 
 
-def _small_bed_printer(tmp_path, side: int) -> str:
-    """The PLA preset on a ``side`` x ``side`` mm bed, as a printer profile file."""
+def _small_bed_printer(tmp_path, side: float, other: float | None = None) -> str:
+    """The PLA preset on a ``side`` x ``other`` (default ``side``) mm bed, as a printer profile file."""
     from wheelstep_cli.config.profiles import find_profile
 
-    text = find_profile("fdm-0.4-pla", printer=True).read_text().replace("bed: [256, 256]", f"bed: [{side}, {side}]")
-    assert f"bed: [{side}, {side}]" in text
+    bed = f"bed: [{side}, {other or side}]"
+    text = find_profile("fdm-0.4-pla", printer=True).read_text().replace("bed: [256, 256]", bed)
+    assert bed in text
     return str(write(tmp_path / f"bed{side}.yaml", text))
 
 
@@ -321,3 +322,9 @@ def test_a_shoe_no_smaller_shoe_fits_names_the_option_that_stops_the_smaller_one
     line = error_line(cli("shoe", "--printer", _small_bed_printer(tmp_path, 40), "--out", tmp_path / "out"))
     assert "; no remedy found (--a " in line and "is refused: --socket-depth = 25: must be <= " in line, line
     assert line.endswith(": a printer with a larger bed (--printer)"), line
+
+
+def test_a_shoe_on_a_bed_barely_wider_than_its_margins_is_offered_no_mechanism_of_no_size(cli, tmp_path):
+    line = error_line(cli("shoe", "--printer", _small_bed_printer(tmp_path, 10.2, 300), "--out", tmp_path / "o"))
+    assert line.endswith("; no remedy found (the mechanism drawn at 0.3 % of its size rounds r_min to 0 mm): "
+                         "a printer with a larger bed (--printer)"), line

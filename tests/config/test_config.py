@@ -482,3 +482,20 @@ def test_a_profile_in_the_working_folder_that_replaces_a_preset_is_warned_of_and
             "the working folder, not the shipped preset of that name") in result.stderr
     assert json.loads((tmp_path / "b" / report).read_text())["design_profile"] == {
         "given": "desk-demo", "file": "desk-demo.yaml", "sha256": hashlib.sha256(local).hexdigest(), "shipped": False}
+    # a path given is recorded by its file's name: no folder of the user's in a report
+    by_path = cli(command, "--profile", tmp_path / "profiles" / "desk-demo.yaml", "--out", "c", "--dry-run",
+                  "--json", "-q")
+    assert json.loads(by_path.stdout)["design_profile"]["given"] == "desk-demo.yaml"
+
+
+@pytest.mark.parametrize("command", ["gears", "shoe"])
+def test_a_strut_given_both_ways_keeps_c_when_the_command_line_resizes_the_cranks(cli, tmp_path, command):
+    """A profile's agreeing c and R_min, with --a given: c is kept (as a c given alone is), not
+    refused as contradicting by arithmetic made with the command line's a."""
+    from wheelstep_cli.config.resolve import gear_pair_spec, shoe_spec
+
+    profile = str(write(tmp_path / "p.yaml", "mechanism:\n  a: 60\n  b: 100\n  c: 360\n  r_min: 20\n"))
+    resolve = gear_pair_spec if command == "gears" else shoe_spec
+    spec = resolve(profile, a=50.0)
+    assert spec.c == 360 and getattr(spec, "r_min", None) is None
+    assert resolve(profile).c == 360

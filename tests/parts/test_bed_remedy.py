@@ -57,8 +57,8 @@ def test_a_smaller_pair_remedy_says_what_it_changes_besides_the_size():
     with other teeth is not the same pair drawn smaller."""
     from wheelstep_cli.parts.bed_remedy import _changed_besides
 
-    scaled = {"install_distance": 62.0}
-    assert _changed_besides({"install_distance": 61.9}, scaled) == ""
-    assert _changed_besides({"install_distance": 62.0, "z": 40}, scaled) == " with 40 teeth"
-    assert (_changed_besides({"install_distance": 62.0, "z": 40, "backlash": 0.1}, scaled)
-            == " with 40 teeth and a backlash of 0.1 mm")
+    scaled = {"install_distance": 62.0, "backlash": 0.2}     # a backlash given scales with the pair
+    changed = lambda found: _changed_besides(found, scaled, "install_distance")  # noqa: E731
+    assert changed({"install_distance": 61.9, "backlash": 0.2}) == ""
+    assert changed({"install_distance": 62.0, "z": 40, "backlash": 0.2}) == " with 40 teeth"
+    assert changed({"install_distance": 62.0, "z": 40, "backlash": 0.1}) == " with 40 teeth and a backlash of 0.1 mm"

@@ -298,6 +298,32 @@ def test_a_try_the_bed_refuses_is_followed_by_the_same_try_drawn_smaller():
     assert "--install-distance 95" in error.limit
 
 
+def test_a_sized_try_still_off_the_bed_is_drawn_smaller_by_the_scale_the_bed_allows():
+    """A module given: the count's try keeps the pair's size (module x z); when that size is
+    itself off the bed (a bed remedy's smaller pair, whose teeth then change), the try is drawn
+    smaller by the refusal's scale, not given up."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+
+    tries = []
+
+    def verify(design):
+        tries.append((design.z, design.module))
+        size = design.module * design.z
+        if size > 60.0 + 1e-9:
+            error = DesignError("printer", "fdm-0.4-pla", "part 'wheel' does not fit the bed")
+            error.beyond_printer, error.bed_scale = "fdm-0.4-pla", 60.0 / size
+            raise error
+        pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
+                               spec=design, as_asked=design, opening=0.0)
+        return pair, record()
+
+    error, _ = _refusal(verify, module=2.0)
+    assert tries[:3] == [(36, 2.0), (36, round(64 / 36, 3)), (36, 1.666)], tries
+    assert error.remedy["module"] * error.remedy["z"] <= 60.0 and 32 < error.remedy["z"] <= 36, error.remedy
+
+
 def test_a_remedy_the_pipeline_refuses_is_not_offered():
     from wheelstep_cli.errors import DesignError
 
@@ -386,7 +412,7 @@ def test_a_remedy_the_plates_bed_cannot_hold_is_refused_before_its_meshing_check
 
 def test_a_scaled_module_stays_a_module_a_spec_takes():
     from wheelstep_cli.config.specs import MIN_MODULE
-    from wheelstep_cli.parts.mesh_bounds import _sized
+    from wheelstep_cli.parts.printed_teeth import sized_remedy as _sized
 
     design = GearPairSpec(z=24, module=0.2)
     assert _sized(design, {"z": 72}) == {"z": 72, "module": MIN_MODULE}       # 0.067 would be refused
@@ -450,3 +476,34 @@ def test_less_play_that_hardly_lowers_the_ripple_is_followed_by_more_teeth(falls
     assert z1 == 100 and first < spec.backlash_mm       # the play first
     # fallen by more than a quarter of its excess: less play again; else two periods more teeth
     assert z2 == next_z and (then < first if falls else True), tries
+
+
+def test_a_bed_remedy_on_a_given_module_says_the_size_of_the_pair_it_offers():
+    """The pair drawn smaller on a module given (module x z sizes it) whose smaller teeth then
+    need more of them: the remedy's size is module x z against the design's (90 %), not the
+    module's ratio (80 %), and the count it changes is said."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.bed_remedy import scaled_to_bed
+
+    def off_the_bed(size):
+        error = DesignError("printer", "fdm-0.4-pla", "part 'wheel' does not fit the bed; nothing written")
+        error.beyond_printer, error.bed_scale = "fdm-0.4-pla", 57.6 / size
+        return error
+
+    def verify(design):
+        if design.module * design.z > 57.6 + 1e-9:
+            raise off_the_bed(design.module * design.z)
+        pair = SimpleNamespace(generated=SimpleNamespace(law=generation_law(design)[1]), printing=None,
+                               spec=design, as_asked=design, opening=0.0)
+        return pair, record(drive=flank(total=18.0, tooth=6.0) if design.z < 36 else flank())
+
+    def build():
+        raise off_the_bed(64.0)
+
+    with pytest.raises(DesignError) as err:
+        scaled_to_bed(build, GearPairSpec(z=32, module=2.0), verify)
+    assert err.value.remedy == {"module": 1.6, "z": 36}
+    assert "use --module 1.6 --z 36 (the pair drawn at 90 % of its size with 36 teeth, which the bed holds)" \
+        in err.value.limit, err.value.limit

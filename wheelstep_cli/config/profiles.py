@@ -136,13 +136,15 @@ def shadowed_preset(name_or_path: str) -> Path | None:
 
 
 def profile_record(name_or_path: str) -> dict:
-    """What a report says of the design profile a part was made from: the name or path given,
-    the file's name, its SHA-256 (the part traced to the file's contents) and whether it is the
-    shipped preset."""
+    """What a report says of the design profile a part was made from: the name given (a path:
+    its file's name), the file's name, its SHA-256 (the part traced to the file's contents)
+    and whether it is the shipped preset."""
     import hashlib
 
     file = find_profile(name_or_path)
-    return {"given": name_or_path, "file": file.name, "sha256": hashlib.sha256(file.read_bytes()).hexdigest(),
+    # a path as its file's name, as a printer's is recorded: no folder of the user's in a report
+    given = Path(name_or_path).name if Path(name_or_path).suffix in (".yaml", ".yml") else name_or_path
+    return {"given": given, "file": file.name, "sha256": hashlib.sha256(file.read_bytes()).hexdigest(),
             "shipped": file.resolve().parent == shipped_profiles().resolve()}
 
 

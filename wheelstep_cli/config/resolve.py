@@ -39,19 +39,31 @@ def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any
     in either form. A spec without ``r_min`` (the gear pair) gets c = R_min - a + 4b.
     """
     layers = [top] if profile is None else [profile.values("mechanism"), profile.values(section), top]
+    fields = spec.model_fields
     merged: dict[str, Any] = {}
+    resized = False         # a layer above the strut's gives a or b
     for layer in layers:
         given = {k: v for k, v in layer.items() if v is not None}
         if any(k in given for k in STRUT):
             for key in STRUT:
                 merged.pop(key, None)
+            resized = False
+            if "c" in given and "r_min" in given:
+                # one layer's two forms must agree (a contradiction is not settled by a rule of either)
+                lengths = {"a": fields["a"].default, "b": fields["b"].default, **merged, **given}
+                if why := strut_contradiction(lengths["a"], lengths["b"], given["c"], given["r_min"]):
+                    raise DesignError("r_min", given["r_min"], why)
+        elif "a" in given or "b" in given:
+            resized = True
         if "module" in given and _generated({**merged, **given}, spec):
             # generated teeth roll where the module fits (SPEC §9) and are mounted there:
             # a lower layer's distances (a preset's) give way, as a strut does
             for key in DISTANCES:
                 merged.pop(key, None)
         merged.update(given)
-    fields = spec.model_fields
+    if resized and "c" in merged:
+        # a strut given both ways below a layer that resizes the cranks: c is kept (as when given alone)
+        merged.pop("r_min", None)
     if "law_csv" in fields and merged.get("law_csv") is not None:
         if top.get("law_csv") is not None:
             _no_crank_law(top, "--law-csv" if on_command_line else "the entry's law_csv")
@@ -59,12 +71,9 @@ def spec_values(spec: type[BaseModel], section: str, profile, top: dict[str, Any
             _no_crank_law(top, f"the {'profile' if on_command_line else 'design'}'s {section}.law_csv")
     if "r_min" in merged and "r_min" not in fields:
         r_min = merged.pop("r_min")
-        a, b = merged.get("a", fields["a"].default), merged.get("b", fields["b"].default)
         if "c" not in merged:
-            merged["c"] = strut_length(a, b, r_min)
-        elif why := strut_contradiction(a, b, merged["c"], r_min):
-            # both given in one layer (a lower layer's strut gives way above): they must agree
-            raise DesignError("r_min", r_min, why)
+            merged["c"] = strut_length(merged.get("a", fields["a"].default), merged.get("b", fields["b"].default),
+                                       r_min)
     return {k: v for k, v in merged.items() if k in fields}
 
 

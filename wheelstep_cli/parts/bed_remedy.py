@@ -10,7 +10,7 @@ from typing import Callable
 from wheelstep_cli.config.names import as_flags
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.mesh_bounds import no_remedy
-from wheelstep_cli.parts.smaller import scaled_options
+from wheelstep_cli.parts.smaller import scaled_options, size_percent
 
 
 def scaled_to_bed(build: Callable, design, verify: Callable | None, unbuilt: bool = False):
@@ -33,16 +33,20 @@ def scaled_to_bed(build: Callable, design, verify: Callable | None, unbuilt: boo
             raise
         options, factor = scaled_options(design, scale)
         if unbuilt:
-            raise err.with_advice(f"try {as_flags(options)} (the pair drawn at {_percent(factor)} of its size; "
+            raise err.with_advice(f"try {as_flags(options)} (the pair drawn at {size_percent(factor)} of its size; "
                                   "not built)", options) from None
         sizing = next(iter(options))    # the input the scaling sets, and its size as the design has it
         size = options[sizing] / factor
         found, tried, factor = _smaller_pair(design, options, factor, verify)
         if found is None:
             raise err.with_advice(f"{no_remedy(tried)}: a printer with a larger bed (--printer)", {}) from None
-        factor = found.get(sizing, size * factor) / size     # a later try may have drawn it smaller still
-        raise err.with_advice(f"use {as_flags(found)} (the pair drawn at {_percent(factor)} of its size"
-                              f"{_changed_besides(found, options)}, which the bed holds)", found) from None
+        # the size offered (a later try may have drawn it smaller still); a module sizes the
+        # pair with the count
+        factor = found.get(sizing, size * factor) / size
+        if sizing == "module":
+            factor *= found.get("z", design.z) / design.z
+        raise err.with_advice(f"use {as_flags(found)} (the pair drawn at {size_percent(factor)} of its size"
+                              f"{_changed_besides(found, options, sizing)}, which the bed holds)", found) from None
 
 
 def _smaller_pair(design, options: dict, factor: float, verify: Callable
@@ -81,16 +85,11 @@ def _smaller_pair(design, options: dict, factor: float, verify: Callable
     return options, [], factor
 
 
-def _changed_besides(found: dict, scaled: dict) -> str:
+def _changed_besides(found: dict, scaled: dict, sizing: str) -> str:
     """What a remedy changes besides drawing the pair smaller (``scaled``: the scaling's own
-    options), as words after the size ("" if nothing): the count, the play a try at that size
-    needed."""
+    options, ``sizing`` the one that sizes the pair), as words after the size ("" if nothing):
+    the count, the play a try at that size needed."""
     words = {"z": lambda v: f"{v} teeth", "backlash": lambda v: f"a backlash of {v:g} mm"}
     more = [words.get(name, lambda v, n=name: f"{n.replace('_', ' ')} {v:g}")(value)
-            for name, value in found.items() if name not in scaled]
+            for name, value in found.items() if name != sizing and scaled.get(name) != value]
     return f" with {' and '.join(more)}" if more else ""
-
-
-def _percent(factor: float) -> str:
-    """A size factor as a refusal says it: whole per cent, or tenths when that would say 100 %."""
-    return f"{100 * factor:.0f} %" if factor < 0.995 else f"{100 * factor:.1f} %"

@@ -13,6 +13,7 @@ from wheelstep_cli.config.names import as_flags
 from wheelstep_cli.config.specs import GENERATOR_SETTINGS, MAX_TEETH
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.fewest_teeth import fewest_teeth
+from wheelstep_cli.parts.printed_teeth import sized_remedy
 from wheelstep_cli.parts.smaller import drawn_smaller
 # the figures' side re-exported: callers name the bounds and their remedies from here
 from wheelstep_cli.parts.bound_figures import (MeshBounds, backlash_remedy, bound_violations,  # noqa: F401
@@ -233,20 +234,6 @@ def _play_first(design, remedy: dict) -> dict:
     return {"backlash": own} if design.backlash > own else remedy
 
 
-def _sized(design, remedy: dict) -> dict:
-    """``remedy`` keeping the size of the pair asked for: a module the user gave sizes the
-    pair with the tooth count (the centre distance is solved for it), so more teeth on that
-    module may outgrow the printer; then a remedy that changes the count scales the module
-    by z / z' (printed_teeth.sized_teeth), one that keeps it keeps the design's module."""
-    from wheelstep_cli.parts.printed_teeth import sized_teeth
-
-    if design.module is None:
-        return remedy
-    z = remedy.get("z", design.z)
-    kept = {name: value for name, value in remedy.items() if name != "module"}
-    return kept if z == design.z else {**kept, **sized_teeth(design, z)}
-
-
 def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, known: list[dict] = (),
                     measured: dict | None = None) -> tuple[dict, list[str], list[dict]]:
     """(the first remedy whose build is within the bounds, or {}; what each failed try gave;
@@ -258,13 +245,13 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
     followed with more teeth. REMEDY_TRIES tries, besides the mounting
     at the rolling distance and the one a module the user gave outgrew the printer with (the
     same remedy then keeps the size asked for)."""
-    tried, candidate, failed, sized = [], dict(remedy), list(known), False
+    tried, candidate, failed, sized, shrink = [], dict(remedy), list(known), False, 1.0
     # mounting the pair where its pitch curves roll is no try of the teeth: those follow it
     mounting = "install_distance" in remedy
     before: tuple[dict, dict | None] = ({}, measured)     # the last try and its record
     while len(tried) - sized - mounting < REMEDY_TRIES:
         if sized:       # undercut options and followed remedies too
-            candidate = _sized(design, candidate)
+            candidate = sized_remedy(design, candidate, shrink)
         if (all(getattr(design, name) == value for name, value in candidate.items())
                 or candidate in failed or candidate.get("z", 0) > MAX_TEETH):
             break
@@ -277,9 +264,13 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
             rule = "" if err.param in candidate else f"--{err.param.replace('_', '-')} = {err.shown_value}: "
             tried.append(f"{as_flags(candidate)} is refused: {rule}{why}")
             failed.append(candidate)
-            if getattr(err, "beyond_printer", None) and design.module is not None and not sized:
-                sized = True    # the module given outgrows the printer: the size asked for is kept
-                continue
+            if getattr(err, "beyond_printer", None) and design.module is not None:
+                if sized and getattr(err, "bed_scale", 1.0) < 1.0:
+                    shrink *= err.bed_scale     # kept at its size it is still off the bed: smaller
+                    continue
+                if not sized:
+                    sized = True    # the module given outgrows the printer: the size asked for is kept
+                    continue
             # a refusal with a remedy of its own (teeth too thin: fewer teeth) is followed too;
             # with no backlash given, the play chosen for the count it leaves goes with that
             # count (the default follows the new one); a backlash given stays replaced
@@ -341,7 +332,7 @@ def _other_ways(pair, design, record: dict, verify: Callable, bounds: MeshBounds
     if any("ripple" in text for text in broken) and not any("F'i" in text or "f'i" in text
                                                              for text in broken):
         z = ripple_teeth_remedy(record, design.z, pair.generated.law.pinion_periods, bounds)
-        ways.insert(0, _sized(design, {"z": z}) if z < design.z else {})
+        ways.insert(0, sized_remedy(design, {"z": z}) if z < design.z else {})
     for way in ways:
         if way and way not in candidates:
             remedy, more, candidates = verified_remedy(design, way, verify, bounds, candidates)

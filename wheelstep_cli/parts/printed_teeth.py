@@ -90,6 +90,25 @@ def sized_teeth(design, z: int) -> dict:
     return {"z": z, "module": max(MIN_MODULE, round(float(design.module) * design.z / z, 3))}
 
 
+def sized_remedy(design, remedy: dict, shrink: float = 1.0) -> dict:
+    """``remedy`` keeping the size of the pair asked for: a module the user gave sizes the
+    pair with the tooth count (the centre distance is solved for it), so more teeth on that
+    module may outgrow the printer; then a remedy that changes the count scales the module
+    by z / z' (printed_teeth.sized_teeth), one that keeps it keeps the design's module. With
+    ``shrink`` < 1 (a pair kept at its size still off the bed) the pair is drawn that much
+    smaller (the module rounded down to 0.001 mm)."""
+    import math
+
+    if design.module is None:
+        return remedy
+    z = remedy.get("z", design.z)
+    kept = {name: value for name, value in remedy.items() if name != "module"}
+    if shrink < 1.0:
+        module = sized_teeth(design, z).get("module", design.module) * shrink
+        return {**kept, "z": z, "module": max(MIN_MODULE, math.floor(module * 1000 + 1e-9) / 1000)}
+    return kept if z == design.z else {**kept, **sized_teeth(design, z)}
+
+
 def fewer_teeth(pair, design, printer, width: float) -> int | None:
     """The largest tooth count below the design's (in whole law periods) whose pinion, drawn
     for ``printer`` and inset by ``pair``'s fit inset, keeps its tips under two lines

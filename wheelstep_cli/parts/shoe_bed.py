@@ -10,7 +10,7 @@ from typing import Callable
 from wheelstep_cli.config.names import as_flags
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.mesh_bounds import no_remedy
-from wheelstep_cli.parts.smaller import scaled_mechanism
+from wheelstep_cli.parts.smaller import scaled_mechanism, size_percent
 
 #: Rescalings after the first one, each by the scale the last smaller shoe's refusal gives
 #: (the socket and rim, which do not scale, keep a part from shrinking by the mechanism's factor).
@@ -34,7 +34,7 @@ def shoe_scaled_to_bed(shoe, printer, rebuild: Callable):
         found, tried, factor = _smaller_shoe(spec, scale, printer, rebuild)
         if found is None:
             raise err.with_advice(f"{no_remedy(tried)}: a printer with a larger bed (--printer)", {}) from None
-        raise err.with_advice(f"use {as_flags(found)} (the mechanism drawn at {100 * factor:.0f} % of its size, "
+        raise err.with_advice(f"use {as_flags(found)} (the mechanism drawn at {size_percent(factor)} of its size, "
                               "the socket and rim as they are: the bed holds that shoe)", found) from None
 
 
@@ -46,6 +46,10 @@ def _smaller_shoe(spec, scale: float, printer, rebuild: Callable) -> tuple[dict 
     tried = []
     for _ in range(1 + RESCALES):
         options, factor = scaled_mechanism(spec, scale)
+        if min(options.values()) <= 0:
+            zero = ", ".join(name for name, value in options.items() if value <= 0)
+            tried.append(f"the mechanism drawn at {100 * scale:.2g} % of its size rounds {zero} to 0 mm")
+            break
         try:
             require_shoe_on_bed(rebuild(build(type(spec), {**spec.model_dump(), **options})), printer)
             return options, tried, factor

@@ -60,3 +60,8 @@ def scaled_mechanism(spec, scale: float) -> tuple[dict, float]:
     else:
         options["r_min"] = down(design.r_min)
     return options, options["a"] / spec.a
+
+
+def size_percent(factor: float) -> str:
+    """A size factor as a refusal says it: whole per cent, or tenths when that would say 100 %."""
+    return f"{100 * factor:.0f} %" if factor < 0.995 else f"{100 * factor:.1f} %"
