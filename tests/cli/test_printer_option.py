@@ -148,8 +148,8 @@ def test_gears_for_a_printer_match_the_batch_entry_figures(cli, tmp_path):
 
 
 @pytest.mark.parametrize("args, mm, source, foot", [
-    (["--chamfer", "0"], 0.0, "the design", "applied: the lowest 0.2 mm drawn 0.2 mm smaller"),
-    (["--chamfer", "0.6"], 0.6, "the design", "replaced by the chamfer"),
+    (["--chamfer", "0"], 0.0, "--chamfer", "applied: the lowest 0.2 mm drawn 0.2 mm smaller"),
+    (["--chamfer", "0.6"], 0.6, "--chamfer", "replaced by the chamfer"),
     ([], 0.4, "printer profile fdm-0.4-pla", "replaced by the chamfer"),
 ])
 def test_an_explicit_chamfer_overrides_the_printers_and_the_foot_follows(cli, tmp_path, args, mm,
@@ -167,6 +167,18 @@ def test_an_explicit_chamfer_overrides_the_printers_and_the_foot_follows(cli, tm
     tips = np.hypot(*mesh.vertices[:, :2].T).max()
     # the bed-side edge is drawn in by the chamfer, else by the elephant-foot inset (0.2 mm)
     assert tips - bottom == pytest.approx(mm or 0.2, abs=0.03)
+
+
+def test_a_chamfer_a_design_profile_gives_is_said_to_come_from_it(cli, tmp_path):
+    from wheelstep_cli.config.profiles import find_profile
+
+    text = find_profile("desk-demo").read_text()
+    assert "\ngears:\n" in text
+    profile = write(tmp_path / "chamfered.yaml", text.replace("\ngears:\n", "\ngears:\n  chamfer: 0.6\n"))
+    for args, source in (([], "design profile chamfered.yaml, gears.chamfer"), (["--chamfer", "0.7"], "--chamfer")):
+        result = cli("gears", "--profile", profile, *args, "--dry-run", "--json", "-q")
+        assert result.exit_code == 0, result.stderr
+        assert json.loads(result.stdout)["chamfer"]["from"] == source
 
 
 def test_no_printer_no_chamfer_says_so(cli, tmp_path):

@@ -45,6 +45,7 @@ class GearPair:
     inset: float = 0.0         # mm both tooth outlines are drawn smaller along their normals (a fit)
     asked: object = None       # the spec before the build filled in a default (generated teeth' backlash)
     design_profile: dict | None = None  # the design profile it was made from (config.profiles.profile_record)
+    chamfer_from: str | None = None     # what gave the edge chamfer (the option, the profile), as a report says it
 
     @property
     def as_asked(self) -> GearPairSpec:
@@ -281,9 +282,9 @@ def chamfer_report(pair: GearPair) -> dict:
 
     printing = pair.printing
     if printing is None:
-        return chamfer_record(pair.spec, pair.spec, None)
+        return chamfer_record(pair.spec, pair.spec, None, pair.chamfer_from)
     design = printing.design if printing.design is not None else pair.spec
-    return chamfer_record(design, pair.spec, printing.printer)
+    return chamfer_record(design, pair.spec, printing.printer, pair.chamfer_from)
 
 
 def _printing(pair: GearPair) -> dict:

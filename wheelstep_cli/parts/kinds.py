@@ -122,13 +122,14 @@ def chamfer_of(built) -> float:
     return float(getattr(getattr(built, "spec", None), "chamfer_mm", 0.0) or 0.0)
 
 
-def chamfer_record(design, printed, printer) -> dict:
+def chamfer_record(design, printed, printer, given_by: str | None = None) -> dict:
     """What a report says of the edge chamfer: its size (mm), where it came from and what
     became of the printer's elephant-foot inset. ``design``/``printed``: the spec as given and
-    as drawn (the same without a printer)."""
+    as drawn (the same without a printer); ``given_by``: what gave a design's chamfer, as the
+    command knows it (None: a batch entry's, its overrides or its design)."""
     mm = float(printed.chamfer_mm)
     if design.chamfer is not None:
-        source = "the design (--chamfer, the design profile or the batch entry)"
+        source = given_by or "the batch entry (its overrides, else its design)"
     elif printer is not None:
         source = f"printer profile {printer.name}"
     else:

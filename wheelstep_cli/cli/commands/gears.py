@@ -139,7 +139,19 @@ def gears(
     source = "--fit" if fit else f"the band of printer {chosen.name}" if fit_name else None
     _make_gears(spec, chosen, show, out, fmt.value, allow_interference, dry_run, force,
                 checked_extras(plot, gif, dxf, svg, step),
-                (tolerance or fit_name is not None, fit_name, source), slice_, printer, profile)
+                (tolerance or fit_name is not None, fit_name, source), slice_, printer,
+                _provenance(profile, spec, chamfer))
+
+
+def _provenance(profile: str | None, spec, chamfer: float | None) -> dict:
+    """The pair's fields saying where its design came from: the design profile read (its
+    file and SHA-256) and what gave the edge chamfer (the option, else the profile)."""
+    from wheelstep_cli.config.profiles import profile_record
+
+    chamfer_from = "--chamfer" if chamfer is not None else (
+        f"design profile {profile_record(profile)['given']}, gears.chamfer" if profile and spec.chamfer is not None
+        else None)
+    return {"design_profile": profile_record(profile) if profile else None, "chamfer_from": chamfer_from}
 
 
 def _value(choice):
@@ -171,11 +183,11 @@ def _require_slicer(slice_: bool, fmt: str, printer) -> None:
 def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interference: bool,
                 dry_run: bool, force: bool, extras: GearExtras = GearExtras(),
                 band: tuple = (False, None), slice_: bool = False, printer_given: str | None = None,
-                profile: str | None = None) -> None:
+                provenance: dict | None = None) -> None:
     """Build, check, write (unless refused or a dry run) and report the pair of ``spec``;
     ``band`` = (check over the printer's band, the fit or None[, where the fit comes from]);
     ``slice_``: slice the plates and check the G-code; ``printer_given``: --printer as given;
-    ``profile``: --profile as given (the report names the file and its SHA-256)."""
+    ``provenance``: where the design came from, as the pair's report states it (:func:`_provenance`)."""
     from dataclasses import replace
 
     import typer
@@ -184,7 +196,6 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
                                                          require_height_first, warn_no_printed_play,
                                                          warn_of_the_figures)
     from wheelstep_cli.cli.progress import with_progress
-    from wheelstep_cli.config.profiles import profile_record
     from wheelstep_cli.parts.bound_figures import bounds_verdict
     from wheelstep_cli.parts.gear_exports import export_files, picture_files
     from wheelstep_cli.parts.gear_pair import gear_pair_files, gear_pair_report
@@ -194,8 +205,7 @@ def _make_gears(spec, printer, show: Output, out: Path, fmt: str, allow_interfer
     bed = require_height_first(spec, printer, fmt, band[1] is not None)
     pair, record, tolerance, check = checked_pair(spec, printer, show, allow_interference, band, bed)
     printable_or_remedied(pair, spec, printer, show, band, bed)
-    if profile:
-        pair = replace(pair, design_profile=profile_record(profile))
+    pair = replace(pair, **(provenance or {}))
     if tolerance is not None:
         record["tolerance"] = tolerance
     record["bounds"] = bounds_verdict(record, (tolerance or {}).get("fit"))
