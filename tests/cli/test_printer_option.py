@@ -340,3 +340,17 @@ def test_a_shoe_on_a_bed_barely_wider_than_its_margins_is_offered_no_mechanism_o
     line = error_line(cli("shoe", "--printer", _small_bed_printer(tmp_path, 10.2, 300), "--out", tmp_path / "o"))
     assert line.endswith("; no remedy found (the mechanism drawn at 0.3 % of its size rounds r_min to 0 mm): "
                          "a printer with a larger bed (--printer)"), line
+
+
+def test_a_shoe_too_large_for_the_default_printers_plate_is_offered_the_smaller_shoe(cli, tmp_path):
+    """No --printer, a 3MF plate: the default printer's bed, said so, with the smaller shoe as the
+    remedy (as a gear pair gets it there); applied, written; with no plate (STL) no bed applies."""
+    from tests.helpers.clicheck import remedy_in, with_remedy
+
+    args = ["shoe", "--rmin", "400", "--out", tmp_path / "out"]
+    line = error_line(cli(*args))
+    assert "(the default printer; --printer chooses another, --format stl writes no plate); nothing written; " \
+           "use --a " in line and "(the mechanism drawn at" in line, line
+    assert cli(*with_remedy(args, remedy_in(line)), "-q").exit_code == 0
+    assert (tmp_path / "out" / "shoe.3mf").exists()
+    assert cli("shoe", "--rmin", "400", "--format", "stl", "--out", tmp_path / "stl", "-q").exit_code == 0

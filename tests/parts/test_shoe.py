@@ -282,6 +282,11 @@ def test_same_inputs_give_identical_files(default_shoe, tmp_path):
 def test_profile_reproduces_defaults_and_cli_overrides(cli, tmp_path, default_shoe):
     assert cli("shoe", "--profile", "bntu-2024", "--out", tmp_path / "p").exit_code == 0
     for name in FILES:
+        if name == "shoe.json":     # the same report, besides the design profile it records
+            report = json.loads((tmp_path / "p" / name).read_text())
+            assert report.pop("design_profile")["file"] == "bntu-2024.yaml"
+            assert report == json.loads((default_shoe / name).read_text())
+            continue
         assert (tmp_path / "p" / name).read_bytes() == (default_shoe / name).read_bytes(), name
     result = cli("shoe", "--profile", "bntu-2024", "--width", "30", "--rmin", "40", "--format", "stl",
                  "--out", tmp_path / "q")
@@ -398,12 +403,14 @@ def test_a_shoe_too_tall_for_the_printer_is_offered_the_width_it_prints(cli, tmp
 def test_a_shoe_too_large_for_the_default_printers_bed_names_the_size_and_the_way_out(cli, tmp_path):
     """A mechanism ten times the source design's makes a shoe larger than the default
     printer's bed: said of the length given, as the size it makes, with the note that the
-    printer is the default one; --format stl, as the note says, writes it."""
+    printer is the default one and the smaller shoe as the remedy; --format stl, as the note
+    says, writes it."""
     args = ["shoe", "--a", "600", "--b", "1000"]
     line = error_line(cli(*args, "--out", tmp_path / "big"))
     assert line.startswith("wheelstep: error: --a = 600: with it, part 'shoe' is "), line
     assert ", larger than the bed of printer 'fdm-0.4-pla' (256 x 256 mm" in line, line
-    assert line.endswith("(the default printer; --printer chooses another, --format stl writes no plate)"), line
+    assert ("(the default printer; --printer chooses another, --format stl writes no plate); nothing written; "
+            "use --a ") in line and "(the mechanism drawn at " in line, line
     assert not (tmp_path / "big").exists()
     named = error_line(cli(*args, "--printer", "fdm-0.4-pla", "--out", tmp_path / "big"))
     assert named.startswith("wheelstep: error: --printer = fdm-0.4-pla: part 'shoe' ") and "default" not in named

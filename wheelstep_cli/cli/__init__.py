@@ -23,8 +23,8 @@ except ImportError:  # pragma: no cover - older typer uses click itself
 
 from wheelstep_cli.batch.interrupts import (caused_by_interrupt, exit_now, exit_unless_threads_end,
                                             interrupts_not_lost)
-from wheelstep_cli.cli.naming import (command_options, command_params, flag_values, given_names, option_values,
-                                      os_error_text, refusal_line, strut_as_given, subcommand)
+from wheelstep_cli.cli.naming import (aliases_as_typed, command_options, command_params, flag_values, given_names,
+                                      option_values, os_error_text, refusal_line, strut_as_given, subcommand)
 from wheelstep_cli.cli.refusal import said
 from wheelstep_cli.config.schema import InvalidInput
 from wheelstep_cli.errors import CheckRefused, DesignError, Interrupted, MeshDefect
@@ -194,7 +194,7 @@ def run(argv: list[str] | None = None) -> int:
         if located is not None:     # said at the profile's line: its problem, the remedies the line's
             return said([f"wheelstep: error: {line}" for line in located.lines()], 2, args, located)
         line, name = refusal_line(err, stated, command, args)
-        return said([f"wheelstep: error: {line}"], 2, args, stated, name)
+        return said([f"wheelstep: error: {aliases_as_typed(line, command, args)}"], 2, args, stated, name)
     except click_errors.NoArgsIsHelpError as err:
         typer.echo(err.format_message(), err=True)
         return 2

@@ -105,6 +105,25 @@ def strut_as_given(err: DesignError, group, argv: list[str], given: list[str]) -
     return err._with_extras(DesignError(err.param, err.value, err.limit, alternatives))
 
 
+def aliases_as_typed(line: str, group, argv: list[str]) -> str:
+    """``line`` with each option the command line gives by one of its spellings (``--rmin`` or
+    ``--r-min``) written that way wherever the line names it by another: a remedy applied as
+    it reads then replaces the option given instead of giving it twice."""
+    import re
+
+    name = subcommand(group, argv)
+    if name is None:
+        return line
+    words = [word.partition("=")[0] for word in argv[argv.index(name) + 1:]]
+    for param in command_params(group, argv):
+        spellings = [flag for flag in param.opts if flag.startswith("--")]
+        typed = [word for word in words if word in spellings]
+        for other in spellings if typed and len(spellings) > 1 else ():
+            if other != typed[-1]:
+                line = re.sub(rf"(?<![\w-]){re.escape(other)}(?![\w-])", typed[-1], line)
+    return line
+
+
 def error_text(err: DesignError, name: str, argv: list[str]) -> str:
     """One line: the parameter as the user wrote it (``name``), the value and the limit."""
     return f"{name} = {_typed_value(name, err, argv)}: {err.limit}"

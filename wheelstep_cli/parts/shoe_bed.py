@@ -38,6 +38,24 @@ def shoe_scaled_to_bed(shoe, printer, rebuild: Callable):
                               "the socket and rim as they are: the bed holds that shoe)", found) from None
 
 
+def shoe_on_its_bed(shoe, chosen, plate: bool, rebuild: Callable):
+    """``shoe`` checked on the bed its plate goes on (:func:`shoe_scaled_to_bed`, the smaller
+    shoe as the remedy): the printer ``chosen`` (a printer profile, the one ``shoe`` was drawn
+    for), or, when a plate is written (``plate``) with none chosen, the default printer, which
+    the refusal says it is."""
+    from wheelstep_cli.config.profiles import load_printer
+    from wheelstep_cli.parts.plate_layout import default_printer_said
+
+    if chosen is not None:
+        return shoe_scaled_to_bed(shoe, shoe.printing.printer, rebuild)
+    if not plate:
+        return shoe
+    try:
+        return shoe_scaled_to_bed(shoe, load_printer(), rebuild)
+    except DesignError as err:
+        raise default_printer_said(err) from None
+
+
 def _smaller_shoe(spec, scale: float, printer, rebuild: Callable) -> tuple[dict | None, list[str], float]:
     """(the options of the first smaller shoe on the bed, or None; what the tries gave; its factor)."""
     from wheelstep_cli.config.schema import build

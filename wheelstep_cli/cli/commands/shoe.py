@@ -46,7 +46,7 @@ def shoe(
     from wheelstep_cli.config.profiles import load_printer_profile, profile_record
     from wheelstep_cli.parts.kinds import build_for_printer
     from wheelstep_cli.parts.shoe import shoe_files, shoe_report
-    from wheelstep_cli.parts.shoe_bed import shoe_scaled_to_bed
+    from wheelstep_cli.parts.shoe_bed import shoe_on_its_bed
 
     show = Output(json, quiet, verbose)
     spec = shoe_spec(profile, a=a, b=b, c=c, r_min=r_min, width=width,
@@ -55,8 +55,8 @@ def shoe(
     show.parameters({**vars(spec), "c": design.c, "r_min": design.r_min}, profile)
     chosen = load_printer_profile(printer) if printer else None
     built = build_for_printer("shoe", spec, chosen)
-    if chosen is not None:     # too large for its bed: the shoe drawn smaller as the remedy
-        built = shoe_scaled_to_bed(built, built.printing.printer, lambda s: build_for_printer("shoe", s, chosen))
+    # too large for its plate's bed: the shoe drawn smaller as the remedy
+    built = shoe_on_its_bed(built, chosen, fmt.value != "stl", lambda s: build_for_printer("shoe", s, chosen))
     if profile:
         built = replace(built, design_profile=profile_record(profile))
     files = shoe_files(built, out, fmt.value)
