@@ -354,3 +354,17 @@ def test_a_shoe_too_large_for_the_default_printers_plate_is_offered_the_smaller_
     assert cli(*with_remedy(args, remedy_in(line)), "-q").exit_code == 0
     assert (tmp_path / "out" / "shoe.3mf").exists()
     assert cli("shoe", "--rmin", "400", "--format", "stl", "--out", tmp_path / "stl", "-q").exit_code == 0
+
+
+def test_a_shoe_whose_socket_and_rim_keep_its_height_is_offered_the_largest_smaller_shoe(cli, tmp_path):
+    """On a 60 x 200 mm bed the shoe's height (the socket and rim do not scale) binds: the
+    search steps past the proportional scale and halves back, so the remedy fits and the
+    mechanism 0.1 mm larger (each length) does not."""
+    from tests.helpers.clicheck import remedy_in, with_remedy
+
+    args = ["shoe", "--printer", _small_bed_printer(tmp_path, 60, 200), "--out", tmp_path / "out"]
+    remedy = remedy_in(error_line(cli(*args)))
+    larger = [word if word.startswith("--") else f"{float(word) + 0.1:.1f}" for word in remedy]
+    line = error_line(cli(*with_remedy(args, larger)))
+    assert cli(*with_remedy(args, remedy), "-q").exit_code == 0
+    assert "does not fit the bed" in line, line

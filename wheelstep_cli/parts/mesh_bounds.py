@@ -265,11 +265,12 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
             tried.append(f"{as_flags(candidate)} is refused: {rule}{why}")
             failed.append(candidate)
             if getattr(err, "beyond_printer", None) and design.module is not None:
-                if sized and getattr(err, "bed_scale", 1.0) < 1.0:
-                    shrink *= err.bed_scale     # kept at its size it is still off the bed: smaller
-                    continue
-                if not sized:
+                if not sized and sized_remedy(design, candidate) != candidate:
                     sized = True    # the module given outgrows the printer: the size asked for is kept
+                    continue
+                if getattr(err, "bed_scale", 1.0) < 1.0:
+                    # kept at its size (or sized already) it is still off the bed: drawn smaller
+                    sized, shrink = True, shrink * err.bed_scale
                     continue
             # a refusal with a remedy of its own (teeth too thin: fewer teeth) is followed too;
             # with no backlash given, the play chosen for the count it leaves goes with that

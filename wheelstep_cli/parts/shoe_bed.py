@@ -12,9 +12,9 @@ from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.mesh_bounds import no_remedy
 from wheelstep_cli.parts.smaller import scaled_mechanism, size_percent
 
-#: Rescalings after the first one, each by the scale the last smaller shoe's refusal gives
-#: (the socket and rim, which do not scale, keep a part from shrinking by the mechanism's factor).
-RESCALES = 2
+#: Builds of smaller shoes a remedy tries at most (the socket and rim, which do not scale, keep
+#: a part from shrinking by the mechanism's factor, so the size is searched).
+SHOE_TRIES = 8
 
 
 def shoe_scaled_to_bed(shoe, printer, rebuild: Callable):
@@ -57,26 +57,40 @@ def shoe_on_its_bed(shoe, chosen, plate: bool, rebuild: Callable):
 
 
 def _smaller_shoe(spec, scale: float, printer, rebuild: Callable) -> tuple[dict | None, list[str], float]:
-    """(the options of the first smaller shoe on the bed, or None; what the tries gave; its factor)."""
+    """(the options of the largest smaller shoe found on the bed, or None; what the tries gave;
+    its factor). The first try scales the mechanism by the bed's scale; the socket and rim do
+    not scale, so a try still off the bed steps by that try's scale squared, and once one fits
+    the gap to the last one off the bed is halved (SHOE_TRIES builds, 0.1 s each)."""
     from wheelstep_cli.config.schema import build
     from wheelstep_cli.parts.shoe import require_shoe_on_bed
 
-    tried = []
-    for _ in range(1 + RESCALES):
+    tried, best, off = [], None, None      # best: (options, factor, scale) on the bed; off: a scale not
+    for attempt in range(SHOE_TRIES):
         options, factor = scaled_mechanism(spec, scale)
+        if best is not None and options == best[0]:
+            break       # nothing between them at 0.1 mm
         if min(options.values()) <= 0:
             zero = ", ".join(name for name, value in options.items() if value <= 0)
             tried.append(f"the mechanism drawn at {100 * scale:.2g} % of its size rounds {zero} to 0 mm")
             break
         try:
             require_shoe_on_bed(rebuild(build(type(spec), {**spec.model_dump(), **options})), printer)
-            return options, tried, factor
+            best = (options, factor, scale)
         except DesignError as refusal:
-            # the rule's own option when the try does not set it (a socket the smaller body cannot hold)
-            rule = "" if refusal.param in options else f"--{refusal.param.replace('_', '-')} = {refusal.shown_value}: "
-            tried.append(f"{as_flags(options)} is refused: {rule}{refusal.cause}")
             more = getattr(refusal, "bed_scale", None)
             if more is None or more >= 1.0:
+                # the rule's own option (a socket the smaller body cannot hold)
+                rule = "" if refusal.param in options else f"--{refusal.param.replace('_', '-')} = {refusal.shown_value}: "
+                tried.append(f"{as_flags(options)} is refused: {rule}{refusal.cause}")
                 break
-            scale *= more
-    return None, tried, scale
+            tried.append(f"{as_flags(options)} is still too large for the bed")
+            off = scale
+            if best is None:
+                scale *= more if attempt == 0 else more * more
+                continue
+        if off is None:
+            break       # the bed's own scale fits: the largest
+        scale = (best[2] + off) / 2
+    if best is None:
+        return None, tried, scale
+    return best[0], tried, best[1]
