@@ -62,3 +62,21 @@ def test_a_smaller_pair_remedy_says_what_it_changes_besides_the_size():
     assert changed({"install_distance": 61.9, "backlash": 0.2}) == ""
     assert changed({"install_distance": 62.0, "z": 40, "backlash": 0.2}) == " with 40 teeth"
     assert changed({"install_distance": 62.0, "z": 40, "backlash": 0.1}) == " with 40 teeth and a backlash of 0.1 mm"
+
+
+def test_the_part_a_bed_refusal_names_is_the_one_its_scale_is_set_by():
+    """The pinion fits the bed one way round, the wheel is far too large: the refusal names the
+    wheel (whose size the remedy's percentage is reckoned from), not the first part off the bed."""
+    from types import SimpleNamespace
+
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.parts.kinds import height_inputs
+    from wheelstep_cli.parts.plate_layout import require_on_bed
+
+    printer = load_printer("fdm-0.4-pla")
+    part = lambda name, x, y: SimpleNamespace(name=name, bounds=np.array([[0, 0, 0], [x, y, 10.0]]))  # noqa: E731
+    parts = [part("pinion", 120.0, 300.0), part("wheel", 400.0, 400.0)]
+    with pytest.raises(DesignError) as err:
+        require_on_bed(parts, printer, "thickness", 10.0, lowers=height_inputs("gear-pair", GearPairSpec()))
+    assert "part 'wheel' (400.0 x 400.0 mm) does not fit" in err.value.limit
+    assert err.value.bed_scale == pytest.approx(246.0 / 400.0)

@@ -49,8 +49,11 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float,
     part's size (a bed too small, not for those of them ``height_only`` names), so the line
     names the one the user gave."""
     for part in parts:
+        require_height(part.name, float(part.bounds[1, 2] - part.bounds[0, 2]), printer, height_param, height,
+                       footprint, lowers=lowers)
+    # the part the bed's scale is set by first: the one a remedy's size is reckoned from
+    for part in sorted(parts, key=lambda p: bed_scale(p.bounds[1, :2] - p.bounds[0, :2], printer)):
         size = part.bounds[1] - part.bounds[0]
-        require_height(part.name, size[2], printer, height_param, height, footprint, lowers=lowers)
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
             makes = f"with it, part '{part.name}' is {size[0]:.1f} x {size[1]:.1f} mm, larger than {_bed_words(printer)}"
