@@ -64,7 +64,7 @@ def _smaller_shoe(spec, scale: float, printer, rebuild: Callable) -> tuple[dict 
     from wheelstep_cli.config.schema import build
     from wheelstep_cli.parts.shoe import require_shoe_on_bed
 
-    tried, best, off = [], None, None      # best: (options, factor, scale) on the bed; off: a scale not
+    tried, best, off = [], None, None      # best: (options, factor, scale) on the bed; off: a scale off it
     for attempt in range(SHOE_TRIES):
         options, factor = scaled_mechanism(spec, scale)
         if best is not None and options == best[0]:
