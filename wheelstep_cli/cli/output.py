@@ -78,14 +78,13 @@ class Output:
         if profile:
             from wheelstep_cli.config.profiles import find_profile, profile_label, shadowed_preset
 
-            preset = shadowed_preset(profile)
-            if preset is not None:
+            found = find_profile(profile)
+            if shadowed_preset(profile) is not None:
                 # the same command elsewhere reads the preset: say which file this one read
-                self.warning(f"wheelstep: warning: --profile {profile} is read from "
-                             f"{profile_label(find_profile(profile))}, "
+                self.warning(f"wheelstep: warning: --profile {profile} is read from {profile_label(found)}, "
                              "a profiles/ folder in the working folder, not the shipped preset of that name")
             if self.verbose and not self.quiet:
-                self.detail(f"  profile = {profile} ({find_profile(profile)})")
+                self.detail(f"  profile = {profile} ({found})")
         left = []
         for name, value in _flat(values):
             if value is None:

@@ -226,8 +226,8 @@ def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) ->
     if kind == "missing" and isinstance(loc[-1], int):
         # a list too short for its fixed length (a bed of one size): the list's own limit
         given = _value_at(doc.data, loc[:-1])
-        return Issue(doc.where(loc[:-1]), dotted(loc[:-1]),
-                     f"= {show(given)}: {limit_text(model, {'loc': tuple(error['loc'])[:-1], 'type': 'too_short', 'msg': 'too short'})}")
+        limit = limit_text(model, {"loc": tuple(error["loc"])[:-1], "type": "too_short", "msg": "too short"})
+        return Issue(doc.where(loc[:-1]), dotted(loc[:-1]), f"= {show(given)}: {limit}")
     if kind == "missing":
         return Issue(doc.where(loc[:-1]), dotted(loc[:-1]), f"needs the key '{loc[-1]}'")
     if kind == "extra_forbidden":

@@ -167,8 +167,8 @@ def _try_record(inset: float, tight, report, law, on: str = DESIGN_SECTIONS) -> 
     case = case_record(tight, report)
     # where the teeth jam the least backlash is an overlap estimate, not a play
     least = None if case["jams"] or case["backlash_min_mm"] is None else float(case["backlash_min_mm"])
-    return {"inset_mm": inset, "checked_on": on, "tight_least_backlash_mm": least, "tight_depth_mm": case["max_penetration_mm"],
-            "jams": case["jams"], **jam_record(report, law)}
+    return {"inset_mm": inset, "checked_on": on, "tight_least_backlash_mm": least,
+            "tight_depth_mm": case["max_penetration_mm"], "jams": case["jams"], **jam_record(report, law)}
 
 
 def _good(tried: dict, margin: float) -> bool:

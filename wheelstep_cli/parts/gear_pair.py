@@ -230,14 +230,11 @@ def partition_rows(partition: SectorPartition) -> list[dict]:
     ]
 
 
-def _made_from(built) -> dict:
-    """A report's ``design_profile`` (the profile a part was made from), when there is one."""
-    return {"design_profile": built.design_profile} if built.design_profile is not None else {}
-
-
 def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
     """Everything about the pair a person or a machine may want: inputs, partition, parts,
     and the meshing check of the written meshes when given."""
+    from wheelstep_cli.parts.kinds import made_from
+
     spec = {**pair.spec.model_dump(), **_distances(pair)}
     spec["backlash"] = pair.spec.backlash_mm
     if pair.spec.hub_d is not None:
@@ -247,8 +244,8 @@ def gear_pair_report(pair: GearPair, meshing: dict | None = None) -> dict:
         check = pair.checks[part.name]
         parts[part.name] = {"teeth": pair.spec.z if part.name == "pinion" else pair.wheel_teeth,
                             **part_record(part, check)}
-    report = {"tool": "wheelstep gears", **_made_from(pair), "parameters": spec, **_printing(pair), "parts": parts,
-              "chamfer": chamfer_report(pair)}
+    report = {"tool": "wheelstep gears", **made_from(pair), "parameters": spec, **_printing(pair),
+              "parts": parts, "chamfer": chamfer_report(pair)}
     if pair.law is not None:
         report["u"] = pair.law.u
     if pair.partition is not None:

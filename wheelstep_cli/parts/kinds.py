@@ -235,6 +235,12 @@ def _bound_as_given(op: str, bound: str, shift: float) -> str:
     return f"{op} {as_given} mm ({op} {bound} mm as printed)"
 
 
+def made_from(built) -> dict:
+    """What a part report says of the design profile the part was made from
+    (``design_profile``, config.profiles.profile_record), when it was made from one."""
+    return {"design_profile": built.design_profile} if built.design_profile is not None else {}
+
+
 def printing_record(printing: Printing | None, printed) -> dict:
     """What a part report says of its printer: nothing without one; else the design's and the
     printed parameters (mm), the printer profile and the geometry it changed."""

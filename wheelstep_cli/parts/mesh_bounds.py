@@ -141,6 +141,14 @@ def undercut_checked(build: Callable, design, verify: Callable | None):
         raise verified_undercut(err, design, verify) from None
 
 
+def refused_try(options: dict, err: DesignError) -> str:
+    """What a remedy's try (``options``) refused with ``err`` gave, as a refusal lists it: the
+    rule's own option said too when the try does not set it (a thin tooth is the count's, a
+    socket the smaller shoe cannot hold is the socket depth's)."""
+    rule = "" if err.param in options else f"--{err.param.replace('_', '-')} = {err.shown_value}: "
+    return f"{as_flags(options)} is refused: {rule}{err.cause}"
+
+
 def no_remedy(tried: list[str]) -> str:
     """A refusal's words for no remedy found, with what each try gave (none tried: none said)."""
     return f"no remedy found ({'; '.join(tried)})" if tried else "no remedy found"
@@ -259,10 +267,7 @@ def verified_remedy(design, remedy: dict, verify: Callable, bounds: MeshBounds, 
         try:
             pair, record = verify(trial)
         except DesignError as err:
-            why = err.cause
-            # the rule's own option, when the remedy does not set it (a thin tooth is the count's)
-            rule = "" if err.param in candidate else f"--{err.param.replace('_', '-')} = {err.shown_value}: "
-            tried.append(f"{as_flags(candidate)} is refused: {rule}{why}")
+            tried.append(refused_try(candidate, err))
             failed.append(candidate)
             if getattr(err, "beyond_printer", None) and design.module is not None:
                 if not sized and sized_remedy(design, candidate) != candidate:

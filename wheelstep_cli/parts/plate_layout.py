@@ -52,7 +52,8 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float,
         require_height(part.name, float(part.bounds[1, 2] - part.bounds[0, 2]), printer, height_param, height,
                        footprint, lowers=lowers)
     # the part the bed's scale is set by first: the one a remedy's size is reckoned from
-    for part in sorted(parts, key=lambda p: bed_scale(p.bounds[1, :2] - p.bounds[0, :2], printer)):
+    scaled = sorted((bed_scale(p.bounds[1, :2] - p.bounds[0, :2], printer), k, p) for k, p in enumerate(parts))
+    for _, _, part in scaled:
         size = part.bounds[1] - part.bounds[0]
         problem = size_problem(part.name, part.bounds, printer)
         if problem is not None:
@@ -60,7 +61,7 @@ def require_on_bed(parts, printer: Printer, height_param: str, height: float,
             sizes = {name: (value, makes) for name, value in (footprint or {}).items()
                      if value is not None and name != "printer" and name not in height_only}
             error = _beyond(DesignError("printer", printer.given or printer.name, problem, sizes), printer)
-            error.bed_scale = min(bed_scale(p.bounds[1, :2] - p.bounds[0, :2], printer) for p in parts)
+            error.bed_scale = scaled[0][0]
             raise error
 
 

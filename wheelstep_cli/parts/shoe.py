@@ -103,11 +103,13 @@ def resolved_parameters(shoe: Shoe) -> dict[str, float]:
 def shoe_report(shoe: Shoe) -> dict:
     """Inputs, sizing, the sole (shoe frame) and the part with its checks, as plain data
     (with the printer and the printed parameters when drawn for one)."""
+    from wheelstep_cli.parts.kinds import made_from
+
     part = shoe.part
     check = shoe.checks[part.name]
     return {
         "tool": "wheelstep shoe",
-        **({"design_profile": shoe.design_profile} if shoe.design_profile is not None else {}),
+        **made_from(shoe),
         "parameters": resolved_parameters(shoe),
         **_printing(shoe),
         **sizing(shoe.design),

@@ -9,7 +9,7 @@ from typing import Callable
 
 from wheelstep_cli.config.names import as_flags
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.parts.mesh_bounds import no_remedy
+from wheelstep_cli.parts.mesh_bounds import no_remedy, refused_try
 from wheelstep_cli.parts.smaller import scaled_mechanism, size_percent
 
 #: Builds of smaller shoes a remedy tries at most (the socket and rim, which do not scale, keep
@@ -79,9 +79,7 @@ def _smaller_shoe(spec, scale: float, printer, rebuild: Callable) -> tuple[dict 
         except DesignError as refusal:
             more = getattr(refusal, "bed_scale", None)
             if more is None or more >= 1.0:
-                # the rule's own option (a socket the smaller body cannot hold)
-                rule = "" if refusal.param in options else f"--{refusal.param.replace('_', '-')} = {refusal.shown_value}: "
-                tried.append(f"{as_flags(options)} is refused: {rule}{refusal.cause}")
+                tried.append(refused_try(options, refusal))
                 break
             tried.append(f"{as_flags(options)} is still too large for the bed")
             off = scale

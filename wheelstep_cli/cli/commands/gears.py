@@ -5,9 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Optional
 
-from wheelstep_cli.cli.options import (A, AllowInterference, B, Blend, C, CenterDistance, DryRun, RMin,
+from wheelstep_cli.cli.options import (A, AllowInterference, B, Blend, C, CenterDistance, DryRun,
                                        FitChoice, Force, Format,
-                                       Json, LawCsv, MeshFormat, Out, Printer, Profile, Quiet, Tolerance,
+                                       Json, LawCsv, MeshFormat, Out, Printer, Profile, Quiet, RMin, Tolerance,
                                        Turns, Verbose, Z, opt, output_file)
 from wheelstep_cli.cli.commands.meshcheck_shared import warn_band_jams
 from wheelstep_cli.cli.output import Output
@@ -148,10 +148,10 @@ def _provenance(profile: str | None, spec, chamfer: float | None) -> dict:
     file and SHA-256) and what gave the edge chamfer (the option, else the profile)."""
     from wheelstep_cli.config.profiles import profile_record
 
+    record = profile_record(profile) if profile else None
     chamfer_from = "--chamfer" if chamfer is not None else (
-        f"design profile {profile_record(profile)['given']}, gears.chamfer" if profile and spec.chamfer is not None
-        else None)
-    return {"design_profile": profile_record(profile) if profile else None, "chamfer_from": chamfer_from}
+        f"design profile {record['given']}, gears.chamfer" if record and spec.chamfer is not None else None)
+    return {"design_profile": record, "chamfer_from": chamfer_from}
 
 
 def _value(choice):

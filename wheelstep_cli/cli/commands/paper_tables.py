@@ -26,7 +26,8 @@ def pitch(a: A = None, b: B = None, c: C = None, r_min: RMin = None, z: Z = None
 
     out = Output(json, quiet, verbose)
     # the sector partition of SPEC §4 is the paper method's, at the distance its sectors roll at
-    spec, left_out = paper_table_spec(profile, a=a, b=b, c=c, r_min=r_min, z=z, turns=turns, center_distance=center_distance)
+    spec, left_out = paper_table_spec(profile, a=a, b=b, c=c, r_min=r_min, z=z, turns=turns,
+                                      center_distance=center_distance)
     parameters = {"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
                   "center_distance": spec.center_distance}
     out.parameters(parameters)
@@ -66,8 +67,8 @@ def teeth(a: A = None, b: B = None, c: C = None, r_min: RMin = None, z: Z = None
 
     out = Output(json, quiet, verbose)
     # the sector-involute teeth of SPEC §5 are the paper's: their rules, not the generator's
-    spec, left_out = paper_table_spec(profile, a=a, b=b, c=c, r_min=r_min, z=z, turns=turns, center_distance=center_distance,
-                            module=module, backlash=backlash)
+    spec, left_out = paper_table_spec(profile, a=a, b=b, c=c, r_min=r_min, z=z, turns=turns,
+                                      center_distance=center_distance, module=module, backlash=backlash)
     parameters = {"a": spec.a, "b": spec.b, "c": spec.c, "z": spec.z, "turns": spec.turns,
                   "center_distance": spec.center_distance, "module": spec.paper_module,
                   "backlash": spec.backlash_mm}
