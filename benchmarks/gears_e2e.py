@@ -4,7 +4,10 @@ Run on demand:  python benchmarks/gears_e2e.py [--runs 7] [--no-stages] [-- extr
 
 End to end: the median (and spread) over ``--runs`` runs of this checkout's CLI
 (``python -m wheelstep_cli`` from the repository root, not whatever `wheelstep` is on the
-PATH), after one warm-up run of the OS file cache. Each run is measured twice: wall-clock
+PATH), after one warm-up run of the OS file cache. The modules' bytecode is written (to a
+temporary ``PYTHONPYCACHEPREFIX``) by the warm-up and read by the runs, as `pip install`
+leaves it for a user: a ``PYTHONDONTWRITEBYTECODE`` set in the caller's environment (this
+sandbox sets it) would otherwise compile every module from source on every run. Each run is measured twice: wall-clock
 time, and CPU time (user + sys of the child process, from ``resource.getrusage``). The
 machine is shared by other agents, so wall time swings with their load; the CPU time is
 the steadier figure of the work done (with threads it may exceed the wall time).
@@ -43,13 +46,15 @@ def _children_cpu() -> float:
 def end_to_end(runs: int, extra: list[str]) -> tuple[list[float], list[float]]:
     """(wall s, CPU s) of each of ``runs`` CLI runs after a warm-up."""
     walls, cpus = [], []
-    with tempfile.TemporaryDirectory() as out:
+    with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as pycache:
+        env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+        env["PYTHONPYCACHEPREFIX"] = pycache
         # an option is given once: extra options replace the defaults' (e.g. `-- --z 32`)
         default = [] if "--z" in extra else ["--z", "48"]
         argv = command() + ["gears", *default, "--out", out, "--force", *extra]
         for i in range(runs + 1):
             cpu0, start = _children_cpu(), time.perf_counter()
-            subprocess.run(argv, check=True, capture_output=True, cwd=ROOT)
+            subprocess.run(argv, check=True, capture_output=True, cwd=ROOT, env=env)
             if i:
                 walls.append(time.perf_counter() - start)
                 cpus.append(_children_cpu() - cpu0)
