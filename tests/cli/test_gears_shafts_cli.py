@@ -185,3 +185,24 @@ def test_a_keyed_bore_too_large_for_the_timing_mark_gets_one_limit_that_passes(c
         limit = rest.split("must be <= ")[1].split(" mm")[0]
         fixed = with_remedy(args, [param, limit])
         assert cli(*fixed, "--out", tmp_path / "k", "--dry-run").exit_code == 0, (fixed, line)
+
+
+def test_a_printers_chamfer_too_large_for_the_gear_names_the_thickness_and_the_printer(cli, tmp_path):
+    """The chamfer comes from the printer profile (none given): the refusal named `--chamfer
+    = 0.4`, an option the user never typed. It names the thickness and the printer, and the
+    chamfer it offers is one the printer takes: applied, the pair is written."""
+    args = ["gears", "--printer", "fdm-0.4-pla", "--thickness", "0.7", "--mark-depth", "0",
+            "--format", "stl"]
+    result = cli(*args, "--out", tmp_path / "thin", "--json")
+    line = error_line(result)
+    assert line == ("wheelstep: error: --thickness = 0.7: must be > twice the edge chamfer of printer "
+                    "fdm-0.4-pla, 0.8 mm; or --chamfer 0 for none"), line
+    assert not (tmp_path / "thin").exists()
+    remedy = json.loads(result.stdout)["error"]["remedy"]
+    applied = with_remedy(args, [str(part) for item in remedy.items() for part in item])
+    out = tmp_path / "fixed"
+    done = cli(*applied, "--out", out)
+    assert done.exit_code == 0, done.stderr
+    assert json.loads((out / "gears.json").read_text())["chamfer"]["mm"] == 0
+    for name in ("pinion", "wheel"):
+        assert_printable_stl(out / f"{name}.stl")

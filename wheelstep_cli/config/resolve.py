@@ -120,11 +120,7 @@ def gear_pair_spec(profile, **cli) -> GearPairSpec:
     Raises InvalidInput (every problem of the profile, with ``file:line``) or DesignError
     (a value that breaks a rule, named by its parameter).
     """
-    loaded = _profile(profile)
-    spec = _named_for(cli, build, GearPairSpec, spec_values(GearPairSpec, "gears", loaded, cli),
-                      profile=(loaded, "gears"))
-    _named_for(cli, spec.mechanism, profile=(loaded, "gears"))
-    return spec
+    return _resolved(GearPairSpec, "gears", _profile(profile), cli, "mechanism")
 
 
 #: What the paper method's tables (``pitch``, ``teeth``) read of a profile's gear pair; the rest
@@ -192,10 +188,75 @@ def paper_table_spec(profile, **cli) -> tuple[GearPairSpec, str | None]:
 
 def shoe_spec(profile, **cli) -> ShoeSpec:
     """Resolve a ShoeSpec: command line over profile (``shoe:``, ``mechanism:``) over defaults."""
-    loaded = _profile(profile)
-    spec = _named_for(cli, build, ShoeSpec, spec_values(ShoeSpec, "shoe", loaded, cli), profile=(loaded, "shoe"))
-    _named_for(cli, spec.design, profile=(loaded, "shoe"))
+    return _resolved(ShoeSpec, "shoe", _profile(profile), cli, "design")
+
+
+def _checked(spec_type: type[BaseModel], values: dict[str, Any], check: str):
+    """The spec built from ``values`` and its ``check`` method run (the mechanism sized, so an
+    impossible one is caught now)."""
+    spec = build(spec_type, values)
+    getattr(spec, check)()
     return spec
+
+
+def _resolved(spec_type: type[BaseModel], section: str, loaded, cli: dict[str, Any], check: str):
+    """The spec of the command line ``cli`` over the design profile ``loaded`` (None: none)
+    over the defaults, checked (:func:`_checked`); the rules a user's profile breaks are said
+    at their lines, all of them at once (:func:`_every_profile_problem`)."""
+    values = spec_values(spec_type, section, loaded, cli)
+    try:
+        return _named_for(cli, _checked, spec_type, values, check, profile=(loaded, section))
+    except InvalidInput as first:
+        if loaded is None:
+            raise
+        raise _every_profile_problem(spec_type, section, loaded, cli, check, first) from None
+
+
+class _LeftOut:
+    """A design profile seen without some of its keys (``"section.key"``): the defaults
+    stand in for them."""
+
+    def __init__(self, profile, keys: set[str]):
+        self.profile, self.keys = profile, keys
+
+    @property
+    def shipped(self) -> bool:
+        return self.profile.shipped
+
+    def where(self, section: str, key: str) -> str | None:
+        return self.profile.where(section, key)
+
+    def values(self, section: str) -> dict[str, Any]:
+        return {k: v for k, v in self.profile.values(section).items() if f"{section}.{k}" not in self.keys}
+
+
+def _every_profile_problem(spec_type, section: str, loaded, cli: dict[str, Any], check: str,
+                           first: InvalidInput) -> InvalidInput:
+    """``first`` (a rule the design profile ``loaded`` breaks, at its line) with every other
+    rule its keys break: a rule stops at the first value it finds at fault, so the profile is
+    resolved again without the keys found so far while that finds another of its keys at
+    fault, and the user mends them in one go. A problem the defaults standing in for those
+    keys take part in, or one of the command line's, ends the search (it may stem from them)."""
+    given = [k for k, v in cli.items() if v is not None]
+    issues, left = list(first.issues), set()
+    while True:
+        left.add(issues[-1].what)
+        seen = _LeftOut(loaded, left)
+        try:
+            _checked(spec_type, spec_values(spec_type, section, seen, cli), check)
+            break
+        except InvalidInput:
+            break
+        except DesignError as err:
+            named = err.for_given(given)
+            keys = {name.replace("-", "_") for name in (err.param, named.param, *err.alternatives)}
+            if any(f"{part}.{key}" in left for part in (section, "mechanism") for key in keys):
+                break
+            located = None if named.param.replace("-", "_") in given else in_profile(named, seen, section)
+            if located is None:
+                break
+            issues.extend(located.issues)
+    return first if len(issues) == 1 else InvalidInput(issues)
 
 
 def _named_for(cli: dict[str, Any], step, *args, profile: tuple | None = None):

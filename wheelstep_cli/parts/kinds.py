@@ -83,7 +83,34 @@ def printed_spec(kind: PartKind, spec, printer):
     if kind.chamfer_field is not None:
         changes[kind.chamfer_field] = printer.chamfer_for(getattr(spec, kind.chamfer_field),
                                                           kind.chamfer_field)
-    return updated(spec, **changes)
+    try:
+        return updated(spec, **changes)
+    except DesignError as err:
+        raise _printer_chamfer(err, kind, spec, printer) from None
+
+
+def _printer_chamfer(err: DesignError, kind: PartKind, spec, printer) -> DesignError:
+    """``err`` of the printed spec; the thickness rule the printer's own edge chamfer breaks
+    (the design gives none) said of the thickness, the printer named, with the chamfers that
+    would do (not of a chamfer never given)."""
+    from wheelstep_cli.config.printers import least_chamfer
+
+    field = kind.chamfer_field
+    thickness = getattr(spec, "thickness", None)
+    if field is None or err.param != field or getattr(spec, field) is not None or thickness is None:
+        return err
+    flag, half = "--" + field.replace("_", "-"), 0.5 * float(thickness)
+    least = least_chamfer(printer.elephant_foot_inset, printer.elephant_foot_height)
+    # a chamfer the printer takes (none, or at least its foot's) that leaves the faces an edge
+    would_do = f"{flag} 0 for none" if least >= half else f"{flag} from {least:g} to below {half:g} mm, or 0 for none"
+    err = DesignError("thickness", thickness,
+                      f"must be > twice the edge chamfer of printer {printer.name}, "
+                      f"{2.0 * printer.chamfer:g} mm; or {would_do}",
+                      {field: (None, f"must be given ({would_do.split(' ', 1)[1]}): printer "
+                                     f"{printer.name}'s {printer.chamfer:g} mm is not below half the "
+                                     f"thickness {half:g} mm")})
+    err.remedy, err.remedies = {field: 0.0}, [{field: 0.0}]
+    return err
 
 
 @dataclass(frozen=True)
