@@ -18,8 +18,7 @@ from pydantic_core import PydanticCustomError
 
 from wheelstep_cli.config.fields import STRICT, Choice, Number, Real, Whole, length, quantity
 from wheelstep_cli.errors import DesignError, require, rounded_down, rounded_up
-from wheelstep_cli.gears.cutter_limits import (ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG,
-                                               range_text)
+from wheelstep_cli.gears.cutter_limits import ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG, range_text
 from wheelstep_cli.gears.laws import TURNS, TURNS_LIMIT
 
 #: Mechanism parameters (the ``mechanism:`` section of a design profile).
@@ -231,11 +230,9 @@ class GearPairSpec(BaseModel):
                               f"must be <= half the thickness, {0.5 * self.thickness:g} mm",
                               {"thickness": (self.thickness, f"must be >= twice the mark depth, "
                                                              f"{2.0 * self.mark_depth:g} mm")})
-        if self.chamfer is not None and not 2.0 * self.chamfer < self.thickness:
-            # a 45 deg chamfer on both faces: the two must leave an edge between them
+        if self.chamfer is not None and not 2.0 * self.chamfer < self.thickness:   # both faces': leave an edge
             raise DesignError("chamfer", self.chamfer, f"must be < half the thickness {0.5 * self.thickness:g} mm",
-                              {"thickness": (self.thickness, f"must be > twice the chamfer, "
-                                                             f"{2.0 * self.chamfer:g} mm")})
+                              {"thickness": (self.thickness, f"must be > twice the chamfer, {2 * self.chamfer:g} mm")})
         if self.bore_shape == BoreShape.hex:
             require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a hex (across flats)")
         require(self.set_screw is None or self.bore > 0, "set_screw", self.set_screw,

@@ -11,7 +11,8 @@ Each designed gear is found among the printed parts by its section area, then la
 into its own frame by the rigid motion that best fits the printed outline to the designed
 one (the slicer or its user may have moved and turned the parts on the bed): a part that
 fits no designed gear is refused, so a file of another pair, or one part, is named as
-such. The printed outlines are then checked at the installed distance, in phase,
+such; so is a part printed taller or lower than its gear (a pair of alike sections at another
+thickness). The printed outlines are then checked at the installed distance, in phase,
 as ``mesh-check`` checks written meshes. Lengths in mm, angles in radians.
 """
 
@@ -22,10 +23,10 @@ from pathlib import Path
 
 import numpy as np
 
-from wheelstep_cli.errors import DesignError, file_problem
-from wheelstep_cli.formats.gcode import GcodeLayers, read_gcode
-from wheelstep_cli.geometry.planar import offset_outline, points_inside, prepared_polygon, signed_area
+from wheelstep_cli.errors import DesignError
+from wheelstep_cli.geometry.planar import points_inside, prepared_polygon, signed_area
 from wheelstep_cli.geometry.registration import Registration, register
+from wheelstep_cli.parts.gcode_layers import PrintedPart, printed_parts, read_gcode_file, require_height
 
 #: A printed part is taken for a designed gear when their section areas differ by less than
 #: this share: the band's +-0.1 mm changes a gear's area by about 1 %, another tooth count
@@ -39,22 +40,6 @@ LARGEST = 0.5
 
 
 @dataclass(frozen=True)
-class PrintedPart:
-    """One printed part of a layer: the outer outline and holes (bed mm) as printed (the
-    external perimeters offset by half ``width``), from G-code ``source`` at height ``z``."""
-
-    source: str
-    z: float
-    width: float
-    outline: np.ndarray
-    holes: tuple
-
-    @property
-    def area(self) -> float:
-        return signed_area(self.outline) - sum(abs(signed_area(h)) for h in self.holes)
-
-
-@dataclass(frozen=True)
 class PrintedGear:
     """A designed gear found in the G-code: the printed part, its outline in the gear's own
     frame (mm) and the fit that put it there."""
@@ -62,66 +47,6 @@ class PrintedGear:
     part: PrintedPart
     outline: np.ndarray
     fit: Registration
-
-
-def read_gcode_file(path: Path) -> GcodeLayers:
-    """The external perimeters of a PrusaSlicer G-code file (DesignError naming ``gcode``)."""
-    if not path.is_file():
-        raise DesignError("gcode", str(path), file_problem(path))
-    try:
-        text = path.read_text(errors="replace")
-    except OSError as err:
-        raise DesignError("gcode", str(path), f"cannot be read ({err.strerror or err})") from None
-    return read_gcode(text, str(path))
-
-
-def require_gcode_files(paths: list[Path]) -> None:
-    """Refuse (DesignError naming ``gcode``) a missing file, or one that is not a whole
-    PrusaSlicer G-code file, reading only its head and tail: before any plate is read."""
-    from wheelstep_cli.formats.gcode import check_prusaslicer
-
-    for path in paths:
-        if not path.is_file():
-            raise DesignError("gcode", str(path), file_problem(path))
-        try:
-            size = path.stat().st_size
-            with open(path, "rb") as handle:
-                head = handle.read(2000)
-                handle.seek(max(0, size - 200000))
-                tail = handle.read()
-        except OSError as err:
-            raise DesignError("gcode", str(path), file_problem(path, err)) from None
-        check_prusaslicer(head.decode(errors="replace") + "\n" + tail.decode(errors="replace"), str(path))
-
-
-def mid_layer(layers: GcodeLayers, height: float, source: str = "gcode") -> float:
-    """The layer (its top z, mm) whose middle is nearest to ``height`` mm."""
-    if not layers.layers:
-        raise DesignError("gcode", source, "has no external perimeter on any layer (nothing an "
-                                           "outline can be read from)")
-    step = float(layers.config.get("layer_height", "0.2") or 0.2)
-    return min(layers.heights(), key=lambda z: abs(z - 0.5 * step - height))
-
-
-def printed_parts(layers: GcodeLayers, source: str, height: float) -> list[PrintedPart]:
-    """The parts printed at ``height`` mm above the bed: each outermost loop with the loops
-    inside it (its holes), offset by half their extrusion width away from the material."""
-    z = mid_layer(layers, height, source)
-    loops = [(np.asarray(loop.points, float), loop.width) for loop in layers.layers[z]]
-    loops = [(p if signed_area(p) > 0 else p[::-1], w) for p, w in loops if abs(signed_area(p)) > 1e-6]
-    loops.sort(key=lambda item: -signed_area(item[0]))
-    shells: list[tuple] = []
-    for points, width in loops:
-        owner = next((s for s in shells if points_inside(s[2], points[:1])[0]), None)
-        try:
-            printed = offset_outline(points, 0.5 * width if owner is None else -0.5 * width, "gcode")
-        except DesignError:
-            continue    # a loop crossing itself is no gear outline (a gear's is then not found)
-        if owner is None:
-            shells.append((printed, width, prepared_polygon(points), []))
-        else:
-            owner[3].append(printed)
-    return [PrintedPart(source, z, width, outline, tuple(holes)) for outline, width, _, holes in shells]
 
 
 def find_gear(parts: list[PrintedPart], design: np.ndarray, gear: str, pair: str,
@@ -206,6 +131,9 @@ def printed_pair(gcode_files: list[Path], pair, designs: dict) -> tuple[dict, di
                                 for part in printed_parts(layers, source, height)]
         found[gear] = find_gear(parts_at[height], designs[gear][0], gear, pair.pair,
                                 [g.part for g in found.values()])
+        vertices = getattr(pair, gear).vertices
+        require_height(found[gear].part, dict(read)[found[gear].part.source],
+                       float(np.ptp(vertices[:, 2])), gear, pair.pair)
         records[gear] = gear_record(found[gear], designs[gear][1])
     return found, records
 

@@ -15,8 +15,8 @@ def check_gcode(show: Output, gcode: list[Path], plates: list[str], pair, design
     from wheelstep_cli.cli.commands.meshcheck_shared import band_printer_of, pair_lines, warn_band_jams
     from wheelstep_cli.cli.progress import with_progress
     from wheelstep_cli.errors import require
-    from wheelstep_cli.parts.gcode_check import (band_prediction, gcode_lines,
-                                                 require_gcode_files, run_gcode_check, within_band)
+    from wheelstep_cli.parts.gcode_check import band_prediction, gcode_lines, run_gcode_check, within_band
+    from wheelstep_cli.parts.gcode_layers import require_gcode_files
     from wheelstep_cli.parts.mesh_check_files import WrittenPairCheck, require_sampling, written_pair_files
     from wheelstep_cli.parts.tolerance_cli import tolerance_lines
 
