@@ -54,6 +54,9 @@ def test_cli_impossible_linkage_one_line_exit_2(cli, tmp_path):
     assert error_line(cli("linkage", "--preset", "jansen", "--o1", "3,4")) == (
         "wheelstep: error: --o1 = 3,4: shapes the four-bar only (--l1..--l4, --beta, --o1), not the "
         "jansen preset: drop it or use --preset four-bar")
+    # the arm angle by its option, not the field it fills (it said `beta_deg = 10`)
+    assert error_line(cli("linkage", "--preset", "jansen", "--beta", "10")).startswith(
+        "wheelstep: error: --beta = 10: shapes the four-bar only")
 
 
 def test_a_table_step_between_the_sampled_crank_angles_is_refused_with_the_ones_it_takes(cli):

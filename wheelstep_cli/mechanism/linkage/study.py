@@ -19,6 +19,8 @@ from wheelstep_cli.mechanism.linkage.solver import Dyad, Linkage, Solution, cycl
 
 #: The numbers of the paper four-bar a request may replace (see :func:`four_bar`).
 FOUR_BAR_KEYS = ("l1", "l2", "l3", "l4", "beta_deg", "o1")
+#: The option a four-bar number is given by, where its name differs (a refusal names the option).
+OPTION_OF = {"beta_deg": "beta"}
 
 
 @dataclass(frozen=True)
@@ -86,7 +88,7 @@ def build_leg(request: LinkageRequest) -> Linkage:
         name = next(iter(custom))
         value = custom[name]
         shown = ",".join(f"{v:g}" for v in value) if isinstance(value, tuple) else value   # as typed: X,Y
-        raise DesignError(name, shown, f"shapes the four-bar only (--l1..--l4, --beta, --o1), "
+        raise DesignError(OPTION_OF.get(name, name), shown, f"shapes the four-bar only (--l1..--l4, --beta, --o1), "
                                               f"not the {request.preset} preset: drop it or use --preset four-bar")
     if custom:
         leg = four_bar(**custom)
@@ -139,8 +141,7 @@ def _for_the_inputs(err: DesignError, request: LinkageRequest) -> DesignError:
     if err.param != "crank-angle":
         return err
     why = f"the leg cannot turn its crank fully with it: at crank angle {err.shown_value} deg, {err.limit}"
-    options = {"beta_deg": "beta"}
-    alternatives = {options.get(k, k): (_shown(v), why) for k, v in request.four_bar.items()
+    alternatives = {OPTION_OF.get(k, k): (_shown(v), why) for k, v in request.four_bar.items()
                     if v is not None}
     if request.branches:
         alternatives["branch"] = (",".join(f"{k}={v:+d}" for k, v in request.branches.items()), why)
