@@ -185,6 +185,22 @@ def test_a_yaml_number_yaml_1_1_would_misread_is_text(cli, tmp_path, text):
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("text", ["yes", "No", "on", "OFF"])
+def test_a_yaml_1_1_truth_word_is_text_refused_by_a_flag_field(cli, tmp_path, text):
+    """YAML 1.1 reads yes / no / on / off as true / false (`lighten: yes` built lightened
+    gears), YAML 1.2 as text, as it reads 010 or 1:30: kept as the text written, a true/false
+    field refuses it at its line; true and false themselves are read as ever."""
+    from wheelstep_cli.config.located_yaml import parse_located_yaml
+
+    profile = tmp_path / "p.yaml"
+    profile.write_text(f"gears:\n  teeth: paper\n  lighten: {text}\n")
+    line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
+    assert line == f"wheelstep: error: {profile}:3: gears.lighten = '{text}': must be true or false", line
+    assert not (tmp_path / "out").exists()
+    assert parse_located_yaml(f"a: {text}\nb: true\nc: False\n", "t.yaml").data == {
+        "a": text, "b": True, "c": False}
+
+
 def test_a_yaml_name_with_an_underscore_stays_the_text_written():
     from wheelstep_cli.config.located_yaml import parse_located_yaml
 

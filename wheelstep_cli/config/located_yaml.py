@@ -69,6 +69,8 @@ def read_located_yaml(path: Path, label: str | None = None) -> LocatedYaml:
 
 #: Tags of the plain scalars YAML 1.1 reads as numbers.
 NUMBER_TAGS = ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")
+#: The tag YAML 1.1 gives yes / no / on / off as well as true / false.
+BOOL_TAG = "tag:yaml.org,2002:bool"
 #: A whole number as plain decimal digits (no leading zero, base prefix or separator).
 _PLAIN_INTEGER = re.compile(r"[-+]?(0|[1-9][0-9]*)\Z")
 
@@ -120,7 +122,8 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
             return out
         if isinstance(node, yaml.SequenceNode):
             return [walk(item, path + (i,), inner) for i, item in enumerate(node.value)]
-        if _misread_number(node):
+        if _misread_number(node) or (node.tag == BOOL_TAG and node.value.lower() not in ("true", "false")):
+            # yes / no / on / off: YAML 1.1 reads them as true or false, YAML 1.2 as the text
             return node.value
         try:
             return constructor.construct_object(node, deep=True)

@@ -245,8 +245,6 @@ def _issue(model: type[BaseModel], doc: LocatedYaml, loc: tuple, error: dict) ->
     limit = limit_text(model, error)
     # a number field's refusal of text says how to write the number (not a choice field's)
     note = _as_digits(error["input"]) if limit in ("must be a number", "must be a whole number") else ""
-    if isinstance(error["input"], bool) and not note:
-        note = " (YAML reads yes, no, on and off, unquoted, as true or false)"
     return Issue(doc.where(loc), dotted(loc), f"= {show(error['input'])}: {limit}{note}")
 
 
