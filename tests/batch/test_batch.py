@@ -235,9 +235,17 @@ def test_rerun_into_the_same_folder_removes_stale_plates(cli, tmp_path):
     assert (out / "plate-2.3mf").exists()
     write(batch, SMALL.replace("printer: resin-0.05-standard", "printer: fdm-0.4-pla"))
     (out / "notes.txt").write_text("mine")
-    assert cli("batch", batch, "--out", out, "--jobs", "1").exit_code == 0
-    assert not (out / "plate-2.3mf").exists() and not (out / "plate-2.png").exists()
+    with open(out / "plate-2.png", "ab") as picture:      # a plate picture the user changed
+        picture.write(b"x")
+    dry = cli("batch", batch, "--out", out, "--jobs", "1", "--dry-run")
+    assert f"kept {out / 'plate-2.png'} (an earlier run wrote it; changed since, so it is not removed)" in (
+        dry.stdout.splitlines()), dry.stdout
+    rerun = cli("batch", batch, "--out", out, "--jobs", "1", "--json")
+    assert rerun.exit_code == 0, rerun.stderr
+    assert not (out / "plate-2.3mf").exists() and (out / "plate-2.png").exists()
     assert (out / "notes.txt").read_text() == "mine"  # not ours: left alone
+    report = json.loads(rerun.stdout)
+    assert report["kept"] == [str(out / "plate-2.png")] and str(out / "plate-2.3mf") in report["removed"]
 
 
 VALID_ENTRY = """\

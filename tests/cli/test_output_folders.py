@@ -35,8 +35,12 @@ def test_a_rerun_keeps_another_commands_files_and_files_changed_since(cli, tmp_p
     (out / "notes.txt").write_text("mine")
     assert cli("shoe", "--out", out, "-q").exit_code == 0
     (out / "shoe.3mf").write_bytes(b"edited by the user")
-    assert cli("shoe", "--format", "stl", "--out", out, "-q").exit_code == 0
+    rerun = cli("shoe", "--format", "stl", "--out", out)
+    assert rerun.exit_code == 0, rerun.stderr
     assert (out / "shoe.3mf").read_bytes() == b"edited by the user"   # changed since: not ours
+    # and said so (it was kept without a word), in the table and in the --json report
+    assert f"kept {out / 'shoe.3mf'} (an earlier run wrote it; changed since, so it is not removed)" in (
+        rerun.stdout.splitlines())
     assert (out / "notes.txt").read_text() == "mine"
     assert "not written by this command" in error_line(cli("shoe", "--format", "3mf", "--out", out))
     (out / "shoe.stl").write_bytes(b"edited too")

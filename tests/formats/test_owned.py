@@ -8,7 +8,7 @@ import hashlib
 import pytest
 
 from wheelstep_cli.errors import DesignError
-from wheelstep_cli.formats.owned import check_collisions, read_record, record_bytes, stale_files
+from wheelstep_cli.formats.owned import check_collisions, kept_files, read_record, record_bytes, stale_files
 
 
 def sha(data: bytes) -> str:
@@ -34,6 +34,8 @@ def test_only_unchanged_files_of_the_previous_run_are_stale(tmp_path):
     record = {"old.3mf": sha(b"old"), "edited.3mf": sha(b"as written"), "gone.stl": sha(b"x"),
               "kept.stl": sha(b"k")}
     assert stale_files(tmp_path, {tmp_path / "kept.stl": b"k2"}, record) == [tmp_path / "old.3mf"]
+    # the changed one is kept, and named as kept (a gone file or one written again is neither)
+    assert kept_files(tmp_path, {tmp_path / "kept.stl": b"k2"}, record) == [tmp_path / "edited.3mf"]
 
 
 def test_a_file_not_in_the_record_or_changed_is_refused_unless_forced(tmp_path):

@@ -21,6 +21,7 @@ class BatchOutcome:
     built: list[Entry]
     results: dict = field(default_factory=dict)   # entry index -> EntryResult
     removed: list = field(default_factory=list)   # files of an earlier batch this one removed
+    kept: list = field(default_factory=list)      # ... and those it kept, changed since
 
 
 def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
@@ -37,7 +38,7 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
     from functools import partial
 
     from wheelstep_cli.formats.atomic import remove_files, write_files_atomic
-    from wheelstep_cli.formats.owned import check_collisions, stale_files
+    from wheelstep_cli.formats.owned import check_collisions, kept_files, stale_files
 
     record, ours = previous_record(out)
     # refused before the build (minutes for gear pairs), as after it: a user's file, or one
@@ -73,15 +74,16 @@ def run_batch(plan: BatchPlan, out: Path, jobs: int = 1,
     written = write_files_atomic(files)
     stale = stale_files(out, files, record)
     remove_files(stale)
-    return BatchOutcome(written, plates, failed, built, results, stale)
+    return BatchOutcome(written, plates, failed, built, results, stale, kept_files(out, files, record))
 
 
-def stale_batch_files(out: Path, paths) -> list[Path]:
-    """The files of an earlier batch in ``out`` that a run writing ``paths`` removes (as
-    :func:`run_batch` does; for a dry run, built elsewhere)."""
-    from wheelstep_cli.formats.owned import stale_files
+def stale_batch_files(out: Path, paths) -> tuple[list[Path], list[Path]]:
+    """The files of an earlier batch in ``out`` that a run writing ``paths`` removes, and those
+    it keeps, changed since (as :func:`run_batch` does; for a dry run, built elsewhere)."""
+    from wheelstep_cli.formats.owned import kept_files, stale_files
 
-    return stale_files(out, dict.fromkeys(paths, b""), previous_record(out)[0])
+    files, record = dict.fromkeys(paths, b""), previous_record(out)[0]
+    return stale_files(out, files, record), kept_files(out, files, record)
 
 
 def check_folder(out: Path, paths, force: bool) -> None:

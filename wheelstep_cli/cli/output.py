@@ -26,6 +26,8 @@ class Output:
     would_remove: list = field(default_factory=list, compare=False, repr=False)
     #: Files of an earlier run a run removed (said by :meth:`files`).
     removed: list = field(default_factory=list, compare=False, repr=False)
+    #: Files of an earlier run changed since, which a run leaves where they are (said by :meth:`files`).
+    kept: list = field(default_factory=list, compare=False, repr=False)
     #: Files the user named (:meth:`write_named`) that a run wrote: a --json report without
     #: a ``written`` list of its own gets them as one.
     named_written: list = field(default_factory=list, compare=False, repr=False)
@@ -115,11 +117,13 @@ class Output:
         files, unless ``check_only``: ``files`` are not all of the run's). Returns the paths
         written (would be, with ``dry_run``), the record last."""
         from wheelstep_cli.formats.atomic import remove_files
-        from wheelstep_cli.formats.owned import check_collisions, read_record, record_bytes, stale_files
+        from wheelstep_cli.formats.owned import check_collisions, kept_files, read_record, record_bytes, stale_files
 
         record_path = folder / f".wheelstep-{command}.json"
         record = read_record(record_path)
         check_collisions(folder, files, record, force)
+        if not check_only:
+            self.kept.extend(kept_files(folder, files, record))
         if dry_run:
             if not check_only:
                 self.would_remove.extend(stale_files(folder, files, record))
@@ -159,12 +163,14 @@ class Output:
 
     def written_record(self, paths: Iterable[Path], dry_run: bool) -> dict[str, list[str]]:
         """A report's ``written`` and ``removed`` files (none with ``dry_run``, whose report
-        says them as ``would_write`` and ``would_remove``)."""
+        says them as ``would_write`` and ``would_remove``), and ``kept`` when an earlier run's
+        file changed since is left in place."""
+        kept = {"kept": [str(p) for p in self.kept]} if self.kept else {}
         names = [str(p) for p in paths]
         if dry_run:
             return {"written": [], "removed": [], "would_write": names,
-                    "would_remove": [str(p) for p in self.would_remove]}
-        return {"written": names, "removed": [str(p) for p in self.removed]}
+                    "would_remove": [str(p) for p in self.would_remove], **kept}
+        return {"written": names, "removed": [str(p) for p in self.removed], **kept}
 
     def files(self, paths: Iterable[Path], dry_run: bool, joined: bool = False) -> None:
         """Say which files were written (or would be, with ``dry_run``): one line each, or
@@ -176,6 +182,7 @@ class Output:
         # all the run does (would do) to the folder: the files it removes too
         lines += [f"{'would remove' if dry_run else 'removed'} {p} (written by an earlier run)"
                   for p in (self.would_remove if dry_run else self.removed)]
+        lines += [f"kept {p} (an earlier run wrote it; changed since, so it is not removed)" for p in self.kept]
         for text in lines:
             if not self.json:
                 self.line(text)

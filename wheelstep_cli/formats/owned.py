@@ -77,6 +77,14 @@ def stale_files(folder: Path, files: Mapping[Path, bytes], record: Mapping[str, 
             if name not in new and sha256_of(folder / name) == sha]
 
 
+def kept_files(folder: Path, files: Mapping[Path, bytes], record: Mapping[str, str]) -> list[Path]:
+    """Files of the previous run (per ``record``) this run does not write that were changed
+    since it wrote them: kept (an edit of the user's), and said so, not left unsaid."""
+    new = {Path(p).relative_to(folder).as_posix() for p in files}
+    return [folder / name for name, sha in sorted(record.items())
+            if name not in new and (folder / name).is_file() and sha256_of(folder / name) != sha]
+
+
 def merged_record_bytes(tool: str, folder: Path, files: Mapping[Path, bytes],
                         record: Mapping[str, str]) -> bytes:
     """The record of ``files`` (inside ``folder``) written by ``tool``, keeping the entries of

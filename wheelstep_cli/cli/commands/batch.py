@@ -87,6 +87,7 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, s
             if not dry_run:
                 outcome = run_batch(plan, out, workers, bars, force, scheduler, tolerance)
                 show.removed.extend(outcome.removed)
+                show.kept.extend(outcome.kept)
                 return outcome, outcome.written
             with tempfile.TemporaryDirectory(prefix="wheelstep-dry-run-") as scratch:
                 outcome = run_batch(plan, Path(scratch), workers, bars, scheduler=scheduler,
@@ -94,7 +95,9 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, s
                 written = [out / p.relative_to(scratch) for p in outcome.written]
                 if outcome.built:       # a run that builds nothing writes and removes nothing
                     check_folder(out, written, force)   # what the real run would refuse
-                    show.would_remove.extend(stale_batch_files(out, written))
+                    removes, keeps = stale_batch_files(out, written)
+                    show.would_remove.extend(removes)
+                    show.kept.extend(keeps)
                 return outcome, written
     except OSError as err:
         raise DesignError("out", str(out), f"cannot be written ({err.strerror or err})") from None
@@ -113,6 +116,7 @@ def _summary(file: Path, out: Path, plan, outcome, written: list[Path]) -> dict:
                     "remedies": outcome.results[entry.index].remedies if entry.index in outcome.results else []}
                    for entry, where, reason in outcome.failed],
         "written": [str(p) for p in written], "removed": [str(p) for p in outcome.removed],
+        **({"kept": [str(p) for p in outcome.kept]} if outcome.kept else {}),
         **({"tolerance": bands} if (bands := _bands(outcome)) else {}),
     }
 

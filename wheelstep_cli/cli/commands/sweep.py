@@ -257,13 +257,14 @@ def _drop_earlier_best(out: Path, count: int, show: Output, dry_run: bool = Fals
     kept with its folder). With ``dry_run`` the files are only listed as the real run's
     removals (said with the files)."""
     from wheelstep_cli.formats.atomic import remove_files
-    from wheelstep_cli.formats.owned import read_record, stale_files
+    from wheelstep_cli.formats.owned import kept_files, read_record, stale_files
 
     earlier = [f for f in out.glob("best-*") if f.is_dir() and f.name[5:].isdigit() and int(f.name[5:]) > count]
     for folder in sorted(earlier):
         for record_path in sorted(folder.glob(".wheelstep-*.json")):
             record = read_record(record_path)
             stale = stale_files(folder, {}, record)
+            show.kept.extend(kept_files(folder, {}, record))
             # the record goes with the last of its files: one changed since stays listed as ours
             stale += [record_path] if len(stale) == len(record) else []
             if dry_run:
