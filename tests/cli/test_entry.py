@@ -126,3 +126,17 @@ def test_loading_the_cli_leaves_the_batch_pipeline_unloaded():
     loaded, after = out.stdout.splitlines()
     assert loaded == "['wheelstep_cli.batch.interrupts']"
     assert after == "True"     # the package's names still load on first use
+
+
+def test_output_cut_short_by_its_reader_ends_quietly_with_sigpipes_code(tmp_path):
+    """`wheelstep teeth | head -1`: click exits 1 when stdout's reader goes away, which is the
+    code of a failed check here (a `set -o pipefail` script took a good pair for a bad one).
+    The run ends with 141 (128 + SIGPIPE, as a shell says of such a writer), nothing on stderr."""
+    import subprocess
+
+    proc = subprocess.Popen([sys.executable, "-m", "wheelstep_cli", "teeth"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, cwd=tmp_path)
+    proc.stdout.close()              # the reader is gone before the table is printed
+    stderr = proc.stderr.read()
+    assert proc.wait(timeout=120) == 141, stderr
+    assert stderr == b""

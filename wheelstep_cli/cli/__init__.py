@@ -9,6 +9,7 @@ a report, ``--json``; where it writes files, ``--dry-run``.
 from __future__ import annotations
 
 import atexit
+import errno
 import re
 import signal
 import sys
@@ -227,6 +228,12 @@ def _invoke(command, args: list[str]):
         return INTERRUPTED
     except (typer.Abort, KeyboardInterrupt):
         return _aborted()
+    except SystemExit as err:
+        if isinstance(err.__context__, OSError) and err.__context__.errno == errno.EPIPE:
+            # click exits 1 (a failed check, here) when the reader of stdout went away (`| head`):
+            # said as a shell says a writer stopped by SIGPIPE, and quietly, as such a writer is
+            return OUTPUT_CLOSED
+        raise
     except Exception as err:
         if caused_by_interrupt(err):          # a Ctrl-C a library wrapped in an error of its own
             return _aborted()
@@ -239,6 +246,8 @@ def _invoke(command, args: list[str]):
 
 #: The exit code of a run stopped by Ctrl-C (128 + SIGINT), as shells report it.
 INTERRUPTED = 130
+#: The exit code of a run whose output's reader closed it (128 + SIGPIPE), as shells report it.
+OUTPUT_CLOSED = 141
 
 
 def _aborted() -> int:
