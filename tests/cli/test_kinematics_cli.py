@@ -24,6 +24,10 @@ def test_reference_ripple_and_constant_speed(cli):
     assert curve["phi_deg"][0] == -45 and curve["phi_deg"][-1] == 45
     text = cli("kinematics").stdout
     assert "without gears 58.7 %" in text and "with non-circular gears 0.0 %" in text
+    # the table's U column is said (a reader met an unexplained U); at phi = 0 it is SPEC §3's u (k + 3b) / k
+    assert "\nU = omega / omega_H = r_H / r: pinion speed per carrier speed" in text
+    k, mid = data["a_mm"] - data["b_mm"] + data["c_mm"], curve["phi_deg"].index(0)
+    assert curve["ratio_u"][mid] == pytest.approx(1.25248 * (k + 3 * data["b_mm"]) / k, rel=1e-5)
 
 
 def test_plot_shows_both_curves_and_the_sole(cli, tmp_path):

@@ -145,6 +145,8 @@ def _kinematics_lines(report: dict, rows: int) -> list[str]:
     for i in table_rows(len(curve["phi_deg"]), rows):
         lines.append(f"{curve['phi_deg'][i]:8.1f} {curve['ratio_u'][i]:8.4f} "
                      f"{curve['without_m_s'][i]:12.3f} {curve['with_m_s'][i]:10.3f}")
+    lines.append("U = omega / omega_H = r_H / r: pinion speed per carrier speed at phi (SPEC §3); "
+                 "hub speed without gears (the motor on the carrier) and with them")
     lines.append(f"ripple (peak-to-peak / mean): without gears "
                  f"{report['without_gears']['ripple_pct']:.1f} %, with non-circular gears "
                  f"{report['with_gears']['ripple_pct']:.1f} % (gears on {report['with_gears']['law']})")
