@@ -721,3 +721,18 @@ def test_a_quantity_written_with_a_point_zero_is_that_many(cli, tmp_path):
     result = cli("batch", batch, "--out", tmp_path / "out", "--dry-run", "--json")
     assert result.exit_code == 0, result.stderr
     assert json.loads(result.stdout)["parts"] == 2
+
+
+def test_a_plate_pictures_title_counts_its_parts_in_words(cli, tmp_path, monkeypatch):
+    """A plate of one part was titled "1 parts"."""
+    from wheelstep_cli.render import plate_png
+
+    titles = []
+    drawn = plate_png.plate_png
+    monkeypatch.setattr(plate_png, "plate_png", lambda *args: titles.append(args[-1]) or drawn(*args))
+    one = write(tmp_path / "one.yaml", "parts:\n  - kind: shoe\n    design: desk-demo\n    printer: fdm-0.4-pla\n")
+    assert cli("batch", one, "--out", tmp_path / "one", "--jobs", "1", "-q").exit_code == 0
+    two = write(tmp_path / "two.yaml", "parts:\n  - kind: shoe\n    design: desk-demo\n    quantity: 2\n"
+                "    printer: fdm-0.4-pla\n")
+    assert cli("batch", two, "--out", tmp_path / "two", "--jobs", "1", "-q").exit_code == 0
+    assert [title.rsplit(", ", 1)[1] for title in titles] == ["1 part", "2 parts"], titles

@@ -11,6 +11,7 @@ import numpy as np
 from wheelstep_cli.batch.build import BuiltPart, EntryResult
 from wheelstep_cli.batch.plan import Entry
 from wheelstep_cli.config.printers import Printer
+from wheelstep_cli.errors import counted
 from wheelstep_cli.parts.plate_layout import design_metadata, pack_units, size_problem
 
 
@@ -72,7 +73,7 @@ def plate_picture(plate: Plate) -> bytes:
     printer = plate.printer
     return plate_png(printer.bed, printer.edge_margin, shapes,
                      f"{plate.stem}: {printer.name} ({printer.bed[0]:g} x {printer.bed[1]:g} mm), "
-                     f"{len(plate.items)} parts")
+                     + counted(len(plate.items), "part", "parts"))
 
 
 def _metadata(entry: Entry, result: EntryResult, part: str, copy: int) -> dict[str, str]:
