@@ -356,6 +356,16 @@ def test_all_problems_reported_together(cli, tmp_path):
     assert "needs a printer" in lines[1]
 
 
+def test_every_repeated_key_is_reported_at_once(cli, tmp_path):
+    """A file that repeats keys got the first only; fixed, the next came in the next run."""
+    batch = write(tmp_path / "twice.yaml", "defaults:\n  printer: fdm-0.4-pla\n  printer: fdm-0.4-petg\n"
+                  "parts:\n  - kind: shoe\n    design: desk-demo\n    design: bntu-2024\n")
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2 and not (tmp_path / "out").exists()
+    assert result.stderr.strip().splitlines() == [f"wheelstep: error: {batch}:3: duplicate key 'printer'",
+                                                  f"wheelstep: error: {batch}:7: duplicate key 'design'"]
+
+
 def test_an_entrys_override_rules_are_reported_beside_its_other_problems(cli, tmp_path):
     """An entry with a problem of its own (quantity 0) and an override breaking a rule
     (hub_d under the bore's wall): both in one run (the rule was found only once the

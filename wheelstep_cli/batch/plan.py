@@ -18,7 +18,7 @@ from wheelstep_cli.config.names import as_keys, in_file_words, remedies_as_keys,
 from wheelstep_cli.config.printers import Printer
 from wheelstep_cli.config.profiles import beside, profile_names
 from wheelstep_cli.config.resolve import spec_problems, spec_values
-from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, located_issues, section_model, show
+from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, located_issues, section_model, show, yaml_issues
 from wheelstep_cli.errors import DesignError
 from wheelstep_cli.parts.kinds import KINDS, PartKind, as_designed, printed_spec
 
@@ -82,7 +82,7 @@ def load_batch(path: Path, label: str | None = None) -> BatchPlan:
     try:
         doc = read_located_yaml(path, label)
     except YamlSyntaxError as err:
-        raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+        raise InvalidInput(yaml_issues(err)) from None
     found = _structure(doc)
     issues = [issue for loc, issue in found if _entry_index(loc) is None]
     bad = {loc[:3] for loc, _ in found}

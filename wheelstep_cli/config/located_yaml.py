@@ -44,10 +44,12 @@ class LocatedYaml:
 
 
 class YamlSyntaxError(DesignError):
-    """The file is not YAML; ``where`` is ``file:line``."""
+    """The file is not YAML; ``where`` is ``file:line``. ``problems``: every (where, problem)
+    found (several when the file reads but repeats keys), the first being this one's."""
 
-    def __init__(self, where: str, problem: str):
+    def __init__(self, where: str, problem: str, more: list[tuple[str, str]] | None = None):
         self.where = where
+        self.problems = [(where, problem), *(more or [])]
         super().__init__("yaml", where, problem)
 
 
@@ -93,6 +95,7 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
         return LocatedYaml(label, None, lines)
     constructor = SafeConstructor()
     count = [0]
+    repeated: list[tuple[str, str]] = []    # every repeated key, said together (the first value kept)
 
     def walk(node, path: PathKey, ancestors: frozenset = frozenset()):
         where = f"{label}:{node.start_mark.line + 1}"
@@ -115,8 +118,8 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
                                           "keys must be plain names")
                 key = constructor.construct_object(key_node, deep=True)
                 if key in out:
-                    raise YamlSyntaxError(f"{label}:{key_node.start_mark.line + 1}",
-                                          f"duplicate key '{key}'")
+                    repeated.append((f"{label}:{key_node.start_mark.line + 1}", f"duplicate key '{key}'"))
+                    continue
                 lines[path + (key,)] = key_node.start_mark.line + 1
                 out[key] = walk(value_node, path + (key,), inner)
             return out
@@ -130,7 +133,10 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
         except (yaml.YAMLError, ValueError, TypeError) as err:
             raise YamlSyntaxError(where, f"bad value ({_one_line(err)})") from None
 
-    return LocatedYaml(label, walk(root, ()), lines)
+    data = walk(root, ())
+    if repeated:
+        raise YamlSyntaxError(*repeated[0], repeated[1:])
+    return LocatedYaml(label, data, lines)
 
 
 def _misread_number(node) -> bool:

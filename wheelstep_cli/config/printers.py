@@ -19,7 +19,7 @@ from pydantic_core import PydanticCustomError
 
 from wheelstep_cli.config.fields import STRICT, Choice, Real, Whole, length, quantity
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
-from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, validate_file
+from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, validate_file, yaml_issues
 from wheelstep_cli.errors import DesignError
 
 
@@ -259,7 +259,7 @@ def printer_from_profile(name: str, path: Path, label: str, doc: LocatedYaml | N
         try:
             doc = read_located_yaml(path, label)
         except YamlSyntaxError as err:
-            raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+            raise InvalidInput(yaml_issues(err)) from None
     try:
         profile = validate_file(PrinterProfile, doc)
     except InvalidInput as err:

@@ -16,7 +16,7 @@ from typing import Any
 
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
 from wheelstep_cli.config.printers import DEFAULT_PRINTER, printer_from_profile
-from wheelstep_cli.config.schema import InvalidInput, Issue
+from wheelstep_cli.config.schema import InvalidInput, Issue, yaml_issues
 from wheelstep_cli.errors import DesignError
 
 
@@ -200,7 +200,7 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
         try:
             doc = read_located_yaml(file, profile_label(file))
         except YamlSyntaxError as err:
-            raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+            raise InvalidInput(yaml_issues(err)) from None
     if (why := _not_sections(doc.data)) is not None:
         raise DesignError("design", name, why)
     if is_printer_profile(doc.data):
@@ -316,7 +316,7 @@ def load_printer_profile(name_or_path: str):
     try:
         doc = read_located_yaml(file, label)
     except YamlSyntaxError as err:
-        raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+        raise InvalidInput(yaml_issues(err)) from None
     except DesignError as err:
         raise _unreadable("printer", name_or_path, err) from None
     if (why := _not_sections(doc.data)) is not None:

@@ -299,6 +299,12 @@ def file_issues(model: type[BaseModel], doc: LocatedYaml, path: tuple,
     return [issue for _, issue in located_issues(model, doc, path, err)]
 
 
+def yaml_issues(err) -> list[Issue]:
+    """The issues of a file that does not read as YAML (config.located_yaml.YamlSyntaxError),
+    each at its line: every repeated key at once."""
+    return [Issue(where, "", problem) for where, problem in err.problems]
+
+
 def validate_file(model: type[BaseModel], doc: LocatedYaml, path: tuple = (),
                   issues: list[Issue] | None = None):
     """``doc``'s value at ``path`` as a ``model`` (an empty value as an empty mapping);

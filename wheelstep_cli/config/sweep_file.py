@@ -19,7 +19,7 @@ from pydantic import ValidationError
 
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
 from wheelstep_cli.config.schema import (InvalidInput, Issue, dotted, file_issues, section_model, show,
-                                         validate_file)
+                                         validate_file, yaml_issues)
 from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec
 from wheelstep_cli.config.sweep_model import MAX_POINTS, OBJECTIVES, Bounds, RandomAxes, Range, SweepFile
 from wheelstep_cli.errors import DesignError
@@ -54,7 +54,7 @@ def load_sweep(path: Path, label: str | None = None) -> SweepPlan:
     try:
         doc = read_located_yaml(path, label)
     except YamlSyntaxError as err:
-        raise InvalidInput([Issue(err.where, "", err.limit)]) from None
+        raise InvalidInput(yaml_issues(err)) from None
     issues: list[Issue] = []
     sweep = validate_file(SweepFile, doc, (), issues)
     data = _found_beside(Path(path).parent, doc.data if isinstance(doc.data, dict) else {})
