@@ -366,6 +366,23 @@ def test_every_repeated_key_is_reported_at_once(cli, tmp_path):
                                                   f"wheelstep: error: {batch}:7: duplicate key 'design'"]
 
 
+def test_every_rule_an_entrys_design_profile_breaks_is_reported_at_once(cli, tmp_path):
+    """The design's first rule problem came alone (one run per problem), as in `gears --profile`
+    before: now every one, in the design file's line order; an override's problem is still
+    the override's alone (its stand-in is the design's value)."""
+    write(tmp_path / "rules.yaml", "gears:\n  thickness: 1\n  chamfer: 2\n  mark_depth: 0.8\n  key_width: 2\n"
+          "  hub_length: 3\n")
+    batch = write(tmp_path / "b.yaml", "parts:\n  - kind: gear-pair\n    design: rules.yaml\n"
+                  "    printer: fdm-0.4-pla\n")
+    result = cli("batch", batch, "--out", tmp_path / "out")
+    assert result.exit_code == 2 and not (tmp_path / "out").exists()
+    said = [line.split(": parts[0]: ", 1)[1] for line in result.stderr.strip().splitlines()]
+    assert said == ["chamfer = 2: must be < half the thickness 0.5 mm (from design rules.yaml)",
+                    "mark_depth = 0.8: must be <= half the thickness, 0.5 mm (from design rules.yaml)",
+                    "key_width = 2: needs bore_shape keyway (from design rules.yaml)",
+                    "hub_length = 3: needs hub_d (from design rules.yaml)"], said
+
+
 def test_an_entrys_override_rules_are_reported_beside_its_other_problems(cli, tmp_path):
     """An entry with a problem of its own (quantity 0) and an override breaking a rule
     (hub_d under the bore's wall): both in one run (the rule was found only once the

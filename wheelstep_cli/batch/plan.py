@@ -279,10 +279,48 @@ def _every_problem(kind: PartKind, design, overrides: dict, printer: Printer, dr
                     if not ({_key(err), *map(_key, err.alternatives)} & removed)
                     and _key(given := err.for_given(left)) in left]
         found += problems
+    found = _with_the_designs(kind, design, overrides, printer, found)
     # in the order the file gives the overrides, an entry's own problems first
     order = {key: k for k, key in enumerate(overrides)}
     found.sort(key=lambda err: order.get(_key(err.for_given(overrides)), -1))
     return spec, printed, found
+
+
+def _with_the_designs(kind: PartKind, design, overrides: dict, printer: Printer,
+                      found: list[DesignError]) -> list[DesignError]:
+    """``found`` and, when those are all the design profile's, its further rule problems in
+    its lines' order: its keys found at fault are left out, their defaults standing in, and
+    the entry is resolved again while that finds another of the design's keys at fault (as
+    for overrides, and as `gears --profile` does). A problem of an override's, or one the
+    stand-in defaults take part in, ends the search."""
+    from wheelstep_cli.config.resolve import WithoutKeys
+
+    sections = (kind.section, "mechanism")
+    design_keys = [key for part in sections for key in design.values(part)]
+    left: set[str] = set()
+    every, latest = list(found), list(found)
+    while latest:
+        for err in latest:
+            named = _key(err.for_given(design_keys))
+            part = next((p for p in sections if named in design.values(p)), None)
+            if _key(err.for_given(overrides)) in overrides or part is None:
+                return found if every == found else _in_design_order(design, sections, design_keys, every)
+            left.add(f"{part}.{named}")
+        latest = [err for err in _resolve(kind, WithoutKeys(design, left), overrides, printer)[2]
+                  if not any(f"{part}.{name}" in left for part in sections
+                             for name in {_key(err), *map(_key, err.alternatives)})]
+        every += latest
+    return _in_design_order(design, sections, design_keys, every)
+
+
+def _in_design_order(design, sections, design_keys, errors: list[DesignError]) -> list[DesignError]:
+    """``errors`` of the design's keys by their lines in its file."""
+    def line(err) -> int:
+        named = _key(err.for_given(design_keys))
+        where = next((design.where(p, named) for p in sections if named in design.values(p)), None) or ""
+        tail = where.rsplit(":", 1)[-1]
+        return int(tail) if tail.isdigit() else 0
+    return sorted(errors, key=line)
 
 
 def _key(err_or_name) -> str:

@@ -212,7 +212,7 @@ def _resolved(spec_type: type[BaseModel], section: str, loaded, cli: dict[str, A
         raise _every_profile_problem(spec_type, section, loaded, cli, check, first) from None
 
 
-class _LeftOut:
+class WithoutKeys:
     """A design profile seen without some of its keys (``"section.key"``): the defaults
     stand in for them."""
 
@@ -241,7 +241,7 @@ def _every_profile_problem(spec_type, section: str, loaded, cli: dict[str, Any],
     issues, left = list(first.issues), set()
     while True:
         left.add(issues[-1].what)
-        seen = _LeftOut(loaded, left)
+        seen = WithoutKeys(loaded, left)
         try:
             _checked(spec_type, spec_values(spec_type, section, seen, cli), check)
             break
