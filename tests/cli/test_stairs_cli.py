@@ -108,3 +108,11 @@ def test_a_step_named_by_the_refusal_prints_at_that_step(cli):
 
     angles = [row["phi"] for row in json.loads(result.stdout)["climb"]]
     assert len(angles) == 14 and abs(angles[1] - angles[0] - 90 / 13) < 1e-6
+
+
+def test_angles_worked_out_from_a_landing_given_past_its_last_digit_read_as_numbers(cli):
+    """-90.0000000000001 left -90 + 90 = -9.9476e-14 in the per-cycle line and the descent's
+    landing; worked-out angles are said to the nanodegree."""
+    text = cli("stairs", "--landing-angle=-90.0000000000001").stdout
+    assert "per cycle (landing -90 -> 0 deg)" in text and "landing beta = -90 - alpha = 0 deg" in text, text
+    assert "e-1" not in text

@@ -155,15 +155,21 @@ def _study_lines(study, report: dict) -> list[str]:
         lines = [f"stair run l = {req.run:g} mm, rise h = {req.rise:g} mm, sole radius Y2 = "
                  f"{req.sole_radius:g} mm, landing alpha = {alpha:g} deg",
                  f"crank b = {d.b:.2f} mm   strut Y1 = {d.y1:.2f} mm   a = 2b = {d.a:.2f} mm"]
-    lines.append(f"per cycle (landing {alpha:g} -> {alpha + 90:g} deg): "
+    lines.append(f"per cycle (landing {alpha:g} -> {_worked_out(alpha + 90)} deg): "
                  f"advance {study.advance:.2f} mm, rise {study.rise:.2f} mm")
     lines += _table(f"climb (landing alpha = {alpha:g} deg); X01, Y01 mm; d.. per rad of phi (deg)",
                     report["climb"])
-    lines += _table(f"descent (landing beta = -90 - alpha = {report['descent_landing_angle_deg']:g} deg)",
+    lines += _table(f"descent (landing beta = -90 - alpha = {_worked_out(report['descent_landing_angle_deg'])} deg)",
                     report["descent"])
     if study.check is not None:
         lines += _check_lines(study.check, req.run, req.rise)
     return lines
+
+
+def _worked_out(angle: float) -> str:
+    """An angle worked out from the one given (deg), to the nanodegree: -90 + 90 is 0, not the
+    -1e-13 a given -90.0000000000001 leaves."""
+    return f"{round(angle, 9) + 0.0:g}"
 
 
 def _table(title: str, rows) -> list[str]:
