@@ -238,7 +238,7 @@ def test_rerun_into_the_same_folder_removes_stale_plates(cli, tmp_path):
     with open(out / "plate-2.png", "ab") as picture:      # a plate picture the user changed
         picture.write(b"x")
     dry = cli("batch", batch, "--out", out, "--jobs", "1", "--dry-run")
-    assert f"kept {out / 'plate-2.png'} (an earlier run wrote it; changed since, so it is not removed)" in (
+    assert f"would keep {out / 'plate-2.png'} (an earlier run wrote it; changed since, so it is not removed)" in (
         dry.stdout.splitlines()), dry.stdout
     rerun = cli("batch", batch, "--out", out, "--jobs", "1", "--json")
     assert rerun.exit_code == 0, rerun.stderr
@@ -364,6 +364,10 @@ def test_every_repeated_key_is_reported_at_once(cli, tmp_path):
     assert result.exit_code == 2 and not (tmp_path / "out").exists()
     assert result.stderr.strip().splitlines() == [f"wheelstep: error: {batch}:3: duplicate key 'printer'",
                                                   f"wheelstep: error: {batch}:7: duplicate key 'design'"]
+    # and with a value that does not read, after them (they were dropped)
+    write(batch, batch.read_text() + "    quantity: !!float abc\n")
+    lines = cli("batch", batch, "--out", tmp_path / "out").stderr.strip().splitlines()
+    assert [re.match(r"wheelstep: error: .*?:(\d+): ", line).group(1) for line in lines] == ["3", "7", "8"], lines
 
 
 def test_every_rule_an_entrys_design_profile_breaks_is_reported_at_once(cli, tmp_path):

@@ -140,3 +140,16 @@ def test_output_cut_short_by_its_reader_ends_quietly_with_sigpipes_code(tmp_path
     stderr = proc.stderr.read()
     assert proc.wait(timeout=120) == 141, stderr
     assert stderr == b""
+
+
+def test_a_refusals_json_cut_short_by_its_reader_ends_quietly_too(tmp_path):
+    """The refusal's --json is printed after the command returned (outside click, which
+    handled the pipe inside it): it ended in a BrokenPipeError traceback and exit 1."""
+    import subprocess
+
+    proc = subprocess.Popen([sys.executable, "-m", "wheelstep_cli", "gears", "--thickness", "-1", "--json"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=tmp_path)
+    proc.stdout.close()
+    stderr = proc.stderr.read().decode()
+    assert proc.wait(timeout=120) == 141, stderr
+    assert stderr.startswith("wheelstep: error: --thickness = -1: ") and "Traceback" not in stderr, stderr

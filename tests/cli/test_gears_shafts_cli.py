@@ -2,6 +2,8 @@
 
 import json
 
+import numpy as np
+
 import pytest
 
 from tests.helpers.clicheck import error_line, with_remedy
@@ -206,3 +208,41 @@ def test_a_printers_chamfer_too_large_for_the_gear_names_the_thickness_and_the_p
     assert json.loads((out / "gears.json").read_text())["chamfer"]["mm"] == 0
     for name in ("pinion", "wheel"):
         assert_printable_stl(out / f"{name}.stl")
+
+
+def _limit(line: str) -> str:
+    """The number a `must be < X mm` / `must be <= X mm` refusal states, less a hundredth."""
+    import re
+
+    return f"{float(re.search(r'must be <=? ([0-9.]+) mm', line).group(1)) - 0.01:.2f}"
+
+
+def test_a_key_too_wide_for_any_bore_is_named_and_the_limits_applied_converge(cli, tmp_path):
+    """A key as wide as the bore leaves no bore that holds it and keeps the wall: the bore's
+    limit came out below the key width ("--bore = 60: must be < 0.00 mm"). The key is named;
+    its limit, then the bore's, applied, give a pair that is written."""
+    args = ["gears", "--bore-shape", "keyway", "--bore", "70", "--key-width", "69", "--mark-depth", "0",
+            "--dry-run", "--out", tmp_path / "o"]
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --key-width = 69: must be < ") and "no bore both holds the key" in line
+    args[args.index("--key-width") + 1] = _limit(line)
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --bore = 70: must be < ") and float(_limit(line)) > float(
+        args[args.index("--key-width") + 1]), line
+    args[args.index("--bore") + 1] = _limit(line)
+    done = cli(*args)
+    assert done.exit_code == 0, done.stderr
+
+
+def test_a_hub_with_no_size_that_fits_is_told_to_the_bore(tmp_path):
+    """A hole reaching so near the root that no hub leaves its wall on both sides: each of the
+    hub's two limits was said alone (>= 88 mm round the hole, then <= 34 mm), and applying one
+    broke the other; the line says the hole is what to make smaller."""
+    from wheelstep_cli.errors import DesignError
+    from wheelstep_cli.geometry.hole_walls import MIN_HOLE_WALL, require_hub_fits
+
+    ring = np.column_stack([np.cos(np.linspace(0, 2 * np.pi, 90, endpoint=False)),
+                            np.sin(np.linspace(0, 2 * np.pi, 90, endpoint=False))])
+    with pytest.raises(DesignError, match="has no size that fits") as caught:
+        require_hub_fits(30.0 * ring, (30.0 - 1.5 * MIN_HOLE_WALL) * ring, 58.0)
+    assert caught.value.param == "hub_d" and "make the hole smaller (--bore" in caught.value.limit

@@ -197,8 +197,8 @@ def test_a_yaml_1_1_truth_word_is_text_refused_by_a_flag_field(cli, tmp_path, te
     line = error_line(cli("gears", "--profile", profile, "--out", tmp_path / "out"))
     assert line == f"wheelstep: error: {profile}:3: gears.lighten = '{text}': must be true or false", line
     assert not (tmp_path / "out").exists()
-    assert parse_located_yaml(f"a: {text}\nb: true\nc: False\n", "t.yaml").data == {
-        "a": text, "b": True, "c": False}
+    assert parse_located_yaml(f"a: {text}\nb: true\nc: False\n{text}: 1\n", "t.yaml").data == {
+        "a": text, "b": True, "c": False, text: 1}     # as a key too (it was the key True)
 
 
 def test_a_yaml_name_with_an_underscore_stays_the_text_written():

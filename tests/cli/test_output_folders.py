@@ -38,7 +38,7 @@ def test_a_rerun_keeps_another_commands_files_and_files_changed_since(cli, tmp_p
     rerun = cli("shoe", "--format", "stl", "--out", out)
     assert rerun.exit_code == 0, rerun.stderr
     assert (out / "shoe.3mf").read_bytes() == b"edited by the user"   # changed since: not ours
-    # and said so (it was kept without a word), in the table and in the --json report
+    # and said so (it was kept without a word)
     assert f"kept {out / 'shoe.3mf'} (an earlier run wrote it; changed since, so it is not removed)" in (
         rerun.stdout.splitlines())
     assert (out / "notes.txt").read_text() == "mine"
@@ -47,6 +47,17 @@ def test_a_rerun_keeps_another_commands_files_and_files_changed_since(cli, tmp_p
     assert "shoe.stl there exists and was changed since this command wrote it" in error_line(
         cli("shoe", "--format", "stl", "--out", out))
     assert (out / "shoe.stl").read_bytes() == b"edited too"
+
+
+def test_a_file_kept_as_changed_since_is_in_the_json_report(cli, tmp_path):
+    out = tmp_path / "out"
+    assert cli("shoe", "--out", out, "-q").exit_code == 0
+    (out / "shoe.stl").write_bytes(b"edited")
+    dry = json.loads(cli("shoe", "--format", "3mf", "--out", out, "--json", "--dry-run").stdout)
+    assert dry["would_keep"] == [str(out / "shoe.stl")] and "kept" not in dry, dry
+    report = json.loads(cli("shoe", "--format", "3mf", "--out", out, "--json").stdout)
+    assert report["kept"] == [str(out / "shoe.stl")] and "would_keep" not in report, report
+    assert (out / "shoe.stl").read_bytes() == b"edited"
 
 
 def test_a_users_file_of_the_same_name_is_refused_and_nothing_is_written(cli, tmp_path):

@@ -123,6 +123,24 @@ def test_a_design_profile_breaking_several_rules_is_told_all_of_them_at_once(cli
     tied = write(tmp_path / "tied.yaml", "gears:\n  bore_shape: keyway\n  bore: 1\n  key_depth: 3\n")
     lines = cli("gears", "--profile", tied, "--out", tmp_path / "out").stderr.strip().splitlines()
     assert lines == [f"wheelstep: error: {tied}:3: gears.bore = 1: must be > the key width 2 mm"], lines
+    # a D-flat's depth against the default bore standing in for a bore of 0 ("must be < half
+    # the bore 4 mm") is not said: the flat is sized by the bore the file gives
+    flat = write(tmp_path / "flat.yaml", "gears:\n  bore_shape: d-flat\n  bore: 0\n  flat_depth: 5\n")
+    lines = cli("gears", "--profile", flat, "--out", tmp_path / "out").stderr.strip().splitlines()
+    assert lines == [f"wheelstep: error: {flat}:3: gears.bore = 0: must be > 0 mm for a D-flat"], lines
+
+
+def test_a_problem_of_a_stand_in_default_does_not_end_the_profiles_search(cli, tmp_path):
+    """The dedendum found at fault, the default one standing in is below the file's addendum:
+    that rule is not said (it is the default's), and the search goes on past it to the faces'
+    rules and the mechanism, checked once the spec builds (they came in later runs)."""
+    design = write(tmp_path / "p.yaml", "mechanism:\n  a: 30\n  b: 50\n  c: 160\ngears:\n  thickness: 1\n"
+                   "  chamfer: 0.8\n  addendum: 1.3\n  dedendum: 1.1\n")
+    result = cli("gears", "--profile", design, "--out", tmp_path / "out")
+    assert result.exit_code == 2 and not (tmp_path / "out").exists()
+    lines = [re.sub(r"^wheelstep: error: ", "", ln) for ln in result.stderr.strip().splitlines()]
+    assert [ln.split(" = ")[0] for ln in lines] == [f"{design}:4: mechanism.c", f"{design}:7: gears.chamfer",
+                                                     f"{design}:9: gears.dedendum"], lines
 
 
 @pytest.mark.parametrize("command", ["gears", "shoe"])

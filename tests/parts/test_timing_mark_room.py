@@ -116,3 +116,19 @@ def test_no_marks_is_offered_only_where_the_gear_holds_without_them(cli, tmp_pat
     largest = line.split(": must be <= ", 1)[1].split(" mm", 1)[0]
     assert cli(*with_remedy(args, ["--hub-d", largest])).exit_code == 0
     assert cli(*args, "--mark-depth", "0").exit_code == 2
+
+
+def test_a_hub_the_mark_leaves_no_size_for_names_the_bore_first(cli, tmp_path):
+    """Bore 26 and hub 34 on the desk pinion: the largest hub that leaves the mark its web
+    (27.91 mm) is below the least that walls a 26 mm bore (29 mm), so a hub_d limit would be
+    refused in turn as too small. The bore is named first; each limit applied, the pair is made."""
+    out = ["--dry-run", "--out", tmp_path / "out"]
+    args = ["gears", "--profile", "desk-demo", "--bore", "26", "--hub-d", "34", *out]
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --bore = 26: must be <= ") and "no room for its timing mark" in line, line
+    args[args.index("--bore") + 1] = line.split(": must be <= ", 1)[1].split(" mm", 1)[0]
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --hub-d = 34: must be <= "), line
+    args[args.index("--hub-d") + 1] = line.split(": must be <= ", 1)[1].split(" mm", 1)[0]
+    done = cli(*args)
+    assert done.exit_code == 0, done.stderr

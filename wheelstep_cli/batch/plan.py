@@ -291,8 +291,8 @@ def _with_the_designs(kind: PartKind, design, overrides: dict, printer: Printer,
     """``found`` and, when those are all the design profile's, its further rule problems in
     its lines' order: its keys found at fault are left out, their defaults standing in, and
     the entry is resolved again while that finds another of the design's keys at fault (as
-    for overrides, and as `gears --profile` does). A problem of an override's, or one the
-    stand-in defaults take part in, ends the search."""
+    for overrides, and as `gears --profile` does). A problem the stand-in defaults take part
+    in is not said, its key left out unsaid; one of an override's ends the search."""
     from wheelstep_cli.config.resolve import WithoutKeys
 
     sections = (kind.section, "mechanism")
@@ -300,16 +300,17 @@ def _with_the_designs(kind: PartKind, design, overrides: dict, printer: Printer,
     left: set[str] = set()
     every, latest = list(found), list(found)
     while latest:
+        seen = WithoutKeys(design, left)
         for err in latest:
-            named = _key(err.for_given(design_keys))
-            part = next((p for p in sections if named in design.values(p)), None)
+            named = _key(err.for_given([key for part in sections for key in seen.values(part)]))
+            part = next((p for p in sections if named in seen.values(p)), None)
             if _key(err.for_given(overrides)) in overrides or part is None:
+                # an override's, or one of no key the design still gives: it may stem from them
                 return found if every == found else _in_design_order(design, sections, design_keys, every)
-            left.add(f"{part}.{named}")
-        latest = [err for err in _resolve(kind, WithoutKeys(design, left), overrides, printer)[2]
-                  if not any(f"{part}.{name}" in left for part in sections
-                             for name in {_key(err), *map(_key, err.alternatives)})]
-        every += latest
+            left.add(f"{part}.{named}")     # a key the design still gives: the search ends
+        latest = _resolve(kind, WithoutKeys(design, left), overrides, printer)[2]
+        every += [err for err in latest if not any(f"{part}.{name}" in left for part in sections
+                                                   for name in {_key(err), *map(_key, err.alternatives)})]
     return _in_design_order(design, sections, design_keys, every)
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import atexit
 import errno
+import os
 import re
 import signal
 import sys
@@ -266,6 +267,11 @@ def main() -> None:
         code = run()
     except KeyboardInterrupt:                 # in the instant after the command returned
         code = _aborted()
+    except BrokenPipeError:
+        # stdout's reader went away while a refusal's --json was printed (after the command):
+        # quiet, as in the command, and nothing left for Python to flush into the closed pipe
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        code = OUTPUT_CLOSED
     # a Ctrl-C while threads are joined or exit handlers wait ends the wait, with the
     # command's exit code (its files are written, or left alone)
     signal.signal(signal.SIGINT, lambda signum, frame: exit_now(code))

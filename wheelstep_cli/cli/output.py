@@ -163,9 +163,9 @@ class Output:
 
     def written_record(self, paths: Iterable[Path], dry_run: bool) -> dict[str, list[str]]:
         """A report's ``written`` and ``removed`` files (none with ``dry_run``, whose report
-        says them as ``would_write`` and ``would_remove``), and ``kept`` when an earlier run's
-        file changed since is left in place."""
-        kept = {"kept": [str(p) for p in self.kept]} if self.kept else {}
+        says them as ``would_write`` and ``would_remove``), and ``kept`` (``would_keep``) when
+        an earlier run's file changed since is left in place."""
+        kept = {"would_keep" if dry_run else "kept": [str(p) for p in self.kept]} if self.kept else {}
         names = [str(p) for p in paths]
         if dry_run:
             return {"written": [], "removed": [], "would_write": names,
@@ -182,7 +182,8 @@ class Output:
         # all the run does (would do) to the folder: the files it removes too
         lines += [f"{'would remove' if dry_run else 'removed'} {p} (written by an earlier run)"
                   for p in (self.would_remove if dry_run else self.removed)]
-        lines += [f"kept {p} (an earlier run wrote it; changed since, so it is not removed)" for p in self.kept]
+        lines += [f"{'would keep' if dry_run else 'kept'} {p} (an earlier run wrote it; changed since, so it "
+                  "is not removed)" for p in self.kept]
         for text in lines:
             if not self.json:
                 self.line(text)

@@ -116,7 +116,8 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
                 if not isinstance(key_node, yaml.ScalarNode):
                     raise YamlSyntaxError(f"{label}:{key_node.start_mark.line + 1}",
                                           "keys must be plain names")
-                key = constructor.construct_object(key_node, deep=True)
+                # `on:`, `yes:` are names (YAML 1.2), not the keys True of YAML 1.1
+                key = key_node.value if _truth_word(key_node) else constructor.construct_object(key_node, deep=True)
                 if key in out:
                     repeated.append((f"{label}:{key_node.start_mark.line + 1}", f"duplicate key '{key}'"))
                     continue
@@ -125,18 +126,26 @@ def parse_located_yaml(text: str, label: str) -> LocatedYaml:
             return out
         if isinstance(node, yaml.SequenceNode):
             return [walk(item, path + (i,), inner) for i, item in enumerate(node.value)]
-        if _misread_number(node) or (node.tag == BOOL_TAG and node.value.lower() not in ("true", "false")):
-            # yes / no / on / off: YAML 1.1 reads them as true or false, YAML 1.2 as the text
+        if _misread_number(node) or _truth_word(node):
             return node.value
         try:
             return constructor.construct_object(node, deep=True)
         except (yaml.YAMLError, ValueError, TypeError) as err:
             raise YamlSyntaxError(where, f"bad value ({_one_line(err)})") from None
 
-    data = walk(root, ())
+    try:
+        data = walk(root, ())
+    except YamlSyntaxError as err:      # said with the keys repeated before it
+        raise YamlSyntaxError(*err.problems[0], err.problems[1:] + repeated) from None
     if repeated:
         raise YamlSyntaxError(*repeated[0], repeated[1:])
     return LocatedYaml(label, data, lines)
+
+
+def _truth_word(node) -> bool:
+    """Whether the scalar ``node`` is yes / no / on / off (any case), which YAML 1.1 reads as
+    true or false and YAML 1.2 as the word: it is then kept as the word."""
+    return node.tag == BOOL_TAG and node.value.lower() not in ("true", "false")
 
 
 def _misread_number(node) -> bool:

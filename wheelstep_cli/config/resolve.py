@@ -236,11 +236,11 @@ def _every_profile_problem(spec_type, section: str, loaded, cli: dict[str, Any],
     rule its keys break: a rule stops at the first value it finds at fault, so the profile is
     resolved again without the keys found so far while that finds another of its keys at
     fault, and the user mends them in one go. A problem the defaults standing in for those
-    keys take part in, or one of the command line's, ends the search (it may stem from them)."""
+    keys take part in is not said (it may stem from them): its key is left out unsaid and the
+    search goes on. One of the command line's ends it (said alone, once the file is mended)."""
     given = [k for k, v in cli.items() if v is not None]
-    issues, left = list(first.issues), set()
+    issues, left = list(first.issues), {issue.what for issue in first.issues}
     while True:
-        left.add(issues[-1].what)
         seen = WithoutKeys(loaded, left)
         try:
             _checked(spec_type, spec_values(spec_type, section, seen, cli), check)
@@ -249,14 +249,19 @@ def _every_profile_problem(spec_type, section: str, loaded, cli: dict[str, Any],
             break
         except DesignError as err:
             named = err.for_given(given)
-            keys = {name.replace("-", "_") for name in (err.param, named.param, *err.alternatives)}
-            if any(f"{part}.{key}" in left for part in (section, "mechanism") for key in keys):
-                break
             located = None if named.param.replace("-", "_") in given else in_profile(named, seen, section)
             if located is None:
                 break
-            issues.extend(located.issues)
-    return first if len(issues) == 1 else InvalidInput(issues)
+            keys = {name.replace("-", "_") for name in (err.param, named.param, *err.alternatives)}
+            if not any(f"{part}.{key}" in left for part in (section, "mechanism") for key in keys):
+                issues.extend(located.issues)
+            # each pass leaves out a key the profile still gives: the search ends
+            left |= {issue.what for issue in located.issues}
+    if len(issues) == 1:
+        return first
+    every = InvalidInput(issues)
+    every.remedy, every.remedies = getattr(first, "remedy", {}), list(getattr(first, "remedies", []))
+    return every
 
 
 def _named_for(cli: dict[str, Any], step, *args, profile: tuple | None = None):

@@ -9,7 +9,6 @@ states them wrong at its line.
 
 from __future__ import annotations
 
-from enum import Enum
 from typing import Annotated, Optional
 
 import numpy as np
@@ -17,6 +16,7 @@ from pydantic import AfterValidator, BaseModel, Field, model_validator
 from pydantic_core import PydanticCustomError
 
 from wheelstep_cli.config.fields import STRICT, Choice, Number, Real, Whole, length, quantity
+from wheelstep_cli.config.shaft_rules import bore_defaults, shaft_rules
 from wheelstep_cli.errors import DesignError, require, rounded_down, rounded_up
 from wheelstep_cli.gears.cutter_limits import ADDENDUM, CLEARANCE, DEDENDUM_MAX, FILLET, PRESSURE_ANGLE_DEG, range_text
 from wheelstep_cli.gears.laws import TURNS, TURNS_LIMIT
@@ -190,7 +190,7 @@ class GearPairSpec(BaseModel):
             # the rack's own rules (the dedendum above the addendum) with the other values', before
             # any tooth is cut: a rule of the tooth form is not blamed on what sizes the pair
             self.cutter()
-        self._bore_fits()
+        shaft_rules(self)
         return self
 
     def _generator_settings_unset(self) -> None:
@@ -202,51 +202,6 @@ class GearPairSpec(BaseModel):
             require(getattr(value, "value", value) == getattr(default, "value", default), name,
                     getattr(value, "value", value),
                     "shapes generated teeth only (the paper teeth are the source's sector involutes)")
-
-    def _bore_fits(self) -> None:
-        """Key narrower than the bore, flat shallower than its radius, a hub with its
-        diameter (mm)."""
-        require(self.hub_length is None or self.hub_d is not None, "hub_length", self.hub_length,
-                "needs --hub-d")
-        from wheelstep_cli.gears.bore_shapes import SET_SCREWS
-
-        require(self.set_screw is None or self.set_screw in SET_SCREWS, "set_screw", self.set_screw,
-                f"must be one of {', '.join(SET_SCREWS)}")
-        if self.set_screw is not None and self.hub_d is None:
-            # also stated for the hub: a hub_d left out (found at fault) is not blamed on the screw
-            raise DesignError("set_screw", self.set_screw, "needs --hub-d (the screw goes through the hub)",
-                              {"hub_d": (None, f"must be given: the {self.set_screw} set screw goes "
-                                               "through the hub")})
-        if self.bore_shape == BoreShape.keyway:
-            require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a keyway")
-            if not self.key_width < self.bore:
-                # the key width defaults from the bore (DIN 6885): name the bore when that was given
-                raise DesignError("key_width", self.key_width, f"must be < the bore {self.bore:g} mm",
-                                  {"bore": (self.bore, f"must be > the key width {self.key_width:g} mm")})
-        # the timing marks are engraved into the faces: at most half the face width, so the
-        # arrow never cuts through the gear
-        if not self.mark_depth <= 0.5 * self.thickness:
-            raise DesignError("mark_depth", self.mark_depth,
-                              f"must be <= half the thickness, {0.5 * self.thickness:g} mm",
-                              {"thickness": (self.thickness, f"must be >= twice the mark depth, "
-                                                             f"{2.0 * self.mark_depth:g} mm")})
-        if self.chamfer is not None and not 2.0 * self.chamfer < self.thickness:   # both faces': leave an edge
-            raise DesignError("chamfer", self.chamfer, f"must be < half the thickness {0.5 * self.thickness:g} mm",
-                              {"thickness": (self.thickness, f"must be > twice the chamfer, {2 * self.chamfer:g} mm")})
-        if self.bore_shape == BoreShape.hex:
-            require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a hex (across flats)")
-        require(self.set_screw is None or self.bore > 0, "set_screw", self.set_screw,
-                "needs a bore (--bore > 0 mm): the screw clamps the shaft")
-        if self.bore_shape == BoreShape.d_flat:
-            require(self.bore > 0, "bore", self.bore, "must be > 0 mm for a D-flat")
-            require(self.flat_depth < self.bore / 2.0, "flat_depth", self.flat_depth,
-                    f"must be < half the bore {self.bore / 2.0:g} mm")
-        # a round hole looks the same at every angle: the angle orients a key, flat, hex or
-        # screw (checked after the shapes' own rules, which name a missing bore first)
-        require(self.key_angle == 0 or self.set_screw is not None
-                or (self.bore > 0 and self.bore_shape != BoreShape.round), "key_angle", self.key_angle,
-                "orients a keyed bore or a set screw: needs --bore-shape d-flat, keyway or hex, "
-                "or --set-screw")
 
     def sizing(self) -> dict[str, object]:
         """The inputs that set the pitch curves and the size of the teeth (name -> value as
@@ -330,32 +285,6 @@ def strut_default(values: dict) -> dict:
             "b": (b, f"must be <= {float(rounded_down((MAX_LENGTH - DEFAULT_R_MIN + a) / 4.0)):g} mm {why}"),
             "a": (a, f"must be >= {float(rounded_up(DEFAULT_R_MIN + 4.0 * b - MAX_LENGTH)):g} mm {why}")})
     return {**values, "c": c}
-
-
-def bore_defaults(values: dict) -> dict:
-    """``values`` (a GearPairSpec's raw fields) with the bore shape's missing dimensions
-    filled (mm) and the ones it does not use refused."""
-    from wheelstep_cli.gears.bore_shapes import din_6885_key
-
-    shape = values.get("bore_shape", BoreShape.round.value)
-    shape = shape.value if isinstance(shape, Enum) else shape
-    bore = values.get("bore", 8.0)
-    uses = {"d-flat": ("flat_depth",), "keyway": ("key_width", "key_depth")}.get(shape, ())
-    for name in ("flat_depth", "key_width", "key_depth"):
-        if values.get(name) is not None and name not in uses:
-            raise DesignError(name, values[name], f"needs --bore-shape "
-                              f"{'d-flat' if name == 'flat_depth' else 'keyway'}")
-    if not isinstance(bore, (int, float)) or isinstance(bore, bool) or bore <= 0:
-        return values
-    values = dict(values)
-    if shape == "d-flat" and values.get("flat_depth") is None:
-        values["flat_depth"] = round(0.1 * bore, 6)
-    if shape == "keyway":
-        width, depth = din_6885_key(bore)
-        values.setdefault("key_width", None)
-        values["key_width"] = width if values["key_width"] is None else values["key_width"]
-        values["key_depth"] = depth if values.get("key_depth") is None else values["key_depth"]
-    return values
 
 
 def strut_contradiction(a: float, b: float, c: float, r_min: float) -> str | None:

@@ -29,7 +29,20 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
         by_bore = None
         if hole_param == "key_depth" and bore is not None:
             allowed = root - MIN_HOLE_WALL
-            largest = 2.0 * (np.sqrt(max(allowed ** 2 - (bore[1] / 2.0) ** 2, 0.0)) - value)
+
+            def largest_bore(width: float) -> float:
+                return 2.0 * (np.sqrt(max(allowed ** 2 - (width / 2.0) ** 2, 0.0)) - value)
+
+            largest = largest_bore(bore[1])
+            if bore[1] >= largest:
+                # no bore both holds the key (wider than it) and leaves the wall: the key is too
+                # wide; the widest that leaves a bore between them, by bisection
+                low, high = 0.0, float(bore[1])
+                for _ in range(50):
+                    low, high = ((low + high) / 2.0, high) if (low + high) / 2.0 < largest_bore((low + high) / 2.0) \
+                        else (low, (low + high) / 2.0)
+                raise DesignError("key_width", bore[1], f"must be < {rounded_down(low)} mm: wider, no bore both "
+                                                        f"holds the key and leaves the wall {wall}")
             by_bore = (bore[0], f"must be < {rounded_down(max(largest, 0.0))} mm with the keyway's "
                                 f"{value:g} mm depth {wall}")
             if limit <= 0.0:    # no key depth helps: the bore itself is too large for this gear
@@ -51,7 +64,13 @@ def hole_reach(hole: np.ndarray | None) -> float:
 def require_hub_fits(outline: np.ndarray, hole: np.ndarray | None, diameter: float) -> None:
     """DesignError naming hub_d when a hub of ``diameter`` mm leaves under MIN_HOLE_WALL mm
     to the root of ``outline`` or round the shaft ``hole`` (rings in mm)."""
-    root = min_radius(outline)
+    root, reach = min_radius(outline), hole_reach(hole)
+    if reach + MIN_HOLE_WALL > root - MIN_HOLE_WALL:
+        # no hub diameter fits: its two limits (round the hole, to the root) cross
+        raise DesignError("hub_d", diameter, f"has no size that fits: a hub needs {MIN_HOLE_WALL:g} mm of wall "
+                          f"round the shaft hole (reaching {reach:.2f} mm from the axis) and to the root "
+                          f"({root:.2f} mm): make the hole smaller (--bore, a key's or flat's depth) or "
+                          "leave out --hub-d")
     if diameter / 2.0 > root - MIN_HOLE_WALL:
         raise DesignError("hub_d", diameter, f"must be <= {rounded_down(2 * (root - MIN_HOLE_WALL))} mm (leave "
                           f"{MIN_HOLE_WALL:g} mm to the root)")

@@ -39,6 +39,11 @@ class Registration:
         c, s = np.cos(self.angle), np.sin(self.angle)
         return np.asarray(points, float) @ np.array([[c, s], [-s, c]]) + self.shift
 
+    def undo(self, points: np.ndarray) -> np.ndarray:
+        """``points`` of the fixed frame (N, 2) mm in the moving one: :meth:`apply` undone."""
+        c, s = np.cos(self.angle), np.sin(self.angle)
+        return (np.asarray(points, float) - self.shift) @ np.array([[c, -s], [s, c]])
+
 
 def resample_ring(ring: np.ndarray, spacing: float = SPACING) -> np.ndarray:
     """Points every ``spacing`` mm (about) along the closed ring (N, 2)."""

@@ -131,8 +131,8 @@ def printed_pair(gcode_files: list[Path], pair, designs: dict) -> tuple[dict, di
                                 for part in printed_parts(layers, source, height)]
         found[gear] = find_gear(parts_at[height], designs[gear][0], gear, pair.pair,
                                 [g.part for g in found.values()])
-        vertices = getattr(pair, gear).vertices
-        require_height(found[gear].part, dict(read)[found[gear].part.source],
+        vertices, fit = getattr(pair, gear).vertices, found[gear].fit
+        require_height(found[gear].part, dict(read)[found[gear].part.source], fit.undo(np.zeros((1, 2)))[0],
                        float(np.ptp(vertices[:, 2])), gear, pair.pair)
         records[gear] = gear_record(found[gear], designs[gear][1])
     return found, records

@@ -92,25 +92,35 @@ def printed_parts(layers: GcodeLayers, source: str, height: float) -> list[Print
     return [PrintedPart(source, z, width, outline, tuple(holes)) for outline, width, _, holes in shells]
 
 
-def printed_top(layers: GcodeLayers, part: PrintedPart) -> float:
-    """The top (mm above the bed) of the printed ``part``: the highest layer with a loop
-    centred within a millimetre of where the part's outline is centred (a gear is centred on
-    its axis on every layer, chamfered or not)."""
-    def centre(points: np.ndarray) -> np.ndarray:
-        return 0.5 * (points.min(axis=0) + points.max(axis=0))
+def printed_height(layers: GcodeLayers, axis: np.ndarray) -> float:
+    """How tall (mm) the part printed round the point ``axis`` (bed mm, its gear's axis) is:
+    from below its lowest layer with a loop round the axis (the first layer's height on the
+    bed, a layer's on a raft) to its highest (a hub's top on a hub, the face elsewhere)."""
+    point = np.asarray(axis, float).reshape(1, 2)
 
-    at = centre(part.outline)
-    return max(z for z, loops in layers.layers.items()
-               if any(np.hypot(*(centre(loop.points) - at)) <= 1.0 for loop in loops))
+    def round_axis(points: np.ndarray) -> bool:
+        lo, hi = points.min(axis=0), points.max(axis=0)
+        return bool(np.all(lo <= point[0]) and np.all(point[0] <= hi)
+                    and points_inside(prepared_polygon(points), point)[0])
+
+    heights = [z for z, loops in layers.layers.items() if any(round_axis(loop.points) for loop in loops)]
+    if not heights:
+        return 0.0
+    first = float(layers.config.get("first_layer_height") or 0.2)
+    step = float(layers.config.get("layer_height") or 0.2)
+    lowest = min(heights)
+    return max(heights) - lowest + (first if lowest == min(layers.heights()) and not
+                                    float(layers.config.get("raft_layers") or 0) else step)
 
 
-def require_height(part: PrintedPart, layers: GcodeLayers, height: float, gear: str, pair: str) -> None:
-    """DesignError naming the G-code when its ``part`` is not printed ``height`` mm tall (to a
-    layer): a pair of another thickness, whose sections are alike (a preset on two printers),
-    fits the outline but is another design."""
+def require_height(part: PrintedPart, layers: GcodeLayers, axis: np.ndarray, height: float, gear: str,
+                   pair: str) -> None:
+    """DesignError naming the G-code when its ``part`` (its gear's axis at ``axis``, bed mm) is
+    not printed ``height`` mm tall (to a layer): a pair of another thickness, whose sections
+    are alike (a preset on two printers), fits the outline but is another design."""
     steps = [float(layers.config.get(key) or 0.0) for key in ("layer_height", "first_layer_height")]
-    top = printed_top(layers, part)
-    if abs(top - height) > max(steps + [0.05]) + 1e-6:
-        raise DesignError("gcode", part.source, f"prints the {gear} {top:g} mm tall, the {gear} of "
+    printed = printed_height(layers, axis)
+    if abs(printed - height) > max(steps + [0.05]) + 1e-6:
+        raise DesignError("gcode", part.source, f"prints the {gear} {printed:g} mm tall, the {gear} of "
                                                 f"pair '{pair}' is {height:g} mm: sliced from another "
                                                 "design (or scaled on the bed)")

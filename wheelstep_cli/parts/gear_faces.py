@@ -15,7 +15,8 @@ import numpy as np
 
 from wheelstep_cli.gears import bore_shapes as shapes
 from wheelstep_cli.gears.phase import assembly_phase
-from wheelstep_cli.geometry.hole_walls import corner_clear_of, hole_reach, require_hub_clears_hole, require_screw_fits
+from wheelstep_cli.geometry.hole_walls import (MIN_HOLE_WALL, corner_clear_of, hole_reach, require_hub_clears_hole,
+                                              require_screw_fits)
 from wheelstep_cli.geometry.planar import min_radius, signed_area, spoked_pockets
 from wheelstep_cli.geometry.solids import bore_segments, extrude_gear
 
@@ -91,12 +92,18 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec, unmarked: bool
     room = (f"leaves the {name} no room for its timing mark ({max(outer - inner, 0.0):.1f} mm of web "
             f"between the {around} and the tooth roots, the mark needs {MARK_LENGTH:.1f} mm)")
     reach = hole_reach(hole)
-    limits = {}
+    limits, hole_room = {}, reach - short
     if spec.hub_d and spec.hub_mm[0] / 2.0 >= reach and spec.hub_mm[0] - 2.0 * short > 0:
-        limits["hub_d"] = (spec.hub_d, spec.hub_mm[0] - 2.0 * short)
-    elif hole is not None and reach - short > 0:
+        largest_hub = spec.hub_mm[0] - 2.0 * short
+        if largest_hub / 2.0 >= reach + MIN_HOLE_WALL:
+            limits["hub_d"] = (spec.hub_d, largest_hub)
+        else:
+            # no hub leaves the mark its web and the hole its wall (a hub_d limit would be
+            # refused again as too small for the hole): the hole is what to make smaller
+            hole_room = largest_hub / 2.0 - MIN_HOLE_WALL
+    if not limits and hole is not None and hole_room > 0:
         for param in (["key_depth"] if spec.bore_shape == "keyway" else []) + ["bore"]:
-            largest = _largest_hole(spec, param, reach - short)
+            largest = _largest_hole(spec, param, hole_room)
             if largest > 0:
                 limits[param] = (getattr(spec, param), largest)
     no_marks = "--mark-depth 0 for no marks" if unmarked else ""
@@ -137,7 +144,7 @@ def _largest_hole(spec, param: str, reach: float) -> float:
 
 def _following(spec, param: str, bore: float) -> dict:
     """The key or flat dimensions (name -> mm) that follow ``bore`` when ``param`` is the bore
-    and the spec's are its bore's defaults (specs.bore_defaults); none otherwise."""
+    and the spec's are its bore's defaults (config.shaft_rules.bore_defaults); none otherwise."""
     if param != "bore":
         return {}
     if spec.bore_shape == "keyway" and (spec.key_width, spec.key_depth) == shapes.din_6885_key(spec.bore):
