@@ -246,3 +246,17 @@ def test_a_hub_with_no_size_that_fits_is_told_to_the_bore(tmp_path):
     with pytest.raises(DesignError, match="has no size that fits") as caught:
         require_hub_fits(30.0 * ring, (30.0 - 1.5 * MIN_HOLE_WALL) * ring, 58.0)
     assert caught.value.param == "hub_d" and "make the hole smaller (--bore" in caught.value.limit
+
+
+def test_marks_reaching_into_the_elephant_foot_name_the_mark_depth(cli, tmp_path):
+    """An unchamfered 0.6 mm gear with 0.3 mm marks on an FDM printer: the foot's inset needs a
+    prism over the lowest two foot heights, and the refusal said `pinion = elephant foot` (no
+    option of the user's, no limit). It names the mark depth with the deepest that fits."""
+    args = ["gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--thickness", "0.6", "--mark-depth",
+            "0.3", "--chamfer", "0", "--dry-run", "--out", tmp_path / "o"]
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --mark-depth = 0.3: must be <= 0.20 mm: deeper, the marks reach "
+                           "into the lowest 0.4 mm"), line
+    args[args.index("--mark-depth") + 1] = "0.20"
+    done = cli(*args)
+    assert done.exit_code == 0, done.stderr

@@ -84,9 +84,34 @@ def printed_spec(kind: PartKind, spec, printer):
         changes[kind.chamfer_field] = printer.chamfer_for(getattr(spec, kind.chamfer_field),
                                                           kind.chamfer_field)
     try:
-        return updated(spec, **changes)
+        printed = updated(spec, **changes)
     except DesignError as err:
         raise _printer_chamfer(err, kind, spec, printer) from None
+    _marks_above_the_foot(printed, printer)
+    return printed
+
+
+def _marks_above_the_foot(printed, printer) -> None:
+    """Refuse (DesignError naming mark_depth, also stated for the thickness) timing marks
+    engraved into the lowest two foot heights of an unchamfered gear: the elephant-foot inset
+    needs a prism there (geometry.solids.inset_bottom said only "pinion = elephant foot")."""
+    from wheelstep_cli.config.printers import least_chamfer
+
+    depth, thickness = getattr(printed, "mark_depth", 0.0), getattr(printed, "thickness", None)
+    height, inset = printer.elephant_foot_height, printer.elephant_foot_inset
+    if not depth or thickness is None or printed.chamfer_mm > 0 or height <= 0 or inset <= 0:
+        return
+    if thickness - depth < 2.0 * height - 1e-9:
+        least = least_chamfer(inset, height)
+        # a chamfer replaces the inset where one fits the thickness (both faces' leave an edge)
+        chamfer = (f" (or --chamfer from {least:g} to below {0.5 * thickness:g} mm, which replaces the inset)"
+                   if 2.0 * least < thickness else "")
+        why = (f"the marks reach into the lowest {2.0 * height:g} mm, which printer {printer.name}'s "
+               f"elephant-foot inset draws in{chamfer}")
+        raise DesignError("mark_depth", depth, f"must be <= {rounded_down(thickness - 2.0 * height + 1e-9)} mm: "
+                          f"deeper, {why}",
+                          {"thickness": (thickness, f"must be >= {rounded_up(depth + 2.0 * height - 1e-9)} mm: "
+                                                    f"thinner, {why}")})
 
 
 def _printer_chamfer(err: DesignError, kind: PartKind, spec, printer) -> DesignError:
