@@ -260,3 +260,16 @@ def test_marks_reaching_into_the_elephant_foot_name_the_mark_depth(cli, tmp_path
     args[args.index("--mark-depth") + 1] = "0.20"
     done = cli(*args)
     assert done.exit_code == 0, done.stderr
+
+
+def test_a_chamfer_on_a_gear_too_thin_for_any_the_printer_takes_is_told_only_0_does(cli, tmp_path):
+    """On fdm-0.4-pla a chamfer must be 0 or at least 0.4 mm (it replaces the foot's inset), and
+    below half the thickness: on a 0.6 mm gear the first line offered >= 0.4, the second then
+    refused 0.4 (no value passed both). It says only 0 does; 0, applied, passes."""
+    args = ["gears", "--profile", "desk-demo", "--printer", "fdm-0.4-pla", "--thickness", "0.6", "--mark-depth",
+            "0.2", "--chamfer", "0.1", "--dry-run", "--out", tmp_path / "o"]
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --chamfer = 0.1: must be 0 on printer fdm-0.4-pla for a 0.6 mm gear"), line
+    args[args.index("--chamfer") + 1] = "0"
+    done = cli(*args)
+    assert done.exit_code == 0, done.stderr

@@ -77,19 +77,26 @@ BOOL_TAG = "tag:yaml.org,2002:bool"
 _PLAIN_INTEGER = re.compile(r"[-+]?(0|[1-9][0-9]*)\Z")
 
 
-def parse_located_yaml(text: str, label: str) -> LocatedYaml:
-    """Parse YAML text; syntax errors and duplicate keys raise with ``label:line``."""
+def _composed(text: str, label: str):
+    """The YAML node tree of ``text`` (None: empty); YamlSyntaxError at ``label:line``."""
     import yaml
-    from yaml.constructor import SafeConstructor
 
     try:
-        root = yaml.compose(text, Loader=yaml.SafeLoader)
+        return yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.MarkedYAMLError as err:
         mark = err.problem_mark or err.context_mark
         line = mark.line + 1 if mark is not None else 1
         raise YamlSyntaxError(f"{label}:{line}", f"is not valid YAML ({_one_line(err.problem)})") from None
     except yaml.YAMLError as err:
         raise YamlSyntaxError(f"{label}:1", f"is not valid YAML ({_one_line(err)})") from None
+
+
+def parse_located_yaml(text: str, label: str) -> LocatedYaml:
+    """Parse YAML text; syntax errors and duplicate keys raise with ``label:line``."""
+    import yaml
+    from yaml.constructor import SafeConstructor
+
+    root = _composed(text, label)
     lines: dict[PathKey, int] = {}
     if root is None:
         return LocatedYaml(label, None, lines)

@@ -23,7 +23,6 @@ def shaft_rules(spec) -> None:
     """Key narrower than the bore, flat shallower than its radius, a hub with its diameter, a
     set screw with a hub and a bore, marks and chamfer thinner than half the face width, a key
     angle with something to orient (a GearPairSpec)."""
-    from wheelstep_cli.config.specs import BoreShape
     from wheelstep_cli.gears.bore_shapes import SET_SCREWS
 
     shape, bore, thickness = spec.bore_shape, spec.bore, spec.thickness
@@ -35,7 +34,7 @@ def shaft_rules(spec) -> None:
     _rule(spec.set_screw is None or spec.hub_d is not None, "set_screw", spec.set_screw,
           "needs --hub-d (the screw goes through the hub)",
           hub_d=(None, f"must be given: the {spec.set_screw} set screw goes through the hub"))
-    if shape == BoreShape.keyway:
+    if shape_name == "keyway":
         _rule(bore > 0, "bore", bore, "must be > 0 mm for a keyway", bore_shape=(shape_name, "needs --bore > 0 mm"))
         # the key width defaults from the bore (DIN 6885): name the bore when that was given
         _rule(spec.key_width < bore, "key_width", spec.key_width, f"must be < the bore {bore:g} mm",
@@ -44,25 +43,26 @@ def shaft_rules(spec) -> None:
     # arrow never cuts through the gear
     _rule(spec.mark_depth <= 0.5 * thickness, "mark_depth", spec.mark_depth,
           f"must be <= half the thickness, {0.5 * thickness:g} mm",
-          thickness=(thickness, f"must be >= twice the mark depth, {2.0 * spec.mark_depth:g} mm"))
+          thickness=(thickness, f"must be >= twice the mark depth, {2.0 * spec.mark_depth:g} mm; or "
+                                f"--mark-depth <= {0.5 * thickness:g} mm (0 for no marks)"))
     # a 45 deg chamfer on both faces: the two leave an edge between them
     _rule(spec.chamfer is None or 2.0 * spec.chamfer < thickness, "chamfer", spec.chamfer,
           f"must be < half the thickness {0.5 * thickness:g} mm",
           thickness=(thickness, f"must be > twice the chamfer, {2.0 * (spec.chamfer or 0.0):g} mm"))
-    if shape == BoreShape.hex:
+    if shape_name == "hex":
         _rule(bore > 0, "bore", bore, "must be > 0 mm for a hex (across flats)",
               bore_shape=(shape_name, "needs --bore > 0 mm"))
     _rule(spec.set_screw is None or bore > 0, "set_screw", spec.set_screw,
           "needs a bore (--bore > 0 mm): the screw clamps the shaft",
           bore=(bore, f"must be > 0 mm: the {spec.set_screw} set screw clamps the shaft"))
-    if shape == BoreShape.d_flat:
+    if shape_name == "d-flat":
         _rule(bore > 0, "bore", bore, "must be > 0 mm for a D-flat", bore_shape=(shape_name, "needs --bore > 0 mm"))
         _rule(spec.flat_depth < bore / 2.0, "flat_depth", spec.flat_depth, f"must be < half the bore {bore / 2.0:g} mm",
               bore=(bore, f"must be > twice the flat depth, {2.0 * spec.flat_depth:g} mm"))
     # a round hole looks the same at every angle: the angle orients a key, flat, hex or
     # screw (checked after the shapes' own rules, which name a missing bore first)
     why = "orients a keyed bore or a set screw: needs --bore-shape d-flat, keyway or hex, or --set-screw"
-    _rule(spec.key_angle == 0 or spec.set_screw is not None or (bore > 0 and shape != BoreShape.round),
+    _rule(spec.key_angle == 0 or spec.set_screw is not None or (bore > 0 and shape_name != "round"),
           "key_angle", spec.key_angle, why, bore_shape=(shape_name, f"is needed for --key-angle: {why}"),
           bore=(bore, f"is needed for --key-angle: {why}"))
 
@@ -70,10 +70,9 @@ def shaft_rules(spec) -> None:
 def bore_defaults(values: dict) -> dict:
     """``values`` (a GearPairSpec's raw fields) with the bore shape's missing dimensions
     filled (mm) and the ones it does not use refused."""
-    from wheelstep_cli.config.specs import BoreShape
     from wheelstep_cli.gears.bore_shapes import din_6885_key
 
-    shape = values.get("bore_shape", BoreShape.round.value)
+    shape = values.get("bore_shape", "round")
     shape = shape.value if isinstance(shape, Enum) else shape
     bore = values.get("bore", 8.0)
     uses = {"d-flat": ("flat_depth",), "keyway": ("key_width", "key_depth")}.get(shape, ())

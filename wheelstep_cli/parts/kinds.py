@@ -19,6 +19,7 @@ from typing import Any, Callable
 from wheelstep_cli.config.batch_file import KindName
 from wheelstep_cli.config.resolve import updated
 from wheelstep_cli.errors import DesignError, format_value, rounded_down, rounded_up
+from wheelstep_cli.parts.printer_rules import marks_above_the_foot, no_chamfer_fits, printers_chamfer
 
 
 @dataclass(frozen=True)
@@ -81,61 +82,17 @@ def printed_spec(kind: PartKind, spec, printer):
                for name in kind.hole_fields if (getattr(spec, name) or 0) > 0}
     changes.update(kind.clearance(spec, printer.tooth_clearance))
     if kind.chamfer_field is not None:
-        changes[kind.chamfer_field] = printer.chamfer_for(getattr(spec, kind.chamfer_field),
-                                                          kind.chamfer_field)
+        try:
+            changes[kind.chamfer_field] = printer.chamfer_for(getattr(spec, kind.chamfer_field),
+                                                              kind.chamfer_field)
+        except DesignError as err:
+            raise no_chamfer_fits(err, spec, printer) from None
     try:
         printed = updated(spec, **changes)
     except DesignError as err:
-        raise _printer_chamfer(err, kind, spec, printer) from None
-    _marks_above_the_foot(printed, printer)
+        raise printers_chamfer(err, kind.chamfer_field, spec, printer) from None
+    marks_above_the_foot(printed, printer)
     return printed
-
-
-def _marks_above_the_foot(printed, printer) -> None:
-    """Refuse (DesignError naming mark_depth, also stated for the thickness) timing marks
-    engraved into the lowest two foot heights of an unchamfered gear: the elephant-foot inset
-    needs a prism there (geometry.solids.inset_bottom said only "pinion = elephant foot")."""
-    from wheelstep_cli.config.printers import least_chamfer
-
-    depth, thickness = getattr(printed, "mark_depth", 0.0), getattr(printed, "thickness", None)
-    height, inset = printer.elephant_foot_height, printer.elephant_foot_inset
-    if not depth or thickness is None or printed.chamfer_mm > 0 or height <= 0 or inset <= 0:
-        return
-    if thickness - depth < 2.0 * height - 1e-9:
-        least = least_chamfer(inset, height)
-        # a chamfer replaces the inset where one fits the thickness (both faces' leave an edge)
-        chamfer = (f" (or --chamfer from {least:g} to below {0.5 * thickness:g} mm, which replaces the inset)"
-                   if 2.0 * least < thickness else "")
-        why = (f"the marks reach into the lowest {2.0 * height:g} mm, which printer {printer.name}'s "
-               f"elephant-foot inset draws in{chamfer}")
-        raise DesignError("mark_depth", depth, f"must be <= {rounded_down(thickness - 2.0 * height + 1e-9)} mm: "
-                          f"deeper, {why}",
-                          {"thickness": (thickness, f"must be >= {rounded_up(depth + 2.0 * height - 1e-9)} mm: "
-                                                    f"thinner, {why}")})
-
-
-def _printer_chamfer(err: DesignError, kind: PartKind, spec, printer) -> DesignError:
-    """``err`` of the printed spec; the thickness rule the printer's own edge chamfer breaks
-    (the design gives none) said of the thickness, the printer named, with the chamfers that
-    would do (not of a chamfer never given)."""
-    from wheelstep_cli.config.printers import least_chamfer
-
-    field = kind.chamfer_field
-    thickness = getattr(spec, "thickness", None)
-    if field is None or err.param != field or getattr(spec, field) is not None or thickness is None:
-        return err
-    flag, half = "--" + field.replace("_", "-"), 0.5 * float(thickness)
-    least = least_chamfer(printer.elephant_foot_inset, printer.elephant_foot_height)
-    # a chamfer the printer takes (none, or at least its foot's) that leaves the faces an edge
-    would_do = f"{flag} 0 for none" if least >= half else f"{flag} from {least:g} to below {half:g} mm, or 0 for none"
-    err = DesignError("thickness", thickness,
-                      f"must be > twice the edge chamfer of printer {printer.name}, "
-                      f"{2.0 * printer.chamfer:g} mm; or {would_do}",
-                      {field: (None, f"must be given ({would_do.split(' ', 1)[1]}): printer "
-                                     f"{printer.name}'s {printer.chamfer:g} mm is not below half the "
-                                     f"thickness {half:g} mm")})
-    err.remedy, err.remedies = {field: 0.0}, [{field: 0.0}]
-    return err
 
 
 @dataclass(frozen=True)
