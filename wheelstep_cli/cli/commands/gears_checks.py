@@ -260,7 +260,7 @@ def warn_of_the_figures(show: Output, record: dict, speed: str = "hub speed") ->
         how = (f"mounted {closer:.3f} mm closer than designed the teeth meet" if closer > 0.0
                else "mounted any closer than designed the teeth may meet")
         show.warning(f"WARNING: {how} (see 'mounting'): less than a printed frame's centre distance can be "
-                     "held to (FDM about +-0.05 mm)")
+                     "held to (a printer profile's band.center_distance; +-0.05 mm on the FDM presets, SPEC §11)")
     if record["interference"]:
         from wheelstep_cli.parts.interference_refusals import interference_phrase
         from wheelstep_cli.parts.mesh_check import figure_text
