@@ -194,7 +194,7 @@ def _chamfered(section, thickness: float, chamfer: float, direct: bool = True):
     built as one mesh by :func:`_staircase` (else, and where that fails, as the union)."""
     import manifold3d as m3d
 
-    if not 2.0 * chamfer < thickness:
+    if not 2.0 * chamfer < thickness:      # the spec refuses it first (config.shaft_rules): before manifold3d
         raise DesignError("chamfer", chamfer, f"must be < half the thickness {thickness / 2:g} mm")
     steps = max(2, int(np.ceil(chamfer / CHAMFER_STEP)))
     body, volume, previous, layers = None, 0.0, 0.0, []
