@@ -187,7 +187,12 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
 
 def _line(issue: Issue) -> int:
     """The line of an issue's ``file:line`` (0 when it names none)."""
-    line = issue.where.rsplit(":", 1)[-1]
+    return _line_of(issue.where)
+
+
+def _line_of(where: str | None) -> int:
+    """The line of a ``file:line`` (0 for None or one that names no line)."""
+    line = (where or "").rsplit(":", 1)[-1]
     return int(line) if line.isdigit() else 0
 
 
@@ -318,9 +323,7 @@ def _in_design_order(design, sections, design_keys, errors: list[DesignError]) -
     """``errors`` of the design's keys by their lines in its file."""
     def line(err) -> int:
         named = _key(err.for_given(design_keys))
-        where = next((design.where(p, named) for p in sections if named in design.values(p)), None) or ""
-        tail = where.rsplit(":", 1)[-1]
-        return int(tail) if tail.isdigit() else 0
+        return _line_of(next((design.where(p, named) for p in sections if named in design.values(p)), None))
     return sorted(errors, key=line)
 
 

@@ -69,20 +69,25 @@ def check_collisions(folder: Path, files: Mapping[Path, bytes], record: Mapping[
                               "or give --force to overwrite it")
 
 
+def _not_written_again(folder: Path, files: Mapping[Path, bytes], record: Mapping[str, str]):
+    """(path, unchanged since) of each file of the previous run (per ``record``) still in
+    ``folder`` that this run, writing ``files``, does not write again; each hashed once."""
+    new = {Path(p).relative_to(folder).as_posix() for p in files}
+    for name, sha in sorted(record.items()):
+        if name not in new and (now := sha256_of(folder / name)) is not None:
+            yield folder / name, now == sha
+
+
 def stale_files(folder: Path, files: Mapping[Path, bytes], record: Mapping[str, str]) -> list[Path]:
     """Files of the previous run (per ``record``) this run does not write and whose content is
     unchanged since: the ones to remove."""
-    new = {Path(p).relative_to(folder).as_posix() for p in files}
-    return [folder / name for name, sha in sorted(record.items())
-            if name not in new and sha256_of(folder / name) == sha]
+    return [path for path, unchanged in _not_written_again(folder, files, record) if unchanged]
 
 
 def kept_files(folder: Path, files: Mapping[Path, bytes], record: Mapping[str, str]) -> list[Path]:
     """Files of the previous run (per ``record``) this run does not write that were changed
     since it wrote them: kept (an edit of the user's), and said so, not left unsaid."""
-    new = {Path(p).relative_to(folder).as_posix() for p in files}
-    return [folder / name for name, sha in sorted(record.items())
-            if name not in new and (folder / name).is_file() and sha256_of(folder / name) != sha]
+    return [path for path, unchanged in _not_written_again(folder, files, record) if not unchanged]
 
 
 def merged_record_bytes(tool: str, folder: Path, files: Mapping[Path, bytes],

@@ -39,8 +39,8 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
                 # wide; the widest that leaves a bore between them, by bisection
                 low, high = 0.0, float(bore[1])
                 for _ in range(50):
-                    low, high = ((low + high) / 2.0, high) if (low + high) / 2.0 < largest_bore((low + high) / 2.0) \
-                        else (low, (low + high) / 2.0)
+                    middle = 0.5 * (low + high)
+                    low, high = (middle, high) if middle < largest_bore(middle) else (low, middle)
                 raise DesignError("key_width", bore[1], f"must be < {rounded_down(low)} mm: wider, no bore both "
                                                         f"holds the key and leaves the wall {wall}")
             by_bore = (bore[0], f"must be < {rounded_down(max(largest, 0.0))} mm with the keyway's "

@@ -62,12 +62,17 @@ def require_gcode_files(paths: list[Path]) -> None:
         check_prusaslicer(head.decode(errors="replace") + "\n" + tail.decode(errors="replace"), str(path))
 
 
+def _setting_mm(layers: GcodeLayers, key: str) -> float:
+    """A layer height the slicer's config comments state (mm; PrusaSlicer's 0.2 when absent)."""
+    return float(layers.config.get(key) or 0.2)
+
+
 def mid_layer(layers: GcodeLayers, height: float, source: str = "gcode") -> float:
     """The layer (its top z, mm) whose middle is nearest to ``height`` mm."""
     if not layers.layers:
         raise DesignError("gcode", source, "has no external perimeter on any layer (nothing an "
                                            "outline can be read from)")
-    step = float(layers.config.get("layer_height", "0.2") or 0.2)
+    step = _setting_mm(layers, "layer_height")
     return min(layers.heights(), key=lambda z: abs(z - 0.5 * step - height))
 
 
@@ -106,8 +111,7 @@ def printed_height(layers: GcodeLayers, axis: np.ndarray) -> float:
     heights = [z for z, loops in layers.layers.items() if any(round_axis(loop.points) for loop in loops)]
     if not heights:
         return 0.0
-    first = float(layers.config.get("first_layer_height") or 0.2)
-    step = float(layers.config.get("layer_height") or 0.2)
+    first, step = _setting_mm(layers, "first_layer_height"), _setting_mm(layers, "layer_height")
     lowest = min(heights)
     return max(heights) - lowest + (first if lowest == min(layers.heights()) and not
                                     float(layers.config.get("raft_layers") or 0) else step)
@@ -118,9 +122,9 @@ def require_height(part: PrintedPart, layers: GcodeLayers, axis: np.ndarray, hei
     """DesignError naming the G-code when its ``part`` (its gear's axis at ``axis``, bed mm) is
     not printed ``height`` mm tall (to a layer): a pair of another thickness, whose sections
     are alike (a preset on two printers), fits the outline but is another design."""
-    steps = [float(layers.config.get(key) or 0.0) for key in ("layer_height", "first_layer_height")]
+    step = max(_setting_mm(layers, "layer_height"), _setting_mm(layers, "first_layer_height"), 0.05)
     printed = printed_height(layers, axis)
-    if abs(printed - height) > max(steps + [0.05]) + 1e-6:
+    if abs(printed - height) > step + 1e-6:
         raise DesignError("gcode", part.source, f"prints the {gear} {printed:g} mm tall, the {gear} of "
                                                 f"pair '{pair}' is {height:g} mm: sliced from another "
                                                 "design (or scaled on the bed)")
