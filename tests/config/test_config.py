@@ -3,6 +3,7 @@ snake_case name per parameter, the flag derived from it; --profile and batch sha
 
 from __future__ import annotations
 
+import json
 import re
 import pytest
 
@@ -542,3 +543,45 @@ def test_a_strut_given_both_ways_keeps_c_when_the_command_line_resizes_the_crank
     spec = resolve(profile, a=50.0)
     assert spec.c == 360 and getattr(spec, "r_min", None) is None
     assert resolve(profile).c == 360
+
+
+def _said(result) -> list[str]:
+    return [re.sub(r"^wheelstep: error: ", "", ln) for ln in result.stderr.strip().splitlines()]
+
+
+def test_the_command_lines_problems_and_the_profiles_are_told_together(cli, tmp_path):
+    """Bad options are said all at once, as a profile's keys are, and neither hides the
+    other: a run found one option at a time (``--flat-depth 1 --mark-depth 6`` took two)."""
+    out = tmp_path / "out"
+    result = cli("gears", "--flat-depth", "1", "--mark-depth", "6", "--z", "3", "--out", out)
+    assert result.exit_code == 2 and not out.exists()
+    assert sorted(ln.split(" = ")[0] for ln in _said(result)) == ["--flat-depth", "--mark-depth", "--z"], _said(result)
+    # the profile's rules and the command line's, in one run
+    design = write(tmp_path / "p.yaml", "mechanism:\n  a: 9999\ngears:\n  thickness: 1\n  chamfer: 2\n")
+    result = cli("gears", "--profile", design, "--pressure-angle", "50", "--out", out)
+    lines = _said(result)
+    assert result.exit_code == 2 and not out.exists()
+    assert sorted(ln.split(" = ")[0] for ln in lines) == sorted(
+        [f"{design}:2: mechanism.a", f"{design}:5: gears.chamfer", "--pressure-angle"]), lines
+    # in --json: each problem, an option's with no file line
+    record = json.loads(cli("gears", "--profile", design, "--pressure-angle", "50", "--json",
+                            "--out", out).stdout)["error"]
+    keys = [(p["where"], p["key"]) for p in record["problems"]]
+    assert (None, "--pressure-angle") in keys and (f"{design}:2", "mechanism.a") in keys, keys
+    assert record["message"].splitlines() == [f"wheelstep: error: {ln}" for ln in lines]
+    # mended as the lines say, it runs
+    mended = write(tmp_path / "m.yaml", "mechanism:\n  a: 60\ngears:\n  thickness: 5\n  chamfer: 2\n")
+    assert cli("gears", "--profile", mended, "--pressure-angle", "20", "--dry-run", "--out", out).exit_code == 0
+
+
+def test_a_profile_that_cannot_be_read_does_not_hide_the_options_own_problems(cli, tmp_path):
+    """A value out of its own bounds stops the file being read; the options' own rules are
+    still said, but not one the profile's values could mend (--a 400 against a b it gives)."""
+    design = write(tmp_path / "p.yaml", "mechanism:\n  b: 120\ngears:\n  z: 3\n")
+    out = tmp_path / "out"
+    result = cli("shoe", "--profile", design, "--width", "-3", "--a", "400", "--out", out)
+    assert result.exit_code == 2 and not out.exists()
+    assert _said(result) == [f"{design}:4: gears.z = 3: must be 6..240 (pinion teeth)",
+                             "--width = -3: must be > 0 mm"]
+    missing = cli("gears", "--profile", tmp_path / "none.yaml", "--z", "3", "--out", out)
+    assert [ln.split(" = ")[0] for ln in _said(missing)] == ["--profile", "--z"], _said(missing)

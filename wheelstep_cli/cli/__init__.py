@@ -152,6 +152,20 @@ def _both_ways(params, argv: list[str]) -> str | None:
     return None
 
 
+def _refusal(err: DesignError, command, args: list[str]) -> tuple[list[str], DesignError, str | None]:
+    """(its lines, the error as they state it, the parameter as the line names it; None: a
+    file's problems, each at its ``file:line``) of the bad input ``err``."""
+    if isinstance(err, InvalidInput):
+        return err.lines(), err, None
+    given = given_names(command, args)
+    stated = strut_as_given(err, command, args, given).for_given(given)
+    located = None if stated.param.replace("-", "_") in given else _in_design_profile(stated, command, args)
+    if located is not None:     # said at the profile's line: its problem, the remedies the line's
+        return located.lines(), located, None
+    line, name = refusal_line(err, stated, command, args)
+    return [aliases_as_typed(line, command, args)], stated, name
+
+
 def _in_design_profile(err: DesignError, group, argv: list[str]):
     """``err`` (of a value the command line did not give) said at the line of the ``--profile``
     that gives it (InvalidInput), None when no profile was given or it does not give it."""
@@ -185,18 +199,14 @@ def run(argv: list[str] | None = None) -> int:
         return said([f"wheelstep: error: {misread}"], 2, args)
     try:
         result = _invoke(command, args)
-    except InvalidInput as err:               # a file's problems, each with its file:line
-        return said([f"wheelstep: error: {line}" for line in err.lines()], 2, args, err)
     except (MeshDefect, CheckRefused) as err:  # a failed check (wheelstep's own, or of the result)
         return said([f"wheelstep: {'refused' if isinstance(err, CheckRefused) else 'error'}: {err}"], 1, args, err)
-    except DesignError as err:
-        given = given_names(command, args)
-        stated = strut_as_given(err, command, args, given).for_given(given)
-        located = None if stated.param.replace("-", "_") in given else _in_design_profile(stated, command, args)
-        if located is not None:     # said at the profile's line: its problem, the remedies the line's
-            return said([f"wheelstep: error: {line}" for line in located.lines()], 2, args, located)
-        line, name = refusal_line(err, stated, command, args)
-        return said([f"wheelstep: error: {aliases_as_typed(line, command, args)}"], 2, args, stated, name)
+    except DesignError as err:                # bad input: each problem found (``also``) on its lines
+        refusals = [_refusal(problem, command, args) for problem in (err, *getattr(err, "also", ()))]
+        lines = [f"wheelstep: error: {line}" for problem_lines, _, _ in refusals for line in problem_lines]
+        _, stated, name = refusals[0]
+        return said(lines, 2, args, stated, name, every=[(problem, name, problem_lines) for problem_lines, problem,
+                                                         name in refusals] if len(refusals) > 1 else None)
     except click_errors.NoArgsIsHelpError as err:
         typer.echo(err.format_message(), err=True)
         return 2

@@ -120,7 +120,8 @@ def gear_pair_spec(profile, **cli) -> GearPairSpec:
     Raises InvalidInput (every problem of the profile, with ``file:line``) or DesignError
     (a value that breaks a rule, named by its parameter).
     """
-    return _resolved(GearPairSpec, "gears", _profile(profile), cli, "mechanism")
+    return _resolved(GearPairSpec, "gears", _loaded(profile, GearPairSpec, "gears", cli, "mechanism"), cli,
+                     "mechanism")
 
 
 #: What the paper method's tables (``pitch``, ``teeth``) read of a profile's gear pair; the rest
@@ -188,7 +189,25 @@ def paper_table_spec(profile, **cli) -> tuple[GearPairSpec, str | None]:
 
 def shoe_spec(profile, **cli) -> ShoeSpec:
     """Resolve a ShoeSpec: command line over profile (``shoe:``, ``mechanism:``) over defaults."""
-    return _resolved(ShoeSpec, "shoe", _profile(profile), cli, "design")
+    return _resolved(ShoeSpec, "shoe", _loaded(profile, ShoeSpec, "shoe", cli, "design"), cli, "design")
+
+
+def _loaded(name: str | None, spec_type: type[BaseModel], section: str, cli: dict[str, Any], check: str):
+    """The design profile ``name`` read (None: none given). A profile that cannot be read (a
+    missing file, a value out of its own bounds) is refused carrying in ``also`` the command
+    line's own problems (:func:`_resolved` without the profile), those that no value of the
+    profile could mend: each a rule of the options given alone."""
+    try:
+        return _profile(name)
+    except DesignError as unread:
+        try:
+            _resolved(spec_type, section, None, cli, check)
+        except DesignError as err:
+            given = {k for k, v in cli.items() if v is not None}
+            own = [e for e in (err, *getattr(err, "also", ())) if _tied_keys(e) <= given]
+            if own:
+                unread.also = [*getattr(unread, "also", ()), *own]
+        raise
 
 
 def _checked(spec_type: type[BaseModel], values: dict[str, Any], check: str):
@@ -201,15 +220,13 @@ def _checked(spec_type: type[BaseModel], values: dict[str, Any], check: str):
 
 def _resolved(spec_type: type[BaseModel], section: str, loaded, cli: dict[str, Any], check: str):
     """The spec of the command line ``cli`` over the design profile ``loaded`` (None: none)
-    over the defaults, checked (:func:`_checked`); the rules a user's profile breaks are said
-    at their lines, all of them at once (:func:`_every_profile_problem`)."""
-    values = spec_values(spec_type, section, loaded, cli)
+    over the defaults, checked (:func:`_checked`); the rules the command line and the user's
+    profile break are said all at once (:func:`_every_problem`)."""
     try:
+        values = spec_values(spec_type, section, loaded, cli)
         return _named_for(cli, _checked, spec_type, values, check, profile=(loaded, section))
-    except InvalidInput as first:
-        if loaded is None:
-            raise
-        raise _every_profile_problem(spec_type, section, loaded, cli, check, first) from None
+    except DesignError as first:
+        raise _every_problem(spec_type, section, loaded, cli, check, first) from None
 
 
 class WithoutKeys:
@@ -230,37 +247,69 @@ class WithoutKeys:
         return {k: v for k, v in self.profile.values(section).items() if f"{section}.{k}" not in self.keys}
 
 
-def _every_profile_problem(spec_type, section: str, loaded, cli: dict[str, Any], check: str,
-                           first: InvalidInput) -> InvalidInput:
-    """``first`` (a rule the design profile ``loaded`` breaks, at its line) with every other
-    rule its keys break: a rule stops at the first value it finds at fault, so the profile is
-    resolved again without the keys found so far while that finds another of its keys at
-    fault, and the user mends them in one go. A problem the defaults standing in for those
-    keys take part in is not said (it may stem from them): its key is left out unsaid and the
-    search goes on. One of the command line's ends it (said alone, once the file is mended)."""
-    given = [k for k, v in cli.items() if v is not None]
-    issues, left = list(first.issues), {issue.what for issue in first.issues}
+def _blamed(err: DesignError, cli: dict[str, Any], section: str) -> tuple[set[str], set[str]]:
+    """(the command line's options, the profile's ``"section.key"``) that the problem ``err``
+    (said by :func:`_named_for`) names: the one it is said for (empty sets: neither, it is
+    the defaults' own)."""
+    if isinstance(err, InvalidInput):
+        return set(), {issue.what for issue in err.issues}
+    named = err.param.replace("-", "_")
+    return ({named} if cli.get(named) is not None else set()), set()
+
+
+def _tied_keys(err: DesignError) -> set[str]:
+    """Every parameter a rule is stated for (its own and those tied on), snake_case."""
+    if hasattr(err, "tied"):
+        return err.tied
+    if isinstance(err, InvalidInput):
+        return {issue.what.rpartition(".")[2] for issue in err.issues}
+    return {name.replace("-", "_") for name in (err.param, *err.alternatives)}
+
+
+def _every_problem(spec_type, section: str, loaded, cli: dict[str, Any], check: str,
+                   first: DesignError) -> DesignError:
+    """``first`` (a rule the command line ``cli`` or the design profile ``loaded`` breaks, said
+    for an option or at the profile's line) carrying in ``also`` every other rule their values
+    break, so the user mends them in one go: a rule stops at the first value it finds at fault,
+    so the spec is resolved again without the options and keys found so far (the defaults
+    standing in) while that finds another given value at fault. A problem that the defaults
+    standing in take part in is not said (it may stem from them): its value is left out unsaid
+    and the search goes on. The profile's problems are said as one file's lines."""
+    problems: list[DesignError] = []
+    options, keys = _blamed(first, cli, section)
+    if not options and not keys:
+        return first
+    found = [first]
     while True:
-        seen = WithoutKeys(loaded, left)
+        top = {k: (None if k in options else v) for k, v in cli.items()}
+        seen = loaded if loaded is None or not keys else WithoutKeys(loaded, keys)
         try:
-            _checked(spec_type, spec_values(spec_type, section, seen, cli), check)
-            break
-        except InvalidInput:
+            _named_for(top, lambda: _checked(spec_type, spec_values(spec_type, section, seen, top), check),
+                       profile=(seen, section))
             break
         except DesignError as err:
-            named = err.for_given(given)
-            located = None if named.param.replace("-", "_") in given else in_profile(named, seen, section)
-            if located is None:
-                break
-            keys = {name.replace("-", "_") for name in (err.param, named.param, *err.alternatives)}
-            if not any(f"{part}.{key}" in left for part in (section, "mechanism") for key in keys):
-                issues.extend(located.issues)
-            # each pass leaves out a key the profile still gives: the search ends
-            left |= {issue.what for issue in located.issues}
-    if len(issues) == 1:
-        return first
-    every = InvalidInput(issues)
-    every.remedy, every.remedies = getattr(first, "remedy", {}), list(getattr(first, "remedies", []))
+            more_options, more_keys = _blamed(err, top, section)
+            if not (more_options - options or more_keys - keys):
+                break               # the defaults' own, or nothing left to leave out: the search ends
+            left_out = options | {key.rpartition(".")[2] for key in keys}
+            if not _tied_keys(err) & left_out:
+                found.append(err)
+            options, keys = options | more_options, keys | more_keys
+    for err in found:
+        if isinstance(err, InvalidInput) and problems and isinstance(problems[-1], InvalidInput):
+            problems[-1] = _one_file(problems[-1], err)
+        else:
+            problems.append(err)
+    if len(problems) == 1:
+        return problems[0]
+    problems[0].also = problems[1:]
+    return problems[0]
+
+
+def _one_file(said: InvalidInput, more: InvalidInput) -> InvalidInput:
+    """The profile's problems ``said`` and ``more`` as one file's lines (``said``'s remedies)."""
+    every = InvalidInput([*said.issues, *more.issues])
+    every.remedy, every.remedies = getattr(said, "remedy", {}), list(getattr(said, "remedies", []))
     return every
 
 
@@ -279,7 +328,9 @@ def _named_for(cli: dict[str, Any], step, *args, profile: tuple | None = None):
         if named.param.replace("-", "_") not in given and profile is not None and profile[0] is not None:
             located = in_profile(named, *profile)
             if located is not None:
-                raise located from None
+                named = located
+        # what the rule is stated for, which the error said for one of them no longer lists
+        named.tied = {name.replace("-", "_") for name in (err.param, *err.alternatives)}
         raise named from None
 
 
