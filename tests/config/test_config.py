@@ -556,6 +556,8 @@ def test_the_command_lines_problems_and_the_profiles_are_told_together(cli, tmp_
     result = cli("gears", "--flat-depth", "1", "--mark-depth", "6", "--z", "3", "--out", out)
     assert result.exit_code == 2 and not out.exists()
     assert sorted(ln.split(" = ")[0] for ln in _said(result)) == ["--flat-depth", "--mark-depth", "--z"], _said(result)
+    tables = cli("pitch", "--z", "3", "--turns", "9")
+    assert tables.exit_code == 2 and [ln.split(" = ")[0] for ln in _said(tables)] == ["--z", "--turns"]
     # the profile's rules and the command line's, in one run
     design = write(tmp_path / "p.yaml", "mechanism:\n  a: 9999\ngears:\n  thickness: 1\n  chamfer: 2\n")
     result = cli("gears", "--profile", design, "--pressure-angle", "50", "--out", out)

@@ -177,13 +177,21 @@ def paper_table_spec(profile, **cli) -> tuple[GearPairSpec, str | None]:
     loaded = _profile(profile)
     if loaded is not None:
         _crank_law_only(loaded, profile)
-    values = spec_values(GearPairSpec, "gears", None if loaded is None else _TableValues(loaded),
-                         {**cli, "teeth": "paper", "bore": 0.0})
-    # the profile's values were checked when it was read, the command line's are numbers
-    center = paper_design_distance(values.get("center_distance"), values.get("install_distance"))
-    spec = _named_for(cli, build, GearPairSpec, {**values, "center_distance": center,
-                                                 "install_distance": center}, profile=(loaded, "gears"))
-    _named_for(cli, spec.mechanism, profile=(loaded, "gears"))
+
+    def tables(seen, top: dict[str, Any]) -> GearPairSpec:
+        values = spec_values(GearPairSpec, "gears", None if seen is None else _TableValues(seen),
+                             {**top, "teeth": "paper", "bore": 0.0})
+        # the profile's values were checked when it was read, the command line's are numbers
+        center = paper_design_distance(values.get("center_distance"), values.get("install_distance"))
+        spec = _named_for(top, build, GearPairSpec, {**values, "center_distance": center,
+                                                     "install_distance": center}, profile=(seen, "gears"))
+        _named_for(top, spec.mechanism, profile=(seen, "gears"))
+        return spec
+
+    try:
+        spec = tables(loaded, cli)
+    except DesignError as first:
+        raise _every_problem(tables, loaded, cli, first) from None
     return spec, _left_out(loaded)
 
 
@@ -222,11 +230,14 @@ def _resolved(spec_type: type[BaseModel], section: str, loaded, cli: dict[str, A
     """The spec of the command line ``cli`` over the design profile ``loaded`` (None: none)
     over the defaults, checked (:func:`_checked`); the rules the command line and the user's
     profile break are said all at once (:func:`_every_problem`)."""
+    def resolved(seen, top: dict[str, Any]):
+        return _named_for(top, lambda: _checked(spec_type, spec_values(spec_type, section, seen, top), check),
+                          profile=(seen, section))
+
     try:
-        values = spec_values(spec_type, section, loaded, cli)
-        return _named_for(cli, _checked, spec_type, values, check, profile=(loaded, section))
+        return resolved(loaded, cli)
     except DesignError as first:
-        raise _every_problem(spec_type, section, loaded, cli, check, first) from None
+        raise _every_problem(resolved, loaded, cli, first) from None
 
 
 class WithoutKeys:
@@ -247,7 +258,7 @@ class WithoutKeys:
         return {k: v for k, v in self.profile.values(section).items() if f"{section}.{k}" not in self.keys}
 
 
-def _blamed(err: DesignError, cli: dict[str, Any], section: str) -> tuple[set[str], set[str]]:
+def _blamed(err: DesignError, cli: dict[str, Any]) -> tuple[set[str], set[str]]:
     """(the command line's options, the profile's ``"section.key"``) that the problem ``err``
     (said by :func:`_named_for`) names: the one it is said for (empty sets: neither, it is
     the defaults' own)."""
@@ -266,17 +277,17 @@ def _tied_keys(err: DesignError) -> set[str]:
     return {name.replace("-", "_") for name in (err.param, *err.alternatives)}
 
 
-def _every_problem(spec_type, section: str, loaded, cli: dict[str, Any], check: str,
-                   first: DesignError) -> DesignError:
+def _every_problem(resolved, loaded, cli: dict[str, Any], first: DesignError) -> DesignError:
     """``first`` (a rule the command line ``cli`` or the design profile ``loaded`` breaks, said
     for an option or at the profile's line) carrying in ``also`` every other rule their values
     break, so the user mends them in one go: a rule stops at the first value it finds at fault,
-    so the spec is resolved again without the options and keys found so far (the defaults
+    so the spec is resolved again (``resolved(profile seen, options)``, raising the rule it
+    finds broken, said by :func:`_named_for`) without the options and keys found so far (the defaults
     standing in) while that finds another given value at fault. A problem that the defaults
     standing in take part in is not said (it may stem from them): its value is left out unsaid
     and the search goes on. The profile's problems are said as one file's lines."""
     problems: list[DesignError] = []
-    options, keys = _blamed(first, cli, section)
+    options, keys = _blamed(first, cli)
     if not options and not keys:
         return first
     found = [first]
@@ -284,11 +295,10 @@ def _every_problem(spec_type, section: str, loaded, cli: dict[str, Any], check: 
         top = {k: (None if k in options else v) for k, v in cli.items()}
         seen = loaded if loaded is None or not keys else WithoutKeys(loaded, keys)
         try:
-            _named_for(top, lambda: _checked(spec_type, spec_values(spec_type, section, seen, top), check),
-                       profile=(seen, section))
+            resolved(seen, top)
             break
         except DesignError as err:
-            more_options, more_keys = _blamed(err, top, section)
+            more_options, more_keys = _blamed(err, top)
             if not (more_options - options or more_keys - keys):
                 break               # the defaults' own, or nothing left to leave out: the search ends
             left_out = options | {key.rpartition(".")[2] for key in keys}
