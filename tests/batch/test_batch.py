@@ -240,6 +240,11 @@ def test_rerun_into_the_same_folder_removes_stale_plates(cli, tmp_path):
     dry = cli("batch", batch, "--out", out, "--jobs", "1", "--dry-run")
     assert f"would keep {out / 'plate-2.png'} (an earlier run wrote it; changed since, so it is not removed)" in (
         dry.stdout.splitlines()), dry.stdout
+    # the dry run's --json says the same as its lines, as gears' and shoe's do
+    planned = json.loads(cli("batch", batch, "--out", out, "--jobs", "1", "--dry-run", "--json").stdout)
+    assert planned["would_keep"] == [str(out / "plate-2.png")] and planned["written"] == [], planned
+    assert str(out / "plate-2.3mf") in planned["would_remove"] and str(out / "manifest.json") in planned["would_write"]
+    assert (out / "plate-2.3mf").exists()
     rerun = cli("batch", batch, "--out", out, "--jobs", "1", "--json")
     assert rerun.exit_code == 0, rerun.stderr
     assert not (out / "plate-2.3mf").exists() and (out / "plate-2.png").exists()

@@ -300,6 +300,10 @@ def test_a_rerun_with_another_grid_keeps_its_own_points_in_its_order(cli, tmp_pa
         said = cli("sweep", tmp_path / "b.yaml", "--out", out, "--dry-run")
         assert said.exit_code == 0 and ("2 of 6 designs would be computed; 2 earlier rows would be "
                                         "dropped (points no longer in the sweep") in said.stdout, said
+        # --json says the files as the lines do: written none, would_write the tables
+        planned = json.loads(cli("sweep", tmp_path / "b.yaml", "--out", out, "--dry-run", "--json").stdout)
+        assert planned["written"] == [] and str(out / "results.parquet") in planned["would_write"], planned
+        assert planned["would_remove"] == [] and planned["would_compute"] == 2
         outcome = run_sweep(second, out, client)
     assert (outcome.total, outcome.skipped, outcome.computed, outcome.dropped) == (6, 4, 2, 2)
     table = pq.read_table(out / "results.parquet").to_pylist()

@@ -52,7 +52,7 @@ def batch(
         show.detail(f"  {entry.name}: {entry.kind} x {entry.quantity} from {entry.design_label} for printer "
                     f"{entry.printer.name}: {values}")
     outcome, written = _run(plan, out, jobs, show, dry_run, force, scheduler, tolerance)
-    show.report(_summary(file, out, plan, outcome, [] if dry_run else written),
+    show.report({**_summary(file, out, plan, outcome), **show.written_record(written, dry_run)},
                 lambda: _lines(out, plan, outcome, dry_run))
     _band_warnings(show, outcome)
     # a real run's files are said by its summary lines (each one with -v); a dry run's, and what
@@ -103,8 +103,9 @@ def _run(plan, out: Path, jobs: int, show: Output, dry_run: bool, force: bool, s
         raise DesignError("out", str(out), f"cannot be written ({err.strerror or err})") from None
 
 
-def _summary(file: Path, out: Path, plan, outcome, written: list[Path]) -> dict:
-    """The batch run as plain data: what was built, on which plates, what failed and why."""
+def _summary(file: Path, out: Path, plan, outcome) -> dict:
+    """The batch run as plain data: what was built, on which plates, what failed and why (the
+    files it writes are the output's :meth:`Output.written_record`)."""
     return {
         "batch": str(file), "out": str(out), "entries": len(plan.entries),
         "built": [entry.name for entry in outcome.built],
@@ -115,8 +116,6 @@ def _summary(file: Path, out: Path, plan, outcome, written: list[Path]) -> dict:
         "failed": [{"entry": entry.name, "where": where, "reason": reason,
                     "remedies": outcome.results[entry.index].remedies if entry.index in outcome.results else []}
                    for entry, where, reason in outcome.failed],
-        "written": [str(p) for p in written], "removed": [str(p) for p in outcome.removed],
-        **({"kept": [str(p) for p in outcome.kept]} if outcome.kept else {}),
         **({"tolerance": bands} if (bands := _bands(outcome)) else {}),
     }
 

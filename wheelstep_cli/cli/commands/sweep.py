@@ -61,7 +61,7 @@ def sweep(
                  "skipped": outcome.skipped, "computed": outcome.computed,
                  "failures": outcome.failures, "refused_or_failed_rows": outcome.not_ok,
                  "dropped": outcome.dropped,
-                 "written": [str(p) for p in written], "removed": [str(p) for p in show.removed]},
+                 **show.written_record(written, False)},
                 lambda: [f"{_designs(outcome.computed)} computed ({outcome.failures} refused or "
                          f"failed), {outcome.skipped} already in {outcome.results}"
                          + _earlier_not_ok(outcome) + _dropped_text(outcome.dropped, "dropped")])
@@ -135,7 +135,7 @@ def _dry_run(plan, file: Path, out: Path, show: Output, run: tuple[bool, int]) -
              *(out / f"best-{k}" for k in range(1, best + 1))]
     show.report({"sweep": str(file), "out": str(out), "points": len(points),
                  "skipped": len(points) - todo, "would_compute": todo, "would_drop": dropped,
-                 "written": []}, lambda: [f"{todo} of {len(points)} designs would be computed"
+                 **show.written_record(files, True)}, lambda: [f"{todo} of {len(points)} designs would be computed"
                                           + _dropped_text(dropped, "would be dropped")])
     show.files(files, True)
 
