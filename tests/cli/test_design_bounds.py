@@ -322,6 +322,7 @@ def test_a_backlash_too_large_for_a_printer_with_tooth_clearance_is_offered_less
     (["--pressure-angle", "30"], "--pressure-angle"),                  # the fillet left at its default
     (["--pressure-angle", "30", "--fillet", "0.2"], "--fillet"),
     (["--dedendum", "1.9"], "--dedendum"),                             # deeper, the flanks meet sooner
+    (["--pressure-angle", "35"], "--pressure-angle"),                  # no fillet helps (it said no value)
 ])
 def test_a_cutter_tip_with_no_land_names_the_option_given_and_a_limit_that_applied_cuts(cli, tmp_path, given, named):
     """The rack's tip fillets meet when the flanks lean far: the refusal names the option the

@@ -182,16 +182,19 @@ def _no_tip_land(cutter: RackCutter, module: float, pitch: float) -> DesignError
                   if most_angle is not None else
                   f"{why} with fillet {cutter.fillet:g} x module at any pressure angle; use a fillet "
                   f"<= {most:g} x module")
-    if most_fillet < 0.0:
-        # no fillet helps: the flanks lean too far for the tooth's depth
-        return DesignError("pressure_angle", float(np.degrees(a)), f"{why} even without a fillet; use a "
-                           "smaller pressure angle or dedendum", alternatives={"dedendum": (
-                               cutter.dedendum, f"{why} at pressure angle {np.degrees(a):g} deg even "
-                               "without a fillet; use a smaller dedendum or pressure angle")})
     # the dedendum's x is linear too: the deepest tooth that keeps a land at this fillet
     deepest = (_fillet_centre_x(cutter, module, pitch, a, rho) / (module * np.sin(a) / np.cos(a))
                + cutter.dedendum)
     deepest = np.floor(1000.0 * deepest) / 1000.0
+    if most_fillet < 0.0:
+        # no fillet helps: the flanks lean too far for the tooth's depth
+        shallower = (f"must be <= {deepest:g} x module with fillet {cutter.fillet:g} x module"
+                     if deepest > cutter.addendum else "use a smaller pressure angle")
+        return DesignError("pressure_angle", float(np.degrees(a)), f"{why} even without a fillet; " + (
+            f"must be <= {most_angle:g} deg with fillet {cutter.fillet:g} x module" if most_angle is not None
+            else "use a smaller dedendum"), alternatives={"dedendum": (
+                cutter.dedendum, f"{why} at pressure angle {np.degrees(a):g} deg even without a fillet; "
+                f"{shallower}")})
     error = DesignError("fillet", cutter.fillet,
                         f"{why}; must be <= {most:g} x module at pressure angle {np.degrees(a):g} deg",
                         alternatives={"pressure_angle": (float(np.degrees(a)), angle_text)})
