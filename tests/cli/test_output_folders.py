@@ -42,7 +42,11 @@ def test_a_rerun_keeps_another_commands_files_and_files_changed_since(cli, tmp_p
     assert f"kept {out / 'shoe.3mf'} (an earlier run wrote it; changed since, so it is not removed)" in (
         rerun.stdout.splitlines())
     assert (out / "notes.txt").read_text() == "mine"
-    assert "not written by this command" in error_line(cli("shoe", "--format", "3mf", "--out", out))
+    # the last run's record does not list a file it kept: said so, not "not written by this command"
+    assert "was not written by this command's last run here" in error_line(cli("shoe", "--format", "3mf", "--out", out))
+    # the line's remedy, for a script (it was {})
+    refused = json.loads(cli("shoe", "--format", "3mf", "--out", out, "--json").stdout)["error"]
+    assert refused["remedy"] == {"--force": True} and refused["remedies"] == [{"--force": True}], refused
     (out / "shoe.stl").write_bytes(b"edited too")
     assert "shoe.stl there exists and was changed since this command wrote it" in error_line(
         cli("shoe", "--format", "stl", "--out", out))

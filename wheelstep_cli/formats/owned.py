@@ -62,11 +62,16 @@ def check_collisions(folder: Path, files: Mapping[Path, bytes], record: Mapping[
         if name in own or not Path(path).is_file():
             continue
         if record.get(name) != sha256_of(path):
-            why = "changed since this command wrote it" if name in record else "not written by this command"
+            # the record is the last run's: a file an earlier run wrote and a later one kept
+            # (changed since) is not in it
+            why = ("changed since this command wrote it" if name in record
+                   else "not written by this command's last run here" if record else "not written by this command")
             # the folder as the user gave it, with the file in it; a file the user named, itself
             value, which = (str(folder), f"{name} there ") if param == "out" else (str(path), "")
-            raise DesignError(param, value, f"{which}exists and was {why}: it is kept; move it away "
-                              "or give --force to overwrite it")
+            refused = DesignError(param, value, f"{which}exists and was {why}: it is kept; move it away "
+                                  "or give --force to overwrite it")
+            refused.remedy, refused.remedies = {"force": True}, [{"force": True}]
+            raise refused
 
 
 def _not_written_again(folder: Path, files: Mapping[Path, bytes], record: Mapping[str, str]):
