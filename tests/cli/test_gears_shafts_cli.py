@@ -273,3 +273,16 @@ def test_a_chamfer_on_a_gear_too_thin_for_any_the_printer_takes_is_told_only_0_d
     args[args.index("--chamfer") + 1] = "0"
     done = cli(*args)
     assert done.exit_code == 0, done.stderr
+
+
+def test_a_key_too_deep_for_any_bore_is_told_by_its_depth_not_a_width_of_zero(cli, tmp_path):
+    """A key deeper than the wall room leaves no bore at any width: the refusal said
+    `--key-width = 2: must be < 0.00 mm`, a limit no key meets. The depth is named, with a limit
+    that applied gives a pair that is written."""
+    args = ["gears", "--profile", "desk-demo", "--bore-shape", "keyway", "--bore", "5", "--key-width", "2",
+            "--key-depth", "19", "--mark-depth", "0", "--dry-run", "--out", tmp_path / "o"]
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --key-depth = 19: must be < "), line
+    args[args.index("--key-depth") + 1] = _limit(line)
+    done = cli(*args)
+    assert done.exit_code == 0, done.stderr

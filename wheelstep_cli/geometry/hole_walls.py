@@ -41,8 +41,10 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
                 for _ in range(50):
                     middle = 0.5 * (low + high)
                     low, high = (middle, high) if middle < largest_bore(middle) else (low, middle)
-                raise DesignError("key_width", bore[1], f"must be < {rounded_down(low)} mm: wider, no bore both "
-                                                        f"holds the key and leaves the wall {wall}")
+                if float(rounded_down(low)) > 0.0:
+                    raise DesignError("key_width", bore[1], f"must be < {rounded_down(low)} mm: wider, no bore "
+                                                            f"both holds the key and leaves the wall {wall}")
+                # a key this deep leaves no bore at any width: its depth is what to change (below)
             by_bore = (bore[0], f"must be < {rounded_down(max(largest, 0.0))} mm with the keyway's "
                                 f"{value:g} mm depth {wall}")
             if limit <= 0.0:    # no key depth helps: the bore itself is too large for this gear
