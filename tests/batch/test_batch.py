@@ -373,6 +373,11 @@ def test_every_repeated_key_is_reported_at_once(cli, tmp_path):
     write(batch, batch.read_text() + "    quantity: !!float abc\n")
     lines = cli("batch", batch, "--out", tmp_path / "out").stderr.strip().splitlines()
     assert [re.match(r"wheelstep: error: .*?:(\d+): ", line).group(1) for line in lines] == ["3", "7", "8"], lines
+    # a design profile the batch names that repeats keys: every one too (it said the first)
+    design = write(tmp_path / "dup.yaml", "mechanism:\n  a: 30\n  a: 31\ngears:\n  z: 24\n  z: 30\n")
+    write(batch, "parts:\n  - kind: shoe\n    design: dup.yaml\n    printer: fdm-0.4-pla\n")
+    assert cli("batch", batch, "--out", tmp_path / "out").stderr.strip().splitlines() == [
+        f"wheelstep: error: {design}:3: duplicate key 'a'", f"wheelstep: error: {design}:6: duplicate key 'z'"]
 
 
 def test_every_rule_an_entrys_design_profile_breaks_is_reported_at_once(cli, tmp_path):

@@ -6,7 +6,7 @@ import hashlib
 from pathlib import Path
 from typing import Callable
 
-from wheelstep_cli.config.located_yaml import LocatedYaml, read_located_yaml
+from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
 from wheelstep_cli.config.printers import Printer, is_printer_profile, printer_from_profile
 from wheelstep_cli.config.profiles import (
     design_from_file,
@@ -14,7 +14,7 @@ from wheelstep_cli.config.profiles import (
     profile_label as file_label,
     wrong_kind,
 )
-from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, show
+from wheelstep_cli.config.schema import InvalidInput, Issue, dotted, show, yaml_issues
 from wheelstep_cli.errors import DesignError
 
 
@@ -68,8 +68,8 @@ class Profiles:
             except InvalidInput as err:
                 issues.extend(err.issues)
             except DesignError as err:
-                if err.param == "yaml":
-                    issues.append(Issue(str(err.value), "", err.limit))
+                if isinstance(err, YamlSyntaxError):    # every repeated key at once, as for the batch file
+                    issues.extend(yaml_issues(err))
                 else:
                     issues.append(Issue(doc.where(path), dotted(path), f"= {show(name)}: {err.limit}"))
         return cache[name]
