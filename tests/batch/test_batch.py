@@ -382,8 +382,8 @@ def test_every_repeated_key_is_reported_at_once(cli, tmp_path):
 
 def test_every_rule_an_entrys_design_profile_breaks_is_reported_at_once(cli, tmp_path):
     """The design's first rule problem came alone (one run per problem), as in `gears --profile`
-    before: now every one, in the design file's line order; an override's problem is still
-    the override's alone (its stand-in is the design's value)."""
+    before: now every one, in the design file's line order, each with the line of its key there;
+    an override's problem is still the override's alone (its stand-in is the design's value)."""
     write(tmp_path / "rules.yaml", "gears:\n  thickness: 1\n  chamfer: 2\n  mark_depth: 0.8\n  key_width: 2\n"
           "  hub_length: 3\n")
     batch = write(tmp_path / "b.yaml", "parts:\n  - kind: gear-pair\n    design: rules.yaml\n"
@@ -391,10 +391,15 @@ def test_every_rule_an_entrys_design_profile_breaks_is_reported_at_once(cli, tmp
     result = cli("batch", batch, "--out", tmp_path / "out")
     assert result.exit_code == 2 and not (tmp_path / "out").exists()
     said = [line.split(": parts[0]: ", 1)[1] for line in result.stderr.strip().splitlines()]
-    assert said == ["chamfer = 2: must be < half the thickness 0.5 mm (from design rules.yaml)",
-                    "mark_depth = 0.8: must be <= half the thickness, 0.5 mm (from design rules.yaml)",
-                    "key_width = 2: needs bore_shape keyway (from design rules.yaml)",
-                    "hub_length = 3: needs hub_d (from design rules.yaml)"], said
+    assert said == ["chamfer = 2: must be < half the thickness 0.5 mm (from design rules.yaml:3)",
+                    "mark_depth = 0.8: must be <= half the thickness, 0.5 mm (from design rules.yaml:4)",
+                    "key_width = 2: needs bore_shape keyway (from design rules.yaml:5)",
+                    "hub_length = 3: needs hub_d (from design rules.yaml:6)"], said
+    # a printer's rule of the design's value (its least chamfer) at the key's line too
+    write(tmp_path / "rules.yaml", "gears:\n  thickness: 6\n  chamfer: 0.2\n")
+    line = error_line(cli("batch", batch, "--out", tmp_path / "out"))
+    assert "chamfer = 0.2: must be 0 or >= 0.4 mm on printer fdm-0.4-pla" in line and line.endswith(
+        "(from design rules.yaml:3)"), line
 
 
 def test_an_entrys_override_rules_are_reported_beside_its_other_problems(cli, tmp_path):
@@ -738,7 +743,7 @@ def test_a_design_profiles_value_too_tall_is_offered_as_an_override(cli, tmp_pat
     write(tmp_path / "thick.yaml", "gears:\n  thickness: 300\n")
     text = "parts:\n  - name: g\n    kind: gear-pair\n    design: thick.yaml\n    printer: fdm-0.4-pla\n"
     line = error_line(cli("batch", write(tmp_path / "b.yaml", text), "--out", tmp_path / "out"))
-    assert line.endswith("; nothing written; use overrides {thickness: 250} (from design thick.yaml)"), line
+    assert line.endswith("; nothing written; use overrides {thickness: 250} (from design thick.yaml:2)"), line
     fixed = write(tmp_path / "fixed.yaml", text + "    overrides: {thickness: 250}\n")
     assert cli("batch", fixed, "--out", tmp_path / "out", "--dry-run").exit_code == 0
 

@@ -11,10 +11,10 @@ from typing import Any
 import numpy as np
 from pydantic import ValidationError
 
+from wheelstep_cli.batch.entry_problems import design_line, entry_problem, key_of, line_of
 from wheelstep_cli.batch.lookup import Profiles, profile_label
 from wheelstep_cli.config.batch_file import DEFAULT_DESIGN, KIND_NAMES, BatchDefaults, BatchEntry, BatchFile
 from wheelstep_cli.config.located_yaml import LocatedYaml, YamlSyntaxError, read_located_yaml
-from wheelstep_cli.config.names import as_keys, in_file_words, remedies_as_keys, yaml_message
 from wheelstep_cli.config.printers import Printer
 from wheelstep_cli.config.profiles import beside, profile_names
 from wheelstep_cli.config.resolve import spec_problems, spec_values
@@ -177,7 +177,7 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     where = {key: line for key, line in override_where.items() if key in kept}
     written = {key: (entry.overrides or {}).get(key, value) for key, value in kept.items()}   # as the file has them
     for err in problems:
-        issues.append(_problem(doc, path, err, where, design_name, written))
+        issues.append(entry_problem(doc, path, err, where, design_line(design[0], kind, design_name, err), written))
     if problems or faulty or others or flawed:
         issues[before:] = sorted(issues[before:], key=_line)     # the entry's problems in file order
         return None
@@ -187,13 +187,9 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
 
 def _line(issue: Issue) -> int:
     """The line of an issue's ``file:line`` (0 when it names none)."""
-    return _line_of(issue.where)
+    return line_of(issue.where)
 
 
-def _line_of(where: str | None) -> int:
-    """The line of a ``file:line`` (0 for None or one that names no line)."""
-    line = (where or "").rsplit(":", 1)[-1]
-    return int(line) if line.isdigit() else 0
 
 
 def _allow_interference(doc, path, kind: PartKind | None, entry: BatchEntry, issues: list[Issue]) -> bool:
@@ -268,11 +264,11 @@ def _every_problem(kind: PartKind, design, overrides: dict, printer: Printer, dr
     fixes them in one go. ``dropped``: overrides already left out (found at fault by a field
     rule), whose stand-in values are not blamed either."""
     spec, printed, problems = _resolve(kind, design, overrides, printer)
-    problems = [err for err in problems if not ({_key(err), *map(_key, err.alternatives)} & dropped)]
+    problems = [err for err in problems if not ({key_of(err), *map(key_of, err.alternatives)} & dropped)]
     left = dict(overrides)
     found = list(problems)
     while problems and len(found) < len(overrides):
-        blamed = {_key(err.for_given(left)) for err in problems}
+        blamed = {key_of(err.for_given(left)) for err in problems}
         if not blamed <= set(left):
             break           # a problem of no override's: the others may stem from it
         left = {key: value for key, value in left.items() if key not in blamed}
@@ -281,13 +277,13 @@ def _every_problem(kind: PartKind, design, overrides: dict, printer: Printer, dr
         # in for them must not be blamed on the user's other keys
         problems = [DesignError(given.param, given.value, given.limit)
                     for err in _resolve(kind, design, left, printer)[2]
-                    if not ({_key(err), *map(_key, err.alternatives)} & removed)
-                    and _key(given := err.for_given(left)) in left]
+                    if not ({key_of(err), *map(key_of, err.alternatives)} & removed)
+                    and key_of(given := err.for_given(left)) in left]
         found += problems
     found = _with_the_designs(kind, design, overrides, printer, found)
     # in the order the file gives the overrides, an entry's own problems first
     order = {key: k for k, key in enumerate(overrides)}
-    found.sort(key=lambda err: order.get(_key(err.for_given(overrides)), -1))
+    found.sort(key=lambda err: order.get(key_of(err.for_given(overrides)), -1))
     return spec, printed, found
 
 
@@ -307,29 +303,26 @@ def _with_the_designs(kind: PartKind, design, overrides: dict, printer: Printer,
     while latest:
         seen = WithoutKeys(design, left)
         for err in latest:
-            named = _key(err.for_given([key for part in sections for key in seen.values(part)]))
+            named = key_of(err.for_given([key for part in sections for key in seen.values(part)]))
             part = next((p for p in sections if named in seen.values(p)), None)
-            if _key(err.for_given(overrides)) in overrides or part is None:
+            if key_of(err.for_given(overrides)) in overrides or part is None:
                 # an override's, or one of no key the design still gives: it may stem from them
                 return found if every == found else _in_design_order(design, sections, design_keys, every)
             left.add(f"{part}.{named}")     # a key the design still gives: the search ends
         latest = _resolve(kind, WithoutKeys(design, left), overrides, printer)[2]
         every += [err for err in latest if not any(f"{part}.{name}" in left for part in sections
-                                                   for name in {_key(err), *map(_key, err.alternatives)})]
+                                                   for name in {key_of(err), *map(key_of, err.alternatives)})]
     return _in_design_order(design, sections, design_keys, every)
 
 
 def _in_design_order(design, sections, design_keys, errors: list[DesignError]) -> list[DesignError]:
     """``errors`` of the design's keys by their lines in its file."""
     def line(err) -> int:
-        named = _key(err.for_given(design_keys))
-        return _line_of(next((design.where(p, named) for p in sections if named in design.values(p)), None))
+        named = key_of(err.for_given(design_keys))
+        return line_of(next((design.where(p, named) for p in sections if named in design.values(p)), None))
     return sorted(errors, key=line)
 
 
-def _key(err_or_name) -> str:
-    """A DesignError's parameter (or a name) as a file's key."""
-    return getattr(err_or_name, "param", err_or_name).replace("-", "_")
 
 
 def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
@@ -381,15 +374,4 @@ def _require_height(kind: PartKind, printed, printer: Printer) -> None:
                        lowers=height_inputs(kind.name, printed))
 
 
-def _problem(doc, path, err: DesignError, override_where, design_name, overrides) -> Issue:
-    """An entry's problem at the override it names, else at the entry with where it came from."""
-    err = err.for_given(override_where)
-    param = err.param.replace("-", "_")
-    if param in override_where:
-        # the value as the file gives it (a law CSV's path as written, not as found from here)
-        return Issue(override_where[param], dotted(path + ("overrides", param)),
-                     f"= {show(overrides.get(param, err.value))}: {remedies_as_keys(in_file_words(err.limit), err)}")
-    given = f", with overrides {', '.join(overrides)}" if overrides else ""
-    # a remedy is an override the entry adds
-    said = remedies_as_keys(yaml_message(err), err, lambda options: f"overrides {{{as_keys(options)}}}")
-    return Issue(doc.where(path), dotted(path), f"{said} (from design {design_name}{given})")
+
