@@ -141,6 +141,10 @@ def test_thin_teeth_under_a_fit_are_refused_with_a_tooth_count_that_keeps_its_ti
     line = error_line(cli("gears", *design, "--out", out))
     assert line.startswith("wheelstep: error: --z = 42: the teeth are too thin for printer 'fdm-0.4-pla'")
     assert "nothing written" in line and not out.exists()
+    # the line says the fit thinned them (the same count prints unfitted on this printer)
+    inset = re.search(r"extrusion lines, the outlines drawn ([0-9.]+) mm smaller by the fit to the printer's band",
+                      line)
+    assert inset and float(inset.group(1)) > 0.0, line
     remedy = line.rsplit("; use ", 1)[1].split(" (")[0].split()[:2]
     assert remedy[0] == "--z" and int(remedy[1]) < 42
     result = cli("gears", *with_remedy(design, remedy), "--out", out)

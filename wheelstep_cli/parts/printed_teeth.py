@@ -71,9 +71,12 @@ def require_printable_teeth(pair, printer=None) -> None:
     options = None if z is None else sized_teeth(design, z)
     remedy = (f"use {as_flags(options)} (fewer, larger teeth)" if options is not None else
               "use fewer teeth (--z) or a larger --module")
+    # a fitted pair's teeth are drawn smaller: what prints thick enough unfitted may not
+    fitted = (f", the outlines drawn {pair.inset:.3f} mm smaller by the fit to the printer's band"
+              if getattr(pair, "inset", 0.0) else "")
     error = DesignError("z", design.z,
                         f"the teeth are too thin for printer '{printer.name}' (tip land under two "
-                        f"{width / 2:g} mm extrusion lines; {'; '.join(found)}); nothing written; "
+                        f"{width / 2:g} mm extrusion lines{fitted}; {'; '.join(found)}); nothing written; "
                         f"{remedy}, or a printer with a finer nozzle")
     if options is not None:
         error.remedy = options

@@ -117,7 +117,7 @@ def linkage_gif(linkage, solution, gait, frames: int = 48) -> bytes:
 
     plt = _plt()
 
-    fig, ax = plt.subplots(figsize=(4.5, 4.5), dpi=80)
+    fig, ax = plt.subplots(figsize=(4.5, 5.0), dpi=80)
     n = gait.theta.size
     idx = np.unique(np.linspace(0, n, frames, endpoint=False).astype(int))
     lines, foot = _draw_linkage(ax, linkage, solution.joints, 0, gait.foot, gait.support)
@@ -127,7 +127,8 @@ def linkage_gif(linkage, solution, gait, frames: int = 48) -> bytes:
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
     ax.set_ylim(lo[1] - pad, hi[1] + pad)
     ax.set_aspect("equal", adjustable="box")
-    ax.legend(fontsize=7, loc="upper right")
+    # below the axes: inside them the legend hides joints the linkage sweeps through
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=3, frameon=False)
     ax.set_title(f"{linkage.name} leg, one crank turn")
     fig.tight_layout()
 
