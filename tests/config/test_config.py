@@ -587,3 +587,20 @@ def test_a_profile_that_cannot_be_read_does_not_hide_the_options_own_problems(cl
                              "--width = -3: must be > 0 mm"]
     missing = cli("gears", "--profile", tmp_path / "none.yaml", "--z", "3", "--out", out)
     assert [ln.split(" = ")[0] for ln in _said(missing)] == ["--profile", "--z"], _said(missing)
+
+
+def test_a_profiles_values_out_of_bounds_do_not_hide_its_rules_between_values(cli, tmp_path):
+    """A value out of its own bound stopped the file being read, and the rules between its
+    other values came in the next run: the file is read again without the keys at fault, and
+    its rules are said with its bounds, in its lines' order, the options' after them; a rule
+    tied to a key at fault is not (its default stands in)."""
+    design = write(tmp_path / "p.yaml", "mechanism:\n  a: 9999\ngears:\n  z: 3\n  thickness: 1\n"
+                   "  chamfer: 2\n  key_width: 2\n  pressure_angle: 50\n")
+    out = tmp_path / "out"
+    result = cli("gears", "--profile", design, "--mark-depth", "9", "--out", out)
+    assert result.exit_code == 2 and not out.exists()
+    assert [ln.split(" = ")[0].split(": ")[0] for ln in _said(result)] == [
+        f"{design}:2", f"{design}:4", f"{design}:6", f"{design}:7", f"{design}:8", "--mark-depth"], _said(result)
+    assert "gears.chamfer = 2: must be < half the thickness 0.5 mm" in _said(result)[2]
+    tied = write(tmp_path / "tied.yaml", "gears:\n  thickness: 0.3\n  chamfer: 0.4\n")
+    assert [ln.split(": ")[1] for ln in _said(cli("gears", "--profile", tied, "--out", out))] == ["gears.thickness = 0.3"]

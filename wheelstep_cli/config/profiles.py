@@ -224,7 +224,9 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
     try:
         profile = validate_file(DesignProfile, doc)
     except InvalidInput as err:
-        raise InvalidInput(_with_conflicts(err.issues, doc)) from None
+        refused = InvalidInput(_with_conflicts(err.issues, doc))
+        refused.partial = _without_issues(name, file, doc, refused.issues)
+        raise refused from None
     gears = profile.gears
     if gears is not None and gears.law_csv is not None:
         # the profile's law CSV beside the profile, wherever the command is run from
@@ -236,6 +238,24 @@ def design_from_file(name: str, file: Path, doc: LocatedYaml | None = None):
         raise InvalidInput(conflicts)
     profile._shipped = Path(file).resolve().parent == shipped_profiles().resolve()
     return profile
+
+
+def _without_issues(name: str, file: Path, doc: LocatedYaml, issues: list):
+    """The design profile of ``doc`` read without the keys its ``issues`` name (their defaults
+    standing in), for the rules between the other values to be said in the same run; None
+    when it still cannot be read."""
+    from wheelstep_cli.config.design import DesignProfile
+
+    named = {issue.what for issue in issues}
+    data = {section: {k: v for k, v in values.items() if f"{section}.{k}" not in named}
+            if isinstance(values, dict) and section in DesignProfile.model_fields else values
+            for section, values in doc.data.items()}
+    if data == doc.data:
+        return None
+    try:
+        return design_from_file(name, file, replace(doc, data=data))
+    except DesignError:
+        return None
 
 
 def _with_conflicts(issues: list, doc: LocatedYaml) -> list:

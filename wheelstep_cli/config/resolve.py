@@ -201,21 +201,37 @@ def shoe_spec(profile, **cli) -> ShoeSpec:
 
 
 def _loaded(name: str | None, spec_type: type[BaseModel], section: str, cli: dict[str, Any], check: str):
-    """The design profile ``name`` read (None: none given). A profile that cannot be read (a
-    missing file, a value out of its own bounds) is refused carrying in ``also`` the command
-    line's own problems (:func:`_resolved` without the profile), those that no value of the
-    profile could mend: each a rule of the options given alone."""
+    """The design profile ``name`` read (None: none given). A profile that cannot be read is
+    refused with the other problems of the run: for a value out of its own bounds, the rules
+    the profile's other values and the options break (resolved with the profile read without
+    the keys at fault, those not tied to them); for a file that cannot be read at all, the
+    options' own rules, those no value of the profile could mend (each of options alone)."""
     try:
         return _profile(name)
     except DesignError as unread:
+        partial = getattr(unread, "partial", None)
         try:
-            _resolved(spec_type, section, None, cli, check)
+            _resolved(spec_type, section, partial, cli, check)
         except DesignError as err:
             given = {k for k, v in cli.items() if v is not None}
-            own = [e for e in (err, *getattr(err, "also", ())) if _tied_keys(e) <= given]
+            out = {issue.what.rpartition(".")[2] for issue in getattr(unread, "issues", ())}
+            own = [e for e in (err, *getattr(err, "also", ()))
+                   if (not _tied_keys(e) & out if partial is not None else _tied_keys(e) <= given)]
+            if own and isinstance(unread, InvalidInput):
+                # the file's lines together, in its order; the options' after them
+                for more in (e for e in own if isinstance(e, InvalidInput)):
+                    unread = _one_file(unread, more)
+                raise _also(unread, [e for e in own if not isinstance(e, InvalidInput)]) from None
             if own:
-                unread.also = [*getattr(unread, "also", ()), *own]
+                raise _also(unread, own) from None
         raise
+
+
+def _also(err: DesignError, more: list[DesignError]) -> DesignError:
+    """``err`` carrying ``more`` problems of the same run in ``also``."""
+    if more:
+        err.also = [*getattr(err, "also", ()), *more]
+    return err
 
 
 def _checked(spec_type: type[BaseModel], values: dict[str, Any], check: str):
