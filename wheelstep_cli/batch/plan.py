@@ -294,7 +294,7 @@ def _with_the_designs(kind: PartKind, design, overrides: dict, printer: Printer,
     the entry is resolved again while that finds another of the design's keys at fault (as
     for overrides, and as `gears --profile` does). A problem the stand-in defaults take part
     in is not said, its key left out unsaid; one of an override's ends the search."""
-    from wheelstep_cli.config.resolve import WithoutKeys
+    from wheelstep_cli.config.problem_search import WithoutKeys
 
     sections = (kind.section, "mechanism")
     design_keys = [key for part in sections for key in design.values(part)]

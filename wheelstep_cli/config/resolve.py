@@ -10,6 +10,7 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
+from wheelstep_cli.config.problem_search import also, every_problem, one_file, tied_keys
 from wheelstep_cli.config.schema import InvalidInput, build, design_errors
 from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec, strut_contradiction
 from wheelstep_cli.errors import DesignError, offered_remedies
@@ -191,7 +192,7 @@ def paper_table_spec(profile, **cli) -> tuple[GearPairSpec, str | None]:
     try:
         spec = tables(loaded, cli)
     except DesignError as first:
-        raise _every_problem(tables, loaded, cli, first) from None
+        raise every_problem(tables, loaded, cli, first) from None
     return spec, _left_out(loaded)
 
 
@@ -216,22 +217,17 @@ def _loaded(name: str | None, spec_type: type[BaseModel], section: str, cli: dic
             given = {k for k, v in cli.items() if v is not None}
             out = {issue.what.rpartition(".")[2] for issue in getattr(unread, "issues", ())}
             own = [e for e in (err, *getattr(err, "also", ()))
-                   if (not _tied_keys(e) & out if partial is not None else _tied_keys(e) <= given)]
+                   if (not tied_keys(e) & out if partial is not None else tied_keys(e) <= given)]
             if own and isinstance(unread, InvalidInput):
                 # the file's lines together, in its order; the options' after them
                 for more in (e for e in own if isinstance(e, InvalidInput)):
-                    unread = _one_file(unread, more)
-                raise _also(unread, [e for e in own if not isinstance(e, InvalidInput)]) from None
+                    unread = one_file(unread, more)
+                raise also(unread, [e for e in own if not isinstance(e, InvalidInput)]) from None
             if own:
-                raise _also(unread, own) from None
+                raise also(unread, own) from None
         raise
 
 
-def _also(err: DesignError, more: list[DesignError]) -> DesignError:
-    """``err`` carrying ``more`` problems of the same run in ``also``."""
-    if more:
-        err.also = [*getattr(err, "also", ()), *more]
-    return err
 
 
 def _checked(spec_type: type[BaseModel], values: dict[str, Any], check: str):
@@ -245,7 +241,7 @@ def _checked(spec_type: type[BaseModel], values: dict[str, Any], check: str):
 def _resolved(spec_type: type[BaseModel], section: str, loaded, cli: dict[str, Any], check: str):
     """The spec of the command line ``cli`` over the design profile ``loaded`` (None: none)
     over the defaults, checked (:func:`_checked`); the rules the command line and the user's
-    profile break are said all at once (:func:`_every_problem`)."""
+    profile break are said all at once (:func:`~wheelstep_cli.config.problem_search.every_problem`)."""
     def resolved(seen, top: dict[str, Any]):
         return _named_for(top, lambda: _checked(spec_type, spec_values(spec_type, section, seen, top), check),
                           profile=(seen, section))
@@ -253,90 +249,17 @@ def _resolved(spec_type: type[BaseModel], section: str, loaded, cli: dict[str, A
     try:
         return resolved(loaded, cli)
     except DesignError as first:
-        raise _every_problem(resolved, loaded, cli, first) from None
+        raise every_problem(resolved, loaded, cli, first) from None
 
 
-class WithoutKeys:
-    """A design profile seen without some of its keys (``"section.key"``): the defaults
-    stand in for them."""
-
-    def __init__(self, profile, keys: set[str]):
-        self.profile, self.keys = profile, keys
-
-    @property
-    def shipped(self) -> bool:
-        return self.profile.shipped
-
-    def where(self, section: str, key: str) -> str | None:
-        return self.profile.where(section, key)
-
-    def values(self, section: str) -> dict[str, Any]:
-        return {k: v for k, v in self.profile.values(section).items() if f"{section}.{k}" not in self.keys}
 
 
-def _blamed(err: DesignError, cli: dict[str, Any]) -> tuple[set[str], set[str]]:
-    """(the command line's options, the profile's ``"section.key"``) that the problem ``err``
-    (said by :func:`_named_for`) names: the one it is said for (empty sets: neither, it is
-    the defaults' own)."""
-    if isinstance(err, InvalidInput):
-        return set(), {issue.what for issue in err.issues}
-    named = err.param.replace("-", "_")
-    return ({named} if cli.get(named) is not None else set()), set()
 
 
-def _tied_keys(err: DesignError) -> set[str]:
-    """Every parameter a rule is stated for (its own and those tied on), snake_case."""
-    if hasattr(err, "tied"):
-        return err.tied
-    if isinstance(err, InvalidInput):
-        return {issue.what.rpartition(".")[2] for issue in err.issues}
-    return {name.replace("-", "_") for name in (err.param, *err.alternatives)}
 
 
-def _every_problem(resolved, loaded, cli: dict[str, Any], first: DesignError) -> DesignError:
-    """``first`` (a rule the command line ``cli`` or the design profile ``loaded`` breaks, said
-    for an option or at the profile's line) carrying in ``also`` every other rule their values
-    break, so the user mends them in one go: a rule stops at the first value it finds at fault,
-    so the spec is resolved again (``resolved(profile seen, options)``, raising the rule it
-    finds broken, said by :func:`_named_for`) without the options and keys found so far (the defaults
-    standing in) while that finds another given value at fault. A problem that the defaults
-    standing in take part in is not said (it may stem from them): its value is left out unsaid
-    and the search goes on. The profile's problems are said as one file's lines."""
-    problems: list[DesignError] = []
-    options, keys = _blamed(first, cli)
-    if not options and not keys:
-        return first
-    found = [first]
-    while True:
-        top = {k: (None if k in options else v) for k, v in cli.items()}
-        seen = loaded if loaded is None or not keys else WithoutKeys(loaded, keys)
-        try:
-            resolved(seen, top)
-            break
-        except DesignError as err:
-            more_options, more_keys = _blamed(err, top)
-            if not (more_options - options or more_keys - keys):
-                break               # the defaults' own, or nothing left to leave out: the search ends
-            left_out = options | {key.rpartition(".")[2] for key in keys}
-            if not _tied_keys(err) & left_out:
-                found.append(err)
-            options, keys = options | more_options, keys | more_keys
-    for err in found:
-        if isinstance(err, InvalidInput) and problems and isinstance(problems[-1], InvalidInput):
-            problems[-1] = _one_file(problems[-1], err)
-        else:
-            problems.append(err)
-    if len(problems) == 1:
-        return problems[0]
-    problems[0].also = problems[1:]
-    return problems[0]
 
 
-def _one_file(said: InvalidInput, more: InvalidInput) -> InvalidInput:
-    """The profile's problems ``said`` and ``more`` as one file's lines (``said``'s remedies)."""
-    every = InvalidInput([*said.issues, *more.issues])
-    every.remedy, every.remedies = getattr(said, "remedy", {}), list(getattr(said, "remedies", []))
-    return every
 
 
 def _named_for(cli: dict[str, Any], step, *args, profile: tuple | None = None):
