@@ -286,3 +286,13 @@ def test_a_key_too_deep_for_any_bore_is_told_by_its_depth_not_a_width_of_zero(cl
     args[args.index("--key-depth") + 1] = _limit(line)
     done = cli(*args)
     assert done.exit_code == 0, done.stderr
+    # a bore too large besides: its limit is one a bore can meet (it said < 0.00 mm), then the depth's
+    args = ["gears", "--bore-shape", "keyway", "--bore", "95", "--key-depth", "60", "--key-width", "4",
+            "--mark-depth", "0", "--dry-run", "--out", tmp_path / "o"]
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --bore = 95: must be < ") and float(_limit(line)) > 0.0, line
+    args[args.index("--bore") + 1] = _limit(line)
+    line = error_line(cli(*args))
+    assert line.startswith("wheelstep: error: --key-depth = 60: must be < "), line
+    args[args.index("--key-depth") + 1] = _limit(line)
+    assert cli(*args).exit_code == 0

@@ -565,6 +565,10 @@ def test_the_command_lines_problems_and_the_profiles_are_told_together(cli, tmp_
     assert result.exit_code == 2 and not out.exists()
     assert sorted(ln.split(" = ")[0] for ln in lines) == sorted(
         [f"{design}:2: mechanism.a", f"{design}:5: gears.chamfer", "--pressure-angle"]), lines
+    # the file's lines together, in its order (they were split round the option's)
+    in_file = [ln.startswith(str(design)) for ln in lines]
+    assert in_file in ([True, True, False], [False, True, True]) and lines.index(
+        next(ln for ln in lines if ":2: " in ln)) < lines.index(next(ln for ln in lines if ":5: " in ln)), lines
     # in --json: each problem, an option's with no file line
     record = json.loads(cli("gears", "--profile", design, "--pressure-angle", "50", "--json",
                             "--out", out).stdout)["error"]
@@ -604,3 +608,12 @@ def test_a_profiles_values_out_of_bounds_do_not_hide_its_rules_between_values(cl
     assert "gears.chamfer = 2: must be < half the thickness 0.5 mm" in _said(result)[2]
     tied = write(tmp_path / "tied.yaml", "gears:\n  thickness: 0.3\n  chamfer: 0.4\n")
     assert [ln.split(": ")[1] for ln in _said(cli("gears", "--profile", tied, "--out", out))] == ["gears.thickness = 0.3"]
+
+
+def test_mesh_checks_distance_is_named_as_typed_among_the_other_problems(cli, tmp_path):
+    """mesh-check's --distance is the design's installed distance: renamed for the line, it
+    dropped the run's other problems, and one found after another kept its inner name."""
+    for other, flag in ((["--blend", "-3"], "--blend"), (["--turns", "3"], "--turns")):
+        result = cli("mesh-check", tmp_path / "p.stl", tmp_path / "w.stl", "--distance", "-5", *other)
+        assert result.exit_code == 2
+        assert sorted(ln.split(" = ")[0] for ln in _said(result)) == sorted(["--distance", flag]), _said(result)

@@ -77,8 +77,10 @@ def every_problem(resolved, loaded, cli: dict[str, Any], first: DesignError) -> 
                 found.append(err)
             options, keys = options | more_options, keys | more_keys
     for err in found:
-        if isinstance(err, InvalidInput) and problems and isinstance(problems[-1], InvalidInput):
-            problems[-1] = one_file(problems[-1], err)
+        # the profile's lines together (in its order), where its first problem was found
+        at = next((k for k, said in enumerate(problems) if isinstance(said, InvalidInput)), None)
+        if isinstance(err, InvalidInput) and at is not None:
+            problems[at] = one_file(problems[at], err)
         else:
             problems.append(err)
     if len(problems) == 1:

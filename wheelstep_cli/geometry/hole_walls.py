@@ -33,6 +33,12 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
             def largest_bore(width: float) -> float:
                 return 2.0 * (np.sqrt(max(allowed ** 2 - (width / 2.0) ** 2, 0.0)) - value)
 
+            # the key's outer corner at (width/2, bore/2 + depth): not one for one with the depth
+            # off the axis, so a far depth's limit is solved on that corner, less what the
+            # hole's drawn reach adds to it (a printer's compensation)
+            added = reach - np.hypot(bore[0] / 2.0 + value, bore[1] / 2.0)
+            corner = np.sqrt(max((allowed - added) ** 2 - (bore[1] / 2.0) ** 2, 0.0)) - bore[0] / 2.0
+            limit = min(limit, corner)
             largest = largest_bore(bore[1])
             if bore[1] >= largest:
                 # no bore both holds the key (wider than it) and leaves the wall: the key is too
@@ -47,6 +53,13 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
                 # a key this deep leaves no bore at any width: its depth is what to change (below)
             by_bore = (bore[0], f"must be < {rounded_down(max(largest, 0.0))} mm with the keyway's "
                                 f"{value:g} mm depth {wall}")
+            if largest <= 0.0:
+                # a key this deep leaves no bore: the bore's limit is the one that leaves room
+                # for a keyway half as deep as it is wide, the depth then said in turn
+                depth = bore[1] / 2.0
+                shallow = 2.0 * (np.sqrt(max(allowed ** 2 - (bore[1] / 2.0) ** 2, 0.0)) - depth)
+                by_bore = (bore[0], f"must be < {rounded_down(max(shallow, 0.0))} mm for a keyway up to "
+                                    f"{depth:g} mm deep (the {value:g} mm depth leaves no bore) {wall}")
             if limit <= 0.0:    # no key depth helps: the bore itself is too large for this gear
                 raise DesignError("bore", *by_bore)
         elif limit <= 0.0:      # a root too near the axis for any hole ("must be < -1.36 mm" said nothing)

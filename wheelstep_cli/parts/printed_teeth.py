@@ -72,8 +72,9 @@ def require_printable_teeth(pair, printer=None) -> None:
     remedy = (f"use {as_flags(options)} (fewer, larger teeth)" if options is not None else
               "use fewer teeth (--z) or a larger --module")
     # a fitted pair's teeth are drawn smaller: what prints thick enough unfitted may not
-    fitted = (f", the outlines drawn {pair.inset:.3f} mm smaller by the fit to the printer's band"
-              if getattr(pair, "inset", 0.0) else "")
+    inset = float(getattr(pair, "inset", 0.0) or 0.0)
+    fitted = (f", the outlines drawn {abs(inset):.3f} mm {'smaller' if inset > 0 else 'larger'} by the fit "
+              "to the printer's band" if inset else "")
     error = DesignError("z", design.z,
                         f"the teeth are too thin for printer '{printer.name}' (tip land under two "
                         f"{width / 2:g} mm extrusion lines{fitted}; {'; '.join(found)}); nothing written; "

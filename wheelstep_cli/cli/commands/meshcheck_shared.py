@@ -20,10 +20,15 @@ def design_spec(design: dict):
                               install_distance=design["distance"], law_csv=str(law_csv) if law_csv else None,
                               blend=design["blend"])
     except DesignError as err:
-        # mesh-check's --distance is the spec's installed distance: name it as the user typed it
-        if err.param == "install_distance" and design["distance"] is not None:
-            raise DesignError("distance", err.value, err.limit) from None
-        raise
+        if design["distance"] is None:
+            raise
+        # mesh-check's --distance is the spec's installed distance: named as the user typed it,
+        # in each problem the run found
+        renamed = [DesignError("distance", e.value, e.limit) if e.param == "install_distance" else e
+                   for e in (err, *getattr(err, "also", ()))]
+        if len(renamed) > 1:
+            renamed[0].also = renamed[1:]
+        raise renamed[0] from None
     if design["center_distance"] is not None and spec.install_distance is not None:
         # the law does not depend on it: it only says where to mount the pair when no
         # installed distance is given
