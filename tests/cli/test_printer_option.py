@@ -368,3 +368,11 @@ def test_a_shoe_whose_socket_and_rim_keep_its_height_is_offered_the_largest_smal
     line = error_line(cli(*with_remedy(args, larger)))
     assert cli(*with_remedy(args, remedy), "-q").exit_code == 0
     assert "does not fit the bed" in line, line
+
+
+def test_a_part_just_taller_than_the_printer_does_not_read_as_its_limit(cli, tmp_path):
+    """250.01 mm on a 250 mm printer was said `250.0 mm tall, more than the 250 mm printer
+    prints`: the height is said to as many decimals as it takes to differ."""
+    result = cli("shoe", "--width", "250.01", "--printer", "resin-0.05-standard", "--out", tmp_path / "s")
+    assert result.exit_code == 2 and not (tmp_path / "s").exists()
+    assert "makes part 'shoe' 250.01 mm tall, more than the 250 mm printer" in result.stderr, result.stderr

@@ -28,7 +28,7 @@ def size_problem(name: str, bounds: np.ndarray, printer: Printer) -> str | None:
     if fits_bed((size[0], size[1]), printer.bed, printer.edge_margin) is None:
         return f"part '{name}' ({size[0]:.1f} x {size[1]:.1f} mm) does not fit {_bed_words(printer)}"
     if size[2] > printer.max_height:
-        return (f"part '{name}' is {size[2]:.1f} mm tall; printer '{printer.given or printer.name}' prints at most "
+        return (f"part '{name}' is {_above(size[2], printer.max_height)} mm tall; printer '{printer.given or printer.name}' prints at most "
                 f"{printer.max_height:g} mm")
     return None
 
@@ -97,6 +97,15 @@ class HeightInputs:
     accepts: Callable[[dict], bool] = field(compare=False)
 
 
+def _above(tall: float, most: float) -> str:
+    """``tall`` mm as a line says it beside the ``most`` it exceeds: to a tenth, or to as many
+    more decimals (up to 4) as it takes not to read as that limit (250.01 said 250.0)."""
+    for places in range(1, 5):
+        if float(f"{tall:.{places}f}") > most:
+            break
+    return f"{tall:.{places}f}"
+
+
 def require_height(name: str, tall: float, printer: Printer, height_param: str, height: float,
                    footprint: dict[str, object] | None = None, stack: str = "", *,
                    lowers: HeightInputs) -> None:
@@ -106,7 +115,7 @@ def require_height(name: str, tall: float, printer: Printer, height_param: str, 
     part is as tall as the printer prints, where its spec accepts that; a build can check
     this before it spends time on the part."""
     if tall > printer.max_height:
-        error = _beyond(DesignError(height_param, height, f"makes part '{name}' {tall:.1f} mm tall{stack}, more "
+        error = _beyond(DesignError(height_param, height, f"makes part '{name}' {_above(tall, printer.max_height)} mm tall{stack}, more "
                                     f"than the {printer.max_height:g} mm printer '{printer.given or printer.name}' prints"),
                         printer).tied_to(footprint or {})
         total = sum(lowers.values.values())
