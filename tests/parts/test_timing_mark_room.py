@@ -18,6 +18,9 @@ def test_a_hub_that_leaves_the_pinion_no_room_for_its_mark_is_refused(cli, tmp_p
     assert line.startswith("wheelstep: error: --hub-d = 34: must be <= 27.91 mm: larger, it leaves "
                            "the pinion no room for its timing mark"), line
     assert line.endswith("; or --mark-depth 0 for no marks") and not out.exists()
+    # the one value the line offers is the --json remedy (it was {}; the hub's is a limit)
+    refused = json.loads(cli(*args, "--json").stdout)["error"]
+    assert refused["remedy"] == {"--mark-depth": 0.0} and refused["remedies"] == [{"--mark-depth": 0.0}], refused
     # the remedy, applied: no marks asked for, none missing
     result = cli(*args, "--mark-depth", "0")
     assert result.exit_code == 0, result.stderr

@@ -112,8 +112,11 @@ def _no_room_for_mark(name: str, outline: np.ndarray, hole, spec, unmarked: bool
     remedy = ", or ".join([f"--{param.replace('_', '-')} <= {rounded_down(largest)} mm"
                            for param, (_, largest) in limits.items()] + ([no_marks] if no_marks else []))
     # what narrows the web, the most specific first: named when the user gave it
-    return DesignError("mark_depth", spec.mark_depth, f"{room}: {remedy}", said).tied_to(
+    refused = DesignError("mark_depth", spec.mark_depth, f"{room}: {remedy}", said).tied_to(
         {"key_width": spec.key_width, "bore_shape": spec.bore_shape})
+    if no_marks:        # the one value the line offers (the others are limits), for a script
+        refused.remedy, refused.remedies = {"mark_depth": 0.0}, [{"mark_depth": 0.0}]
+    return refused
 
 
 def _largest_hole(spec, param: str, reach: float) -> float:
