@@ -410,3 +410,19 @@ def test_a_pitch_curve_too_tight_for_the_cutter_says_more_teeth_and_more_teeth_c
     assert "the generated outline has gaps" in line and "more teeth (--z)" in line, line
     finer = error_line(cli(*args, "--z", "96"))
     assert "gaps" not in finer, finer
+
+
+@pytest.mark.parametrize("option", ["--center-distance", "--install-distance"])
+def test_a_distance_that_makes_teeth_finer_than_the_least_module_is_refused_with_one_that_works(
+        cli, tmp_path, option):
+    """--module under 0.1 mm is refused; a centre distance setting the same module was
+    written (module 0.073 mm at 5 mm), and at 1 mm refused as interfering with a remedy that
+    led nowhere. The distance is refused with the least that gives module 0.1, which applied
+    is written."""
+    args = ["gears", option, "5", "--bore", "0", "--mark-depth", "0", "--format", "stl", "--dry-run"]
+    line = error_line(cli(*args, "--out", tmp_path / "o"))
+    assert line.startswith(f"wheelstep: error: {option} = 5: gives teeth of module 0.073 mm, under the least "
+                           "0.1 mm"), line
+    least = line.rsplit("must be >= ", 1)[1].split(" mm")[0]
+    done = cli(*with_remedy(args, [option, least]), "--out", tmp_path / "o")
+    assert done.exit_code == 0, done.stderr

@@ -390,6 +390,6 @@ def test_a_refusal_shared_by_the_strut_names_r_min_when_it_is_given_so(cli, tmp_
     """A rule the strut shares the blame for (the installed distance sizes the pair, c the
     law) names --rmin when the command line gives the strut as R_min, as it names --c."""
     for flag, value in (("--c", "370"), ("--rmin", "30")):
-        line = error_line(cli("gears", flag, value, "--install-distance", "3", "--dry-run", "--out", tmp_path / "o"))
+        line = error_line(cli("gears", flag, value, "--install-distance", "8", "--dry-run", "--out", tmp_path / "o"))
         assert line.startswith(f"wheelstep: error: {flag} = {value}: with it, bore = 8 (the default) fails: "
-                               "must be 0 (no hole)"), line
+                               "must be < "), line

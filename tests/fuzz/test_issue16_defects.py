@@ -67,9 +67,10 @@ CASES = [  # (args, files, text the line must hold)
      "--backlash = 3 (3.15 as printed): "),
     (["gears", "--install-distance", "10000"], {}, "--install-distance = 10000"),
     (["gears", "--thickness", "1e-300"], {}, "--thickness = 1e-300: must be >= 0.5 mm"),
-    # a pinion whose root is nearer the axis than a hole's wall: no hole fits (was "must be < -1.36 mm")
-    (["gears", "--install-distance", "3"], {}, "--install-distance = 3: with it, bore = 8 (the default) fails: "
-     "must be 0 (no hole): the pinion's root is "),
+    # teeth finer than the least module (their pinion's root too near the axis for any hole:
+    # "must be < -1.36 mm" before), refused for the distance that makes them so
+    (["gears", "--install-distance", "3"], {}, "--install-distance = 3: gives teeth of module 0.044 mm, under "
+     "the least 0.1 mm"),
     (["gears", "--install-distance", "20"], {}, "--install-distance = 20: with it, bore = 8 (the default) fails: must be <"),
     (["mesh-check", "h.stl", "p.stl", "--samples", "2147483648"], {"h.stl": HUGE, "p.stl": PNG},
      "--samples"),

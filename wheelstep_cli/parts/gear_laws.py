@@ -154,7 +154,10 @@ def rolling_distance(spec: GearPairSpec, law) -> float:
 
     if spec.module is None:
         given = spec.center_distance if spec.center_distance is not None else spec.install_distance
-        return float(given) if given is not None else DEFAULT_INSTALL
+        distance = float(given) if given is not None else DEFAULT_INSTALL
+        if law is not None:
+            _require_least_module(spec, law, distance)
+        return distance
     require(spec.module > 0, "module", spec.module, "must be > 0 mm")
     per_period = max(1, spec.z // law.pinion_periods)
     distance = float(center_distance_for_module(law, per_period, spec.module))
@@ -174,6 +177,28 @@ def rolling_distance(spec: GearPairSpec, law) -> float:
         raise DesignError("module", spec.module, f"must be {word} {module:g} mm for {spec.z} teeth "
                           f"{why}", alternatives)
     return distance
+
+
+def _require_least_module(spec: GearPairSpec, law, distance: float) -> None:
+    """Refuse (naming the distance given, or the tooth count) generated teeth rolling at
+    ``distance`` mm whose module, which the distance sets, is under the least a ``--module``
+    may be (MIN_MODULE): the limit given there holds for a distance too."""
+    from wheelstep_cli.config.specs import MIN_MODULE, MIN_TEETH
+    from wheelstep_cli.errors import DesignError, rounded_up
+    from wheelstep_cli.gears.pitch_curves import center_distance_for_module
+
+    per_period = max(1, spec.z // law.pinion_periods)
+    least = float(center_distance_for_module(law, per_period, MIN_MODULE))
+    if distance >= least:
+        return
+    module = MIN_MODULE * distance / least
+    why = f"gives teeth of module {module:.3f} mm, under the least {MIN_MODULE:g} mm a --module may be"
+    z = int(per_period * distance / least) * law.pinion_periods
+    named = "center_distance" if spec.center_distance is not None else "install_distance"
+    alternatives = {"z": (spec.z, f"with it, {named.replace('_', '-')} = {distance:g} {why}; must be <= {z}")} \
+        if z >= MIN_TEETH else {}
+    raise DesignError(named, distance, f"{why} at {spec.z} teeth; must be >= {rounded_up(least)} mm",
+                      alternatives)
 
 
 def installed_distance(spec: GearPairSpec, law=None) -> float:
