@@ -179,17 +179,10 @@ def _check_entry(check: _Check, index: int, entry: BatchEntry, issues: list[Issu
     for err in problems:
         issues.append(entry_problem(doc, path, err, where, design_line(design[0], kind, design_name, err), written))
     if problems or faulty or others or flawed:
-        issues[before:] = sorted(issues[before:], key=_line)     # the entry's problems in file order
+        issues[before:] = sorted(issues[before:], key=lambda issue: line_of(issue.where))  # in file order
         return None
     return Entry(index, name, kind.name, design_name, quantity, printer, overrides, spec, printed,
                  doc.where(path), override_where, allow)
-
-
-def _line(issue: Issue) -> int:
-    """The line of an issue's ``file:line`` (0 when it names none)."""
-    return line_of(issue.where)
-
-
 
 
 def _allow_interference(doc, path, kind: PartKind | None, entry: BatchEntry, issues: list[Issue]) -> bool:
@@ -323,8 +316,6 @@ def _in_design_order(design, sections, design_keys, errors: list[DesignError]) -
     return sorted(errors, key=line)
 
 
-
-
 def _resolve(kind: PartKind, design, overrides: dict, printer: Printer):
     """(spec, printed spec, problems): overrides over the kind's profile section over the
     mechanism section, checked by the spec's model and the kind's domain checks."""
@@ -372,6 +363,3 @@ def _require_height(kind: PartKind, printed, printer: Printer) -> None:
         # as the mesh's float32 vertices hold it (the plate's check sees that)
         require_height("shoe", float(np.float32(printed.width)), printer, "width", printed.width,
                        lowers=height_inputs(kind.name, printed))
-
-
-

@@ -57,7 +57,6 @@ def every_problem(resolved, loaded, cli: dict[str, Any], first: DesignError) -> 
     standing in) while that finds another given value at fault. A problem that the defaults
     standing in take part in is not said (it may stem from them): its value is left out unsaid
     and the search goes on. The profile's problems are said as one file's lines."""
-    problems: list[DesignError] = []
     options, keys = blamed(first, cli)
     if not options and not keys:
         return first
@@ -76,28 +75,23 @@ def every_problem(resolved, loaded, cli: dict[str, Any], first: DesignError) -> 
             if not tied_keys(err) & left_out:
                 found.append(err)
             options, keys = options | more_options, keys | more_keys
+    return gathered(found)
+
+
+def gathered(found: list[DesignError]) -> DesignError:
+    """The problems ``found`` in one run as one error: the first, carrying the others in
+    ``also``; a file's problems (InvalidInput) said as one file's lines (in its order, the
+    first one's remedies), where its first problem was found."""
+    problems: list[DesignError] = []
     for err in found:
-        # the profile's lines together (in its order), where its first problem was found
         at = next((k for k, said in enumerate(problems) if isinstance(said, InvalidInput)), None)
         if isinstance(err, InvalidInput) and at is not None:
-            problems[at] = one_file(problems[at], err)
+            every = InvalidInput([*problems[at].issues, *err.issues])
+            every.remedy = getattr(problems[at], "remedy", {})
+            every.remedies = list(getattr(problems[at], "remedies", []))
+            problems[at] = every
         else:
             problems.append(err)
-    if len(problems) == 1:
-        return problems[0]
-    problems[0].also = problems[1:]
+    if len(problems) > 1:
+        problems[0].also = problems[1:]
     return problems[0]
-
-
-def one_file(said: InvalidInput, more: InvalidInput) -> InvalidInput:
-    """The profile's problems ``said`` and ``more`` as one file's lines (``said``'s remedies)."""
-    every = InvalidInput([*said.issues, *more.issues])
-    every.remedy, every.remedies = getattr(said, "remedy", {}), list(getattr(said, "remedies", []))
-    return every
-
-
-def also(err: DesignError, more: list[DesignError]) -> DesignError:
-    """``err`` carrying ``more`` problems of the same run in ``also``."""
-    if more:
-        err.also = [*getattr(err, "also", ()), *more]
-    return err

@@ -10,7 +10,7 @@ from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from wheelstep_cli.config.problem_search import also, every_problem, one_file, tied_keys
+from wheelstep_cli.config.problem_search import every_problem, gathered, tied_keys
 from wheelstep_cli.config.schema import InvalidInput, build, design_errors
 from wheelstep_cli.config.specs import GearPairSpec, ShoeSpec, strut_contradiction
 from wheelstep_cli.errors import DesignError, offered_remedies
@@ -218,16 +218,9 @@ def _loaded(name: str | None, spec_type: type[BaseModel], section: str, cli: dic
             out = {issue.what.rpartition(".")[2] for issue in getattr(unread, "issues", ())}
             own = [e for e in (err, *getattr(err, "also", ()))
                    if (not tied_keys(e) & out if partial is not None else tied_keys(e) <= given)]
-            if own and isinstance(unread, InvalidInput):
-                # the file's lines together, in its order; the options' after them
-                for more in (e for e in own if isinstance(e, InvalidInput)):
-                    unread = one_file(unread, more)
-                raise also(unread, [e for e in own if not isinstance(e, InvalidInput)]) from None
-            if own:
-                raise also(unread, own) from None
+            if own:     # the file's lines together, in its order; the options' after them
+                raise gathered([unread, *own]) from None
         raise
-
-
 
 
 def _checked(spec_type: type[BaseModel], values: dict[str, Any], check: str):
@@ -250,16 +243,6 @@ def _resolved(spec_type: type[BaseModel], section: str, loaded, cli: dict[str, A
         return resolved(loaded, cli)
     except DesignError as first:
         raise every_problem(resolved, loaded, cli, first) from None
-
-
-
-
-
-
-
-
-
-
 
 
 def _named_for(cli: dict[str, Any], step, *args, profile: tuple | None = None):

@@ -30,15 +30,18 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
         if hole_param == "key_depth" and bore is not None:
             allowed = root - MIN_HOLE_WALL
 
-            def largest_bore(width: float) -> float:
-                return 2.0 * (np.sqrt(max(allowed ** 2 - (width / 2.0) ** 2, 0.0)) - value)
+            def half_chord(radius: float, width: float) -> float:
+                """How far from the axis a key ``width`` mm wide reaches a circle of ``radius``."""
+                return float(np.sqrt(max(radius ** 2 - (width / 2.0) ** 2, 0.0)))
+
+            def largest_bore(width: float, depth: float = value) -> float:
+                return 2.0 * (half_chord(allowed, width) - depth)
 
             # the key's outer corner at (width/2, bore/2 + depth): not one for one with the depth
             # off the axis, so a far depth's limit is solved on that corner, less what the
             # hole's drawn reach adds to it (a printer's compensation)
             added = reach - np.hypot(bore[0] / 2.0 + value, bore[1] / 2.0)
-            corner = np.sqrt(max((allowed - added) ** 2 - (bore[1] / 2.0) ** 2, 0.0)) - bore[0] / 2.0
-            limit = min(limit, corner)
+            limit = min(limit, half_chord(allowed - added, bore[1]) - bore[0] / 2.0)
             largest = largest_bore(bore[1])
             if bore[1] >= largest:
                 # no bore both holds the key (wider than it) and leaves the wall: the key is too
@@ -57,7 +60,7 @@ def require_wall(name: str, outline: np.ndarray, hole: np.ndarray, hole_param: s
                 # a key this deep leaves no bore: the bore's limit is the one that leaves room
                 # for a keyway half as deep as it is wide, the depth then said in turn
                 depth = bore[1] / 2.0
-                shallow = 2.0 * (np.sqrt(max(allowed ** 2 - (bore[1] / 2.0) ** 2, 0.0)) - depth)
+                shallow = largest_bore(bore[1], depth)
                 by_bore = (bore[0], f"must be < {rounded_down(max(shallow, 0.0))} mm for a keyway up to "
                                     f"{depth:g} mm deep (the {value:g} mm depth leaves no bore) {wall}")
             if limit <= 0.0:    # no key depth helps: the bore itself is too large for this gear

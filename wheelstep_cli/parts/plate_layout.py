@@ -28,8 +28,8 @@ def size_problem(name: str, bounds: np.ndarray, printer: Printer) -> str | None:
     if fits_bed((size[0], size[1]), printer.bed, printer.edge_margin) is None:
         return f"part '{name}' ({size[0]:.1f} x {size[1]:.1f} mm) does not fit {_bed_words(printer)}"
     if size[2] > printer.max_height:
-        return (f"part '{name}' is {_above(size[2], printer.max_height)} mm tall; printer '{printer.given or printer.name}' prints at most "
-                f"{printer.max_height:g} mm")
+        return (f"part '{name}' is {_above(size[2], printer.max_height)} mm tall; printer "
+                f"'{printer.given or printer.name}' prints at most {printer.max_height:g} mm")
     return None
 
 
@@ -115,8 +115,9 @@ def require_height(name: str, tall: float, printer: Printer, height_param: str, 
     part is as tall as the printer prints, where its spec accepts that; a build can check
     this before it spends time on the part."""
     if tall > printer.max_height:
-        error = _beyond(DesignError(height_param, height, f"makes part '{name}' {_above(tall, printer.max_height)} mm tall{stack}, more "
-                                    f"than the {printer.max_height:g} mm printer '{printer.given or printer.name}' prints"),
+        error = _beyond(DesignError(height_param, height, f"makes part '{name}' "
+                                    f"{_above(tall, printer.max_height)} mm tall{stack}, more than the "
+                                    f"{printer.max_height:g} mm printer '{printer.given or printer.name}' prints"),
                         printer).tied_to(footprint or {})
         total = sum(lowers.values.values())
         offered = [{input_name: lower} for input_name, value in lowers.values.items()

@@ -8,6 +8,7 @@ import shlex
 
 def design_spec(design: dict):
     """The design the meshes were drawn for, from the design options (mm, deg at the edge)."""
+    from wheelstep_cli.config.problem_search import gathered
     from wheelstep_cli.config.resolve import gear_pair_spec
 
     from wheelstep_cli.errors import DesignError
@@ -24,11 +25,8 @@ def design_spec(design: dict):
             raise
         # mesh-check's --distance is the spec's installed distance: named as the user typed it,
         # in each problem the run found
-        renamed = [DesignError("distance", e.value, e.limit) if e.param == "install_distance" else e
-                   for e in (err, *getattr(err, "also", ()))]
-        if len(renamed) > 1:
-            renamed[0].also = renamed[1:]
-        raise renamed[0] from None
+        raise gathered([DesignError("distance", e.value, e.limit) if e.param == "install_distance" else e
+                        for e in (err, *getattr(err, "also", ()))]) from None
     if design["center_distance"] is not None and spec.install_distance is not None:
         # the law does not depend on it: it only says where to mount the pair when no
         # installed distance is given
